@@ -1,0 +1,56 @@
+// Shared WGSL: the structs mirrored by Rust twins in src/render/gpu_types.rs (layouts
+// asserted by tests), and the colour pipeline of docs/architecture.md. Included first by
+// every shader module (see src/render/shaders.rs); never copied.
+
+const PI: f32 = 3.14159265358979;
+
+const LIGHT_POINT: u32 = 0u;
+const LIGHT_SPOT: u32 = 1u;
+const LIGHT_DIRECTIONAL: u32 = 2u;
+
+// Per-frame constants.
+struct Frame {
+    view_proj: mat4x4<f32>,
+    // xyz = camera position (world, metres).
+    camera_position: vec4<f32>,
+    // Linear multiplier 2^EV applied before tone mapping.
+    exposure: f32,
+    light_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+};
+
+// One light. Units: point/spot radiant intensity in candela, directional illuminance in lux
+// (KHR_lights_punctual), times the linear RGB colour.
+struct Light {
+    // xyz = world position; w unused.
+    position: vec4<f32>,
+    // xyz = unit direction the light travels; w = range in metres (0 = unlimited).
+    direction_range: vec4<f32>,
+    // rgb = colour × intensity; w unused.
+    intensity_rgb: vec4<f32>,
+    // x = cos(outer cone), y = 1 / (cos(inner) − cos(outer)); zw unused.
+    spot_cone: vec4<f32>,
+    kind: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+};
+
+// A material, mapped from glTF metallic-roughness (see Material in src/scene/material.rs).
+struct Material {
+    // Linear RGBA base colour factor.
+    base_color: vec4<f32>,
+    // x = metallic, y = KHR specular factor, z = Phong exponent, w = 1 if textured.
+    params: vec4<f32>,
+    // rgb = emitted radiance.
+    emissive: vec4<f32>,
+};
+
+// Filmic tone curve of Narkowicz (2015), an analytic fit of the ACES reference rendering
+// transform, applied per channel: t(x) = x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14),
+// clamped to [0, 1]. The sRGB encode is done by the render target's format.
+fn tonemap_aces_fit(x: vec3<f32>) -> vec3<f32> {
+    let c = max(x, vec3<f32>(0.0));
+    return clamp(c * (2.51 * c + 0.03) / (c * (2.43 * c + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}

@@ -1,0 +1,13 @@
+//! lightpaint: a lighting editor in which artists light a 3D scene by painting on it.
+//!
+//! The crate is organised by domain (see `docs/architecture.md`):
+//! - [`scene`]: meshes, materials, lights and cameras; glTF import and validation.
+//! - [`render`]: wgpu device, GPU buffers mirroring the WGSL structs, pipelines, offscreen
+//!   targets.
+//! - [`ui`]: the eframe editor shell.
+//! - [`samples`]: the generator of the bundled sample scene.
+
+pub mod render;
+pub mod samples;
+pub mod scene;
+pub mod ui;

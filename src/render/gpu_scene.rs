@@ -1,0 +1,239 @@
+//! A [`Scene`] uploaded to the GPU: vertex and index buffers per object, one bind group
+//! per material (uniform, mipmapped base colour texture, sampler), and the frame uniform
+//! and light storage buffer shared by every draw.
+
+use wgpu::util::DeviceExt;
+
+use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex};
+use super::pipeline::SceneLayouts;
+use crate::scene::{Light, Scene, TextureImage};
+
+pub struct GpuObject {
+    pub vertex_buffer: wgpu::Buffer,
+    pub index_buffer: wgpu::Buffer,
+    pub index_count: u32,
+    pub material: usize,
+}
+
+pub struct GpuScene {
+    pub objects: Vec<GpuObject>,
+    pub material_bind_groups: Vec<wgpu::BindGroup>,
+    frame_buffer: wgpu::Buffer,
+    light_buffer: wgpu::Buffer,
+    light_capacity: usize,
+    pub frame_bind_group: wgpu::BindGroup,
+    pub light_count: usize,
+}
+
+impl GpuScene {
+    pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
+        let objects = scene
+            .objects
+            .iter()
+            .filter(|o| !o.indices.is_empty())
+            .map(|object| {
+                let vertices: Vec<GpuVertex> = (0..object.positions.len())
+                    .map(|i| GpuVertex {
+                        position: object.positions[i].to_array(),
+                        normal: object.normals[i].to_array(),
+                        uv: object.uvs[i].to_array(),
+                    })
+                    .collect();
+                GpuObject {
+                    vertex_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&object.name),
+                        contents: bytemuck::cast_slice(&vertices),
+                        usage: wgpu::BufferUsages::VERTEX,
+                    }),
+                    index_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&object.name),
+                        contents: bytemuck::cast_slice(&object.indices),
+                        usage: wgpu::BufferUsages::INDEX,
+                    }),
+                    index_count: object.indices.len() as u32,
+                    material: object.material.min(scene.materials.len().saturating_sub(1)),
+                }
+            })
+            .collect();
+
+        let textures: Vec<wgpu::TextureView> = scene
+            .textures
+            .iter()
+            .map(|t| upload_texture(device, queue, t))
+            .collect();
+        let white = upload_texture(
+            device,
+            queue,
+            &TextureImage {
+                name: "white".into(),
+                width: 1,
+                height: 1,
+                rgba8: vec![255; 4],
+            },
+        );
+        let material_bind_groups = scene
+            .materials
+            .iter()
+            .map(|material| {
+                let texture = material.base_color_texture.and_then(|i| textures.get(i));
+                let uniform = GpuMaterial::new(material, texture.is_some());
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&material.name),
+                    contents: bytemuck::bytes_of(&uniform),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&material.name),
+                    layout: &layouts.material,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: buffer.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(&layouts.sampler),
+                        },
+                    ],
+                })
+            })
+            .collect();
+
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<GpuFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let light_capacity = scene.lights.len().max(1);
+        let light_buffer = create_light_buffer(device, light_capacity);
+        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &light_buffer);
+        let mut gpu_scene = GpuScene {
+            objects,
+            material_bind_groups,
+            frame_buffer,
+            light_buffer,
+            light_capacity,
+            frame_bind_group,
+            light_count: 0,
+        };
+        gpu_scene.update_lights(device, queue, layouts, &scene.lights);
+        gpu_scene
+    }
+
+    /// Rewrites the light buffer, growing it when there are more lights than it holds.
+    pub fn update_lights(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &SceneLayouts,
+        lights: &[Light],
+    ) {
+        if lights.len() > self.light_capacity {
+            self.light_capacity = lights.len().next_power_of_two();
+            self.light_buffer = create_light_buffer(device, self.light_capacity);
+            self.frame_bind_group = frame_bind_group(device, layouts, &self.frame_buffer, &self.light_buffer);
+        }
+        let gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
+        if !gpu_lights.is_empty() {
+            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(&gpu_lights));
+        }
+        self.light_count = lights.len();
+    }
+
+    pub fn write_frame(&self, queue: &wgpu::Queue, frame: &GpuFrame) {
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
+    }
+}
+
+fn create_light_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("lights"),
+        size: (capacity * std::mem::size_of::<GpuLight>()) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn frame_bind_group(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    frame: &wgpu::Buffer,
+    lights: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("frame"),
+        layout: &layouts.frame,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: lights.as_entire_binding(),
+            },
+        ],
+    })
+}
+
+/// Uploads an sRGB texture with a full mip chain (box-filtered on the CPU), so distant
+/// and grazing texels average instead of aliasing.
+fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureImage) -> wgpu::TextureView {
+    let levels = mip_chain(texture);
+    let gpu_texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(&texture.name),
+        size: wgpu::Extent3d {
+            width: texture.width,
+            height: texture.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (level, image) in levels.iter().enumerate() {
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &gpu_texture,
+                mip_level: level as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            image.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * image.width()),
+                rows_per_image: Some(image.height()),
+            },
+            wgpu::Extent3d {
+                width: image.width(),
+                height: image.height(),
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    gpu_texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+fn mip_chain(texture: &TextureImage) -> Vec<image::RgbaImage> {
+    let base = image::RgbaImage::from_raw(texture.width, texture.height, texture.rgba8.clone())
+        .unwrap_or_else(|| image::RgbaImage::from_pixel(1, 1, image::Rgba([255; 4])));
+    let mut levels = vec![base];
+    loop {
+        let last = &levels[levels.len() - 1];
+        if last.width() == 1 && last.height() == 1 {
+            break levels;
+        }
+        let (w, h) = ((last.width() / 2).max(1), (last.height() / 2).max(1));
+        let next = image::imageops::resize(last, w, h, image::imageops::FilterType::Triangle);
+        levels.push(next);
+    }
+}

@@ -1,0 +1,127 @@
+//! Rust twins of the WGSL structs in `shaders/common.wgsl` (`#[repr(C)]`, bytemuck).
+//! `tests/wgsl_layout.rs` checks each size and field offset against naga's layout of the
+//! WGSL source, so the two cannot drift apart.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+
+use crate::scene::{Camera, Light, LightKind, Material};
+
+/// Light kind tags shared with WGSL (`LIGHT_POINT`, `LIGHT_SPOT`, `LIGHT_DIRECTIONAL`).
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_SPOT: u32 = 1;
+pub const LIGHT_DIRECTIONAL: u32 = 2;
+
+/// Vertex buffer element: position, normal (world space) and UV set 0.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuVertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+}
+
+impl GpuVertex {
+    pub const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<GpuVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+}
+
+/// WGSL `Frame`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    pub view_proj: [[f32; 4]; 4],
+    pub camera_position: [f32; 4],
+    pub exposure: f32,
+    pub light_count: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+
+impl GpuFrame {
+    pub fn new(camera: &Camera, aspect: f32, exposure_ev: f32, light_count: usize) -> GpuFrame {
+        GpuFrame {
+            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
+            camera_position: camera.position.extend(1.0).to_array(),
+            exposure: exposure_ev.exp2(),
+            light_count: light_count as u32,
+            _pad0: 0,
+            _pad1: 0,
+        }
+    }
+
+    pub fn view_projection(&self) -> Mat4 {
+        Mat4::from_cols_array_2d(&self.view_proj)
+    }
+}
+
+/// WGSL `Light`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 4],
+    pub direction_range: [f32; 4],
+    pub intensity_rgb: [f32; 4],
+    pub spot_cone: [f32; 4],
+    pub kind: u32,
+    pub _pad: [u32; 3],
+}
+
+impl GpuLight {
+    pub fn new(light: &Light) -> GpuLight {
+        let (kind, spot_cone) = match light.kind {
+            LightKind::Point => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Directional => (LIGHT_DIRECTIONAL, [0.0; 4]),
+            LightKind::Spot {
+                inner_cone_rad,
+                outer_cone_rad,
+            } => {
+                let cos_outer = outer_cone_rad.cos();
+                // A zero-width transition would divide by zero: keep it at least 1e-4.
+                let transition = (inner_cone_rad.cos() - cos_outer).max(1e-4);
+                (LIGHT_SPOT, [cos_outer, 1.0 / transition, 0.0, 0.0])
+            }
+        };
+        let intensity: Vec3 = light.color * light.intensity;
+        GpuLight {
+            position: light.position.extend(1.0).to_array(),
+            direction_range: light.direction.extend(light.range.unwrap_or(0.0)).to_array(),
+            intensity_rgb: intensity.extend(0.0).to_array(),
+            spot_cone,
+            kind,
+            _pad: [0; 3],
+        }
+    }
+}
+
+/// WGSL `Material`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    pub params: [f32; 4],
+    pub emissive: [f32; 4],
+}
+
+impl GpuMaterial {
+    pub fn new(material: &Material, textured: bool) -> GpuMaterial {
+        GpuMaterial {
+            base_color: material.base_color.to_array(),
+            params: [
+                material.metallic,
+                material.specular,
+                material.phong_exponent(),
+                if textured { 1.0 } else { 0.0 },
+            ],
+            emissive: material.emissive.extend(0.0).to_array(),
+        }
+    }
+}

@@ -1,0 +1,54 @@
+//! GPU rendering with wgpu: device set-up, buffers mirroring the WGSL structs, the scene
+//! pipeline and offscreen targets. Colour pipeline (docs/architecture.md): linear radiance
+//! × 2^EV exposure → per-channel ACES fit tone curve → sRGB encode by the target format.
+
+mod color;
+mod context;
+mod gpu_scene;
+pub mod gpu_types;
+mod offscreen;
+mod pipeline;
+pub mod shaders;
+
+pub use color::{linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
+pub use context::{GpuContext, describe_adapter};
+pub use gpu_scene::GpuScene;
+pub use gpu_types::GpuFrame;
+pub use offscreen::render_image;
+pub use pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
+
+/// Settings that change how a frame looks, not what the scene is.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RenderSettings {
+    /// Exposure in stops: radiance is multiplied by 2^EV before tone mapping.
+    pub exposure_ev: f32,
+    /// Colour where no geometry is seen, as 8-bit sRGB.
+    pub background_srgb8: [u8; 3],
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            exposure_ev: 0.0,
+            background_srgb8: [46, 50, 58],
+        }
+    }
+}
+
+impl RenderSettings {
+    pub fn background_linear(&self) -> [f64; 3] {
+        self.background_srgb8.map(|c| srgb_to_linear(c as f64 / 255.0))
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("no GPU adapter found (on a machine without a GPU, install Mesa's lavapipe: mesa-vulkan-drivers): {0}")]
+    NoAdapter(String),
+    #[error("the GPU device could not be created: {0}")]
+    Device(String),
+    #[error("image size {width}×{height} is not supported (1 to {max} pixels per side)")]
+    BadSize { width: u32, height: u32, max: u32 },
+    #[error("reading the rendered image back from the GPU failed: {0}")]
+    Readback(String),
+}

@@ -1,0 +1,245 @@
+//! The raster pipeline that draws a [`GpuScene`] into a [`RenderTarget`].
+
+use super::gpu_scene::GpuScene;
+use super::gpu_types::GpuVertex;
+use super::shaders;
+
+/// Colour format of every render target: linear shader output, sRGB-encoded on store.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Storage format of the resolved image: the same bytes as [`COLOR_FORMAT`], read raw.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Multisampling for smooth silhouettes.
+pub const SAMPLE_COUNT: u32 = 4;
+
+/// Bind group layouts and the shared sampler.
+pub struct SceneLayouts {
+    pub frame: wgpu::BindGroupLayout,
+    pub material: wgpu::BindGroupLayout,
+    pub sampler: wgpu::Sampler,
+}
+
+impl SceneLayouts {
+    fn new(device: &wgpu::Device) -> SceneLayouts {
+        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        };
+        let buffer = |ty| wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let both = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("frame"),
+            entries: &[
+                entry(0, both, buffer(wgpu::BufferBindingType::Uniform)),
+                entry(
+                    1,
+                    fragment,
+                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
+                ),
+            ],
+        });
+        let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("material"),
+            entries: &[
+                entry(0, fragment, buffer(wgpu::BufferBindingType::Uniform)),
+                entry(
+                    1,
+                    fragment,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                ),
+                entry(
+                    2,
+                    fragment,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+            ],
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("base colour"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 8,
+            ..Default::default()
+        });
+        SceneLayouts {
+            frame,
+            material,
+            sampler,
+        }
+    }
+}
+
+pub struct ScenePipeline {
+    pub layouts: SceneLayouts,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl ScenePipeline {
+    pub fn new(device: &wgpu::Device) -> ScenePipeline {
+        let layouts = SceneLayouts::new(device);
+        let module = shaders::create_module(device, "raster", shaders::RASTER);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("raster"),
+            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("raster"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(GpuVertex::layout())],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                front_face: wgpu::FrontFace::Ccw,
+                // glTF meshes are often open (planes, cards): draw both sides.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: SAMPLE_COUNT,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: COLOR_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        ScenePipeline { layouts, pipeline }
+    }
+
+    /// Clears `target` to `background` (linear RGB) and draws every object.
+    pub fn draw(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        scene: &GpuScene,
+        background_linear: [f64; 3],
+    ) {
+        let [r, g, b] = background_linear;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.msaa_view,
+                depth_slice: None,
+                resolve_target: Some(&target.color_view),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    store: wgpu::StoreOp::Discard,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &target.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+        for object in &scene.objects {
+            pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
+            pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
+            pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..object.index_count, 0, 0..1);
+        }
+    }
+}
+
+/// Where a frame is drawn: a multisampled colour and depth buffer, resolved into a
+/// single-sampled texture that holds sRGB-encoded bytes. The shader writes it through an
+/// sRGB view (the hardware encodes); egui and the PNG readback see the plain bytes, which
+/// is what egui expects of a user texture (gamma-space `Rgba8Unorm`).
+pub struct RenderTarget {
+    pub width: u32,
+    pub height: u32,
+    pub color: wgpu::Texture,
+    /// sRGB view: the resolve target.
+    pub color_view: wgpu::TextureView,
+    /// `Rgba8Unorm` view of the same bytes, for egui.
+    pub display_view: wgpu::TextureView,
+    msaa_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+}
+
+impl RenderTarget {
+    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> RenderTarget {
+        let size = wgpu::Extent3d {
+            width: width.max(1),
+            height: height.max(1),
+            depth_or_array_layers: 1,
+        };
+        let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let color = texture(
+            "colour",
+            DISPLAY_FORMAT,
+            1,
+            attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
+            &[COLOR_FORMAT],
+        );
+        let msaa = texture("colour msaa", COLOR_FORMAT, SAMPLE_COUNT, attachment, &[]);
+        let depth = texture("depth", DEPTH_FORMAT, SAMPLE_COUNT, attachment, &[]);
+        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+        RenderTarget {
+            width: size.width,
+            height: size.height,
+            color_view: color.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(COLOR_FORMAT),
+                ..Default::default()
+            }),
+            display_view: view(&color),
+            msaa_view: view(&msaa),
+            depth_view: view(&depth),
+            color,
+        }
+    }
+}

@@ -1,0 +1,68 @@
+use glam::Vec3;
+
+/// Axis-aligned bounding box. [`Aabb::EMPTY`] is the identity of [`Aabb::union`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
+
+    pub fn from_points(points: &[Vec3]) -> Aabb {
+        points.iter().fold(Aabb::EMPTY, |acc, &p| acc.including(p))
+    }
+
+    pub fn including(&self, p: Vec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    pub fn center(&self) -> Vec3 {
+        if self.is_empty() {
+            Vec3::ZERO
+        } else {
+            0.5 * (self.min + self.max)
+        }
+    }
+
+    /// Radius of the sphere around [`Aabb::center`] that holds the box (0 when empty).
+    pub fn radius(&self) -> f32 {
+        if self.is_empty() {
+            0.0
+        } else {
+            0.5 * (self.max - self.min).length()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_box_is_union_identity() {
+        let b = Aabb::from_points(&[Vec3::new(1.0, 2.0, 3.0), Vec3::new(-1.0, 0.0, 5.0)]);
+        assert_eq!(Aabb::EMPTY.union(&b), b);
+        assert!(Aabb::EMPTY.is_empty());
+        assert_eq!(b.center(), Vec3::new(0.0, 1.0, 4.0));
+        assert!((b.radius() - (4.0f32 + 4.0 + 4.0).sqrt() / 2.0).abs() < 1e-6);
+    }
+}

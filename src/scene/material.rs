@@ -1,0 +1,110 @@
+use glam::{Vec3, Vec4};
+
+/// A glTF metallic-roughness material, with the documented mapping to the diffuse + glossy
+/// (Phong) model the renderer uses (docs/architecture.md, "Materials").
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGBA base colour factor.
+    pub base_color: Vec4,
+    /// Index into [`super::Scene::textures`] of the sRGB base colour texture (UV set 0).
+    pub base_color_texture: Option<usize>,
+    pub metallic: f32,
+    pub roughness: f32,
+    /// KHR_materials_specular `specularFactor` (1 when the extension is absent).
+    pub specular: f32,
+    /// Linear RGB emitted radiance factor (times KHR_materials_emissive_strength).
+    pub emissive: Vec3,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        // The glTF default material.
+        Material {
+            name: "default".into(),
+            base_color: Vec4::ONE,
+            base_color_texture: None,
+            metallic: 1.0,
+            roughness: 1.0,
+            specular: 1.0,
+            emissive: Vec3::ZERO,
+        }
+    }
+}
+
+/// Reflectance of a dielectric at normal incidence (glTF's fixed 4 %).
+pub const DIELECTRIC_F0: f32 = 0.04;
+
+impl Material {
+    /// Diffuse albedo k_d = baseColor · (1 − metallic) · (1 − k_s,dielectric): metals have
+    /// no diffuse term, and what the dielectric specular reflects is not also diffused.
+    pub fn diffuse_albedo(&self) -> Vec3 {
+        let dielectric_specular = DIELECTRIC_F0 * self.specular;
+        self.base_color.truncate() * (1.0 - self.metallic) * (1.0 - dielectric_specular)
+    }
+
+    /// Specular reflectance k_s = mix(0.04 · specular, baseColor, metallic).
+    pub fn specular_color(&self) -> Vec3 {
+        Vec3::splat(DIELECTRIC_F0 * self.specular).lerp(self.base_color.truncate(), self.metallic)
+    }
+
+    /// Phong exponent r of the glossy lobe ((r + 1) / 2π) cos^r, from glTF roughness by the
+    /// usual Beckmann match r = 2/α² − 2 with α = roughness², clamped to [0, 10⁴].
+    pub fn phong_exponent(&self) -> f32 {
+        let alpha = (self.roughness * self.roughness).max(1e-2);
+        (2.0 / (alpha * alpha) - 2.0).clamp(0.0, 1.0e4)
+    }
+}
+
+/// An 8-bit sRGB-encoded RGBA texture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureImage {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    /// Row-major RGBA8, sRGB-encoded colour, linear alpha.
+    pub rgba8: Vec<u8>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn white_rough_dielectric_without_specular_is_pure_lambert() {
+        let m = Material {
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        };
+        assert_eq!(m.diffuse_albedo(), Vec3::ONE);
+        assert_eq!(m.specular_color(), Vec3::ZERO);
+    }
+
+    #[test]
+    fn metals_reflect_their_base_colour_and_do_not_diffuse() {
+        let m = Material {
+            base_color: Vec4::new(0.9, 0.6, 0.2, 1.0),
+            metallic: 1.0,
+            ..Material::default()
+        };
+        assert_eq!(m.diffuse_albedo(), Vec3::ZERO);
+        assert_eq!(m.specular_color(), Vec3::new(0.9, 0.6, 0.2));
+    }
+
+    #[test]
+    fn phong_exponent_falls_with_roughness() {
+        let exps: Vec<f32> = [0.0, 0.3, 0.6, 1.0]
+            .iter()
+            .map(|&r| {
+                Material {
+                    roughness: r,
+                    ..Material::default()
+                }
+                .phong_exponent()
+            })
+            .collect();
+        assert!(exps.windows(2).all(|w| w[0] > w[1]));
+        assert_eq!(exps[3], 0.0);
+    }
+}

@@ -1,0 +1,68 @@
+//! The scene model: what the renderer, the bake and the painting engine all read.
+//!
+//! Conventions (design.md §3): world space is glTF's (right-handed, +y up, metres);
+//! colours are linear RGB; light units follow KHR_lights_punctual (point and spot lights in
+//! candela, directional lights in lux).
+
+mod bounds;
+mod camera;
+mod error;
+mod gltf_import;
+pub mod gltf_write;
+mod light;
+mod material;
+mod mesh;
+pub mod shapes;
+
+pub use bounds::Aabb;
+pub use camera::{Camera, OrbitCamera};
+pub use error::SceneError;
+pub use gltf_import::load_gltf;
+pub use light::{Light, LightKind};
+pub use material::{Material, TextureImage};
+pub use mesh::MeshObject;
+
+use std::path::{Path, PathBuf};
+
+/// A loaded scene, flattened to world space: every mesh primitive instanced by a node
+/// becomes one [`MeshObject`] with the node's transform applied.
+#[derive(Debug, Clone, Default)]
+pub struct Scene {
+    pub objects: Vec<MeshObject>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<TextureImage>,
+    pub lights: Vec<Light>,
+    /// The first camera of the glTF scene, if it has one.
+    pub camera: Option<Camera>,
+    /// The file the scene was loaded from.
+    pub source: Option<PathBuf>,
+    /// Non-fatal problems found while loading (unsupported features, missing textures).
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Loads a scene from a `.gltf` or `.glb` file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        load_gltf(path)
+    }
+
+    /// World-space bounds of all geometry (empty if the scene has no geometry).
+    pub fn bounds(&self) -> Aabb {
+        self.objects
+            .iter()
+            .fold(Aabb::EMPTY, |acc, object| acc.union(&object.bounds()))
+    }
+
+    pub fn vertex_count(&self) -> usize {
+        self.objects.iter().map(|o| o.positions.len()).sum()
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.objects.iter().map(|o| o.indices.len() / 3).sum()
+    }
+
+    /// The camera to open the scene with: the glTF camera, or one framing the bounds.
+    pub fn initial_camera(&self) -> Camera {
+        self.camera.clone().unwrap_or_else(|| Camera::framing(&self.bounds()))
+    }
+}

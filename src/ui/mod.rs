@@ -1,0 +1,26 @@
+//! The eframe editor shell: a viewport with an orbit camera, the scene outliner, render
+//! settings and a status bar. Every action calls into the library.
+
+mod app;
+mod viewport;
+
+pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE};
+pub use viewport::Viewport;
+
+/// Opens the editor window and runs until it is closed.
+pub fn run_editor(options: EditorOptions) -> Result<(), eframe::Error> {
+    let native_options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("lightpaint")
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([640.0, 400.0]),
+        renderer: eframe::Renderer::Wgpu,
+        persist_window: true,
+        ..Default::default()
+    };
+    eframe::run_native(
+        "lightpaint",
+        native_options,
+        Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, options)))),
+    )
+}

@@ -1,0 +1,114 @@
+//! The command line: bad input exits with code 2 and one message naming the file and the
+//! cause, never a panic; good input renders a PNG.
+
+mod common;
+
+use std::ffi::OsStr;
+use std::path::Path;
+
+use glam::Vec3;
+
+/// Runs `lightpaint render FILE` and checks the failure contract.
+fn assert_rejected(file: &Path, cause: &str) {
+    let out = common::run_lightpaint(&[
+        OsStr::new("render"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        file.with_extension("png").as_os_str(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "exit code for {}; stderr: {stderr}",
+        file.display()
+    );
+    assert!(!stderr.contains("panicked"), "panic: {stderr}");
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "expected one message, got: {stderr}");
+    assert!(
+        lines[0].contains(&file.display().to_string()),
+        "message does not name the file: {stderr}"
+    );
+    assert!(lines[0].contains(cause), "message does not say '{cause}': {stderr}");
+    assert!(!file.with_extension("png").exists(), "no output may be written");
+}
+
+#[test]
+fn missing_file_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_rejected(&dir.path().join("nowhere.glb"), "file not found");
+}
+
+#[test]
+fn truncated_glb_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let sample = std::fs::read(common::repo_path(lightpaint::samples::SAMPLE_SCENE)).unwrap();
+    let path = dir.path().join("truncated.glb");
+    std::fs::write(&path, &sample[..sample.len() / 2]).unwrap();
+    assert_rejected(&path, "truncated");
+}
+
+#[test]
+fn nan_positions_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("nan.glb");
+    let glb = common::scenes::triangle([Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 0.0), Vec3::Y]);
+    std::fs::write(&path, glb).unwrap();
+    assert_rejected(&path, "position 1 is not finite");
+}
+
+#[test]
+fn out_of_range_accessor_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("accessor.glb");
+    std::fs::write(&path, common::scenes::out_of_range_accessor()).unwrap();
+    assert_rejected(&path, "out of range");
+}
+
+#[test]
+fn not_a_gltf_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("notes.gltf");
+    std::fs::write(&path, "{ this is not json").unwrap();
+    assert_rejected(&path, "not a valid glTF file");
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let out = common::run_lightpaint(&[OsStr::new("render"), OsStr::new("scene.glb")]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn check_accepts_the_sample() {
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
+    let out = common::run_lightpaint(&[OsStr::new("check"), sample.as_os_str()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("ok"), "{stdout}");
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    if common::no_gpu_wanted() {
+        eprintln!("GPU test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("sample.png");
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
+    let out = common::run_lightpaint(&[
+        OsStr::new("render"),
+        sample.as_os_str(),
+        OsStr::new("-o"),
+        out_png.as_os_str(),
+        OsStr::new("--width"),
+        OsStr::new("160"),
+        OsStr::new("--height"),
+        OsStr::new("90"),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let image = image::open(&out_png).expect("a PNG was written");
+    assert_eq!((image.width(), image.height()), (160, 90));
+}

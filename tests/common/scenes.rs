@@ -1,0 +1,58 @@
+//! Small scenes written as real glTF files for the tests.
+
+use glam::Vec3;
+use lightpaint::scene::gltf_write::{GltfBuilder, LightSpec, MaterialSpec};
+use lightpaint::scene::shapes;
+
+/// A white Lambertian (no specular) plane of side 2 at y = 0, seen from straight above by a
+/// camera at height 5 with a 40° field of view (so the corners of the image see past it),
+/// lit by `light` placed at `light_position` pointing down.
+pub fn white_plane(light: LightSpec, light_position: Vec3) -> Vec<u8> {
+    let mut b = GltfBuilder::new();
+    let white = b.add_material(&MaterialSpec {
+        specular: Some(0.0),
+        ..MaterialSpec::plain("white", [1.0, 1.0, 1.0], 1.0)
+    });
+    let plane = shapes::plane(2.0, 4, 1.0);
+    let mesh = b.add_mesh(
+        "plane",
+        &plane.positions,
+        Some(&plane.normals),
+        Some(&plane.uvs),
+        &plane.indices,
+        Some(white),
+    );
+    b.add_mesh_node("plane", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
+    b.add_light_node("light", &light, light_position, Vec3::NEG_Y);
+    b.add_camera_node(
+        "top",
+        40f32.to_radians(),
+        0.1,
+        Vec3::new(0.0, 5.0, 0.0),
+        Vec3::NEG_Y,
+        Vec3::NEG_Z,
+    );
+    b.to_glb()
+}
+
+/// One triangle whose positions are given as is (possibly NaN).
+pub fn triangle(positions: [Vec3; 3]) -> Vec<u8> {
+    let mut b = GltfBuilder::new();
+    let mesh = b.add_mesh("triangle", &positions, None, None, &[0, 1, 2], None);
+    b.add_mesh_node("triangle", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
+    b.to_glb()
+}
+
+/// A triangle whose POSITION accessor claims more vertices than its buffer view holds.
+pub fn out_of_range_accessor() -> Vec<u8> {
+    let mut b = GltfBuilder::new();
+    let positions: [f32; 9] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    let view = b.push_view(bytemuck::cast_slice(&positions), Some(34962));
+    let accessor = b.push_accessor(serde_json::json!({
+        "bufferView": view, "componentType": 5126, "count": 300, "type": "VEC3",
+        "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0],
+    }));
+    let mesh = b.add_raw_mesh("broken", serde_json::json!({"attributes": {"POSITION": accessor}}));
+    b.add_node(serde_json::json!({"name": "broken", "mesh": mesh}));
+    b.to_glb()
+}

@@ -1,0 +1,78 @@
+//! Smoke test of the real editor binary in a real window: start it under Xvfb on the
+//! bundled sample, wait for its first frame, screenshot the screen, check the picture is
+//! not blank, and close the window cleanly.
+
+mod common;
+
+use std::process::Command;
+
+fn have(program: &str) -> bool {
+    Command::new("sh")
+        .args(["-c", &format!("command -v {program}")])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+const SCRIPT: &str = r#"
+timeout 300 "$LIGHTPAINT" > "$LOG" 2>&1 &
+pid=$!
+for _ in $(seq 1 1200); do
+    grep -q "first frame drawn" "$LOG" && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+done
+# Let the viewport draw a few frames after the first.
+sleep 3
+import -window root "$SHOT"
+touch "$CLOSE"
+wait "$pid"
+"#;
+
+#[test]
+fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
+    if common::no_gpu_wanted() {
+        eprintln!("editor smoke test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    for program in ["xvfb-run", "import"] {
+        assert!(
+            have(program),
+            "{program} is missing: install xvfb and imagemagick (the README's test command does)"
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("editor.log");
+    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-smoke.png");
+    let _ = std::fs::remove_file(&shot);
+    let status = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", SCRIPT])
+        .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
+        .env("LOG", &log)
+        .env("SHOT", &shot)
+        .env("CLOSE", dir.path().join("close"))
+        .env("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS", dir.path().join("close"))
+        .env("XDG_RUNTIME_DIR", dir.path())
+        // A private data directory: no persisted window state or settings leak in or out.
+        .env("XDG_DATA_HOME", dir.path().join("data"))
+        .env("HOME", dir.path())
+        .status()
+        .expect("xvfb-run runs");
+    let log_text = std::fs::read_to_string(&log).unwrap_or_default();
+    assert!(status.success(), "editor exited with {status}; log:\n{log_text}");
+    assert!(
+        log_text.contains(lightpaint::ui::FIRST_FRAME_LINE),
+        "no first frame; log:\n{log_text}"
+    );
+    assert!(!log_text.contains("panicked"), "{log_text}");
+
+    let image = image::open(&shot).expect("screenshot taken").to_rgb8();
+    let distinct: std::collections::HashSet<[u8; 3]> = image.pixels().map(|p| p.0).collect();
+    let mean = image.pixels().map(|p| p[1] as f64).sum::<f64>() / (image.width() * image.height()) as f64;
+    assert!(
+        distinct.len() > 500,
+        "screenshot looks blank: {} colours",
+        distinct.len()
+    );
+    assert!((10.0..245.0).contains(&mean), "screenshot mean {mean}");
+    eprintln!("screenshot: {}", shot.display());
+}

@@ -1,0 +1,98 @@
+//! Every WGSL struct shared with Rust has a `#[repr(C)]` twin whose size and field offsets
+//! match naga's layout of the WGSL source.
+
+use std::mem::{offset_of, size_of};
+
+use lightpaint::render::gpu_types::{GpuFrame, GpuLight, GpuMaterial};
+use lightpaint::render::shaders;
+
+/// (size, [(member name, offset)]) of a WGSL struct, as naga lays it out.
+fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
+    let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).expect("layout");
+    let (handle, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("struct {name} not found in WGSL"));
+    match &ty.inner {
+        naga::TypeInner::Struct { members, span } => {
+            assert_eq!(*span, layouter[handle].size);
+            (
+                *span,
+                members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                    .collect(),
+            )
+        }
+        _ => panic!("{name} is not a struct"),
+    }
+}
+
+fn assert_twin(name: &str, rust_size: usize, rust_offsets: &[(&str, usize)]) {
+    let (size, members) = wgsl_layout(&shaders::with_common(shaders::RASTER), name);
+    assert_eq!(size as usize, rust_size, "size of {name}");
+    let wgsl_public: Vec<(String, u32)> = members.into_iter().filter(|(n, _)| !n.starts_with('_')).collect();
+    assert_eq!(wgsl_public.len(), rust_offsets.len(), "{name}: fields {wgsl_public:?}");
+    for ((wgsl_name, wgsl_offset), (rust_name, rust_offset)) in wgsl_public.iter().zip(rust_offsets) {
+        assert_eq!(wgsl_name, rust_name, "{name}: field order");
+        assert_eq!(*wgsl_offset as usize, *rust_offset, "{name}.{rust_name} offset");
+    }
+}
+
+#[test]
+fn frame_matches_wgsl() {
+    assert_twin(
+        "Frame",
+        size_of::<GpuFrame>(),
+        &[
+            ("view_proj", offset_of!(GpuFrame, view_proj)),
+            ("camera_position", offset_of!(GpuFrame, camera_position)),
+            ("exposure", offset_of!(GpuFrame, exposure)),
+            ("light_count", offset_of!(GpuFrame, light_count)),
+        ],
+    );
+}
+
+#[test]
+fn light_matches_wgsl() {
+    assert_twin(
+        "Light",
+        size_of::<GpuLight>(),
+        &[
+            ("position", offset_of!(GpuLight, position)),
+            ("direction_range", offset_of!(GpuLight, direction_range)),
+            ("intensity_rgb", offset_of!(GpuLight, intensity_rgb)),
+            ("spot_cone", offset_of!(GpuLight, spot_cone)),
+            ("kind", offset_of!(GpuLight, kind)),
+        ],
+    );
+}
+
+#[test]
+fn material_matches_wgsl() {
+    assert_twin(
+        "Material",
+        size_of::<GpuMaterial>(),
+        &[
+            ("base_color", offset_of!(GpuMaterial, base_color)),
+            ("params", offset_of!(GpuMaterial, params)),
+            ("emissive", offset_of!(GpuMaterial, emissive)),
+        ],
+    );
+}
+
+#[test]
+fn light_kind_tags_match_wgsl() {
+    use lightpaint::render::gpu_types::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+    for (name, value) in [
+        ("LIGHT_POINT", LIGHT_POINT),
+        ("LIGHT_SPOT", LIGHT_SPOT),
+        ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
+    ] {
+        let line = format!("const {name}: u32 = {value}u;");
+        assert!(shaders::COMMON.contains(&line), "common.wgsl lacks `{line}`");
+    }
+}
