@@ -10,4 +10,5 @@
 pub mod render;
 pub mod samples;
 pub mod scene;
+pub mod sh;
 pub mod ui;

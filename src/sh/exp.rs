@@ -1,0 +1,234 @@
+//! SH exponentiation exp*(f): the SH of the function exp(f(ω)), approximated as Ren et
+//! al. (2006) do by the reference exp(M_f)·1, where M_f is f's product matrix.
+//!
+//! Methods, all approximating [`exp_reference`]:
+//! - `Ps(k)`: the power series 1 + f + f∗f/2! + … with k terms (no DC isolation).
+//! - `Dc`: DC isolation, exp*(f) = e^{f₀/√(4π)} · exp*(f̂) with f̂ = f minus its DC, which is
+//!   exact, followed by the first-order term exp*(f̂) ≈ 1 + f̂. The cheapest method.
+//! - `Ol`: DC isolation, then optimal linear exp*(f̂) ≈ a(‖f̂‖)·1 + b(‖f̂‖)·f̂ with a, b
+//!   tabulated per order by our least-squares fit (`cargo run --bin fit-ol-tables`).
+//! - `Hyb`: DC isolation; scale f̂ by 2^−k so that ‖f̂‖/2^k ≤ [`HYB_DEFAULT_THRESHOLD`]; OL;
+//!   square k times (exp(x) = exp(x/2^k)^(2^k)).
+//! - `Reference`: eigendecomposition of the symmetric M_f̂ (after DC isolation).
+
+use nalgebra::{DMatrix, SymmetricEigen};
+
+use super::gaunt::{product, product_matrix};
+use super::{coefficient_count, constant, ol_tables, order_of};
+
+const SQRT_4PI: f64 = 3.544_907_701_811_032;
+
+/// Norm ‖f̂‖ up to which HYB applies OL directly, by default.
+pub const HYB_DEFAULT_THRESHOLD: f64 = 1.0;
+
+/// How to exponentiate an SH vector; see the module documentation.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum ExpMethod {
+    Dc,
+    Ol,
+    Hyb,
+    /// Power series with this many terms (1 = just the constant).
+    Ps(usize),
+    Reference,
+}
+
+/// exp*(f) by `method`. The order is that of `f` (its length must be a square).
+pub fn exp(method: ExpMethod, f: &[f64]) -> Vec<f64> {
+    match method {
+        ExpMethod::Ps(terms) => exp_ps(f, terms),
+        ExpMethod::Dc => exp_dc_isolated(f, |h| {
+            let mut out = h.to_vec();
+            out[0] = SQRT_4PI;
+            out
+        }),
+        ExpMethod::Ol => exp_dc_isolated(f, exp_ol),
+        ExpMethod::Hyb => exp_hyb(f, HYB_DEFAULT_THRESHOLD),
+        ExpMethod::Reference => exp_reference(f),
+    }
+}
+
+fn order(f: &[f64]) -> usize {
+    order_of(f.len()).expect("an SH vector has a square number of coefficients")
+}
+
+fn norm(f: &[f64]) -> f64 {
+    f.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+/// DC isolation: e^{f₀/√(4π)} · inner(f̂), f̂ = f with its DC coefficient set to zero.
+pub fn exp_dc_isolated(f: &[f64], inner: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    if f.is_empty() {
+        return Vec::new();
+    }
+    let scale = (f[0] / SQRT_4PI).exp();
+    let mut hat = f.to_vec();
+    hat[0] = 0.0;
+    inner(&hat).into_iter().map(|v| v * scale).collect()
+}
+
+/// exp(M_f)·1 by eigendecomposition of the symmetric product matrix, after DC isolation
+/// (which is exact and keeps the eigenvalues small).
+pub fn exp_reference(f: &[f64]) -> Vec<f64> {
+    exp_dc_isolated(f, |hat| {
+        let order = order(hat);
+        let n = coefficient_count(order);
+        let matrix = DMatrix::from_row_slice(n, n, &product_matrix(order, hat));
+        let eigen = SymmetricEigen::new(matrix);
+        // exp(M)·1 = V e^Λ Vᵀ 1, and 1 = √(4π)·e₀, so Vᵀ1 = √(4π)·(row 0 of V).
+        let v = &eigen.eigenvectors;
+        (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|k| v[(i, k)] * eigen.eigenvalues[k].exp() * v[(0, k)] * SQRT_4PI)
+                    .sum()
+            })
+            .collect()
+    })
+}
+
+/// The power series Σ_{k<terms} f^{∗k}/k!.
+pub fn exp_ps(f: &[f64], terms: usize) -> Vec<f64> {
+    let order = order(f);
+    let mut term = constant(order, 1.0);
+    let mut sum = vec![0.0; f.len()];
+    for k in 0..terms {
+        if k > 0 {
+            term = product(order, &term, f).into_iter().map(|v| v / k as f64).collect();
+        }
+        for (s, t) in sum.iter_mut().zip(&term) {
+            *s += t;
+        }
+    }
+    sum
+}
+
+/// The tabulated OL coefficients (a, b) at `order` for ‖f̂‖ = `norm`, interpolated
+/// linearly; beyond the table the last entry is used (OL is not meant for such norms).
+pub fn ol_coefficients(order: usize, norm: f64) -> (f64, f64) {
+    let Some(table) = ol_tables::table(order) else {
+        return (1.0, 1.0);
+    };
+    let position = (norm / ol_tables::NORM_STEP).max(0.0);
+    let i = (position.floor() as usize).min(table.len() - 1);
+    let j = (i + 1).min(table.len() - 1);
+    let t = (position - i as f64).clamp(0.0, 1.0);
+    let (a0, b0) = table[i];
+    let (a1, b1) = table[j];
+    (a0 + t * (a1 - a0), b0 + t * (b1 - b0))
+}
+
+/// Optimal linear exp*(f̂) ≈ a·1 + b·f̂ for a DC-free f̂.
+pub fn exp_ol(hat: &[f64]) -> Vec<f64> {
+    let (a, b) = ol_coefficients(order(hat), norm(hat));
+    let mut out: Vec<f64> = hat.iter().map(|v| b * v).collect();
+    out[0] += a * SQRT_4PI;
+    out
+}
+
+/// HYB with an explicit threshold on ‖f̂‖ (must be > 0).
+pub fn exp_hyb(f: &[f64], threshold: f64) -> Vec<f64> {
+    exp_dc_isolated(f, |hat| {
+        let order = order(hat);
+        let n = norm(hat);
+        let squarings = if n > threshold {
+            (n / threshold).log2().ceil() as i32
+        } else {
+            0
+        };
+        let scale = 0.5f64.powi(squarings);
+        let scaled: Vec<f64> = hat.iter().map(|v| v * scale).collect();
+        let mut g = exp_ol(&scaled);
+        for _ in 0..squarings {
+            g = product(order, &g, &g);
+        }
+        g
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sh::{cap_zh, rotate_zh};
+
+    fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    }
+
+    fn caps(order: usize, count: usize, epsilon: f64) -> Vec<f64> {
+        let mut f = vec![0.0; order * order];
+        for k in 0..count {
+            let t = k as f64 * 2.3 + 0.4;
+            let dir = glam::DVec3::new(t.cos(), (1.7 * t).sin(), (0.9 * t).cos() + 0.5);
+            let cap = rotate_zh(&cap_zh(order, 0.2 + 0.1 * (k % 5) as f64), dir);
+            for (fi, ci) in f.iter_mut().zip(cap) {
+                *fi += epsilon.ln() * ci;
+            }
+        }
+        f
+    }
+
+    #[test]
+    fn exp_of_zero_is_one_for_every_method() {
+        for method in [
+            ExpMethod::Dc,
+            ExpMethod::Ol,
+            ExpMethod::Hyb,
+            ExpMethod::Ps(5),
+            ExpMethod::Reference,
+        ] {
+            let g = exp(method, &[0.0; 16]);
+            assert!(max_abs_diff(&g, &constant(4, 1.0)) < 1e-13, "{method:?}");
+        }
+    }
+
+    #[test]
+    fn exp_of_a_constant_is_e_to_the_constant() {
+        for c in [-3.0, 0.5, 2.0] {
+            let f = constant(4, c);
+            let expected = constant(4, f64::exp(c));
+            for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Reference] {
+                assert!(max_abs_diff(&exp(method, &f), &expected) < 1e-12, "{method:?} c = {c}");
+            }
+            assert!(max_abs_diff(&exp(ExpMethod::Ps(40), &f), &expected) < 1e-10);
+        }
+    }
+
+    #[test]
+    fn power_series_converges_to_the_reference() {
+        let f = caps(4, 3, 0.1);
+        let reference = exp_reference(&f);
+        let errors: Vec<f64> = [4, 8, 16, 32, 64]
+            .iter()
+            .map(|&k| max_abs_diff(&exp_ps(&f, k), &reference))
+            .collect();
+        assert!(errors[4] < 1e-9, "{errors:?}");
+        assert!(errors.windows(2).all(|w| w[1] <= w[0] + 1e-12), "{errors:?}");
+    }
+
+    #[test]
+    fn dc_isolation_is_exact() {
+        let f = caps(4, 2, 0.2);
+        let isolated = exp_dc_isolated(&f, |hat| exp_ps(hat, 60));
+        assert!(max_abs_diff(&isolated, &exp_ps(&f, 80)) < 1e-9);
+    }
+
+    #[test]
+    fn reference_is_the_exponential_of_the_function_for_band_limited_inputs() {
+        // For f = c·y₁₀ (a linear function of z), exp(f) is not band-limited, but its
+        // projection's low coefficients follow from the series and the reference agrees
+        // with a long power series.
+        let mut f = vec![0.0; 25];
+        f[2] = 1.5;
+        assert!(max_abs_diff(&exp_reference(&f), &exp_ps(&f, 60)) < 1e-10);
+    }
+
+    #[test]
+    fn no_nan_for_thousands_of_coincident_caps() {
+        let single = caps(4, 1, 0.1);
+        let many: Vec<f64> = single.iter().map(|v| v * 10_000.0).collect();
+        for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Reference] {
+            let g = exp(method, &many);
+            assert!(g.iter().all(|v| v.is_finite()), "{method:?}: {g:?}");
+        }
+    }
+}
