@@ -7,19 +7,23 @@
 //! has n² coefficients at flat index i = l(l+1) + m. Projection f_i = ∫ f y_i dω, so the
 //! constant function 1 is (√(4π), 0, …) and ∫ f g dω = Σ f_i g_i.
 
+pub mod accuracy;
 mod basis;
 mod exp;
 mod gaunt;
 mod legendre;
 mod log;
-mod ol_tables;
+pub mod ol_fit;
+pub mod ol_tables;
 mod quadrature;
 mod rotation;
 mod window;
 mod zonal;
 
 pub use basis::{basis, basis_generic, basis_unrolled4};
-pub use exp::{ExpMethod, exp, exp_dc_isolated, exp_ol, exp_ps, exp_reference, ol_coefficients};
+pub use exp::{
+    ExpMethod, HYB_DEFAULT_THRESHOLD, exp, exp_dc_isolated, exp_hyb, exp_ol, exp_ps, exp_reference, ol_coefficients,
+};
 pub use gaunt::{Gaunt, gaunt, product, product_matrix};
 pub use legendre::{legendre, legendre_derivative};
 pub use log::{LOG_STAR_EIGEN_CLAMP, log_naive, log_star};
