@@ -290,9 +290,9 @@ mod accuracy_tests {
         let ol = measure(4, ExpMethod::Ol, 8);
         let dc = measure(4, ExpMethod::Dc, 8);
         let bounds = [0.02, 0.08, 0.25, 0.35];
-        for bucket in 0..4 {
+        for (bucket, bound) in bounds.into_iter().enumerate() {
             assert!(
-                hyb.mean_relative_error[bucket] < bounds[bucket],
+                hyb.mean_relative_error[bucket] < bound,
                 "bucket {bucket}: {:?}",
                 hyb.mean_relative_error
             );
