@@ -110,6 +110,17 @@ mod tests {
     }
 
     #[test]
+    fn projection_recovers_band_limited_functions_exactly() {
+        let f: Vec<f64> = (0..25).map(|i| ((i * 7 % 11) as f64 - 5.0) / 3.0).collect();
+        // f has degree 4; projecting onto order 5 needs degree 4 + 4 = 8.
+        let q = SphereQuadrature::exact_for_degree(8);
+        let projected = q.project(5, |d| crate::sh::evaluate(&f, d));
+        for (a, b) in projected.iter().zip(&f) {
+            assert!((a - b).abs() < 1e-13);
+        }
+    }
+
+    #[test]
     fn one_node_fewer_is_not_exact() {
         // Degree-4 integrand z⁴ needs 3 Gauss nodes; the degree-3 rule has 2.
         let q = SphereQuadrature::exact_for_degree(3);

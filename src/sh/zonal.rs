@@ -5,7 +5,9 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::legendre::{legendre, legendre_derivative};
+use num_traits::Float;
+
+use super::legendre::legendre;
 use super::quadrature::gauss_legendre;
 
 /// ZH of the indicator of a spherical cap of half-angle `half_angle_rad` around +z.
@@ -33,23 +35,42 @@ pub fn cap_zh_from_ratio(order: usize, s: f64) -> Vec<f64> {
 }
 
 fn cap_zh_from_sin_cos(order: usize, s: f64, c: f64) -> Vec<f64> {
+    cap_zh_generic(order, s, c)
+}
+
+/// The stable cap ZH in any float type, from s = sin θ and c = cos θ: what the f32 shader
+/// computes. P_l′(c) by P_{l+1}′ = P_{l−1}′ + (2l+1)·P_l, with Bonnet's recurrence for P_l.
+pub fn cap_zh_generic<T: Float>(order: usize, s: T, c: T) -> Vec<T> {
+    let k = |v: f64| T::from(v).expect("float constant");
     let s2 = s * s;
-    let dp = legendre_derivative(order, c);
-    (0..order)
-        .map(|l| {
-            if l == 0 {
-                // For c < 0 the direct form has no cancellation, and s²/(1 + c) is 0/0 at θ = π.
-                if c >= 0.0 {
-                    PI.sqrt() * s2 / (1.0 + c)
-                } else {
-                    PI.sqrt() * (1.0 - c)
-                }
+    let mut out = Vec::with_capacity(order);
+    // P_{l−1}, P_l and P_{l−1}′, P_l′ as l advances.
+    let (mut p_prev, mut p) = (T::zero(), T::one());
+    let (mut dp_prev, mut dp) = (T::zero(), T::zero());
+    for l in 0..order {
+        let lf = l as f64;
+        let value = if l == 0 {
+            // For c < 0 the direct form has no cancellation, and s²/(1 + c) is 0/0 at θ = π.
+            if c >= T::zero() {
+                k(PI.sqrt()) * s2 / (T::one() + c)
             } else {
-                let lf = l as f64;
-                (PI * (2.0 * lf + 1.0)).sqrt() / (lf * (lf + 1.0)) * s2 * dp[l]
+                k(PI.sqrt()) * (T::one() - c)
             }
-        })
-        .collect()
+        } else {
+            k((PI * (2.0 * lf + 1.0)).sqrt() / (lf * (lf + 1.0))) * s2 * dp
+        };
+        out.push(value);
+        // Advance to l + 1.
+        let dp_next = dp_prev + k(2.0 * lf + 1.0) * p;
+        let p_next = if l == 0 {
+            c
+        } else {
+            (k(2.0 * lf + 1.0) * c * p - k(lf) * p_prev) / k(lf + 1.0)
+        };
+        (p_prev, p) = (p, p_next);
+        (dp_prev, dp) = (dp, dp_next);
+    }
+    out
 }
 
 /// Rotates a ZH (axis +z) to axis `dir` by Funk–Hecke: f_l^m = √(4π/(2l+1)) · z_l · y_l^m(dir).
@@ -184,6 +205,22 @@ mod tests {
         for (l, z) in cap_zh(8, theta).into_iter().enumerate() {
             let limit = (PI * (2 * l + 1) as f64).sqrt() * theta * theta / 2.0;
             assert!((z / limit - 1.0).abs() < 1e-6, "l = {l}");
+        }
+    }
+
+    #[test]
+    fn f32_stable_form_holds_down_to_a_hundredth_of_a_degree() {
+        for degrees in [0.01f64, 0.1, 1.0, 10.0, 45.0, 89.0] {
+            let theta = degrees.to_radians();
+            let exact = cap_zh(8, theta);
+            let single = cap_zh_generic::<f32>(8, theta.sin() as f32, theta.cos() as f32);
+            for (l, (a, b)) in single.iter().zip(&exact).enumerate() {
+                let scale = b.abs() + theta.sin().powi(2);
+                assert!(
+                    ((*a as f64) - b).abs() <= 1e-6 * scale,
+                    "{degrees}°, l = {l}: {a} vs {b}"
+                );
+            }
         }
     }
 
