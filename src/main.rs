@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use lightpaint::render::{GpuContext, RenderError, RenderSettings, render_image};
-use lightpaint::scene::{Scene, SceneError};
+use lightpaint::project::{Document, ProjectError};
+use lightpaint::render::{GpuContext, RenderError, render_image};
+use lightpaint::scene::SceneError;
 
 #[derive(Parser)]
 #[command(name = "lightpaint", version, about = "Light a 3D scene by painting on it")]
@@ -15,24 +16,25 @@ use lightpaint::scene::{Scene, SceneError};
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// A .gltf or .glb scene to open in the editor (default: the bundled sample).
+    /// A project (.lightpaint) or a .gltf/.glb scene to open in the editor (default: the
+    /// bundled sample project).
     file: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene offscreen with wgpu and write a PNG.
+    /// Render a project or scene offscreen with wgpu and write a PNG.
     Render(RenderArgs),
-    /// Validate a scene file and print every problem found.
+    /// Validate a project or scene file; print every problem found, exit 2 if there is one.
     Check {
-        /// The .gltf or .glb file to check.
+        /// The project (.lightpaint) or .gltf/.glb file to check.
         file: PathBuf,
     },
 }
 
 #[derive(clap::Args)]
 struct RenderArgs {
-    /// The .gltf or .glb scene.
+    /// The project (.lightpaint) or .gltf/.glb scene.
     file: PathBuf,
     /// Output PNG file.
     #[arg(short, long)]
@@ -41,9 +43,9 @@ struct RenderArgs {
     width: u32,
     #[arg(long, default_value_t = 720)]
     height: u32,
-    /// Exposure in stops (radiance × 2^EV before tone mapping).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    exposure: f32,
+    /// Exposure in stops (radiance × 2^EV before tone mapping); default: the project's, or 0.
+    #[arg(long, allow_negative_numbers = true)]
+    exposure: Option<f32>,
     /// Background colour as 8-bit sRGB "R,G,B".
     #[arg(long, value_parser = parse_srgb8)]
     background: Option<[u8; 3]>,
@@ -64,6 +66,10 @@ enum CliError {
     #[error(transparent)]
     Scene(#[from] SceneError),
     #[error(transparent)]
+    Project(#[from] ProjectError),
+    #[error("{path}: {count} problem(s) found")]
+    Problems { path: PathBuf, count: usize },
+    #[error(transparent)]
     Render(#[from] RenderError),
     #[error("{path}: cannot write image: {source}")]
     WriteImage {
@@ -78,7 +84,10 @@ enum CliError {
 impl CliError {
     fn exit_code(&self) -> ExitCode {
         match self {
-            CliError::Scene(_) | CliError::Render(RenderError::BadSize { .. }) => ExitCode::from(2),
+            CliError::Scene(_)
+            | CliError::Project(_)
+            | CliError::Problems { .. }
+            | CliError::Render(RenderError::BadSize { .. }) => ExitCode::from(2),
             _ => ExitCode::from(1),
         }
     }
@@ -102,21 +111,24 @@ fn main() -> ExitCode {
 }
 
 fn render(args: &RenderArgs) -> Result<(), CliError> {
-    let scene = Scene::load(&args.file)?;
-    for warning in &scene.warnings {
+    let document = Document::open(&args.file)?;
+    for warning in &document.warnings {
         eprintln!("warning: {}: {warning}", args.file.display());
     }
     let gpu = GpuContext::headless()?;
-    let mut settings = RenderSettings {
-        exposure_ev: args.exposure,
-        ..RenderSettings::default()
-    };
+    let mut settings = document.settings;
+    if let Some(exposure) = args.exposure {
+        settings.exposure_ev = exposure;
+    }
     if let Some(background) = args.background {
         settings.background_srgb8 = background;
     }
-    let camera = scene.initial_camera();
+    let camera = match document.camera {
+        Some(orbit) => orbit.camera(),
+        None => document.scene.initial_camera(),
+    };
     let started = std::time::Instant::now();
-    let image = render_image(&gpu, &scene, &camera, &settings, args.width, args.height)?;
+    let image = render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?;
     let elapsed = started.elapsed();
     image.save(&args.output).map_err(|source| CliError::WriteImage {
         path: args.output.clone(),
@@ -135,12 +147,25 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 fn check(file: &Path) -> Result<(), CliError> {
-    let scene = Scene::load(file)?;
-    for warning in &scene.warnings {
-        println!("warning: {}: {warning}", file.display());
+    let document = match Document::open(file) {
+        Ok(document) => document,
+        Err(ProjectError::Invalid { path, problems }) => {
+            for problem in &problems {
+                println!("problem: {}: {problem}", path.display());
+            }
+            return Err(CliError::Problems {
+                path,
+                count: problems.len(),
+            });
+        }
+        Err(e) => return Err(e.into()),
+    };
+    for warning in &document.warnings {
+        println!("problem: {}: {warning}", file.display());
     }
+    let scene = &document.scene;
     println!(
-        "{}: ok — {} objects, {} vertices, {} triangles, {} materials, {} textures, {} lights, {}",
+        "{}: {} objects, {} vertices, {} triangles, {} materials, {} textures, {} lights, {}",
         file.display(),
         scene.objects.len(),
         scene.vertex_count(),
@@ -150,25 +175,33 @@ fn check(file: &Path) -> Result<(), CliError> {
         scene.lights.len(),
         if scene.camera.is_some() { "camera" } else { "no camera" }
     );
-    Ok(())
+    if document.warnings.is_empty() {
+        println!("{}: ok", file.display());
+        Ok(())
+    } else {
+        Err(CliError::Problems {
+            path: file.to_path_buf(),
+            count: document.warnings.len(),
+        })
+    }
 }
 
-/// The bundled sample: beside the executable's source tree in a checkout, or in the
+/// The bundled sample project: in the source tree the binary was built from, or in the
 /// current directory.
 fn bundled_sample() -> PathBuf {
-    let in_checkout = Path::new(env!("CARGO_MANIFEST_DIR")).join(lightpaint::samples::SAMPLE_SCENE);
+    let in_checkout = Path::new(env!("CARGO_MANIFEST_DIR")).join(lightpaint::samples::SAMPLE_PROJECT);
     if in_checkout.exists() {
         in_checkout
     } else {
-        PathBuf::from(lightpaint::samples::SAMPLE_SCENE)
+        PathBuf::from(lightpaint::samples::SAMPLE_PROJECT)
     }
 }
 
 fn editor(file: Option<PathBuf>) -> Result<(), CliError> {
     let file = file.unwrap_or_else(bundled_sample);
-    // Fail before opening a window when the file cannot be read at all.
+    // Fail before opening a window when the file is not there at all.
     if !file.exists() {
-        return Err(SceneError::NotFound { path: file }.into());
+        return Err(ProjectError::NotFound { path: file }.into());
     }
     let options = lightpaint::ui::EditorOptions {
         file,

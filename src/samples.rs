@@ -14,8 +14,25 @@ use glam::{Quat, Vec3};
 use crate::scene::gltf_write::{GltfBuilder, LightSpec, MaterialSpec};
 use crate::scene::shapes::{self, ShapeMesh};
 
-/// Path of the bundled sample, relative to the repository root.
+/// Path of the bundled sample scene, relative to the repository root.
 pub const SAMPLE_SCENE: &str = "projects/sample/sample.glb";
+
+/// Path of the bundled sample project (on [`SAMPLE_SCENE`]), relative to the repository root.
+pub const SAMPLE_PROJECT: &str = "projects/sample/sample.lightpaint";
+
+/// Writes the sample scene and its project into `directory` (as `sample.glb` and
+/// `sample.lightpaint`).
+pub fn write_sample_project(directory: &std::path::Path) -> Result<(), crate::project::ProjectError> {
+    let scene_path = directory.join("sample.glb");
+    crate::project::write_atomically(&scene_path, &sample_scene_glb()).map_err(|source| {
+        crate::project::ProjectError::Write {
+            path: scene_path.clone(),
+            source,
+        }
+    })?;
+    let mut document = crate::project::Document::from_gltf(&scene_path)?;
+    document.save(&directory.join("sample.lightpaint"))
+}
 
 /// The sample scene as a `.glb` file.
 pub fn sample_scene_glb() -> Vec<u8> {

@@ -1,20 +1,20 @@
-//! Regenerates the bundled sample scene: `cargo run --bin make-sample [OUT.glb]`.
+//! Regenerates the bundled sample scene and project: `cargo run --bin make-sample [DIR]`
+//! (default: projects/sample).
 
 use std::path::PathBuf;
 
 fn main() -> std::process::ExitCode {
-    let out = std::env::args_os()
+    let directory = std::env::args_os()
         .nth(1)
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(lightpaint::samples::SAMPLE_SCENE));
-    let bytes = lightpaint::samples::sample_scene_glb();
-    match std::fs::write(&out, &bytes) {
+        .unwrap_or_else(|| PathBuf::from("projects/sample"));
+    match lightpaint::samples::write_sample_project(&directory) {
         Ok(()) => {
-            println!("wrote {} ({} bytes)", out.display(), bytes.len());
+            println!("wrote {}/sample.glb and sample.lightpaint", directory.display());
             std::process::ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {}: {e}", out.display());
+            eprintln!("error: {e}");
             std::process::ExitCode::FAILURE
         }
     }

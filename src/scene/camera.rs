@@ -47,7 +47,8 @@ impl Camera {
 
 /// The editor's orbit camera: a point of interest and spherical coordinates around it
 /// (yaw about +y, pitch above the horizon).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct OrbitCamera {
     pub target: Vec3,
     pub distance: f32,
@@ -111,6 +112,17 @@ impl OrbitCamera {
     pub fn orbit(&mut self, delta_yaw_rad: f32, delta_pitch_rad: f32) {
         self.yaw_rad = (self.yaw_rad + delta_yaw_rad).rem_euclid(std::f32::consts::TAU);
         self.pitch_rad = (self.pitch_rad + delta_pitch_rad).clamp(-MAX_PITCH_RAD, MAX_PITCH_RAD);
+    }
+
+    /// Whether every value is usable: finite, positive distance, field of view in (0, π).
+    pub fn is_valid(&self) -> bool {
+        self.target.is_finite()
+            && self.distance.is_finite()
+            && self.distance > 0.0
+            && self.yaw_rad.is_finite()
+            && self.pitch_rad.is_finite()
+            && self.yfov_rad > 0.0
+            && self.yfov_rad < std::f32::consts::PI
     }
 
     /// Moves the target in the view plane; the offsets are fractions of the view height.

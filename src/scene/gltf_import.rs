@@ -32,6 +32,7 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         buffers: &buffers,
         scene: Scene {
             source: Some(path.to_path_buf()),
+            source_hash: Some(blake3::hash(&bytes).to_hex().to_string()),
             ..Scene::default()
         },
     };
@@ -448,50 +449,35 @@ impl Importer<'_> {
             .or(node.name())
             .map(str::to_string)
             .unwrap_or_else(|| format!("light {}", light.index()));
-        let intensity = light.intensity();
-        if !intensity.is_finite() || intensity < 0.0 {
-            return Err(self.invalid(format!(
-                "light '{name}': intensity {intensity} is not a finite, non-negative number"
-            )));
-        }
-        let color = Vec3::from(light.color());
-        if !color.is_finite() || color.min_element() < 0.0 {
-            return Err(self.invalid(format!("light '{name}': colour {color} is not finite and non-negative")));
-        }
         let kind = match light.kind() {
             Kind::Point => LightKind::Point,
             Kind::Directional => LightKind::Directional,
             Kind::Spot {
                 inner_cone_angle,
                 outer_cone_angle,
-            } => {
-                let valid = (0.0..=std::f32::consts::FRAC_PI_2).contains(&outer_cone_angle)
-                    && (0.0..outer_cone_angle).contains(&inner_cone_angle);
-                if !valid {
-                    return Err(self.invalid(format!(
-                        "light '{name}': spot cone angles must satisfy 0 ≤ inner < outer ≤ π/2 \
-                         (inner {inner_cone_angle}, outer {outer_cone_angle})"
-                    )));
-                }
-                LightKind::Spot {
-                    inner_cone_rad: inner_cone_angle,
-                    outer_cone_rad: outer_cone_angle,
-                }
-            }
+            } => LightKind::Spot {
+                inner_cone_rad: inner_cone_angle,
+                outer_cone_rad: outer_cone_angle,
+            },
         };
-        let direction = world.transform_vector3(-Vec3::Z).normalize_or_zero();
-        if direction == Vec3::ZERO && kind != LightKind::Point {
-            return Err(self.invalid(format!("light '{name}': its node transform collapses the direction")));
+        let mut direction = world.transform_vector3(-Vec3::Z).normalize_or_zero();
+        if kind == LightKind::Point && direction == Vec3::ZERO {
+            // A point light has no direction; a collapsed node transform does not matter.
+            direction = Vec3::NEG_Z;
         }
-        self.scene.lights.push(Light {
+        let imported = Light {
             name,
             kind,
-            color,
-            intensity,
+            color: Vec3::from(light.color()),
+            intensity: light.intensity(),
             position: world.transform_point3(Vec3::ZERO),
             direction,
-            range: light.range().filter(|r| r.is_finite() && *r > 0.0),
-        });
+            range: light.range(),
+        };
+        if let Some((field, message)) = imported.problems().into_iter().next() {
+            return Err(self.invalid(format!("light '{}': {field} {message}", imported.name)));
+        }
+        self.scene.lights.push(imported);
         Ok(())
     }
 

@@ -36,6 +36,8 @@ pub struct Scene {
     pub camera: Option<Camera>,
     /// The file the scene was loaded from.
     pub source: Option<PathBuf>,
+    /// BLAKE3 hash (hex) of that file's bytes, so a project can tell when it changed.
+    pub source_hash: Option<String>,
     /// Non-fatal problems found while loading (unsupported features, missing textures).
     pub warnings: Vec<String>,
 }

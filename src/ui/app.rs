@@ -2,13 +2,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
-use crate::render::{RenderSettings, describe_adapter};
-use crate::scene::Scene;
+use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
+use crate::render::describe_adapter;
+use crate::scene::LightKind;
 
 /// How the editor starts.
 #[derive(Debug, Clone, Default)]
 pub struct EditorOptions {
-    /// The scene to open.
+    /// The project or scene to open.
     pub file: PathBuf,
     /// Scripted runs (the smoke test): close the window cleanly once this file exists.
     pub close_when_file_exists: Option<PathBuf>,
@@ -18,17 +19,15 @@ pub struct EditorOptions {
 /// wait for it before they look at the window.
 pub const FIRST_FRAME_LINE: &str = "lightpaint: first frame drawn";
 
-const SETTINGS_KEY: &str = "render_settings";
-
 pub struct EditorApp {
-    scene: Scene,
-    scene_path: PathBuf,
+    document: Option<Document>,
+    /// The project as last opened or saved, to tell whether there are unsaved changes.
+    saved: Option<ProjectFile>,
     viewport: Option<Viewport>,
-    settings: RenderSettings,
     adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
     message: String,
-    /// A load error waiting to be acknowledged in a window.
+    /// An error waiting to be acknowledged in a window.
     error: Option<String>,
     options: EditorOptions,
     last_frame: Option<Instant>,
@@ -38,20 +37,15 @@ pub struct EditorApp {
 
 impl EditorApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: EditorOptions) -> EditorApp {
-        let settings = cc
-            .storage
-            .and_then(|s| eframe::get_value(s, SETTINGS_KEY))
-            .unwrap_or_default();
         let adapter = cc
             .wgpu_render_state
             .as_ref()
             .map(|rs| describe_adapter(&rs.adapter.get_info()))
             .unwrap_or_else(|| "no wgpu adapter".into());
         let mut app = EditorApp {
-            scene: Scene::default(),
-            scene_path: options.file.clone(),
+            document: None,
+            saved: None,
             viewport: None,
-            settings,
             adapter,
             message: String::new(),
             error: None,
@@ -64,32 +58,96 @@ impl EditorApp {
         app
     }
 
-    /// Loads a scene and replaces the current one; on failure the current scene stays and
-    /// the error is shown.
+    /// Opens a project or a glTF scene, replacing the current document; on failure the
+    /// current document stays and the error is shown.
     pub fn open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
-        match Scene::load(path) {
-            Ok(scene) => {
+        match Document::open(path) {
+            Ok(document) => {
+                let scene = &document.scene;
                 self.message = format!(
                     "opened {} — {} objects, {} vertices, {} lights{}",
                     path.display(),
                     scene.objects.len(),
                     scene.vertex_count(),
                     scene.lights.len(),
-                    if scene.warnings.is_empty() {
+                    if document.warnings.is_empty() {
                         String::new()
                     } else {
-                        format!(", {} warning(s): {}", scene.warnings.len(), scene.warnings.join("; "))
+                        format!(
+                            ", {} warning(s): {}",
+                            document.warnings.len(),
+                            document.warnings.join("; ")
+                        )
                     }
                 );
-                self.viewport = render_state.map(|rs| Viewport::new(rs, &scene));
-                self.scene = scene;
-                self.scene_path = path.to_path_buf();
+                self.viewport = render_state.map(|rs| Viewport::new(rs, scene, document.camera));
+                self.saved = document.project_path.as_ref().map(|p| document.to_project_file(p));
+                self.document = Some(document);
             }
-            Err(e) => {
-                log::error!("{e}");
-                self.message = e.to_string();
-                self.error = Some(e.to_string());
+            Err(e) => self.report_error(e.to_string()),
+        }
+    }
+
+    /// Saves the document to `path` (a project file), recording the current camera.
+    pub fn save_to(&mut self, path: &Path) {
+        let Some(document) = &mut self.document else { return };
+        if let Some(viewport) = &self.viewport {
+            document.camera = Some(viewport.orbit);
+        }
+        match document.save(path) {
+            Ok(()) => {
+                self.saved = Some(document.to_project_file(path));
+                self.message = format!("saved {}", path.display());
             }
+            Err(e) => self.report_error(e.to_string()),
+        }
+    }
+
+    fn report_error(&mut self, message: String) {
+        log::error!("{message}");
+        self.message = message.clone();
+        self.error = Some(message);
+    }
+
+    /// Whether the document differs from its file (a document never saved counts as
+    /// changed).
+    pub fn has_unsaved_changes(&self) -> bool {
+        let Some(document) = &self.document else { return false };
+        match (&document.project_path, &self.saved) {
+            (Some(path), Some(saved)) => {
+                let mut current = document.to_project_file(path);
+                if let Some(viewport) = &self.viewport {
+                    current.camera = Some(viewport.orbit);
+                }
+                current != *saved
+            }
+            _ => true,
+        }
+    }
+
+    fn save(&mut self) {
+        match self.document.as_ref().and_then(|d| d.project_path.clone()) {
+            Some(path) => self.save_to(&path),
+            None => self.save_as_dialog(),
+        }
+    }
+
+    fn save_as_dialog(&mut self) {
+        let picked = rfd::FileDialog::new()
+            .add_filter("lightpaint project", &[PROJECT_EXTENSION])
+            .set_file_name(format!("untitled.{PROJECT_EXTENSION}"))
+            .save_file();
+        if let Some(path) = picked {
+            self.save_to(&path);
+        }
+    }
+
+    fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let picked = rfd::FileDialog::new()
+            .add_filter("lightpaint project or glTF scene", &[PROJECT_EXTENSION, "gltf", "glb"])
+            .pick_file();
+        if let Some(path) = picked {
+            self.open(&path, render_state);
         }
     }
 
@@ -97,8 +155,14 @@ impl EditorApp {
         egui::Panel::top("menu").show(ui, |ui| {
             egui::MenuBar::new().ui(ui, |ui| {
                 ui.menu_button("File", |ui| {
-                    if ui.button("Open glTF…").clicked() {
+                    if ui.button("Open… (Ctrl+O)").clicked() {
                         self.open_dialog(render_state);
+                    }
+                    if ui.button("Save (Ctrl+S)").clicked() {
+                        self.save();
+                    }
+                    if ui.button("Save As…").clicked() {
+                        self.save_as_dialog();
                     }
                     ui.separator();
                     if ui.button("Quit").clicked() {
@@ -106,40 +170,36 @@ impl EditorApp {
                     }
                 });
                 ui.menu_button("View", |ui| {
-                    if ui.button("Frame all (F)").clicked()
-                        && let Some(viewport) = &mut self.viewport
-                    {
-                        viewport.frame_all(&self.scene);
+                    if ui.button("Frame all (F)").clicked() {
+                        self.frame_all();
                     }
                 });
             });
         });
     }
 
-    fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("glTF scene", &["gltf", "glb"])
-            .pick_file();
-        if let Some(path) = picked {
-            self.open(&path, render_state);
+    fn frame_all(&mut self) {
+        if let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) {
+            viewport.frame_all(&document.scene);
         }
     }
 
     fn outliner(&mut self, ui: &mut egui::Ui) {
         egui::Panel::left("outliner").default_size(220.0).show(ui, |ui| {
             ui.heading("Scene");
+            let Some(document) = &self.document else { return };
             egui::ScrollArea::vertical().show(ui, |ui| {
-                egui::CollapsingHeader::new(format!("Objects ({})", self.scene.objects.len()))
+                egui::CollapsingHeader::new(format!("Objects ({})", document.scene.objects.len()))
                     .default_open(true)
                     .show(ui, |ui| {
-                        for object in &self.scene.objects {
+                        for object in &document.scene.objects {
                             ui.label(&object.name);
                         }
                     });
-                egui::CollapsingHeader::new(format!("Lights ({})", self.scene.lights.len()))
+                egui::CollapsingHeader::new(format!("Lights ({})", document.scene.lights.len()))
                     .default_open(true)
                     .show(ui, |ui| {
-                        for light in &self.scene.lights {
+                        for light in &document.scene.lights {
                             ui.label(format!("{} — {}", light.name, light.kind.label()));
                         }
                     });
@@ -149,18 +209,19 @@ impl EditorApp {
 
     fn inspector(&mut self, ui: &mut egui::Ui) {
         egui::Panel::right("inspector").default_size(240.0).show(ui, |ui| {
+            let Some(document) = &mut self.document else { return };
             ui.heading("Render");
-            ui.add(egui::Slider::new(&mut self.settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
+            ui.add(egui::Slider::new(&mut document.settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
             ui.horizontal(|ui| {
                 ui.label("background");
-                ui.color_edit_button_srgb(&mut self.settings.background_srgb8);
+                ui.color_edit_button_srgb(&mut document.settings.background_srgb8);
             });
             ui.separator();
             ui.heading("Lights");
             egui::Grid::new("lights").striped(true).show(ui, |ui| {
-                for light in &self.scene.lights {
+                for light in &document.scene.lights {
                     let unit = match light.kind {
-                        crate::scene::LightKind::Directional => "lx",
+                        LightKind::Directional => "lx",
                         _ => "cd",
                     };
                     ui.label(&light.name);
@@ -172,6 +233,7 @@ impl EditorApp {
     }
 
     fn status_bar(&mut self, ui: &mut egui::Ui) {
+        let unsaved = self.has_unsaved_changes();
         egui::Panel::bottom("status").show(ui, |ui| {
             ui.horizontal(|ui| {
                 let fps = if self.frame_ms > 0.0 {
@@ -186,6 +248,10 @@ impl EditorApp {
                 ui.separator();
                 ui.label(&self.adapter);
                 ui.separator();
+                if unsaved {
+                    ui.label("● unsaved");
+                    ui.separator();
+                }
                 ui.label(&self.message);
             });
         });
@@ -194,7 +260,7 @@ impl EditorApp {
     fn error_window(&mut self, ctx: &egui::Context) {
         let Some(error) = self.error.clone() else { return };
         let mut open = true;
-        egui::Window::new("Cannot open file")
+        egui::Window::new("Error")
             .collapsible(false)
             .open(&mut open)
             .show(ctx, |ui| {
@@ -209,21 +275,23 @@ impl EditorApp {
     }
 
     fn handle_shortcuts_and_drops(&mut self, ctx: &egui::Context, render_state: Option<&egui_wgpu::RenderState>) {
-        let (frame_key, open_key, dropped) = ctx.input(|i| {
+        let typing = ctx.egui_wants_keyboard_input();
+        let (frame_key, open_key, save_key, dropped) = ctx.input(|i| {
             (
                 i.key_pressed(egui::Key::F) && !i.modifiers.any(),
                 i.key_pressed(egui::Key::O) && i.modifiers.command,
+                i.key_pressed(egui::Key::S) && i.modifiers.command,
                 i.raw.dropped_files.first().map(|f| f.path().to_path_buf()),
             )
         });
-        if frame_key
-            && !ctx.egui_wants_keyboard_input()
-            && let Some(viewport) = &mut self.viewport
-        {
-            viewport.frame_all(&self.scene);
+        if frame_key && !typing {
+            self.frame_all();
         }
         if open_key {
             self.open_dialog(render_state);
+        }
+        if save_key {
+            self.save();
         }
         if let Some(path) = dropped {
             self.open(&path, render_state);
@@ -265,10 +333,10 @@ impl eframe::App for EditorApp {
         self.outliner(ui);
         self.inspector(ui);
         egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
-            match (&mut self.viewport, &render_state) {
-                (Some(viewport), Some(rs)) => viewport.show(ui, rs, &self.settings),
+            match (&mut self.viewport, &self.document, &render_state) {
+                (Some(viewport), Some(document), Some(rs)) => viewport.show(ui, rs, &document.settings),
                 _ => {
-                    ui.centered_and_justified(|ui| ui.label("No scene loaded. File ▸ Open glTF…"));
+                    ui.centered_and_justified(|ui| ui.label("Nothing open. File ▸ Open…"));
                 }
             }
         });
@@ -278,9 +346,5 @@ impl eframe::App for EditorApp {
             eprintln!("{FIRST_FRAME_LINE}");
         }
         self.scripted_close(&ctx);
-    }
-
-    fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        eframe::set_value(storage, SETTINGS_KEY, &self.settings);
     }
 }

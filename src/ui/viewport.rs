@@ -17,21 +17,28 @@ pub struct Viewport {
     pub last_render_ms: f32,
 }
 
+/// The orbit camera matching the scene's initial camera, pivoting at the scene's centre
+/// distance.
+pub fn scene_orbit(scene: &Scene) -> OrbitCamera {
+    let camera = scene.initial_camera();
+    let pivot = (scene.bounds().center() - camera.position).length().max(0.1);
+    OrbitCamera::from_camera(&camera, pivot)
+}
+
 /// Radians of orbit per point of mouse drag.
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
 impl Viewport {
-    pub fn new(render_state: &egui_wgpu::RenderState, scene: &Scene) -> Viewport {
+    /// A viewport on `scene`, seen from `orbit` or, without one, from the scene's camera.
+    pub fn new(render_state: &egui_wgpu::RenderState, scene: &Scene, orbit: Option<OrbitCamera>) -> Viewport {
         let pipeline = ScenePipeline::new(&render_state.device);
         let gpu_scene = GpuScene::upload(&render_state.device, &render_state.queue, &pipeline.layouts, scene);
-        let camera = scene.initial_camera();
-        let pivot = (scene.bounds().center() - camera.position).length().max(0.1);
         Viewport {
             pipeline,
             gpu_scene,
             target: None,
             texture_id: None,
-            orbit: OrbitCamera::from_camera(&camera, pivot),
+            orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
             rendered: None,
             last_render_ms: 0.0,
         }

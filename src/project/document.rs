@@ -1,0 +1,123 @@
+//! An open document: a scene with its project settings, opened from a project file or a
+//! bare glTF, and saved back to a project file.
+
+use std::path::{Path, PathBuf};
+
+use super::atomic::write_atomically;
+use super::error::ProjectError;
+use super::file::{FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, read_project_file};
+use crate::render::RenderSettings;
+use crate::scene::{OrbitCamera, Scene};
+
+#[derive(Debug, Clone)]
+pub struct Document {
+    /// The scene, its lights replaced by the project's.
+    pub scene: Scene,
+    /// The glTF file the scene came from.
+    pub scene_path: PathBuf,
+    pub settings: RenderSettings,
+    pub camera: Option<OrbitCamera>,
+    /// The project file this document was opened from or last saved to.
+    pub project_path: Option<PathBuf>,
+    /// Things the user should know that did not stop the document from opening.
+    pub warnings: Vec<String>,
+}
+
+/// Whether `path` names a project file (by extension) rather than a glTF scene.
+pub fn is_project_path(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(PROJECT_EXTENSION))
+}
+
+impl Document {
+    /// Opens a project file or, for .gltf/.glb, a new document on that scene.
+    pub fn open(path: &Path) -> Result<Document, ProjectError> {
+        if is_project_path(path) {
+            Document::open_project(path)
+        } else {
+            Document::from_gltf(path)
+        }
+    }
+
+    /// A new, unsaved document on a glTF scene, with default settings.
+    pub fn from_gltf(path: &Path) -> Result<Document, ProjectError> {
+        let scene = Scene::load(path)?;
+        let warnings = scene.warnings.clone();
+        Ok(Document {
+            scene,
+            scene_path: path.to_path_buf(),
+            settings: RenderSettings::default(),
+            camera: None,
+            project_path: None,
+            warnings,
+        })
+    }
+
+    /// Opens a project and the scene it references. A scene that changed since the
+    /// project was saved is a warning (its lights and settings still apply).
+    pub fn open_project(path: &Path) -> Result<Document, ProjectError> {
+        let file = read_project_file(path)?;
+        let directory = path.parent().unwrap_or(Path::new(""));
+        let scene_path = directory.join(&file.scene.gltf);
+        if !scene_path.exists() {
+            return Err(ProjectError::MissingScene {
+                path: path.to_path_buf(),
+                scene: scene_path,
+            });
+        }
+        let mut scene = Scene::load(&scene_path).map_err(|error| ProjectError::Scene {
+            project: path.to_path_buf(),
+            error,
+        })?;
+        let mut warnings = scene.warnings.clone();
+        if scene.source_hash.as_deref() != Some(file.scene.blake3.as_str()) {
+            warnings.push(format!(
+                "{} changed since the project was saved; its lights and settings are kept",
+                scene_path.display()
+            ));
+        }
+        scene.lights = file.lights;
+        Ok(Document {
+            scene,
+            scene_path,
+            settings: file.render,
+            camera: file.camera,
+            project_path: Some(path.to_path_buf()),
+            warnings,
+        })
+    }
+
+    /// The project file for saving at `project_path` (the glTF path made relative to it).
+    pub fn to_project_file(&self, project_path: &Path) -> ProjectFile {
+        let directory = absolute(project_path.parent().unwrap_or(Path::new("")));
+        let scene = absolute(&self.scene_path);
+        let gltf = pathdiff::diff_paths(&scene, &directory).unwrap_or(scene);
+        ProjectFile {
+            format_version: FORMAT_VERSION,
+            scene: SceneReference {
+                gltf,
+                blake3: self.scene.source_hash.clone().unwrap_or_default(),
+            },
+            lights: self.scene.lights.clone(),
+            render: self.settings,
+            camera: self.camera,
+        }
+    }
+
+    /// Saves atomically to `project_path` (keeping a `.bak` of the previous file) and
+    /// remembers it as the document's file.
+    pub fn save(&mut self, project_path: &Path) -> Result<(), ProjectError> {
+        let text = self.to_project_file(project_path).to_json();
+        write_atomically(project_path, text.as_bytes()).map_err(|source| ProjectError::Write {
+            path: project_path.to_path_buf(),
+            source,
+        })?;
+        self.project_path = Some(project_path.to_path_buf());
+        Ok(())
+    }
+}
+
+fn absolute(path: &Path) -> PathBuf {
+    std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf())
+}

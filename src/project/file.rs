@@ -1,0 +1,176 @@
+//! The project file: JSON, documented in docs/file-format.md. Loading checks, in order:
+//! UTF-8 and JSON syntax (with line and column), `format_version` (newer files are refused,
+//! older ones migrated), the fields and their types (with the field path), then the values
+//! (every problem collected, not just the first).
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::error::{Problem, ProjectError};
+use crate::render::RenderSettings;
+use crate::scene::{Light, OrbitCamera};
+
+/// The format this build writes and the newest it reads.
+pub const FORMAT_VERSION: u64 = 1;
+
+/// Extension of project files.
+pub const PROJECT_EXTENSION: &str = "lightpaint";
+
+/// Everything a project file holds (format version 1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProjectFile {
+    pub format_version: u64,
+    pub scene: SceneReference,
+    /// The complete light list (the glTF's lights as imported, then edited).
+    pub lights: Vec<Light>,
+    pub render: RenderSettings,
+    /// The editor's camera when the project was saved.
+    pub camera: Option<OrbitCamera>,
+}
+
+/// The glTF scene a project is built on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneReference {
+    /// Path of the .gltf/.glb, relative to the project file's directory (or absolute).
+    pub gltf: PathBuf,
+    /// BLAKE3 hash (hex) of the glTF file when the project was saved.
+    pub blake3: String,
+}
+
+impl ProjectFile {
+    /// Pretty JSON with a trailing newline; deterministic, so save → load → save is
+    /// byte-identical.
+    pub fn to_json(&self) -> String {
+        let mut text = serde_json::to_string_pretty(self).expect("project values always serialise");
+        text.push('\n');
+        text
+    }
+
+    /// Every problem with the values (types and syntax were checked while parsing).
+    pub fn problems(&self) -> Vec<Problem> {
+        let mut problems = Vec::new();
+        for (i, light) in self.lights.iter().enumerate() {
+            for (field, message) in light.problems() {
+                problems.push(Problem {
+                    field: format!("lights[{i}].{field}"),
+                    message: format!("light '{}': {message}", light.name),
+                });
+            }
+        }
+        if !self.render.exposure_ev.is_finite() || self.render.exposure_ev.abs() > 64.0 {
+            problems.push(Problem {
+                field: "render.exposure_ev".into(),
+                message: format!("{} is not an exposure between −64 and 64 EV", self.render.exposure_ev),
+            });
+        }
+        if let Some(camera) = &self.camera
+            && !camera.is_valid()
+        {
+            problems.push(Problem {
+                field: "camera".into(),
+                message: "must be finite, with a positive distance and a field of view in (0, π)".into(),
+            });
+        }
+        if self.scene.blake3.len() != 64 || !self.scene.blake3.bytes().all(|b| b.is_ascii_hexdigit()) {
+            problems.push(Problem {
+                field: "scene.blake3".into(),
+                message: "is not a 64-digit hexadecimal BLAKE3 hash".into(),
+            });
+        }
+        problems
+    }
+}
+
+/// Reads and validates a project file (without opening the scene it references).
+pub fn read_project_file(path: &Path) -> Result<ProjectFile, ProjectError> {
+    let bytes = std::fs::read(path).map_err(|source| match source.kind() {
+        std::io::ErrorKind::NotFound => ProjectError::NotFound {
+            path: path.to_path_buf(),
+        },
+        _ => ProjectError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+    })?;
+    parse_project(path, &bytes)
+}
+
+/// Parses and validates project bytes; `path` is only used in messages.
+pub fn parse_project(path: &Path, bytes: &[u8]) -> Result<ProjectFile, ProjectError> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let (line, column) = line_column(bytes, e.valid_up_to());
+        ProjectError::Syntax {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message: "the file is not UTF-8 text".into(),
+        }
+    })?;
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| ProjectError::Syntax {
+        path: path.to_path_buf(),
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string(),
+    })?;
+    let version = match value.get("format_version").and_then(serde_json::Value::as_u64) {
+        Some(version) if version >= 1 => version,
+        _ => {
+            return Err(ProjectError::Field {
+                path: path.to_path_buf(),
+                field: "format_version".into(),
+                line: None,
+                column: None,
+                message: "missing, or not a positive integer (is this a lightpaint project?)".into(),
+            });
+        }
+    };
+    if version > FORMAT_VERSION {
+        return Err(ProjectError::NewerVersion {
+            path: path.to_path_buf(),
+            found: version,
+            supported: FORMAT_VERSION,
+        });
+    }
+    let project: ProjectFile = if version == FORMAT_VERSION {
+        // Straight from the text, so errors carry line and column as well as the field path.
+        let mut deserializer = serde_json::Deserializer::from_str(text);
+        serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
+            let (line, column) = (e.inner().line(), e.inner().column());
+            ProjectError::Field {
+                path: path.to_path_buf(),
+                field: e.path().to_string(),
+                line: Some(line),
+                column: Some(column),
+                message: e.inner().to_string(),
+            }
+        })?
+    } else {
+        let migrated = super::migrate::to_current(value, version);
+        serde_path_to_error::deserialize(migrated).map_err(|e| ProjectError::Field {
+            path: path.to_path_buf(),
+            field: e.path().to_string(),
+            line: None,
+            column: None,
+            message: format!("{} (after migration from format {version})", e.inner()),
+        })?
+    };
+    let problems = project.problems();
+    if !problems.is_empty() {
+        return Err(ProjectError::Invalid {
+            path: path.to_path_buf(),
+            problems,
+        });
+    }
+    Ok(project)
+}
+
+/// 1-based line and column of byte `offset`.
+fn line_column(bytes: &[u8], offset: usize) -> (usize, usize) {
+    let before = &bytes[..offset.min(bytes.len())];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let column = before.iter().rev().take_while(|&&b| b != b'\n').count() + 1;
+    (line, column)
+}

@@ -1,0 +1,13 @@
+//! Projects: the versioned file that reopens a lighting session exactly as it was left,
+//! saved atomically (docs/file-format.md).
+
+mod atomic;
+mod document;
+mod error;
+mod file;
+mod migrate;
+
+pub use atomic::{backup_path, write_atomically, write_atomically_with};
+pub use document::{Document, is_project_path};
+pub use error::{Problem, ProjectError};
+pub use file::{FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, parse_project, read_project_file};

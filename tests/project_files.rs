@@ -1,0 +1,224 @@
+//! Project files: exact round trips, reopening renders identically, and bad files give
+//! their own error, name the file, and are left untouched.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use lightpaint::project::{Document, FORMAT_VERSION, ProjectError, read_project_file};
+use lightpaint::render::render_image;
+
+fn sample_project() -> PathBuf {
+    common::repo_path(lightpaint::samples::SAMPLE_PROJECT)
+}
+
+/// A copy of the sample scene and project in a fresh directory.
+fn sample_copy() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    lightpaint::samples::write_sample_project(dir.path()).expect("sample written");
+    let path = dir.path().join("sample.lightpaint");
+    (dir, path)
+}
+
+#[test]
+fn committed_sample_project_is_what_the_generator_makes() {
+    let (dir, path) = sample_copy();
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        std::fs::read_to_string(sample_project()).unwrap(),
+        "projects/sample/sample.lightpaint is stale: run `cargo run --bin make-sample`"
+    );
+    drop(dir);
+}
+
+#[test]
+fn save_load_save_is_byte_identical() {
+    let (dir, path) = sample_copy();
+    let mut document = Document::open(&path).unwrap();
+    document.settings.exposure_ev = -0.7;
+    document.scene.lights[1].intensity = 12.345_679;
+    document.camera = Some(lightpaint::scene::OrbitCamera {
+        target: glam::Vec3::new(0.1, 0.2, 0.3),
+        distance: 7.25,
+        yaw_rad: 0.123_456_79,
+        pitch_rad: -0.3,
+        yfov_rad: 0.8,
+    });
+    let first = dir.path().join("first.lightpaint");
+    let second = dir.path().join("second.lightpaint");
+    document.save(&first).unwrap();
+    Document::open(&first).unwrap().save(&second).unwrap();
+    assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&second).unwrap());
+    let reopened = Document::open(&second).unwrap();
+    assert_eq!(reopened.scene.lights, document.scene.lights);
+    assert_eq!(reopened.settings, document.settings);
+    assert_eq!(reopened.camera, document.camera);
+}
+
+#[test]
+fn a_reopened_project_renders_pixel_identically() {
+    let Some(gpu) = common::gpu() else { return };
+    let (dir, path) = sample_copy();
+    let mut document = Document::open(&path).unwrap();
+    document.settings.exposure_ev = 0.5;
+    document.scene.lights[0].intensity *= 0.5;
+    let mut orbit = lightpaint::scene::OrbitCamera::framing(&document.scene.bounds());
+    orbit.orbit(0.4, 0.1);
+    document.camera = Some(orbit);
+    let render = |d: &Document| {
+        let camera = d.camera.expect("camera saved").camera();
+        render_image(&gpu, &d.scene, &camera, &d.settings, 160, 90).expect("render")
+    };
+    let before = render(&document);
+    let saved = dir.path().join("edited.lightpaint");
+    document.save(&saved).unwrap();
+    let after = render(&Document::open(&saved).unwrap());
+    assert!(before == after, "the reopened project renders differently");
+}
+
+/// Writes `text` as a project beside a copy of the sample scene, opens it, and checks the
+/// file is left as it was.
+fn open_bad(name: &str, text: &[u8]) -> ProjectError {
+    let (dir, _) = sample_copy();
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).unwrap();
+    let error = Document::open(&path).expect_err("a bad project must not open");
+    assert_eq!(std::fs::read(&path).unwrap(), text, "the file was modified");
+    let message = error.to_string();
+    assert!(
+        message.contains(&path.display().to_string()),
+        "message does not name the file: {message}"
+    );
+    drop(dir);
+    error
+}
+
+fn sample_text() -> String {
+    std::fs::read_to_string(sample_project()).unwrap()
+}
+
+#[test]
+fn json_syntax_errors_give_line_and_column() {
+    let text = sample_text().replacen("\"lights\": [", "\"lights\": [[", 1);
+    match open_bad("syntax.lightpaint", text.as_bytes()) {
+        ProjectError::Syntax { line, column, .. } => assert!(line > 1 && column > 0),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn wrong_types_name_the_field() {
+    let text = sample_text().replacen("\"intensity\": 180.0", "\"intensity\": \"bright\"", 1);
+    match open_bad("type.lightpaint", text.as_bytes()) {
+        ProjectError::Field { field, line, .. } => {
+            assert_eq!(field, "lights[0].intensity");
+            assert!(line.is_some());
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn unknown_fields_are_refused() {
+    let text = sample_text().replacen(
+        "\"format_version\": 1,",
+        "\"format_version\": 1,\n  \"colour_grading\": 3,",
+        1,
+    );
+    assert!(matches!(
+        open_bad("unknown.lightpaint", text.as_bytes()),
+        ProjectError::Field { .. }
+    ));
+}
+
+#[test]
+fn every_bad_value_is_reported_at_once() {
+    let text = sample_text()
+        .replacen("\"intensity\": 180.0", "\"intensity\": -5.0", 1)
+        .replacen("\"outer_cone_rad\": 0.8853982", "\"outer_cone_rad\": 2.0", 1)
+        .replacen("\"exposure_ev\": 0.0", "\"exposure_ev\": 1e30", 1);
+    match open_bad("values.lightpaint", text.as_bytes()) {
+        ProjectError::Invalid { problems, .. } => {
+            let fields: Vec<&str> = problems.iter().map(|p| p.field.as_str()).collect();
+            assert_eq!(
+                fields,
+                ["lights[0].intensity", "lights[0].kind", "render.exposure_ev"],
+                "{problems:?}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_newer_format_is_refused_clearly() {
+    let text = sample_text().replacen("\"format_version\": 1", "\"format_version\": 99", 1);
+    let error = open_bad("newer.lightpaint", text.as_bytes());
+    assert!(matches!(
+        error,
+        ProjectError::NewerVersion {
+            found: 99,
+            supported: FORMAT_VERSION,
+            ..
+        }
+    ));
+    assert!(error.to_string().contains("made by a newer lightpaint"));
+}
+
+#[test]
+fn not_utf8_and_not_a_project_are_refused() {
+    assert!(matches!(
+        open_bad("binary.lightpaint", &[0x7b, 0xff, 0xfe, 0x00]),
+        ProjectError::Syntax { .. }
+    ));
+    assert!(matches!(
+        open_bad("other.lightpaint", b"{\"name\": 3}"),
+        ProjectError::Field { .. }
+    ));
+}
+
+#[test]
+fn a_missing_scene_is_named() {
+    let text = sample_text().replacen("\"gltf\": \"sample.glb\"", "\"gltf\": \"gone.glb\"", 1);
+    match open_bad("missing.lightpaint", text.as_bytes()) {
+        ProjectError::MissingScene { scene, .. } => assert!(scene.ends_with("gone.glb")),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_changed_scene_opens_with_a_warning_and_keeps_the_project_lights() {
+    let (dir, path) = sample_copy();
+    let triangle = common::scenes::triangle([glam::Vec3::ZERO, glam::Vec3::X, glam::Vec3::NEG_Z]);
+    std::fs::write(dir.path().join("sample.glb"), triangle).unwrap();
+    let document = Document::open(&path).expect("a changed scene still opens");
+    assert!(
+        document.warnings.iter().any(|w| w.contains("changed since")),
+        "{:?}",
+        document.warnings
+    );
+    assert_eq!(document.scene.lights.len(), 4);
+    assert_eq!(document.scene.objects.len(), 1);
+}
+
+#[test]
+fn check_reports_problems_with_exit_code_2() {
+    let (dir, _) = sample_copy();
+    let path = dir.path().join("bad.lightpaint");
+    std::fs::write(
+        &path,
+        sample_text().replacen("\"intensity\": 180.0", "\"intensity\": -1.0", 1),
+    )
+    .unwrap();
+    let out = common::run_lightpaint(&[std::ffi::OsStr::new("check"), path.as_os_str()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("lights[0].intensity"), "{stdout}");
+}
+
+#[test]
+fn read_project_file_accepts_the_sample() {
+    let file = read_project_file(&sample_project()).expect("valid");
+    assert_eq!(file.format_version, FORMAT_VERSION);
+    assert_eq!(file.scene.gltf, Path::new("sample.glb"));
+}
