@@ -81,7 +81,15 @@ impl EditorApp {
                     }
                 );
                 self.viewport = render_state.map(|rs| Viewport::new(rs, scene, document.camera));
-                self.saved = document.project_path.as_ref().map(|p| document.to_project_file(p));
+                self.saved = document.project_path.as_ref().map(|p| {
+                    let mut saved = document.to_project_file(p);
+                    // A project without a camera opens on the scene's view: that view is
+                    // what was saved, not a change.
+                    if let Some(viewport) = &self.viewport {
+                        saved.camera = Some(viewport.orbit);
+                    }
+                    saved
+                });
                 self.document = Some(document);
             }
             Err(e) => self.report_error(e.to_string()),
@@ -249,7 +257,7 @@ impl EditorApp {
                 ui.label(&self.adapter);
                 ui.separator();
                 if unsaved {
-                    ui.label("● unsaved");
+                    ui.colored_label(ui.visuals().warn_fg_color, "unsaved changes");
                     ui.separator();
                 }
                 ui.label(&self.message);
