@@ -95,6 +95,7 @@ impl CliError {
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    lightpaint::panic_guard::install_quiet_panic_hook();
     let cli = Cli::parse();
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),

@@ -112,3 +112,11 @@ fn render_writes_a_png_of_the_requested_size() {
     let image = image::open(&out_png).expect("a PNG was written");
     assert_eq!((image.width(), image.height()), (160, 90));
 }
+
+#[test]
+fn a_file_that_crashes_the_gltf_validator_is_reported_not_panicked() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dangling.glb");
+    std::fs::write(&path, common::scenes::dangling_position_accessor()).unwrap();
+    assert_rejected(&path, "structure is inconsistent");
+}

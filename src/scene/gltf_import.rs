@@ -17,11 +17,26 @@ use super::{Camera, Light, LightKind, Material, MeshObject, Scene, SceneError, T
 /// Loads a `.gltf` or `.glb` file.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
     let bytes = read_file(path)?;
+    parse_gltf(path, &bytes)
+}
+
+/// Parses the bytes of a `.gltf` or `.glb` file; `path` names it in messages and locates
+/// external buffers and images (relative to its directory).
+pub fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    crate::panic_guard::catch_panic(|| parse_gltf_unguarded(path, bytes)).unwrap_or_else(|message| {
+        Err(SceneError::Malformed {
+            path: path.to_path_buf(),
+            reason: format!("its structure is inconsistent (the glTF reader failed: {message})"),
+        })
+    })
+}
+
+fn parse_gltf_unguarded(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
     let malformed = |e: gltf::Error| SceneError::Malformed {
         path: path.to_path_buf(),
         reason: describe_gltf_error(e),
     };
-    let gltf = gltf::Gltf::from_slice(&bytes).map_err(malformed)?;
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(malformed)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = gltf::import_buffers(&gltf.document, Some(base), gltf.blob.clone())
         .map_err(|e| SceneError::invalid(path, format!("cannot load buffer data: {}", describe_gltf_error(e))))?;
@@ -32,7 +47,7 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         buffers: &buffers,
         scene: Scene {
             source: Some(path.to_path_buf()),
-            source_hash: Some(blake3::hash(&bytes).to_hex().to_string()),
+            source_hash: Some(blake3::hash(bytes).to_hex().to_string()),
             ..Scene::default()
         },
     };

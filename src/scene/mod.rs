@@ -17,7 +17,7 @@ pub mod shapes;
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
 pub use error::SceneError;
-pub use gltf_import::load_gltf;
+pub use gltf_import::{load_gltf, parse_gltf};
 pub use light::{Light, LightKind};
 pub use material::{Material, TextureImage};
 pub use mesh::MeshObject;

@@ -56,3 +56,12 @@ pub fn out_of_range_accessor() -> Vec<u8> {
     b.add_node(serde_json::json!({"name": "broken", "mesh": mesh}));
     b.to_glb()
 }
+
+/// A mesh whose POSITION names an accessor that does not exist (the gltf-json 1.4
+/// validator indexes it before checking, and panics).
+pub fn dangling_position_accessor() -> Vec<u8> {
+    let mut b = GltfBuilder::new();
+    let mesh = b.add_raw_mesh("dangling", serde_json::json!({"attributes": {"POSITION": 9}}));
+    b.add_node(serde_json::json!({"name": "dangling", "mesh": mesh}));
+    b.to_glb()
+}
