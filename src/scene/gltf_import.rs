@@ -14,6 +14,10 @@ use gltf::khr_lights_punctual::Kind;
 
 use super::{Camera, Light, LightKind, Material, MeshObject, Scene, SceneError, TextureImage};
 
+/// Largest coordinate accepted, in metres: squared distances must stay far from f32's
+/// 3.4e38 limit, and 1e7 m is already larger than the Earth.
+pub const MAX_COORDINATE_M: f32 = 1.0e7;
+
 /// Loads a `.gltf` or `.glb` file.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
     let bytes = read_file(path)?;
@@ -32,6 +36,12 @@ pub fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
 }
 
 fn parse_gltf_unguarded(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    if bytes.is_empty() {
+        return Err(SceneError::Malformed {
+            path: path.to_path_buf(),
+            reason: "the file is empty".into(),
+        });
+    }
     let malformed = |e: gltf::Error| SceneError::Malformed {
         path: path.to_path_buf(),
         reason: describe_gltf_error(e),
@@ -117,6 +127,9 @@ impl Importer<'_> {
                 }
             }
             None => self.warn("the file has no scene; nothing to show".to_string()),
+        }
+        if self.scene.lights.is_empty() {
+            self.warn("the scene has no lights: add some in the editor".to_string());
         }
         Ok(self.scene)
     }
@@ -397,6 +410,12 @@ impl Importer<'_> {
             return Err(self.invalid(format!(
                 "{label}: position {bad} overflows once transformed by node {}",
                 node.index()
+            )));
+        }
+        if let Some(bad) = positions.iter().position(|p| p.abs().max_element() > MAX_COORDINATE_M) {
+            return Err(self.invalid(format!(
+                "{label}: position {bad} ({}) lies beyond ±{MAX_COORDINATE_M:e} m, which lightpaint cannot shade in f32",
+                positions[bad]
             )));
         }
         let mut triangles: Vec<u32> = Vec::with_capacity(indices.len());
