@@ -172,26 +172,7 @@ fn edited_glb(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
     );
     let mut document = b.document(None);
     edit(&mut document);
-    glb_from(&document, &b.bin())
-}
-
-fn glb_from(document: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
-    let mut json = serde_json::to_vec(document).unwrap();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(bin);
-    out
+    lightpaint::scene::gltf_write::glb_bytes(&document, &b.bin())
 }
 
 fn mesh_glb(positions: &[Vec3], normals: Option<&[Vec3]>, indices: &[u32]) -> Vec<u8> {

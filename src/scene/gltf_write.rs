@@ -299,24 +299,33 @@ impl GltfBuilder {
 
     /// A complete `.glb` file.
     pub fn to_glb(&self) -> Vec<u8> {
-        let mut json = serde_json::to_vec(&self.document(None)).expect("a serde_json::Value always serialises");
-        while !json.len().is_multiple_of(4) {
-            json.push(b' ');
-        }
-        let bin = self.padded_bin();
-        let total = 12 + 8 + json.len() + 8 + bin.len();
-        let mut out = Vec::with_capacity(total);
-        out.extend_from_slice(b"glTF");
-        out.extend_from_slice(&2u32.to_le_bytes());
-        out.extend_from_slice(&(total as u32).to_le_bytes());
-        out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"JSON");
-        out.extend_from_slice(&json);
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"BIN\0");
-        out.extend_from_slice(&bin);
-        out
+        glb_bytes(&self.document(None), &self.padded_bin())
     }
+}
+
+/// The `.glb` container around a JSON document and its binary chunk (padded as the
+/// format requires).
+pub fn glb_bytes(document: &Value, bin: &[u8]) -> Vec<u8> {
+    let mut json = serde_json::to_vec(document).expect("a serde_json::Value always serialises");
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
 }
 
 #[cfg(test)]
