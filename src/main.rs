@@ -207,6 +207,7 @@ fn editor(file: Option<PathBuf>) -> Result<(), CliError> {
     let options = lightpaint::ui::EditorOptions {
         file,
         close_when_file_exists: std::env::var_os("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS").map(PathBuf::from),
+        hide_frame_timings: false,
     };
     lightpaint::ui::run_editor(options).map_err(|e| CliError::Editor(e.to_string()))
 }

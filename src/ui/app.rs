@@ -13,6 +13,8 @@ pub struct EditorOptions {
     pub file: PathBuf,
     /// Scripted runs (the smoke test): close the window cleanly once this file exists.
     pub close_when_file_exists: Option<PathBuf>,
+    /// Leave frame timings out of the status bar, so screenshots are reproducible.
+    pub hide_frame_timings: bool,
 }
 
 /// Line printed on stderr once the first frame with the scene has been drawn; scripts
@@ -64,9 +66,11 @@ impl EditorApp {
         match Document::open(path) {
             Ok(document) => {
                 let scene = &document.scene;
+                let name = path
+                    .file_name()
+                    .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
                 self.message = format!(
-                    "opened {} — {} objects, {} vertices, {} lights{}",
-                    path.display(),
+                    "opened {name} — {} objects, {} vertices, {} lights{}",
                     scene.objects.len(),
                     scene.vertex_count(),
                     scene.lights.len(),
@@ -115,6 +119,11 @@ impl EditorApp {
         log::error!("{message}");
         self.message = message.clone();
         self.error = Some(message);
+    }
+
+    /// The open document, if any.
+    pub fn document(&self) -> Option<&Document> {
+        self.document.as_ref()
     }
 
     /// Whether the document differs from its file (a document never saved counts as
@@ -215,8 +224,8 @@ impl EditorApp {
         });
     }
 
-    fn inspector(&mut self, ui: &mut egui::Ui) {
-        egui::Panel::right("inspector").default_size(240.0).show(ui, |ui| {
+    fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        egui::Panel::right("inspector").default_size(260.0).show(ui, |ui| {
             let Some(document) = &mut self.document else { return };
             ui.heading("Render");
             ui.add(egui::Slider::new(&mut document.settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
@@ -226,17 +235,38 @@ impl EditorApp {
             });
             ui.separator();
             ui.heading("Lights");
-            egui::Grid::new("lights").striped(true).show(ui, |ui| {
-                for light in &document.scene.lights {
-                    let unit = match light.kind {
-                        LightKind::Directional => "lx",
-                        _ => "cd",
-                    };
-                    ui.label(&light.name);
-                    ui.label(format!("{:.3} {unit}", light.intensity));
-                    ui.end_row();
-                }
+            let mut changed = false;
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
+                    for light in &mut document.scene.lights {
+                        let unit = match light.kind {
+                            LightKind::Directional => " lx",
+                            _ => " cd",
+                        };
+                        ui.label(&light.name);
+                        // Drag speed proportional to the value, so dim and bright lights
+                        // both adjust smoothly.
+                        let speed = (light.intensity.abs() * 0.01).max(0.001);
+                        changed |= ui
+                            .add(
+                                egui::DragValue::new(&mut light.intensity)
+                                    .range(0.0..=1.0e7)
+                                    .speed(speed)
+                                    .suffix(unit),
+                            )
+                            .changed();
+                        let mut color = light.color.to_array();
+                        if ui.color_edit_button_rgb(&mut color).changed() {
+                            light.color = glam::Vec3::from(color);
+                            changed = true;
+                        }
+                        ui.end_row();
+                    }
+                });
             });
+            if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
+                viewport.set_lights(rs, &document.scene.lights);
+            }
         });
     }
 
@@ -244,16 +274,18 @@ impl EditorApp {
         let unsaved = self.has_unsaved_changes();
         egui::Panel::bottom("status").show(ui, |ui| {
             ui.horizontal(|ui| {
-                let fps = if self.frame_ms > 0.0 {
-                    1000.0 / self.frame_ms
-                } else {
-                    0.0
-                };
-                ui.label(format!("{fps:.0} fps ({:.1} ms)", self.frame_ms));
-                if let Some(viewport) = &self.viewport {
-                    ui.label(format!("scene {:.1} ms", viewport.last_render_ms));
+                if !self.options.hide_frame_timings {
+                    let fps = if self.frame_ms > 0.0 {
+                        1000.0 / self.frame_ms
+                    } else {
+                        0.0
+                    };
+                    ui.label(format!("{fps:.0} fps ({:.1} ms)", self.frame_ms));
+                    if let Some(viewport) = &self.viewport {
+                        ui.label(format!("scene {:.1} ms", viewport.last_render_ms));
+                    }
+                    ui.separator();
                 }
-                ui.separator();
                 ui.label(&self.adapter);
                 ui.separator();
                 if unsaved {
@@ -339,7 +371,7 @@ impl eframe::App for EditorApp {
         self.menu_bar(ui, render_state.as_ref());
         self.status_bar(ui);
         self.outliner(ui);
-        self.inspector(ui);
+        self.inspector(ui, render_state.as_ref());
         egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
             match (&mut self.viewport, &self.document, &render_state) {
                 (Some(viewport), Some(document), Some(rs)) => viewport.show(ui, rs, &document.settings),

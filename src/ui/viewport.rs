@@ -3,7 +3,7 @@
 //! drag, or shift + left drag) and zoom (scroll).
 
 use crate::render::{GpuFrame, GpuScene, RenderSettings, RenderTarget, ScenePipeline};
-use crate::scene::{OrbitCamera, Scene};
+use crate::scene::{Light, OrbitCamera, Scene};
 
 pub struct Viewport {
     pipeline: ScenePipeline,
@@ -42,6 +42,17 @@ impl Viewport {
             rendered: None,
             last_render_ms: 0.0,
         }
+    }
+
+    /// Uploads changed lights; the next frame shows them.
+    pub fn set_lights(&mut self, render_state: &egui_wgpu::RenderState, lights: &[Light]) {
+        self.gpu_scene.update_lights(
+            &render_state.device,
+            &render_state.queue,
+            &self.pipeline.layouts,
+            lights,
+        );
+        self.rendered = None;
     }
 
     /// Frames the whole scene.
