@@ -172,7 +172,9 @@ fn precision_section(text: &mut String) {
         text,
         "## Basis precision\n\n\
          Largest orthonormality error |∫ y_i y_j dω − δ_ij| of the recurrence (src/sh/basis.rs),\n\
-         evaluated in f64 and in f32 (the GPU's precision), integrated exactly in f64.\n\n\
+         evaluated in f64 and in f32 (the GPU's precision), integrated exactly in f64. Both stay\n\
+         within their targets (f64 < 1e-10, f32 < 1e-5) through order 40, the highest measured\n\
+         here (the error grows slowly, roughly linearly with the order).\n\n\
          | order | f64 | f32 |\n|---|---|---|"
     );
     for order in [2, 4, 6, 8, 10, 12, 16, 20, 24, 32, 40] {

@@ -208,6 +208,27 @@ mod tests {
     }
 
     #[test]
+    fn funk_hecke_agrees_with_direct_projection() {
+        // The zonal function g(ω) = Σ_l z_l √((2l+1)/(4π)) P_l(d·ω) is band-limited, so an
+        // exact quadrature projects it without error.
+        let zh = [0.7, 0.4, -0.25, 0.1, 0.05, -0.02];
+        let d = DVec3::new(-0.4, 0.3, 0.2).normalize();
+        let g = |w: DVec3| -> f64 {
+            let p = crate::sh::legendre(zh.len(), d.dot(w));
+            zh.iter()
+                .enumerate()
+                .map(|(l, z)| z * ((2 * l + 1) as f64 / (4.0 * std::f64::consts::PI)).sqrt() * p[l])
+                .sum()
+        };
+        let order = zh.len();
+        let projected = crate::sh::SphereQuadrature::exact_for_degree(2 * (order - 1)).project(order, g);
+        let rotated = rotate_zh(&zh, d);
+        for i in 0..order * order {
+            assert!((projected[i] - rotated[i]).abs() < 1e-13, "coefficient {i}");
+        }
+    }
+
+    #[test]
     fn funk_hecke_agrees_with_rotating_the_zonal_vector() {
         let zh = [0.8, -0.3, 0.5, 0.2, -0.1];
         let dir = DVec3::new(0.2, -0.9, 0.4).normalize();
