@@ -44,7 +44,20 @@ impl ShapeMesh {
         }
     }
 
-    fn merged(mut self, other: ShapeMesh) -> ShapeMesh {
+    /// This mesh moved by `transform` (normals by its inverse transpose).
+    pub fn transformed(mut self, transform: glam::Affine3A) -> ShapeMesh {
+        let normal_matrix = glam::Mat3::from(transform.matrix3).inverse().transpose();
+        for p in &mut self.positions {
+            *p = transform.transform_point3(*p);
+        }
+        for n in &mut self.normals {
+            *n = (normal_matrix * *n).normalize_or_zero();
+        }
+        self
+    }
+
+    /// The union of two meshes (indices of `other` offset).
+    pub fn merged(mut self, other: ShapeMesh) -> ShapeMesh {
         let offset = self.positions.len() as u32;
         self.positions.extend(other.positions);
         self.normals.extend(other.normals);

@@ -1,8 +1,4 @@
-//! The bundled sample scene, generated rather than downloaded: `cargo run --bin
-//! make-sample` writes `projects/sample/sample.glb`, and a test checks the committed file is
-//! exactly what this code produces.
-//!
-//! The scene is a studio set: a textured floor and a back wall, a sphere resting on a
+//! The default sample ("sample"), a studio set: a textured floor and a back wall, a sphere resting on a
 //! pedestal, a glazed sphere, a torus and a pillar, lit by a warm key spot, a cool fill, a
 //! magenta rim light and a dim pale sky directional, so that objects shadow the floor, the
 //! wall and each other.
@@ -11,28 +7,9 @@ use std::f32::consts::FRAC_PI_4;
 
 use glam::{Quat, Vec3};
 
+use super::checker_png;
 use crate::scene::gltf_write::{GltfBuilder, LightSpec, MaterialSpec};
 use crate::scene::shapes::{self, ShapeMesh};
-
-/// Path of the bundled sample scene, relative to the repository root.
-pub const SAMPLE_SCENE: &str = "projects/sample/sample.glb";
-
-/// Path of the bundled sample project (on [`SAMPLE_SCENE`]), relative to the repository root.
-pub const SAMPLE_PROJECT: &str = "projects/sample/sample.lightpaint";
-
-/// Writes the sample scene and its project into `directory` (as `sample.glb` and
-/// `sample.lightpaint`).
-pub fn write_sample_project(directory: &std::path::Path) -> Result<(), crate::project::ProjectError> {
-    let scene_path = directory.join("sample.glb");
-    crate::project::write_atomically(&scene_path, &sample_scene_glb()).map_err(|source| {
-        crate::project::ProjectError::Write {
-            path: scene_path.clone(),
-            source,
-        }
-    })?;
-    let mut document = crate::project::Document::from_gltf(&scene_path)?;
-    document.save(&directory.join("sample.lightpaint"))
-}
 
 /// The sample scene as a `.glb` file.
 pub fn sample_scene_glb() -> Vec<u8> {
@@ -146,21 +123,4 @@ pub fn sample_scene_glb() -> Vec<u8> {
     let eye = Vec3::new(5.2, 3.6, 6.4);
     b.add_camera_node("Camera", 40f32.to_radians(), 0.05, eye, target - eye, Vec3::Y);
     b.to_glb()
-}
-
-/// A `size`² PNG checkerboard of `squares`² squares in two sRGB colours.
-pub fn checker_png(size: u32, squares: u32, light: [u8; 3], dark: [u8; 3]) -> Vec<u8> {
-    let cell = (size / squares).max(1);
-    let img = image::RgbaImage::from_fn(size, size, |x, y| {
-        let [r, g, b] = if ((x / cell) + (y / cell)).is_multiple_of(2) {
-            light
-        } else {
-            dark
-        };
-        image::Rgba([r, g, b, 255])
-    });
-    let mut png = Vec::new();
-    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .expect("encoding a PNG into memory cannot fail");
-    png
 }
