@@ -7,6 +7,8 @@ const PI: f32 = 3.14159265358979;
 const LIGHT_POINT: u32 = 0u;
 const LIGHT_SPOT: u32 = 1u;
 const LIGHT_DIRECTIONAL: u32 = 2u;
+// One-sided Lambertian emitter: intensity_rgb is luminance × area, falling as cos θ.
+const LIGHT_AREA: u32 = 3u;
 
 // Per-frame constants.
 struct Frame {
@@ -21,11 +23,13 @@ struct Frame {
 };
 
 // One light. Units: point/spot radiant intensity in candela, directional illuminance in lux
-// (KHR_lights_punctual), times the linear RGB colour.
+// (KHR_lights_punctual), area lights luminance × area (cd along the normal), times the
+// linear RGB colour. Sphere lights arrive as points.
 struct Light {
     // xyz = world position; w unused.
     position: vec4<f32>,
-    // xyz = unit direction the light travels; w = range in metres (0 = unlimited).
+    // xyz = unit direction the light travels (area lights: the emitting normal);
+    // w = range in metres (0 = unlimited).
     direction_range: vec4<f32>,
     // rgb = colour × intensity; w unused.
     intensity_rgb: vec4<f32>,

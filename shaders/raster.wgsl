@@ -57,6 +57,9 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
         let window = clamp(1.0 - ratio2 * ratio2, 0.0, 1.0);
         falloff *= window * window;
     }
+    if light.kind == LIGHT_AREA {
+        falloff *= max(dot(-result.to_light, light.direction_range.xyz), 0.0);
+    }
     if light.kind == LIGHT_SPOT {
         let cos_angle = dot(-result.to_light, light.direction_range.xyz);
         let t = clamp((cos_angle - light.spot_cone.x) * light.spot_cone.y, 0.0, 1.0);

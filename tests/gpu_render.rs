@@ -142,3 +142,70 @@ fn bundled_sample_renders_lit_and_varied() {
     assert!((40.0..200.0).contains(&mean), "mean luminance {mean}");
     assert!(distinct.len() > 1000, "only {} distinct colours", distinct.len());
 }
+
+/// Sphere and disk lights, saved in a project and reopened, against closed forms: a sphere
+/// wholly above the horizon irradiates like a point, E = I/h²; a Lambertian disk of
+/// luminance L and radius R at height h gives E = π·L·R²/(h² + R²) on its axis (the
+/// renderer's far-field model differs by R²/h², 0.25 % here).
+#[test]
+fn sphere_and_disk_lights_match_their_closed_forms() {
+    use lightpaint::project::Document;
+    use lightpaint::scene::{Light, LightKind};
+    let Some(gpu) = common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("plane.glb");
+    let white = [1.0, 1.0, 1.0];
+    let glb = common::scenes::white_plane(
+        LightSpec::Directional {
+            color: white,
+            illuminance_lux: 0.0,
+        },
+        Vec3::Y,
+    );
+    std::fs::write(&scene_path, glb).unwrap();
+    let height = 2.0f64;
+    let (radius, luminance_nt) = (0.1f64, 60.0f64);
+    let light = |kind, intensity: f64| Light {
+        name: "test".into(),
+        kind,
+        color: glam::Vec3::ONE,
+        intensity: intensity as f32,
+        position: glam::Vec3::new(0.0, height as f32, 0.0),
+        direction: glam::Vec3::NEG_Y,
+        range: None,
+    };
+    let cases = [
+        (
+            light(LightKind::Sphere { radius_m: 0.3 }, 2.5),
+            2.5 / (height * height) / PI,
+        ),
+        (
+            light(
+                LightKind::Disk {
+                    radius_m: radius as f32,
+                },
+                luminance_nt,
+            ),
+            PI * luminance_nt * radius * radius / (height * height + radius * radius) / PI,
+        ),
+    ];
+    for (light, radiance) in cases {
+        let mut document = Document::open(&scene_path).unwrap();
+        document.scene.lights = vec![light.clone()];
+        let project = dir.path().join("lights.lightpaint");
+        document.save(&project).unwrap();
+        let reopened = Document::open(&project).unwrap();
+        assert_eq!(reopened.scene.lights, vec![light.clone()]);
+        let image = render_image(
+            &gpu,
+            &reopened.scene,
+            &reopened.scene.initial_camera(),
+            &reopened.settings,
+            64,
+            48,
+        )
+        .expect("render");
+        let expected = common::expected_8bit(radiance, 0.0);
+        assert_close_8bit(image.get_pixel(32, 24)[0], expected, light.kind.label());
+    }
+}

@@ -11,6 +11,7 @@ use crate::scene::{Camera, Light, LightKind, Material};
 pub const LIGHT_POINT: u32 = 0;
 pub const LIGHT_SPOT: u32 = 1;
 pub const LIGHT_DIRECTIONAL: u32 = 2;
+pub const LIGHT_AREA: u32 = 3;
 
 /// Vertex buffer element: position, normal (world space) and UV set 0.
 #[repr(C)]
@@ -77,8 +78,16 @@ pub struct GpuLight {
 
 impl GpuLight {
     pub fn new(light: &Light) -> GpuLight {
+        // A sphere lights like a point at its centre (exact for unshadowed receivers it is
+        // wholly above the horizon of); an area light like a point whose intensity falls
+        // with the cosine to its normal, I(θ) = L·A·cos θ (exact in the far field).
+        let mut intensity_scale = 1.0;
         let (kind, spot_cone) = match light.kind {
-            LightKind::Point => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Point | LightKind::Sphere { .. } => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Rect { .. } | LightKind::Disk { .. } => {
+                intensity_scale = light.kind.emitting_area_m2().unwrap_or(0.0);
+                (LIGHT_AREA, [0.0; 4])
+            }
             LightKind::Directional => (LIGHT_DIRECTIONAL, [0.0; 4]),
             LightKind::Spot {
                 inner_cone_rad,
@@ -90,7 +99,7 @@ impl GpuLight {
                 (LIGHT_SPOT, [cos_outer, 1.0 / transition, 0.0, 0.0])
             }
         };
-        let intensity: Vec3 = light.color * light.intensity;
+        let intensity: Vec3 = light.color * light.intensity * intensity_scale;
         GpuLight {
             position: light.position.extend(1.0).to_array(),
             direction_range: light.direction.extend(light.range.unwrap_or(0.0)).to_array(),

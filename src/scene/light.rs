@@ -1,7 +1,8 @@
 use glam::Vec3;
 
-/// A light source. Units follow KHR_lights_punctual: point and spot intensity in candela
-/// (lm/sr), directional in lux (lm/m²).
+/// A light source. `intensity` is in the light kind's unit ([`LightKind::intensity_unit`]):
+/// candela (lm/sr) for point, spot and sphere lights, lux (lm/m²) for directional lights
+/// (as KHR_lights_punctual), and luminance in nits (cd/m²) for area lights.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Light {
@@ -9,11 +10,12 @@ pub struct Light {
     pub kind: LightKind,
     /// Linear RGB colour, multiplied by `intensity`.
     pub color: Vec3,
-    /// Candela for point and spot lights, lux for directional lights.
+    /// Candela (point, spot, sphere), lux (directional) or nits (rect and disk area lights).
     pub intensity: f32,
     /// World position (unused by directional lights).
     pub position: Vec3,
-    /// Unit direction the light travels (spot and directional lights): the node's −z.
+    /// Unit direction the light travels (spot and directional lights; for area lights the
+    /// normal of the emitting side): the node's −z.
     pub direction: Vec3,
     /// Distance beyond which a point or spot light has no effect (glTF `range`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -30,6 +32,20 @@ pub enum LightKind {
         outer_cone_rad: f32,
     },
     Directional,
+    /// A uniformly emitting sphere; `intensity` is its radiant intensity in candela.
+    Sphere {
+        radius_m: f32,
+    },
+    /// A one-sided Lambertian rectangle facing `direction`, its width along
+    /// [`Light::area_width_axis`]; `intensity` is its luminance in nits.
+    Rect {
+        width_m: f32,
+        height_m: f32,
+    },
+    /// A one-sided Lambertian disk facing `direction`; `intensity` is its luminance in nits.
+    Disk {
+        radius_m: f32,
+    },
 }
 
 impl LightKind {
@@ -38,11 +54,43 @@ impl LightKind {
             LightKind::Point => "point",
             LightKind::Spot { .. } => "spot",
             LightKind::Directional => "directional",
+            LightKind::Sphere { .. } => "sphere",
+            LightKind::Rect { .. } => "rect",
+            LightKind::Disk { .. } => "disk",
+        }
+    }
+
+    /// The unit of [`Light::intensity`] for this kind, as shown to users.
+    pub fn intensity_unit(&self) -> &'static str {
+        match self {
+            LightKind::Directional => "lx",
+            LightKind::Rect { .. } | LightKind::Disk { .. } => "nt",
+            _ => "cd",
+        }
+    }
+
+    /// Emitting area in m² of area lights (None for the others).
+    pub fn emitting_area_m2(&self) -> Option<f32> {
+        match *self {
+            LightKind::Rect { width_m, height_m } => Some(width_m * height_m),
+            LightKind::Disk { radius_m } => Some(std::f32::consts::PI * radius_m * radius_m),
+            _ => None,
         }
     }
 }
 
 impl Light {
+    /// The width axis of a rect light: perpendicular to its normal and to world +y (world +z
+    /// when the light faces straight up or down).
+    pub fn area_width_axis(&self) -> Vec3 {
+        let reference = if self.direction.y.abs() > 0.99 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
+        reference.cross(self.direction).normalize_or_zero()
+    }
+
     /// Every problem with this light's values, as (field, message) pairs: non-finite or
     /// negative colour and intensity, non-finite position, a direction that is not a unit
     /// vector, spot cones outside 0 ≤ inner < outer ≤ π/2, a non-positive range.
@@ -78,6 +126,16 @@ impl Light {
                          (inner {inner_cone_rad}, outer {outer_cone_rad})"
                     ),
                 ));
+            }
+        }
+        let sizes: &[(&str, f32)] = match &self.kind {
+            LightKind::Sphere { radius_m } | LightKind::Disk { radius_m } => &[("radius_m", *radius_m)],
+            LightKind::Rect { width_m, height_m } => &[("width_m", *width_m), ("height_m", *height_m)],
+            _ => &[],
+        };
+        for (name, size) in sizes {
+            if !(size.is_finite() && *size > 0.0) {
+                problems.push(("kind", format!("{name} {size} must be a positive size in metres")));
             }
         }
         if let Some(range) = self.range

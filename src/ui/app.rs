@@ -4,7 +4,6 @@ use std::time::Instant;
 use super::Viewport;
 use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
 use crate::render::describe_adapter;
-use crate::scene::LightKind;
 
 /// How the editor starts.
 #[derive(Debug, Clone, Default)]
@@ -239,10 +238,7 @@ impl EditorApp {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
                     for light in &mut document.scene.lights {
-                        let unit = match light.kind {
-                            LightKind::Directional => " lx",
-                            _ => " cd",
-                        };
+                        let unit = format!(" {}", light.kind.intensity_unit());
                         ui.label(&light.name);
                         // Drag speed proportional to the value, so dim and bright lights
                         // both adjust smoothly.
