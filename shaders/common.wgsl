@@ -20,6 +20,9 @@ struct Frame {
     light_count: u32,
     _pad0: u32,
     _pad1: u32,
+    // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
+    // axes, polar axis +z (design.md §3).
+    environment_irradiance: array<vec4<f32>, 9>,
 };
 
 // One light. Units: point/spot radiant intensity in candela, directional illuminance in lux
@@ -57,4 +60,22 @@ struct Material {
 fn tonemap_aces_fit(x: vec3<f32>) -> vec3<f32> {
     let c = max(x, vec3<f32>(0.0));
     return clamp(c * (2.51 * c + 0.03) / (c * (2.43 * c + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// Order-3 real SH (Condon–Shortley phase, polar axis +z) of `coefficients` at unit `d`:
+// the first 9 of the unrolled Cartesian polynomials of src/sh/basis.rs.
+fn sh3_eval(coefficients: array<vec4<f32>, 9>, d: vec3<f32>) -> vec3<f32> {
+    let x = d.x;
+    let y = d.y;
+    let z = d.z;
+    var sum = coefficients[0].rgb * 0.28209479;
+    sum += coefficients[1].rgb * (-0.48860251 * y);
+    sum += coefficients[2].rgb * (0.48860251 * z);
+    sum += coefficients[3].rgb * (-0.48860251 * x);
+    sum += coefficients[4].rgb * (1.09254843 * x * y);
+    sum += coefficients[5].rgb * (-1.09254843 * y * z);
+    sum += coefficients[6].rgb * (0.31539157 * (3.0 * z * z - 1.0));
+    sum += coefficients[7].rgb * (-1.09254843 * x * z);
+    sum += coefficients[8].rgb * (0.54627422 * (x * x - y * y));
+    return sum;
 }

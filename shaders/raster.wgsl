@@ -89,7 +89,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     let mirrored = reflect(-to_eye, n);
     let lobe_norm = (exponent + 1.0) / (2.0 * PI);
 
-    var radiance = material.emissive.rgb;
+    // Environment: diffuse only, from its irradiance SH (clamped at 0 against ringing).
+    var radiance = material.emissive.rgb + k_d / PI * max(sh3_eval(frame.environment_irradiance, n), vec3<f32>(0.0));
     for (var i = 0u; i < frame.light_count; i++) {
         let light = lights[i];
         let inc = incidence(light, in.world_position);

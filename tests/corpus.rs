@@ -72,6 +72,14 @@ const CASES: &[(&str, Expect)] = &[
         "project-broken-scene.lightpaint",
         Expect::Error("scene", "in the scene it references"),
     ),
+    (
+        "missing-hdr.lightpaint",
+        Expect::Error("asset", "gone.hdr: file not found"),
+    ),
+    (
+        "unreadable-hdr.lightpaint",
+        Expect::Error("asset", "cannot read the environment image"),
+    ),
 ];
 
 fn corpus_dir() -> PathBuf {
@@ -88,6 +96,7 @@ fn kind(error: &ProjectError) -> &'static str {
         ProjectError::Invalid { .. } => "invalid",
         ProjectError::MissingScene { .. } => "missing-scene",
         ProjectError::Scene { .. } => "scene",
+        ProjectError::Asset { .. } => "asset",
         ProjectError::SceneOnly(scene) => match scene {
             SceneError::NotFound { .. } => "not-found",
             SceneError::Io { .. } => "io",
@@ -340,6 +349,18 @@ fn regenerate_corpus() {
     write(
         "project-broken-scene.lightpaint",
         valid.replacen("scene.glb", "truncated.glb", 1).as_bytes(),
+    );
+    let with_environment = |hdr: &str| {
+        valid.replacen(
+            "\"camera\": null",
+            &format!("\"camera\": null,\n  \"environment\": {{ \"hdr\": \"{hdr}\", \"intensity\": 1.0, \"rotation_rad\": 0.0 }}"),
+            1,
+        )
+    };
+    write("missing-hdr.lightpaint", with_environment("gone.hdr").as_bytes());
+    write(
+        "unreadable-hdr.lightpaint",
+        with_environment("not-a-scene.txt").as_bytes(),
     );
     let _ = std::fs::remove_file(dir.join("valid.lightpaint"));
     let _ = std::fs::remove_file(Path::new(&dir.join("scene.glb.bak")));

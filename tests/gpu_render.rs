@@ -209,3 +209,34 @@ fn sphere_and_disk_lights_match_their_closed_forms() {
         assert_close_8bit(image.get_pixel(32, 24)[0], expected, light.kind.label());
     }
 }
+
+/// A uniform environment of radiance L₀ irradiates any surface with E = π·L₀, so a white
+/// Lambertian plane shows L₀ itself.
+#[test]
+fn a_uniform_environment_lights_a_white_plane_with_its_radiance() {
+    let Some(gpu) = common::gpu() else { return };
+    let white = [1.0, 1.0, 1.0];
+    let (_dir, mut scene) = load_glb(&common::scenes::white_plane(
+        LightSpec::Directional {
+            color: white,
+            illuminance_lux: 0.0,
+        },
+        Vec3::Y,
+    ));
+    let radiance = 0.35;
+    scene.environment = Some(lightpaint::scene::Environment::uniform([radiance; 3]));
+    let image = render_image(
+        &gpu,
+        &scene,
+        &scene.initial_camera(),
+        &RenderSettings::default(),
+        64,
+        48,
+    )
+    .expect("render");
+    assert_close_8bit(
+        image.get_pixel(32, 24)[1],
+        common::expected_8bit(radiance, 0.0),
+        "uniform environment",
+    );
+}

@@ -43,8 +43,11 @@ fn every_sample_matches_its_generator_loads_and_renders() {
         let dir = tempfile::tempdir().unwrap();
         let project = sample.write(dir.path()).expect("sample written");
         if sample.is_committed() {
-            for extension in ["glb", "lightpaint"] {
-                let name = format!("{}.{extension}", sample.name());
+            for name in [
+                format!("{}.glb", sample.name()),
+                format!("{}.lightpaint", sample.name()),
+                "sky.hdr".into(),
+            ] {
                 let committed = std::fs::read(common::repo_path(&format!("projects/{}/{name}", sample.name())))
                     .unwrap_or_else(|e| panic!("{name}: {e}"));
                 assert!(

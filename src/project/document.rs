@@ -5,9 +5,11 @@ use std::path::{Path, PathBuf};
 
 use super::atomic::write_atomically;
 use super::error::ProjectError;
-use super::file::{FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, read_project_file};
+use super::file::{
+    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, read_project_file,
+};
 use crate::render::RenderSettings;
-use crate::scene::{OrbitCamera, Scene};
+use crate::scene::{Environment, OrbitCamera, Scene};
 
 #[derive(Debug, Clone)]
 pub struct Document {
@@ -78,6 +80,20 @@ impl Document {
             ));
         }
         scene.lights = file.lights;
+        scene.environment = match &file.environment {
+            Some(reference) => Some(
+                Environment::load(
+                    &directory.join(&reference.hdr),
+                    reference.intensity,
+                    reference.rotation_rad,
+                )
+                .map_err(|error| ProjectError::Asset {
+                    project: path.to_path_buf(),
+                    error,
+                })?,
+            ),
+            None => None,
+        };
         Ok(Document {
             scene,
             scene_path,
@@ -91,8 +107,16 @@ impl Document {
     /// The project file for saving at `project_path` (the glTF path made relative to it).
     pub fn to_project_file(&self, project_path: &Path) -> ProjectFile {
         let directory = absolute(project_path.parent().unwrap_or(Path::new("")));
-        let scene = absolute(&self.scene_path);
-        let gltf = pathdiff::diff_paths(&scene, &directory).unwrap_or(scene);
+        let relative = |path: &Path| {
+            let path = absolute(path);
+            pathdiff::diff_paths(&path, &directory).unwrap_or(path)
+        };
+        let gltf = relative(&self.scene_path);
+        let environment = self.scene.environment.as_ref().map(|environment| EnvironmentReference {
+            hdr: relative(&environment.hdr),
+            intensity: environment.intensity,
+            rotation_rad: environment.rotation_rad,
+        });
         ProjectFile {
             format_version: FORMAT_VERSION,
             scene: SceneReference {
@@ -102,6 +126,7 @@ impl Document {
             lights: self.scene.lights.clone(),
             render: self.settings,
             camera: self.camera,
+            environment,
         }
     }
 

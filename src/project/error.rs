@@ -60,6 +60,12 @@ pub enum ProjectError {
         #[source]
         error: SceneError,
     },
+    #[error("{project}: an asset it references cannot be used: {error}")]
+    Asset {
+        project: PathBuf,
+        #[source]
+        error: SceneError,
+    },
     #[error(transparent)]
     SceneOnly(#[from] SceneError),
 }

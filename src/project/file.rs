@@ -28,6 +28,21 @@ pub struct ProjectFile {
     pub render: RenderSettings,
     /// The editor's camera when the project was saved.
     pub camera: Option<OrbitCamera>,
+    /// Light from an equirectangular HDR image all around the scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<EnvironmentReference>,
+}
+
+/// An environment light: an equirectangular HDR image, scaled and turned about +y.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentReference {
+    /// Path of the .hdr, relative to the project file's directory (or absolute).
+    pub hdr: PathBuf,
+    /// Multiplier on the image's radiance (≥ 0).
+    pub intensity: f32,
+    /// Rotation about world +y, radians.
+    pub rotation_rad: f32,
 }
 
 /// The glTF scene a project is built on.
@@ -73,6 +88,20 @@ impl ProjectFile {
                 field: "camera".into(),
                 message: "must be finite, with a positive distance and a field of view in (0, π)".into(),
             });
+        }
+        if let Some(environment) = &self.environment {
+            if !(environment.intensity.is_finite() && environment.intensity >= 0.0) {
+                problems.push(Problem {
+                    field: "environment.intensity".into(),
+                    message: format!("{} must be finite and non-negative", environment.intensity),
+                });
+            }
+            if !environment.rotation_rad.is_finite() {
+                problems.push(Problem {
+                    field: "environment.rotation_rad".into(),
+                    message: "must be finite".into(),
+                });
+            }
         }
         if self.scene.blake3.len() != 64 || !self.scene.blake3.bytes().all(|b| b.is_ascii_hexdigit()) {
             problems.push(Problem {

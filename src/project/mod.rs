@@ -10,4 +10,7 @@ mod migrate;
 pub use atomic::{backup_path, write_atomically, write_atomically_with};
 pub use document::{Document, is_project_path};
 pub use error::{Problem, ProjectError};
-pub use file::{FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, parse_project, read_project_file};
+pub use file::{
+    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, parse_project,
+    read_project_file,
+};

@@ -4,9 +4,9 @@
 
 use wgpu::util::DeviceExt;
 
-use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex};
+use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance};
 use super::pipeline::SceneLayouts;
-use crate::scene::{Light, Scene, TextureImage};
+use crate::scene::{Camera, Environment, Light, Scene, TextureImage};
 
 pub struct GpuObject {
     pub vertex_buffer: wgpu::Buffer,
@@ -23,6 +23,7 @@ pub struct GpuScene {
     light_capacity: usize,
     pub frame_bind_group: wgpu::BindGroup,
     pub light_count: usize,
+    environment_irradiance: [[f32; 4]; 9],
 }
 
 impl GpuScene {
@@ -120,6 +121,7 @@ impl GpuScene {
             light_capacity,
             frame_bind_group,
             light_count: 0,
+            environment_irradiance: environment_irradiance(scene.environment.as_ref()),
         };
         gpu_scene.update_lights(device, queue, layouts, &scene.lights);
         gpu_scene
@@ -145,8 +147,21 @@ impl GpuScene {
         self.light_count = lights.len();
     }
 
-    pub fn write_frame(&self, queue: &wgpu::Queue, frame: &GpuFrame) {
-        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
+    /// Writes the per-frame constants for `camera` seen at `aspect` (width / height).
+    pub fn write_frame(&self, queue: &wgpu::Queue, camera: &Camera, aspect: f32, exposure_ev: f32) {
+        let frame = GpuFrame::new(
+            camera,
+            aspect,
+            exposure_ev,
+            self.light_count,
+            self.environment_irradiance,
+        );
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+    }
+
+    /// Replaces the environment light (None: no environment).
+    pub fn set_environment(&mut self, environment: Option<&Environment>) {
+        self.environment_irradiance = environment_irradiance(environment);
     }
 }
 

@@ -5,7 +5,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
-use crate::scene::{Camera, Light, LightKind, Material};
+use crate::scene::{Camera, Environment, Light, LightKind, Material};
 
 /// Light kind tags shared with WGSL (`LIGHT_POINT`, `LIGHT_SPOT`, `LIGHT_DIRECTIONAL`).
 pub const LIGHT_POINT: u32 = 0;
@@ -45,10 +45,18 @@ pub struct GpuFrame {
     pub light_count: u32,
     pub _pad0: u32,
     pub _pad1: u32,
+    /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
+    pub environment_irradiance: [[f32; 4]; 9],
 }
 
 impl GpuFrame {
-    pub fn new(camera: &Camera, aspect: f32, exposure_ev: f32, light_count: usize) -> GpuFrame {
+    pub fn new(
+        camera: &Camera,
+        aspect: f32,
+        exposure_ev: f32,
+        light_count: usize,
+        environment_irradiance: [[f32; 4]; 9],
+    ) -> GpuFrame {
         GpuFrame {
             view_proj: camera.view_projection(aspect).to_cols_array_2d(),
             camera_position: camera.position.extend(1.0).to_array(),
@@ -56,12 +64,26 @@ impl GpuFrame {
             light_count: light_count as u32,
             _pad0: 0,
             _pad1: 0,
+            environment_irradiance,
         }
     }
 
     pub fn view_projection(&self) -> Mat4 {
         Mat4::from_cols_array_2d(&self.view_proj)
     }
+}
+
+/// The environment's irradiance SH in the layout of `Frame::environment_irradiance`
+/// (zeros without an environment).
+pub fn environment_irradiance(environment: Option<&Environment>) -> [[f32; 4]; 9] {
+    let mut out = [[0.0; 4]; 9];
+    if let Some(environment) = environment {
+        let irradiance = crate::scene::environment::irradiance_sh(&environment.world_radiance_sh());
+        for (slot, rgb) in out.iter_mut().zip(irradiance) {
+            *slot = [rgb[0] as f32, rgb[1] as f32, rgb[2] as f32, 0.0];
+        }
+    }
+    out
 }
 
 /// WGSL `Light`.

@@ -1,6 +1,5 @@
 use super::pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
 use super::{GpuContext, GpuScene, RenderError, RenderSettings};
-use crate::render::gpu_types::GpuFrame;
 use crate::scene::{Camera, Scene};
 
 /// Largest image side accepted by [`render_image`] (lavapipe's 2D texture limit).
@@ -22,13 +21,7 @@ pub fn render_image(
     let pipeline = ScenePipeline::new(&gpu.device);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
     let target = RenderTarget::new(&gpu.device, width, height);
-    let frame = GpuFrame::new(
-        camera,
-        width as f32 / height as f32,
-        settings.exposure_ev,
-        gpu_scene.light_count,
-    );
-    gpu_scene.write_frame(&gpu.queue, &frame);
+    gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, settings.exposure_ev);
 
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     pipeline.draw(&mut encoder, &target, &gpu_scene, settings.background_linear());

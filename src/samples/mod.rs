@@ -11,6 +11,7 @@ mod studio_set;
 use std::path::{Path, PathBuf};
 
 use crate::project::{Document, ProjectError, write_atomically};
+use crate::scene::Environment;
 
 pub use studio_set::sample_scene_glb;
 
@@ -63,15 +64,24 @@ impl Sample {
         }
     }
 
-    /// Writes `NAME.glb` and `NAME.lightpaint` into `directory`; returns the project path.
+    /// Writes `NAME.glb`, `sky.hdr` and `NAME.lightpaint` into `directory`; returns the
+    /// project path.
     pub fn write(self, directory: &Path) -> Result<PathBuf, ProjectError> {
+        let write = |path: &Path, bytes: &[u8]| {
+            write_atomically(path, bytes).map_err(|source| ProjectError::Write {
+                path: path.to_path_buf(),
+                source,
+            })
+        };
         let scene_path = directory.join(format!("{}.glb", self.name()));
-        write_atomically(&scene_path, &self.glb()).map_err(|source| ProjectError::Write {
-            path: scene_path.clone(),
-            source,
-        })?;
+        write(&scene_path, &self.glb())?;
+        let sky_path = directory.join("sky.hdr");
+        write(&sky_path, &sky_hdr())?;
+        let mut document = Document::from_gltf(&scene_path)?;
+        document.scene.environment =
+            Some(Environment::load(&sky_path, SKY_INTENSITY, 0.0).map_err(ProjectError::SceneOnly)?);
         let project_path = directory.join(format!("{}.lightpaint", self.name()));
-        Document::from_gltf(&scene_path)?.save(&project_path)?;
+        document.save(&project_path)?;
         Ok(project_path)
     }
 }
@@ -79,6 +89,32 @@ impl Sample {
 /// Writes the default sample scene and project into `directory`.
 pub fn write_sample_project(directory: &Path) -> Result<(), ProjectError> {
     Sample::Sample.write(directory).map(|_| ())
+}
+
+/// Radiance multiplier of the samples' sky: a soft fill under the lights.
+const SKY_INTENSITY: f32 = 0.15;
+
+/// A 64 × 32 equirectangular Radiance HDR sky: blue zenith, pale horizon, warm grey ground.
+pub fn sky_hdr() -> Vec<u8> {
+    let (width, height) = (64usize, 32usize);
+    let pixels: Vec<image::Rgb<f32>> = (0..width * height)
+        .map(|i| {
+            let row = i / width;
+            let elevation = 1.0 - 2.0 * (row as f32 + 0.5) / height as f32; // sin of the altitude
+            let rgb = if elevation > 0.0 {
+                let t = elevation.sqrt();
+                [0.9 + (0.35 - 0.9) * t, 0.95 + (0.5 - 0.95) * t, 1.0 + (0.9 - 1.0) * t]
+            } else {
+                [0.3, 0.27, 0.24]
+            };
+            image::Rgb(rgb)
+        })
+        .collect();
+    let mut bytes = Vec::new();
+    image::codecs::hdr::HdrEncoder::new(&mut bytes)
+        .encode(&pixels, width, height)
+        .expect("encoding an HDR into memory cannot fail");
+    bytes
 }
 
 /// A `size`² PNG checkerboard of `squares`² squares in two sRGB colours.

@@ -6,6 +6,7 @@
 
 mod bounds;
 mod camera;
+pub mod environment;
 mod error;
 mod gltf_import;
 pub mod gltf_write;
@@ -16,6 +17,7 @@ pub mod shapes;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
+pub use environment::Environment;
 pub use error::SceneError;
 pub use gltf_import::{load_gltf, parse_gltf};
 pub use light::{Light, LightKind};
@@ -32,6 +34,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<TextureImage>,
     pub lights: Vec<Light>,
+    /// Light from all around (an HDR image as SH), if any.
+    pub environment: Option<Environment>,
     /// The first camera of the glTF scene, if it has one.
     pub camera: Option<Camera>,
     /// The file the scene was loaded from.

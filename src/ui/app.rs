@@ -263,6 +263,30 @@ impl EditorApp {
             if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
                 viewport.set_lights(rs, &document.scene.lights);
             }
+            if let Some(environment) = &mut document.scene.environment {
+                ui.separator();
+                ui.heading("Environment");
+                let name = environment
+                    .hdr
+                    .file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+                let mut environment_changed = false;
+                ui.horizontal(|ui| {
+                    ui.label(name);
+                    let intensity = egui::DragValue::new(&mut environment.intensity)
+                        .range(0.0..=1.0e4)
+                        .speed(0.01)
+                        .prefix("×");
+                    environment_changed |= ui.add(intensity).changed();
+                });
+                let half_turn = std::f32::consts::PI;
+                let rotation =
+                    egui::Slider::new(&mut environment.rotation_rad, -half_turn..=half_turn).text("rotation (rad)");
+                environment_changed |= ui.add(rotation).changed();
+                if environment_changed && let Some(viewport) = &mut self.viewport {
+                    viewport.set_environment(Some(environment));
+                }
+            }
         });
     }
 

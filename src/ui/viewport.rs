@@ -2,8 +2,8 @@
 //! that egui shows, and turns mouse input into orbit (left drag), pan (right or middle
 //! drag, or shift + left drag) and zoom (scroll).
 
-use crate::render::{GpuFrame, GpuScene, RenderSettings, RenderTarget, ScenePipeline};
-use crate::scene::{Light, OrbitCamera, Scene};
+use crate::render::{GpuScene, RenderSettings, RenderTarget, ScenePipeline};
+use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
 pub struct Viewport {
     pipeline: ScenePipeline,
@@ -52,6 +52,12 @@ impl Viewport {
             &self.pipeline.layouts,
             lights,
         );
+        self.rendered = None;
+    }
+
+    /// Replaces the environment light; the next frame shows it.
+    pub fn set_environment(&mut self, environment: Option<&Environment>) {
+        self.gpu_scene.set_environment(environment);
         self.rendered = None;
     }
 
@@ -127,13 +133,12 @@ impl Viewport {
         }
         let Some(target) = &self.target else { return };
         let camera = self.orbit.camera();
-        let frame = GpuFrame::new(
+        self.gpu_scene.write_frame(
+            &render_state.queue,
             &camera,
             size[0] as f32 / size[1] as f32,
             settings.exposure_ev,
-            self.gpu_scene.light_count,
         );
-        self.gpu_scene.write_frame(&render_state.queue, &frame);
         let mut encoder = device.create_command_encoder(&Default::default());
         self.pipeline
             .draw(&mut encoder, target, &self.gpu_scene, settings.background_linear());
