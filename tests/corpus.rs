@@ -149,63 +149,49 @@ fn a_non_utf8_path_opens() {
     assert_eq!(document.scene.objects.len(), 1);
 }
 
-fn triangle_with_light() -> Vec<u8> {
-    let mut b = GltfBuilder::new();
-    let mesh = b.add_mesh("tri", &[Vec3::ZERO, Vec3::X, Vec3::NEG_Z], None, None, &[0, 1, 2], None);
-    b.add_mesh_node("tri", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
-    b.add_light_node(
-        "sun",
-        &LightSpec::Directional {
-            color: [1.0; 3],
-            illuminance_lux: 1.0,
-        },
-        Vec3::Y,
-        Vec3::NEG_Y,
-    );
-    b.to_glb()
+const TRIANGLE: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::NEG_Z];
+
+fn sun() -> LightSpec {
+    LightSpec::Directional {
+        color: [1.0; 3],
+        illuminance_lux: 1.0,
+    }
 }
 
-/// A one-triangle scene with a light, with `edit` applied to its JSON (for broken files).
-fn edited_glb(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
+/// A one-mesh scene with `light` (if any) above it, `edit` applied to its JSON (for broken
+/// files), as a .glb.
+fn scene_glb(
+    positions: &[Vec3],
+    normals: Option<&[Vec3]>,
+    indices: &[u32],
+    light: Option<LightSpec>,
+    edit: impl FnOnce(&mut serde_json::Value),
+) -> Vec<u8> {
     let mut b = GltfBuilder::new();
-    let mesh = b.add_mesh("tri", &[Vec3::ZERO, Vec3::X, Vec3::NEG_Z], None, None, &[0, 1, 2], None);
-    b.add_mesh_node("tri", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
-    b.add_light_node(
-        "sun",
-        &LightSpec::Directional {
-            color: [1.0; 3],
-            illuminance_lux: 1.0,
-        },
-        Vec3::Y,
-        Vec3::NEG_Y,
-    );
+    let mesh = b.add_mesh("mesh", positions, normals, None, indices, None);
+    b.add_mesh_node("mesh", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
+    if let Some(light) = light {
+        b.add_light_node("light", &light, Vec3::Y, Vec3::NEG_Y);
+    }
     let mut document = b.document(None);
     edit(&mut document);
     lightpaint::scene::gltf_write::glb_bytes(&document, &b.bin())
 }
 
+fn triangle_with_light() -> Vec<u8> {
+    scene_glb(&TRIANGLE, None, &[0, 1, 2], Some(sun()), |_| {})
+}
+
+fn edited_glb(edit: impl FnOnce(&mut serde_json::Value)) -> Vec<u8> {
+    scene_glb(&TRIANGLE, None, &[0, 1, 2], Some(sun()), edit)
+}
+
 fn mesh_glb(positions: &[Vec3], normals: Option<&[Vec3]>, indices: &[u32]) -> Vec<u8> {
-    let mut b = GltfBuilder::new();
-    let mesh = b.add_mesh("mesh", positions, normals, None, indices, None);
-    b.add_mesh_node("mesh", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
-    b.add_light_node(
-        "sun",
-        &LightSpec::Directional {
-            color: [1.0; 3],
-            illuminance_lux: 1.0,
-        },
-        Vec3::Y,
-        Vec3::NEG_Y,
-    );
-    b.to_glb()
+    scene_glb(positions, normals, indices, Some(sun()), |_| {})
 }
 
 fn light_glb(light: LightSpec) -> Vec<u8> {
-    let mut b = GltfBuilder::new();
-    let mesh = b.add_mesh("tri", &[Vec3::ZERO, Vec3::X, Vec3::NEG_Z], None, None, &[0, 1, 2], None);
-    b.add_mesh_node("tri", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
-    b.add_light_node("light", &light, Vec3::Y, Vec3::NEG_Y);
-    b.to_glb()
+    scene_glb(&TRIANGLE, None, &[0, 1, 2], Some(light), |_| {})
 }
 
 #[test]
@@ -214,7 +200,7 @@ fn regenerate_corpus() {
     let dir = corpus_dir();
     let write = |name: &str, bytes: &[u8]| std::fs::write(dir.join(name), bytes).unwrap();
     let good = triangle_with_light();
-    let triangle = [Vec3::ZERO, Vec3::X, Vec3::NEG_Z];
+    let triangle = TRIANGLE;
 
     write("scene.glb", &good);
     write("empty.glb", b"");
@@ -287,12 +273,7 @@ fn regenerate_corpus() {
         "zero-normals.glb",
         &mesh_glb(&triangle, Some(&[Vec3::ZERO; 3]), &[0, 1, 2]),
     );
-    {
-        let mut b = GltfBuilder::new();
-        let mesh = b.add_mesh("tri", &triangle, None, None, &[0, 1, 2], None);
-        b.add_mesh_node("tri", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
-        write("no-lights.glb", &b.to_glb());
-    }
+    write("no-lights.glb", &scene_glb(&TRIANGLE, None, &[0, 1, 2], None, |_| {}));
     {
         let mut b = GltfBuilder::new();
         let mesh = b.add_mesh("tri", &triangle, None, None, &[0, 1, 2], None);

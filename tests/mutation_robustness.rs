@@ -20,15 +20,7 @@ fn small_glb() -> Vec<u8> {
         ..MaterialSpec::plain("checker", [1.0, 1.0, 1.0], 0.5)
     });
     let sphere = shapes::uv_sphere(1.0, 8, 4);
-    let mesh = b.add_mesh(
-        "ball",
-        &sphere.positions,
-        Some(&sphere.normals),
-        Some(&sphere.uvs),
-        &sphere.indices,
-        Some(material),
-    );
-    b.add_mesh_node("ball", mesh, Vec3::Y, glam::Quat::IDENTITY, Vec3::ONE);
+    b.add_shape("ball", &sphere, material, Vec3::Y, glam::Quat::IDENTITY);
     b.add_light_node(
         "p",
         &LightSpec::Point {

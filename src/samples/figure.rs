@@ -64,15 +64,7 @@ pub fn studio_glb() -> Vec<u8> {
     let backdrop = b.add_material(&MaterialSpec::plain("backdrop", [0.55, 0.57, 0.6], 0.9));
     let skin = b.add_material(&MaterialSpec::plain("mannequin", [0.78, 0.62, 0.48], 0.45));
     let mut add = |name: &str, mesh: ShapeMesh, material: usize| {
-        let m = b.add_mesh(
-            name,
-            &mesh.positions,
-            Some(&mesh.normals),
-            Some(&mesh.uvs),
-            &mesh.indices,
-            Some(material),
-        );
-        b.add_mesh_node(name, m, Vec3::ZERO, Quat::IDENTITY, Vec3::ONE);
+        b.add_shape(name, &mesh, material, Vec3::ZERO, Quat::IDENTITY);
     };
     add("Floor", shapes::plane(10.0, 40, 5.0), floor);
     let wall =

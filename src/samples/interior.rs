@@ -48,15 +48,7 @@ pub fn interior_glb() -> Vec<u8> {
         ..MaterialSpec::plain("brass", [0.9, 0.75, 0.4], 0.25)
     });
     let mut add = |name: &str, mesh: ShapeMesh, material: usize| {
-        let m = b.add_mesh(
-            name,
-            &mesh.positions,
-            Some(&mesh.normals),
-            Some(&mesh.uvs),
-            &mesh.indices,
-            Some(material),
-        );
-        b.add_mesh_node(name, m, Vec3::ZERO, Quat::IDENTITY, Vec3::ONE);
+        b.add_shape(name, &mesh, material, Vec3::ZERO, Quat::IDENTITY);
     };
     // Room 8 × 3 × 6 m, open towards +z for the camera.
     add("Floor", shapes::plane(8.0, 80, 4.0), floor);

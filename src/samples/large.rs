@@ -17,15 +17,7 @@ pub fn large_glb() -> Vec<u8> {
         .map(|(i, c)| b.add_material(&MaterialSpec::plain(&format!("paint {i}"), *c, 0.3 + 0.15 * i as f32)))
         .collect();
     let plane = shapes::plane(40.0, 100, 10.0);
-    let m = b.add_mesh(
-        "Ground",
-        &plane.positions,
-        Some(&plane.normals),
-        Some(&plane.uvs),
-        &plane.indices,
-        Some(ground),
-    );
-    b.add_mesh_node("Ground", m, Vec3::ZERO, Quat::IDENTITY, Vec3::ONE);
+    b.add_shape("Ground", &plane, ground, Vec3::ZERO, Quat::IDENTITY);
     for i in 0..12 {
         for j in 0..12 {
             let position = Vec3::new(-16.5 + 3.0 * i as f32, 0.0, -16.5 + 3.0 * j as f32);
@@ -39,15 +31,7 @@ pub fn large_glb() -> Vec<u8> {
                     .merged(shapes::uv_sphere(0.45, 56, 44).transformed(Affine3A::from_translation(Vec3::Y * 2.45))),
             };
             let name = format!("Object {i}-{j}");
-            let m = b.add_mesh(
-                &name,
-                &mesh.positions,
-                Some(&mesh.normals),
-                Some(&mesh.uvs),
-                &mesh.indices,
-                Some(palette[(i * 5 + j) % 4]),
-            );
-            b.add_mesh_node(&name, m, position, Quat::IDENTITY, Vec3::ONE);
+            b.add_shape(&name, &mesh, palette[(i * 5 + j) % 4], position, Quat::IDENTITY);
         }
     }
     for k in 0..24 {

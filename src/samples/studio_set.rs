@@ -26,15 +26,7 @@ pub fn sample_scene_glb() -> Vec<u8> {
     let slate = b.add_material(&MaterialSpec::plain("slate", [0.25, 0.28, 0.34], 0.7));
 
     let mut place = |name: &str, mesh: ShapeMesh, material: usize, at: Vec3, rotation: Quat| {
-        let m = b.add_mesh(
-            name,
-            &mesh.positions,
-            Some(&mesh.normals),
-            Some(&mesh.uvs),
-            &mesh.indices,
-            Some(material),
-        );
-        b.add_mesh_node(name, m, at, rotation, Vec3::ONE);
+        b.add_shape(name, &mesh, material, at, rotation);
     };
     place("Floor", shapes::plane(14.0, 64, 7.0), floor, Vec3::ZERO, Quat::IDENTITY);
     place(

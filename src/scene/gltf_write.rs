@@ -6,6 +6,8 @@
 use glam::{Quat, Vec2, Vec3};
 use serde_json::{Value, json};
 
+use super::shapes::ShapeMesh;
+
 /// A material to write. `specular` writes KHR_materials_specular when set.
 #[derive(Debug, Clone)]
 pub struct MaterialSpec {
@@ -171,6 +173,27 @@ impl GltfBuilder {
         }
         self.meshes.push(json!({"name": name, "primitives": [primitive]}));
         self.meshes.len() - 1
+    }
+
+    /// Adds `shape` as a mesh in `material` and a node placing it (unit scale); returns the
+    /// node's index.
+    pub fn add_shape(
+        &mut self,
+        name: &str,
+        shape: &ShapeMesh,
+        material: usize,
+        translation: Vec3,
+        rotation: Quat,
+    ) -> usize {
+        let mesh = self.add_mesh(
+            name,
+            &shape.positions,
+            Some(&shape.normals),
+            Some(&shape.uvs),
+            &shape.indices,
+            Some(material),
+        );
+        self.add_mesh_node(name, mesh, translation, rotation, Vec3::ONE)
     }
 
     /// Adds a mesh primitive as raw JSON attributes (for deliberately broken test files).

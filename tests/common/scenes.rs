@@ -14,15 +14,7 @@ pub fn white_plane(light: LightSpec, light_position: Vec3) -> Vec<u8> {
         ..MaterialSpec::plain("white", [1.0, 1.0, 1.0], 1.0)
     });
     let plane = shapes::plane(2.0, 4, 1.0);
-    let mesh = b.add_mesh(
-        "plane",
-        &plane.positions,
-        Some(&plane.normals),
-        Some(&plane.uvs),
-        &plane.indices,
-        Some(white),
-    );
-    b.add_mesh_node("plane", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
+    b.add_shape("plane", &plane, white, Vec3::ZERO, glam::Quat::IDENTITY);
     b.add_light_node("light", &light, light_position, Vec3::NEG_Y);
     b.add_camera_node(
         "top",
