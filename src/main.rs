@@ -44,11 +44,18 @@ struct RenderArgs {
     #[arg(long, default_value_t = 720)]
     height: u32,
     /// Exposure in stops (radiance × 2^EV before tone mapping); default: the project's, or 0.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_exposure)]
     exposure: Option<f32>,
     /// Background colour as 8-bit sRGB "R,G,B".
     #[arg(long, value_parser = parse_srgb8)]
     background: Option<[u8; 3]>,
+}
+
+fn parse_exposure(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(ev) if ev.is_finite() && ev.abs() <= 64.0 => Ok(ev),
+        _ => Err(format!("expected an exposure between -64 and 64 EV, got '{text}'")),
+    }
 }
 
 fn parse_srgb8(text: &str) -> Result<[u8; 3], String> {

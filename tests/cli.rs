@@ -78,6 +78,18 @@ fn not_a_gltf_is_reported() {
 fn usage_errors_exit_2() {
     let out = common::run_lightpaint(&[OsStr::new("render"), OsStr::new("scene.glb")]);
     assert_eq!(out.status.code(), Some(2));
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
+    for exposure in ["nan", "inf", "1e9"] {
+        let out = common::run_lightpaint(&[
+            OsStr::new("render"),
+            sample.as_os_str(),
+            OsStr::new("-o"),
+            OsStr::new("/nonexistent/out.png"),
+            OsStr::new("--exposure"),
+            OsStr::new(exposure),
+        ]);
+        assert_eq!(out.status.code(), Some(2), "--exposure {exposure}");
+    }
 }
 
 #[test]
