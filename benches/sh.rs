@@ -8,15 +8,13 @@ use glam::DVec3;
 use lightpaint::sh::{self, ExpMethod};
 
 fn log_visibility(order: usize, blockers: usize) -> Vec<f64> {
-    let mut f = vec![0.0; order * order];
-    for k in 0..blockers {
-        let t = k as f64 * 1.9 + 0.3;
-        let cap = sh::rotate_zh(&sh::cap_zh_from_ratio(order, 0.3), DVec3::new(t.cos(), t.sin(), 0.5));
-        for (fi, ci) in f.iter_mut().zip(cap) {
-            *fi += 0.1f64.ln() * ci;
-        }
-    }
-    f
+    let caps: Vec<(DVec3, f64)> = (0..blockers)
+        .map(|k| {
+            let t = k as f64 * 1.9 + 0.3;
+            (DVec3::new(t.cos(), t.sin(), 0.5).normalize(), 0.3f64.asin())
+        })
+        .collect();
+    sh::log_visibility(order, &caps, 0.1)
 }
 
 fn exponentiation(c: &mut Criterion) {

@@ -9,7 +9,7 @@ use num_traits::Float;
 
 use super::ol_fit::training_shapes;
 use super::quadrature::SphereQuadrature;
-use super::{ExpMethod, MAX_REALTIME_ORDER, basis_generic, cap_zh, coefficient_count, exp, exp_reference, rotate_zh};
+use super::{ExpMethod, MAX_REALTIME_ORDER, basis_generic, coefficient_count, exp, exp_reference, log_visibility};
 
 /// Largest |∫ y_i y_j dω − δ_ij| over all pairs, with the basis evaluated in `T` and the
 /// integral by a quadrature exact for the products (accumulated in f64).
@@ -99,30 +99,60 @@ pub fn test_vectors(order: usize, per_bucket: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// Test vectors with their reference exponentials, computed once and shared by every
+/// method measured on them.
+pub struct TestSet {
+    pub order: usize,
+    vectors: Vec<Vec<f64>>,
+    references: Vec<Vec<f64>>,
+}
+
+impl TestSet {
+    pub fn new(order: usize, per_bucket: usize) -> TestSet {
+        let vectors = test_vectors(order, per_bucket);
+        let references = vectors.iter().map(|f| exp_reference(f)).collect();
+        TestSet {
+            order,
+            vectors,
+            references,
+        }
+    }
+
+    /// Mean relative error per norm bucket, largest error, and mean ns per call of
+    /// `approximate` over the set.
+    pub fn errors(&self, approximate: impl Fn(&[f64]) -> Vec<f64>) -> ([f64; 4], f64, f64) {
+        let started = Instant::now();
+        let results: Vec<Vec<f64>> = self.vectors.iter().map(|f| approximate(f)).collect();
+        let ns_per_call = started.elapsed().as_nanos() as f64 / self.vectors.len() as f64;
+        let mut sums = [0.0; 4];
+        let mut counts = [0usize; 4];
+        let mut max_relative_error: f64 = 0.0;
+        for (i, (result, reference)) in results.iter().zip(&self.references).enumerate() {
+            let error = relative_error(result, reference);
+            let bucket = i % NORM_BUCKETS.len();
+            sums[bucket] += error;
+            counts[bucket] += 1;
+            max_relative_error = max_relative_error.max(error);
+        }
+        let means = std::array::from_fn(|b| sums[b] / counts[b].max(1) as f64);
+        (means, max_relative_error, ns_per_call)
+    }
+
+    pub fn measure(&self, method: ExpMethod) -> AccuracyRow {
+        let (mean_relative_error, max_relative_error, ns_per_exp) = self.errors(|f| exp(method, f));
+        AccuracyRow {
+            order: self.order,
+            method,
+            mean_relative_error,
+            max_relative_error,
+            ns_per_exp,
+        }
+    }
+}
+
+/// One method measured on a fresh [`TestSet`].
 pub fn measure(order: usize, method: ExpMethod, per_bucket: usize) -> AccuracyRow {
-    let vectors = test_vectors(order, per_bucket);
-    let references: Vec<Vec<f64>> = vectors.iter().map(|f| exp_reference(f)).collect();
-    let mut sums = [0.0; 4];
-    let mut counts = [0usize; 4];
-    let mut max_relative_error: f64 = 0.0;
-    let started = Instant::now();
-    let results: Vec<Vec<f64>> = vectors.iter().map(|f| exp(method, f)).collect();
-    let ns_per_exp = started.elapsed().as_nanos() as f64 / vectors.len() as f64;
-    for (i, (result, reference)) in results.iter().zip(&references).enumerate() {
-        let error = relative_error(result, reference);
-        let bucket = i % NORM_BUCKETS.len();
-        sums[bucket] += error;
-        counts[bucket] += 1;
-        max_relative_error = max_relative_error.max(error);
-    }
-    let mean_relative_error = std::array::from_fn(|b| sums[b] / counts[b].max(1) as f64);
-    AccuracyRow {
-        order,
-        method,
-        mean_relative_error,
-        max_relative_error,
-        ns_per_exp,
-    }
+    TestSet::new(order, per_bucket).measure(method)
 }
 
 /// The markdown report: one table per order.
@@ -148,8 +178,9 @@ pub fn report(per_bucket: usize) -> String {
             text,
             "| method | ‖f̂‖ 0–1 | 1–4.8 | 4.8–10 | 10–20 | max | µs/exp |\n|---|---|---|---|---|---|---|"
         );
+        let set = TestSet::new(order, per_bucket);
         for method in METHODS {
-            let row = measure(order, method, per_bucket);
+            let row = set.measure(method);
             let e = row.mean_relative_error;
             let _ = writeln!(
                 text,
@@ -200,9 +231,9 @@ fn coincident_section(text: &mut String) {
     );
     let dir = glam::DVec3::new(0.3, 0.5, 0.8);
     for count in [1usize, 2, 4, 8, 16, 64, 256, 1000] {
-        let f: Vec<f64> = rotate_zh(&cap_zh(4, 0.3), dir)
+        let f: Vec<f64> = log_visibility(4, &[(dir, 0.3)], 0.1)
             .into_iter()
-            .map(|c| c * 0.1f64.ln() * count as f64)
+            .map(|c| c * count as f64)
             .collect();
         let hat_norm = f[1..].iter().map(|v| v * v).sum::<f64>().sqrt();
         let reference = exp_reference(&f);
@@ -226,16 +257,10 @@ fn hyb_threshold_section(text: &mut String) {
          Mean relative error per ‖f̂‖ bucket for HYB thresholds (OL applied once ‖f̂‖/2^k ≤ threshold).\n\n\
          | threshold | 0–1 | 1–4.8 | 4.8–10 | 10–20 |\n|---|---|---|---|---|"
     );
-    let vectors = test_vectors(4, 16);
+    let set = TestSet::new(4, 16);
     for threshold in [0.25, 0.5, 1.0, 2.0, 4.0] {
-        let mut sums = [0.0; 4];
-        let mut counts = [0usize; 4];
-        for (i, f) in vectors.iter().enumerate() {
-            let bucket = i % NORM_BUCKETS.len();
-            sums[bucket] += relative_error(&super::exp_hyb(f, threshold), &exp_reference(f));
-            counts[bucket] += 1;
-        }
-        let m: Vec<String> = (0..4).map(|b| format!("{:.2e}", sums[b] / counts[b] as f64)).collect();
+        let (means, _, _) = set.errors(|f| super::exp_hyb(f, threshold));
+        let m: Vec<String> = means.iter().map(|e| format!("{e:.2e}")).collect();
         let _ = writeln!(text, "| {threshold} | {} |", m.join(" | "));
     }
     let _ = writeln!(text);

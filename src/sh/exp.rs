@@ -173,23 +173,21 @@ pub fn exp_hyb(f: &[f64], threshold: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sh::{cap_zh, rotate_zh};
+    use crate::sh::log_visibility;
 
     fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
     }
 
     fn caps(order: usize, count: usize, epsilon: f64) -> Vec<f64> {
-        let mut f = vec![0.0; order * order];
-        for k in 0..count {
-            let t = k as f64 * 2.3 + 0.4;
-            let dir = glam::DVec3::new(t.cos(), (1.7 * t).sin(), (0.9 * t).cos() + 0.5);
-            let cap = rotate_zh(&cap_zh(order, 0.2 + 0.1 * (k % 5) as f64), dir);
-            for (fi, ci) in f.iter_mut().zip(cap) {
-                *fi += epsilon.ln() * ci;
-            }
-        }
-        f
+        let caps: Vec<(glam::DVec3, f64)> = (0..count)
+            .map(|k| {
+                let t = k as f64 * 2.3 + 0.4;
+                let dir = glam::DVec3::new(t.cos(), (1.7 * t).sin(), (0.9 * t).cos() + 0.5).normalize();
+                (dir, 0.2 + 0.1 * (k % 5) as f64)
+            })
+            .collect();
+        log_visibility(order, &caps, epsilon)
     }
 
     #[test]
@@ -263,7 +261,7 @@ mod accuracy_tests {
     use super::*;
     use crate::sh::accuracy::{measure, relative_error};
     use crate::sh::ol_fit::{OL_TRAINING_SEED, OL_TRAINING_SHAPES, fit_ol_at, training_shapes};
-    use crate::sh::{cap_zh, ol_tables, rotate_zh};
+    use crate::sh::{log_visibility, ol_tables, rotate_zh};
 
     #[test]
     fn committed_ol_table_matches_a_fresh_fit() {
@@ -306,11 +304,12 @@ mod accuracy_tests {
         );
     }
 
+    /// `count` caps on one spot: one cap's log-visibility times `count`.
     fn coincident_caps(order: usize, count: usize, epsilon: f64, half_angle: f64) -> Vec<f64> {
-        let dir = glam::DVec3::new(0.3, 0.5, 0.8);
-        rotate_zh(&cap_zh(order, half_angle), dir)
+        let dir = glam::DVec3::new(0.3, 0.5, 0.8).normalize();
+        log_visibility(order, &[(dir, half_angle)], epsilon)
             .into_iter()
-            .map(|c| c * epsilon.ln() * count as f64)
+            .map(|c| c * count as f64)
             .collect()
     }
 

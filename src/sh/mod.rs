@@ -31,8 +31,8 @@ pub use quadrature::{SphereQuadrature, gauss_legendre};
 pub use rotation::{rotate, rotate_z, rotation_matrices};
 pub use window::{Window, apply_window, window_factors};
 pub use zonal::{
-    cap_zh, cap_zh_from_ratio, cap_zh_generic, clamped_cosine_zh, log_diffuse_zh, log_phong_zh, rotate_zh,
-    zh_of_function,
+    cap_zh, cap_zh_from_ratio, cap_zh_generic, clamped_cosine_zh, log_diffuse_zh, log_phong_zh, log_visibility,
+    rotate_zh, zh_of_function,
 };
 
 use std::f64::consts::PI;

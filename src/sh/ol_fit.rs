@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::{cap_zh, exp_reference, rotate_zh};
+use super::{exp_reference, log_visibility};
 
 /// Settings of the committed tables.
 pub const OL_TABLE_ORDERS: std::ops::RangeInclusive<usize> = 2..=8;
@@ -48,15 +48,14 @@ pub fn training_shapes(order: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
     let mut rng = SplitMix64(seed ^ order as u64);
     let mut shapes = Vec::with_capacity(count);
     while shapes.len() < count {
-        let caps = 1 + (rng.next_u64() % 8) as usize;
-        let mut f = vec![0.0; order * order];
-        for _ in 0..caps {
-            let half_angle = (5.0 + 55.0 * rng.next_f64()).to_radians();
-            let cap = rotate_zh(&cap_zh(order, half_angle), rng.direction());
-            for (fi, ci) in f.iter_mut().zip(cap) {
-                *fi += 0.1f64.ln() * ci;
-            }
-        }
+        let count = 1 + (rng.next_u64() % 8) as usize;
+        let caps: Vec<(DVec3, f64)> = (0..count)
+            .map(|_| {
+                let half_angle = (5.0 + 55.0 * rng.next_f64()).to_radians();
+                (rng.direction(), half_angle)
+            })
+            .collect();
+        let mut f = log_visibility(order, &caps, 0.1);
         f[0] = 0.0;
         let norm = f.iter().map(|v| v * v).sum::<f64>().sqrt();
         if norm > 1e-9 {

@@ -87,6 +87,20 @@ pub fn rotate_zh(zh: &[f64], dir: DVec3) -> Vec<f64> {
     out
 }
 
+/// Log-visibility of spherical blockers seen from one receiver (design.md §4): the sum over
+/// caps (unit direction to the blocker's centre, half-angle in radians) of ln ε times the
+/// cap's indicator ZH rotated to that direction.
+pub fn log_visibility(order: usize, caps: &[(DVec3, f64)], epsilon: f64) -> Vec<f64> {
+    let ln_epsilon = epsilon.ln();
+    let mut f = vec![0.0; order * order];
+    for &(dir, half_angle_rad) in caps {
+        for (fi, ci) in f.iter_mut().zip(rotate_zh(&cap_zh(order, half_angle_rad), dir)) {
+            *fi += ln_epsilon * ci;
+        }
+    }
+    f
+}
+
 /// ZH projection z_l = 2π ∫₋₁¹ f(t) y_l^0(t) dt of a function of t = cos θ, by composite
 /// 128-point Gauss–Legendre on panels split at `breakpoints` (put kinks there: the rule is
 /// then accurate to about machine precision for piecewise-smooth f).
@@ -238,6 +252,15 @@ mod tests {
         let theta: f64 = 0.7;
         let by_quadrature = zh_of_function(6, |t| if t > theta.cos() { 1.0 } else { 0.0 }, &[theta.cos()]);
         assert_close(&by_quadrature, &cap_zh(6, theta), 1e-12);
+    }
+
+    #[test]
+    fn blockers_covering_the_sky_give_a_constant_ln_epsilon_each() {
+        // A cap of half-angle π is the whole sphere: each such blocker adds ln ε everywhere.
+        let dir = DVec3::new(0.2, -0.5, 0.7).normalize();
+        let f = log_visibility(4, &[(dir, PI), (dir, PI)], 0.1);
+        assert!((f[0] - 2.0 * 0.1f64.ln() * (4.0 * PI).sqrt()).abs() < 1e-12);
+        assert!(f[1..].iter().all(|v| v.abs() < 1e-12));
     }
 
     #[test]
