@@ -27,7 +27,7 @@ struct Frame {
 
 // One light. Units: point/spot radiant intensity in candela, directional illuminance in lux
 // (KHR_lights_punctual), area lights luminance × area (cd along the normal), times the
-// linear RGB colour. Sphere lights arrive as points.
+// linear RGB colour. Sphere lights arrive as points with a source_size.
 struct Light {
     // xyz = world position; w unused.
     position: vec4<f32>,
@@ -39,9 +39,27 @@ struct Light {
     // x = cos(outer cone), y = 1 / (cos(inner) − cos(outer)); zw unused.
     spot_cone: vec4<f32>,
     kind: u32,
-    _pad0: u32,
+    // Sphere lights (kind LIGHT_POINT): radius in metres; area lights: emitting area in m²;
+    // 0 for point-like lights.
+    source_size: f32,
     _pad1: u32,
     _pad2: u32,
+};
+
+// Parameters of the log-SH shadow pass (logsh.wgsl).
+struct ShadowParams {
+    // ln ε: the log-visibility of a blocked direction (design.md §4).
+    ln_epsilon: f32,
+    // Blockers whose sin(cap half-angle) = r/d is below this are skipped (too far to matter).
+    min_cap_ratio: f32,
+    blocker_count: u32,
+    // 1: scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
+    ratio_attenuation: u32,
+};
+
+// A spherical blocker: xyz = centre (world, metres), w = radius in metres.
+struct Blocker {
+    center_radius: vec4<f32>,
 };
 
 // A material, mapped from glTF metallic-roughness (see Material in src/scene/material.rs).

@@ -6,9 +6,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use lightpaint::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
-use lightpaint::render::{GpuContext, RenderError, render_image};
+use lightpaint::render::{
+    GpuContext, RenderError, ShadowFrame, ShadowSettings, parse_exp_method, render_cpu_image, render_image,
+    render_logsh_image,
+};
 use lightpaint::scene::SceneError;
+use lightpaint::sh::ExpMethod;
 
 #[derive(Parser)]
 #[command(name = "lightpaint", version, about = "Light a 3D scene by painting on it")]
@@ -49,6 +54,37 @@ struct RenderArgs {
     /// Background colour as 8-bit sRGB "R,G,B".
     #[arg(long, value_parser = parse_srgb8)]
     background: Option<[u8; 3]>,
+    /// SH order of the shadows (bands, 2–8 on the GPU).
+    #[arg(long, default_value_t = 4)]
+    order: usize,
+    /// Exponentiation: dc, ol, hyb, ps<k> (power series of k terms) or ref (CPU only).
+    #[arg(long, default_value = "hyb", value_parser = parse_exp_method)]
+    exp: ExpMethod,
+    /// Log-visibility of a blocked direction is ln(eps).
+    #[arg(long, default_value_t = 0.1)]
+    eps: f32,
+    /// Sphere blockers: "auto" (per-mesh error budget) or a total count for the scene.
+    #[arg(long, default_value = "auto", value_parser = parse_blockers)]
+    blockers: SphereBudget,
+    /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
+    #[arg(long)]
+    ratio_attenuation: bool,
+    /// Shade on the CPU in f64 (the reference), from surfaces rasterised on the GPU.
+    #[arg(long, conflicts_with = "no_shadows")]
+    cpu: bool,
+    /// Render without shadows (the plain raster pass).
+    #[arg(long)]
+    no_shadows: bool,
+}
+
+fn parse_blockers(text: &str) -> Result<SphereBudget, String> {
+    if text.trim().eq_ignore_ascii_case("auto") {
+        return Ok(BlockerSettings::default().budget);
+    }
+    match text.trim().parse::<usize>() {
+        Ok(count) if count <= 100_000 => Ok(SphereBudget::Total(count)),
+        _ => Err(format!("expected 'auto' or a sphere count up to 100000, got '{text}'")),
+    }
 }
 
 fn parse_exposure(text: &str) -> Result<f32, String> {
@@ -84,6 +120,8 @@ enum CliError {
         #[source]
         source: image::ImageError,
     },
+    #[error("{0}")]
+    Usage(String),
     #[error("the editor failed: {0}")]
     Editor(String),
 }
@@ -94,6 +132,8 @@ impl CliError {
             CliError::Scene(_)
             | CliError::Project(_)
             | CliError::Problems { .. }
+            | CliError::Usage(_)
+            | CliError::Render(RenderError::BadSettings(_))
             | CliError::Render(RenderError::BadSize { .. }) => ExitCode::from(2),
             _ => ExitCode::from(1),
         }
@@ -135,15 +175,66 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         Some(orbit) => orbit.camera(),
         None => document.scene.initial_camera(),
     };
+    let shadows = ShadowSettings {
+        order: args.order,
+        exp: args.exp,
+        epsilon: args.eps,
+        ratio_attenuation: args.ratio_attenuation,
+        ..ShadowSettings::default()
+    };
+    let problems = shadows.problems();
+    let gpu_only_problem = args.cpu && problems.iter().all(|p| p.contains("CPU only"));
+    if !args.no_shadows && !problems.is_empty() && !gpu_only_problem {
+        return Err(CliError::Usage(problems.join("; ")));
+    }
+    let blocker_settings = BlockerSettings {
+        budget: args.blockers,
+        ..BlockerSettings::default()
+    };
+    let fitted = std::time::Instant::now();
+    let blockers = if args.no_shadows {
+        Vec::new()
+    } else {
+        let fit = fit_scene(&document.scene, &blocker_settings);
+        for line in fit.report(&document.scene) {
+            log::info!("blockers: {line}");
+        }
+        fit.spheres()
+    };
+    let fit_ms = fitted.elapsed().as_secs_f64() * 1000.0;
+    let frame = ShadowFrame {
+        scene: &document.scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        width: args.width,
+        height: args.height,
+    };
     let started = std::time::Instant::now();
-    let image = render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?;
+    let (image, renderer) = if args.no_shadows {
+        (
+            render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?,
+            "raster, no shadows".to_string(),
+        )
+    } else if args.cpu {
+        (
+            render_cpu_image(&gpu, &frame)?,
+            format!("CPU f64 reference, {}", describe(&shadows, blockers.len())),
+        )
+    } else {
+        (
+            render_logsh_image(&gpu, &frame, 4)?,
+            format!("log-SH, {}", describe(&shadows, blockers.len())),
+        )
+    };
     let elapsed = started.elapsed();
     image.save(&args.output).map_err(|source| CliError::WriteImage {
         path: args.output.clone(),
         source,
     })?;
     println!(
-        "rendered {} ({}×{}) with {} in {:.0} ms → {}",
+        "rendered {} ({}×{}, {renderer}) with {} in {:.0} ms (sphere fit {fit_ms:.0} ms) → {}",
         args.file.display(),
         args.width,
         args.height,
@@ -152,6 +243,13 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         args.output.display()
     );
     Ok(())
+}
+
+fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {
+    format!(
+        "order {}, {:?}, eps {}, {blocker_count} blockers",
+        shadows.order, shadows.exp, shadows.epsilon
+    )
 }
 
 fn check(file: &Path) -> Result<(), CliError> {

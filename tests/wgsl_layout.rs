@@ -3,7 +3,7 @@
 
 use std::mem::{offset_of, size_of};
 
-use lightpaint::render::gpu_types::{GpuFrame, GpuLight, GpuMaterial};
+use lightpaint::render::gpu_types::{GpuBlocker, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams};
 use lightpaint::render::shaders;
 
 /// (size, [(member name, offset)]) of a WGSL struct, as naga lays it out.
@@ -32,7 +32,7 @@ fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
 }
 
 fn assert_twin(name: &str, rust_size: usize, rust_offsets: &[(&str, usize)]) {
-    let (size, members) = wgsl_layout(&shaders::with_common(shaders::RASTER), name);
+    let (size, members) = wgsl_layout(&shaders::raster_source(), name);
     assert_eq!(size as usize, rust_size, "size of {name}");
     let wgsl_public: Vec<(String, u32)> = members.into_iter().filter(|(n, _)| !n.starts_with('_')).collect();
     assert_eq!(wgsl_public.len(), rust_offsets.len(), "{name}: fields {wgsl_public:?}");
@@ -68,6 +68,7 @@ fn light_matches_wgsl() {
             ("intensity_rgb", offset_of!(GpuLight, intensity_rgb)),
             ("spot_cone", offset_of!(GpuLight, spot_cone)),
             ("kind", offset_of!(GpuLight, kind)),
+            ("source_size", offset_of!(GpuLight, source_size)),
         ],
     );
 }
@@ -87,8 +88,9 @@ fn material_matches_wgsl() {
 
 #[test]
 fn light_kind_tags_match_wgsl() {
-    use lightpaint::render::gpu_types::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+    use lightpaint::render::gpu_types::{LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
     for (name, value) in [
+        ("LIGHT_AREA", LIGHT_AREA),
         ("LIGHT_POINT", LIGHT_POINT),
         ("LIGHT_SPOT", LIGHT_SPOT),
         ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
@@ -96,4 +98,27 @@ fn light_kind_tags_match_wgsl() {
         let line = format!("const {name}: u32 = {value}u;");
         assert!(shaders::COMMON.contains(&line), "common.wgsl lacks `{line}`");
     }
+}
+
+#[test]
+fn shadow_params_match_wgsl() {
+    assert_twin(
+        "ShadowParams",
+        size_of::<GpuShadowParams>(),
+        &[
+            ("ln_epsilon", offset_of!(GpuShadowParams, ln_epsilon)),
+            ("min_cap_ratio", offset_of!(GpuShadowParams, min_cap_ratio)),
+            ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
+            ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
+        ],
+    );
+}
+
+#[test]
+fn blocker_matches_wgsl() {
+    assert_twin(
+        "Blocker",
+        size_of::<GpuBlocker>(),
+        &[("center_radius", offset_of!(GpuBlocker, center_radius))],
+    );
 }

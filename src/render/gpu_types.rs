@@ -95,7 +95,9 @@ pub struct GpuLight {
     pub intensity_rgb: [f32; 4],
     pub spot_cone: [f32; 4],
     pub kind: u32,
-    pub _pad: [u32; 3],
+    /// Sphere lights: radius in metres; area lights: emitting area in m²; otherwise 0.
+    pub source_size: f32,
+    pub _pad: [u32; 2],
 }
 
 impl GpuLight {
@@ -104,10 +106,16 @@ impl GpuLight {
         // wholly above the horizon of); an area light like a point whose intensity falls
         // with the cosine to its normal, I(θ) = L·A·cos θ (exact in the far field).
         let mut intensity_scale = 1.0;
+        let mut source_size = 0.0;
         let (kind, spot_cone) = match light.kind {
-            LightKind::Point | LightKind::Sphere { .. } => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Point => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Sphere { radius_m } => {
+                source_size = radius_m;
+                (LIGHT_POINT, [0.0; 4])
+            }
             LightKind::Rect { .. } | LightKind::Disk { .. } => {
                 intensity_scale = light.kind.emitting_area_m2().unwrap_or(0.0);
+                source_size = intensity_scale;
                 (LIGHT_AREA, [0.0; 4])
             }
             LightKind::Directional => (LIGHT_DIRECTIONAL, [0.0; 4]),
@@ -128,7 +136,8 @@ impl GpuLight {
             intensity_rgb: intensity.extend(0.0).to_array(),
             spot_cone,
             kind,
-            _pad: [0; 3],
+            source_size,
+            _pad: [0; 2],
         }
     }
 }
@@ -153,6 +162,31 @@ impl GpuMaterial {
                 if textured { 1.0 } else { 0.0 },
             ],
             emissive: material.emissive.extend(0.0).to_array(),
+        }
+    }
+}
+
+/// WGSL `ShadowParams`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuShadowParams {
+    pub ln_epsilon: f32,
+    pub min_cap_ratio: f32,
+    pub blocker_count: u32,
+    pub ratio_attenuation: u32,
+}
+
+/// WGSL `Blocker`: centre xyz and radius w, world metres.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuBlocker {
+    pub center_radius: [f32; 4],
+}
+
+impl GpuBlocker {
+    pub fn new(sphere: &crate::blockers::Sphere) -> GpuBlocker {
+        GpuBlocker {
+            center_radius: sphere.center.extend(sphere.radius_m).to_array(),
         }
     }
 }

@@ -4,18 +4,23 @@
 
 mod color;
 mod context;
+pub mod cpu;
 mod gpu_scene;
 pub mod gpu_types;
+pub mod logsh;
 mod offscreen;
 mod pipeline;
 pub mod shaders;
+mod shadow_settings;
+pub mod wgsl_sh;
 
 pub use color::{linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
-pub use offscreen::render_image;
+pub use offscreen::{ShadowFrame, capture_surfaces, render_cpu_image, render_image, render_logsh_image};
 pub use pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
+pub use shadow_settings::{ShadowSettings, parse_exp_method};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -49,6 +54,8 @@ pub enum RenderError {
     Device(String),
     #[error("image size {width}×{height} is not supported (1 to {max} pixels per side)")]
     BadSize { width: u32, height: u32, max: u32 },
+    #[error("invalid shadow settings: {0}")]
+    BadSettings(String),
     #[error("reading the rendered image back from the GPU failed: {0}")]
     Readback(String),
 }

@@ -1,11 +1,30 @@
+//! Headless rendering into images: the unshadowed raster, the log-SH renderer on the GPU,
+//! and the f64 CPU reference shading the very surface points the GPU rasterised.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::cpu::{self, ShadingInputs, SurfacePoint};
+use super::gpu_types::{GpuLight, environment_irradiance};
+use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, surface_pipeline};
 use super::pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
-use super::{GpuContext, GpuScene, RenderError, RenderSettings};
+use super::{GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
+use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
 
-/// Largest image side accepted by [`render_image`] (lavapipe's 2D texture limit).
+/// Largest image side accepted by the renderers (lavapipe's 2D texture limit).
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
-/// Renders `scene` seen by `camera` into an sRGB image of `width` × `height` pixels.
+fn check_size(gpu: &GpuContext, width: u32, height: u32) -> Result<(), RenderError> {
+    let max = MAX_IMAGE_SIDE.min(gpu.device.limits().max_texture_dimension_2d);
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(RenderError::BadSize { width, height, max });
+    }
+    Ok(())
+}
+
+/// Renders `scene` seen by `camera` without shadows into an sRGB image of `width` ×
+/// `height` pixels.
 pub fn render_image(
     gpu: &GpuContext,
     scene: &Scene,
@@ -14,10 +33,7 @@ pub fn render_image(
     width: u32,
     height: u32,
 ) -> Result<image::RgbaImage, RenderError> {
-    let max = MAX_IMAGE_SIDE.min(gpu.device.limits().max_texture_dimension_2d);
-    if width == 0 || height == 0 || width > max || height > max {
-        return Err(RenderError::BadSize { width, height, max });
-    }
+    check_size(gpu, width, height)?;
     let pipeline = ScenePipeline::new(&gpu.device);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
     let target = RenderTarget::new(&gpu.device, width, height);
@@ -25,38 +41,218 @@ pub fn render_image(
 
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     pipeline.draw(&mut encoder, &target, &gpu_scene, settings.background_linear());
-    read_back(gpu, encoder, &target)
+    read_color(gpu, encoder, &target)
 }
 
-/// Copies the resolved colour texture to the CPU (rows padded to wgpu's 256-byte
-/// alignment on the way, unpadded here).
-fn read_back(
+/// A log-SH frame request: what to render and how.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadowFrame<'a> {
+    pub scene: &'a Scene,
+    pub camera: &'a Camera,
+    pub settings: &'a RenderSettings,
+    pub shadows: &'a ShadowSettings,
+    pub blockers: &'a [Sphere],
+    pub width: u32,
+    pub height: u32,
+}
+
+impl ShadowFrame<'_> {
+    fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
+        check_size(gpu, self.width, self.height)?;
+        let problems = self.shadows.problems();
+        if !problems.is_empty() {
+            return Err(RenderError::BadSettings(problems.join("; ")));
+        }
+        Ok(())
+    }
+
+    fn aspect(&self) -> f32 {
+        self.width as f32 / self.height as f32
+    }
+}
+
+/// Renders a frame with log-SH shadows on the GPU, with `samples` (1 or 4) per pixel.
+pub fn render_logsh_image(
     gpu: &GpuContext,
-    mut encoder: wgpu::CommandEncoder,
+    frame: &ShadowFrame,
+    samples: u32,
+) -> Result<image::RgbaImage, RenderError> {
+    frame.check(gpu)?;
+    let raster = ScenePipeline::new(&gpu.device);
+    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, frame.shadows, samples);
+    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, frame.scene);
+    let blockers = GpuBlockers::upload(
+        &gpu.device,
+        &gpu.queue,
+        &pipeline.shadow_layout,
+        frame.blockers,
+        frame.shadows,
+    );
+    let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
+    gpu_scene.write_frame(&gpu.queue, frame.camera, frame.aspect(), frame.settings.exposure_ev);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    pipeline.draw(
+        &mut encoder,
+        &target,
+        &gpu_scene,
+        &blockers,
+        frame.settings.background_linear(),
+    );
+    read_color(gpu, encoder, &target)
+}
+
+/// The visible surface point of every pixel (row-major; None where no geometry is seen),
+/// rasterised on the GPU with one sample at each pixel centre.
+pub fn capture_surfaces(
+    gpu: &GpuContext,
+    scene: &Scene,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
+    check_size(gpu, width, height)?;
+    let raster = ScenePipeline::new(&gpu.device);
+    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, scene);
+    gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, 0.0);
+    let mut channels: Vec<Vec<[f32; 4]>> = Vec::with_capacity(5);
+    for channel in 0..5 {
+        let pipeline = surface_pipeline(&gpu.device, &raster.layouts, channel);
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("surface channel"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: SURFACE_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let depth = RenderTarget::with_samples(&gpu.device, width, height, 1);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("surface channel"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(depth.depth_attachment()),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &gpu_scene.frame_bind_group, &[]);
+            let empty = GpuBlockers::upload(
+                &gpu.device,
+                &gpu.queue,
+                &super::logsh::shadow_layout(&gpu.device),
+                &[],
+                &ShadowSettings::default(),
+            );
+            pass.set_bind_group(2, &empty.bind_group, &[]);
+            draw_objects(&mut pass, &gpu_scene);
+        }
+        let bytes = read_texture(gpu, encoder, &texture, 16, width, height)?;
+        channels.push(bytemuck::pod_collect_to_vec(&bytes));
+    }
+    let d = |v: [f32; 4]| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
+    Ok((0..(width * height) as usize)
+        .map(|i| {
+            (channels[0][i][3] > 0.5).then(|| SurfacePoint {
+                position: d(channels[0][i]),
+                normal: d(channels[1][i]),
+                phong_exponent: channels[1][i][3] as f64,
+                k_d: d(channels[2][i]),
+                k_s: d(channels[3][i]),
+                emissive: d(channels[4][i]),
+            })
+        })
+        .collect())
+}
+
+/// The CPU reference image: the GPU rasterises the surface points ([`capture_surfaces`]),
+/// the CPU shades each in f64 ([`cpu::shadowed_radiance`]); background pixels are exact.
+pub fn render_cpu_image(gpu: &GpuContext, frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
+    check_size(gpu, frame.width, frame.height)?;
+    let surfaces = capture_surfaces(gpu, frame.scene, frame.camera, frame.width, frame.height)?;
+    let lights: Vec<GpuLight> = frame.scene.lights.iter().map(GpuLight::new).collect();
+    let environment = environment_irradiance(frame.scene.environment.as_ref());
+    let inputs = ShadingInputs {
+        lights: &lights,
+        environment_irradiance: &environment,
+        blockers: frame.blockers,
+        settings: frame.shadows,
+        eye: frame.camera.position.as_dvec3(),
+    };
+    let exposure = frame.settings.exposure_ev as f64;
+    let background = frame.settings.background_srgb8;
+    let pixels: Vec<u8> = surfaces
+        .par_iter()
+        .flat_map_iter(|surface| {
+            let rgb = match surface {
+                Some(s) => cpu::display_srgb8(cpu::shadowed_radiance(s, &inputs), exposure),
+                None => background,
+            };
+            [rgb[0], rgb[1], rgb[2], 255]
+        })
+        .collect();
+    image::RgbaImage::from_raw(frame.width, frame.height, pixels)
+        .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
+}
+
+fn read_color(
+    gpu: &GpuContext,
+    encoder: wgpu::CommandEncoder,
     target: &RenderTarget,
 ) -> Result<image::RgbaImage, RenderError> {
     debug_assert_eq!(COLOR_FORMAT.block_copy_size(None), Some(4));
-    let row_bytes = 4 * target.width;
+    let pixels = read_texture(gpu, encoder, &target.color, 4, target.width, target.height)?;
+    image::RgbaImage::from_raw(target.width, target.height, pixels)
+        .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
+}
+
+/// Submits `encoder` plus a copy of `texture` to the CPU (rows padded to wgpu's 256-byte
+/// alignment on the way, unpadded here) and returns its bytes.
+fn read_texture(
+    gpu: &GpuContext,
+    mut encoder: wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    bytes_per_pixel: u32,
+    width: u32,
+    height: u32,
+) -> Result<Vec<u8>, RenderError> {
+    let row_bytes = bytes_per_pixel * width;
     let padded_row_bytes = row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
-        size: (padded_row_bytes * target.height) as u64,
+        size: (padded_row_bytes * height) as u64,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
     encoder.copy_texture_to_buffer(
-        target.color.as_image_copy(),
+        texture.as_image_copy(),
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(padded_row_bytes),
-                rows_per_image: Some(target.height),
+                rows_per_image: Some(height),
             },
         },
         wgpu::Extent3d {
-            width: target.width,
-            height: target.height,
+            width,
+            height,
             depth_or_array_layers: 1,
         },
     );
@@ -76,12 +272,11 @@ fn read_back(
     let mapped = buffer
         .get_mapped_range(..)
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let mut pixels = Vec::with_capacity((row_bytes * target.height) as usize);
+    let mut bytes = Vec::with_capacity((row_bytes * height) as usize);
     for row in mapped.chunks_exact(padded_row_bytes as usize) {
-        pixels.extend_from_slice(&row[..row_bytes as usize]);
+        bytes.extend_from_slice(&row[..row_bytes as usize]);
     }
     drop(mapped);
     buffer.unmap();
-    image::RgbaImage::from_raw(target.width, target.height, pixels)
-        .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
+    Ok(bytes)
 }

@@ -91,7 +91,7 @@ pub struct ScenePipeline {
 impl ScenePipeline {
     pub fn new(device: &wgpu::Device) -> ScenePipeline {
         let layouts = SceneLayouts::new(device);
-        let module = shaders::create_module(device, "raster", shaders::RASTER);
+        let module = shaders::create_module(device, "raster", &shaders::raster_source());
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("raster"),
             bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
@@ -148,26 +148,10 @@ impl ScenePipeline {
         scene: &GpuScene,
         background_linear: [f64; 3],
     ) {
-        let [r, g, b] = background_linear;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target.msaa_view,
-                depth_slice: None,
-                resolve_target: Some(&target.color_view),
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
-                    store: wgpu::StoreOp::Discard,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &target.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
+            color_attachments: &[Some(target.color_attachment(background_linear))],
+            depth_stencil_attachment: Some(target.depth_attachment()),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,
@@ -183,24 +167,33 @@ impl ScenePipeline {
     }
 }
 
-/// Where a frame is drawn: a multisampled colour and depth buffer, resolved into a
-/// single-sampled texture that holds sRGB-encoded bytes. The shader writes it through an
-/// sRGB view (the hardware encodes); egui and the PNG readback see the plain bytes, which
-/// is what egui expects of a user texture (gamma-space `Rgba8Unorm`).
+/// Where a frame is drawn: a colour and depth buffer (multisampled and resolved into a
+/// single-sampled texture when `samples` > 1) whose texture holds sRGB-encoded bytes. The
+/// shader writes it through an sRGB view (the hardware encodes); egui and the PNG readback
+/// see the plain bytes, which is what egui expects of a user texture (gamma-space
+/// `Rgba8Unorm`).
 pub struct RenderTarget {
     pub width: u32,
     pub height: u32,
+    pub samples: u32,
     pub color: wgpu::Texture,
-    /// sRGB view: the resolve target.
+    /// sRGB view: the resolve target (or the attachment itself without multisampling).
     pub color_view: wgpu::TextureView,
     /// `Rgba8Unorm` view of the same bytes, for egui.
     pub display_view: wgpu::TextureView,
-    msaa_view: wgpu::TextureView,
+    msaa_view: Option<wgpu::TextureView>,
     depth_view: wgpu::TextureView,
 }
 
 impl RenderTarget {
+    /// A target with [`SAMPLE_COUNT`] samples per pixel.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> RenderTarget {
+        RenderTarget::with_samples(device, width, height, SAMPLE_COUNT)
+    }
+
+    /// A target with `samples` (1 or [`SAMPLE_COUNT`]) samples per pixel. One sample shades
+    /// exactly the pixel centres, as the CPU reference does.
+    pub fn with_samples(device: &wgpu::Device, width: u32, height: u32, samples: u32) -> RenderTarget {
         let size = wgpu::Extent3d {
             width: width.max(1),
             height: height.max(1),
@@ -226,20 +219,51 @@ impl RenderTarget {
             attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
             &[COLOR_FORMAT],
         );
-        let msaa = texture("colour msaa", COLOR_FORMAT, SAMPLE_COUNT, attachment, &[]);
-        let depth = texture("depth", DEPTH_FORMAT, SAMPLE_COUNT, attachment, &[]);
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+        let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
+        let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
         RenderTarget {
             width: size.width,
             height: size.height,
+            samples,
             color_view: color.create_view(&wgpu::TextureViewDescriptor {
                 format: Some(COLOR_FORMAT),
                 ..Default::default()
             }),
             display_view: view(&color),
-            msaa_view: view(&msaa),
+            msaa_view,
             depth_view: view(&depth),
             color,
+        }
+    }
+
+    /// The colour attachment, cleared to `background` (linear RGB).
+    pub fn color_attachment(&self, background_linear: [f64; 3]) -> wgpu::RenderPassColorAttachment<'_> {
+        let [r, g, b] = background_linear;
+        let (view, resolve_target, store) = match &self.msaa_view {
+            Some(msaa) => (msaa, Some(&self.color_view), wgpu::StoreOp::Discard),
+            None => (&self.color_view, None, wgpu::StoreOp::Store),
+        };
+        wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                store,
+            },
+        }
+    }
+
+    /// The depth attachment, cleared to the far plane.
+    pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        wgpu::RenderPassDepthStencilAttachment {
+            view: &self.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
         }
     }
 }

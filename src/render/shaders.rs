@@ -1,17 +1,34 @@
-//! WGSL sources. WGSL has no `#include`: each module is `common.wgsl` followed by its own
-//! file, so shared structs and functions live in exactly one place.
+//! WGSL sources. WGSL has no `#include`: a module is assembled from `common.wgsl` (shared
+//! structs and colour functions), `scene.wgsl` (bindings, vertex stage, lights, surfaces)
+//! and its own file, so shared code lives in exactly one place. The log-SH module also
+//! takes the SH code generated for its order and method (`wgsl_sh`).
+
+use crate::sh::ExpMethod;
 
 pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
+pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
+pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
 
-/// The complete source of a shader module: the shared prelude, then `body`.
+/// The shared prelude, then `body`.
 pub fn with_common(body: &str) -> String {
     format!("{COMMON}\n{body}")
 }
 
-pub fn create_module(device: &wgpu::Device, label: &str, body: &str) -> wgpu::ShaderModule {
+/// The unshadowed raster module.
+pub fn raster_source() -> String {
+    format!("{COMMON}\n{SCENE}\n{RASTER}")
+}
+
+/// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU form).
+pub fn logsh_source(order: usize, method: ExpMethod) -> String {
+    let generated = super::wgsl_sh::sh_module(order, method);
+    format!("{COMMON}\n{SCENE}\n{generated}\n{LOGSH}")
+}
+
+pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(with_common(body).into()),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
     })
 }

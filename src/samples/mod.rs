@@ -3,7 +3,7 @@
 //! test checks they are exactly what this code produces, the big ones are generated on
 //! demand (they would weigh tens of megabytes in git).
 
-mod figure;
+pub mod figure;
 mod interior;
 mod large;
 mod studio_set;

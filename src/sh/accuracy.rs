@@ -166,8 +166,9 @@ pub fn report(per_bucket: usize) -> String {
          {per_bucket} random blocker configurations (1–8 caps of 5°–60°, DC removed) per bucket of\n\
          ‖f̂‖; time is the mean wall-clock time per call of the f64 CPU code on the machine that\n\
          ran the command (2-core CI machine), so compare methods within a column, not across\n\
-         machines. HYB threshold: ‖f̂‖ ≤ {} before squaring.\n",
-        super::exp::HYB_DEFAULT_THRESHOLD
+         machines. HYB threshold: ‖f̂‖ ≤ {} up to order 4, {} above, before squaring.\n",
+        super::exp::hyb_threshold(4),
+        super::exp::hyb_threshold(5)
     );
     precision_section(&mut text);
     coincident_section(&mut text);
@@ -258,7 +259,7 @@ fn hyb_threshold_section(text: &mut String) {
          | threshold | 0–1 | 1–4.8 | 4.8–10 | 10–20 |\n|---|---|---|---|---|"
     );
     let set = TestSet::new(4, 16);
-    for threshold in [0.25, 0.5, 1.0, 2.0, 4.0] {
+    for threshold in [0.125, 0.25, 0.5, 1.0, 2.0, 4.0] {
         let (means, _, _) = set.errors(|f| super::exp_hyb(f, threshold));
         let m: Vec<String> = means.iter().map(|e| format!("{e:.2e}")).collect();
         let _ = writeln!(text, "| {threshold} | {} |", m.join(" | "));

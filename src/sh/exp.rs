@@ -7,7 +7,7 @@
 //!   exact, followed by the first-order term exp*(f̂) ≈ 1 + f̂. The cheapest method.
 //! - `Ol`: DC isolation, then optimal linear exp*(f̂) ≈ a(‖f̂‖)·1 + b(‖f̂‖)·f̂ with a, b
 //!   tabulated per order by our least-squares fit (`cargo run --bin fit-ol-tables`).
-//! - `Hyb`: DC isolation; scale f̂ by 2^−k so that ‖f̂‖/2^k ≤ [`HYB_DEFAULT_THRESHOLD`]; OL;
+//! - `Hyb`: DC isolation; scale f̂ by 2^−k so that ‖f̂‖/2^k ≤ [`hyb_threshold`]; OL;
 //!   square k times (exp(x) = exp(x/2^k)^(2^k)).
 //! - `Reference`: eigendecomposition of the symmetric M_f̂ (after DC isolation).
 
@@ -18,8 +18,14 @@ use super::{coefficient_count, constant, ol_tables, order_of};
 
 const SQRT_4PI: f64 = 3.544_907_701_811_032;
 
-/// Norm ‖f̂‖ up to which HYB applies OL directly, by default.
-pub const HYB_DEFAULT_THRESHOLD: f64 = 1.0;
+/// Norm ‖f̂‖ up to which HYB applies OL directly at `order`: 0.25 up to order 4, 0.125
+/// above. OL is first-order accurate in f̂ and the higher bands amplify its error: a 11.5°
+/// cap under a point light (‖f̂‖ ≈ 0.3–0.6) erred 8 points at order 6 and 23 at order 8
+/// with threshold 1, and under 2 with these (tests/shading_laws.rs checks it), for two or
+/// three more squarings.
+pub fn hyb_threshold(order: usize) -> f64 {
+    if order <= 4 { 0.25 } else { 0.125 }
+}
 
 /// How to exponentiate an SH vector; see the module documentation.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -42,7 +48,7 @@ pub fn exp(method: ExpMethod, f: &[f64]) -> Vec<f64> {
             out
         }),
         ExpMethod::Ol => exp_dc_isolated(f, exp_ol),
-        ExpMethod::Hyb => exp_hyb(f, HYB_DEFAULT_THRESHOLD),
+        ExpMethod::Hyb => exp_hyb(f, hyb_threshold(order(f))),
         ExpMethod::Reference => exp_reference(f),
     }
 }

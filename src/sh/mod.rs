@@ -22,7 +22,7 @@ mod zonal;
 
 pub use basis::{basis, basis_generic, basis_unrolled4};
 pub use exp::{
-    ExpMethod, HYB_DEFAULT_THRESHOLD, exp, exp_dc_isolated, exp_hyb, exp_ol, exp_ps, exp_reference, ol_coefficients,
+    ExpMethod, exp, exp_dc_isolated, exp_hyb, exp_ol, exp_ps, exp_reference, hyb_threshold, ol_coefficients,
 };
 pub use gaunt::{Gaunt, gaunt, product, product_matrix};
 pub use legendre::{legendre, legendre_derivative};

@@ -63,3 +63,62 @@ pub fn expected_8bit(radiance: f64, ev: f64) -> f64 {
     255.0 * srgb_encode(aces_fit(radiance * ev.exp2()))
 }
 pub mod scenes;
+
+/// exp(M_f)·1 of a zonal log-visibility (ln ε inside a cap of cos half-angle `c` about
+/// +z), computed without the crate: f's order-n zonal projection f_l = 2π∫ f y_l dt, the
+/// Galerkin matrix M_ab = 2π∫ f_n y_a y_b dt of the m = 0 Legendre basis (both by a fine
+/// midpoint rule), exponentiated by its power series to convergence. Returns the zonal
+/// coefficients g_l.
+pub fn zonal_exp_reference(order: usize, c: f64, ln_epsilon: f64) -> Vec<f64> {
+    let steps = 200_000;
+    let dt = 2.0 / steps as f64;
+    let y0 = |l: usize, t: f64| {
+        let mut p = [1.0, t];
+        for k in 1..l {
+            let kf = k as f64;
+            p = [p[1], ((2.0 * kf + 1.0) * t * p[1] - kf * p[0]) / (kf + 1.0)];
+        }
+        let value = if l == 0 { 1.0 } else { p[1] };
+        ((2 * l + 1) as f64 / (4.0 * std::f64::consts::PI)).sqrt() * value
+    };
+    let nodes: Vec<f64> = (0..steps).map(|i| -1.0 + (i as f64 + 0.5) * dt).collect();
+    // The cap is [c, 1] in t: integrate over it alone, so the rule sees no discontinuity.
+    let cap_dt = (1.0 - c) / steps as f64;
+    let f: Vec<f64> = (0..order)
+        .map(|l| {
+            (0..steps)
+                .map(|i| 2.0 * std::f64::consts::PI * ln_epsilon * y0(l, c + (i as f64 + 0.5) * cap_dt) * cap_dt)
+                .sum()
+        })
+        .collect();
+    let mut m = vec![vec![0.0; order]; order];
+    for &t in &nodes {
+        let y: Vec<f64> = (0..order).map(|l| y0(l, t)).collect();
+        let f_n: f64 = f.iter().zip(&y).map(|(a, b)| a * b).sum();
+        for a in 0..order {
+            for b in 0..order {
+                m[a][b] += 2.0 * std::f64::consts::PI * f_n * y[a] * y[b] * dt;
+            }
+        }
+    }
+    // Σ_k M^k e/k! with e = the constant 1 = (√(4π), 0, …).
+    let mut term: Vec<f64> = (0..order)
+        .map(|l| {
+            if l == 0 {
+                (4.0 * std::f64::consts::PI).sqrt()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut sum = term.clone();
+    for k in 1..200 {
+        term = (0..order)
+            .map(|a| (0..order).map(|b| m[a][b] * term[b]).sum::<f64>() / k as f64)
+            .collect();
+        for (s, t) in sum.iter_mut().zip(&term) {
+            *s += t;
+        }
+    }
+    sum
+}

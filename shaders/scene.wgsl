@@ -1,0 +1,134 @@
+// Shared by every pass that draws the scene's meshes: the frame and material bindings,
+// the vertex stage, a light's incidence at a point, and the surface seen by a fragment
+// (material mapped to diffuse + normalised Phong, docs/architecture.md "Materials").
+// Radiance leaving a surface toward the eye, per light:
+//   E_l · [ k_d/π · (n·l) + k_s · (r+1)/(2π) · max(ρ·l, 0)^r ]
+// where E_l is the light's irradiance on a plane facing it and ρ the mirrored view vector.
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> lights: array<Light>;
+
+@group(1) @binding(0) var<uniform> material: Material;
+@group(1) @binding(1) var base_color_texture: texture_2d<f32>;
+@group(1) @binding(2) var base_color_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+};
+
+struct VertexOut {
+    // Invariant: a depth pre-pass and the shading pass must produce the same depths.
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+};
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
+    out.world_position = v.position;
+    out.normal = v.normal;
+    out.uv = v.uv;
+    return out;
+}
+
+// Irradiance (per unit area facing the light), the unit direction toward the light, and
+// the sine of the half-angle of the cap the light subtends (0 for point-like lights).
+struct Incidence {
+    irradiance: vec3<f32>,
+    to_light: vec3<f32>,
+    cap_ratio: f32,
+};
+
+fn incidence(light: Light, p: vec3<f32>) -> Incidence {
+    var result: Incidence;
+    result.cap_ratio = 0.0;
+    if light.kind == LIGHT_DIRECTIONAL {
+        result.to_light = -light.direction_range.xyz;
+        result.irradiance = light.intensity_rgb.rgb;
+        return result;
+    }
+    let offset = light.position.xyz - p;
+    let distance2 = max(dot(offset, offset), 1e-8);
+    result.to_light = offset * inverseSqrt(distance2);
+    var falloff = 1.0 / distance2;
+    let range = light.direction_range.w;
+    if range > 0.0 {
+        // KHR_lights_punctual's recommended smooth window to zero at `range`.
+        let ratio2 = distance2 / (range * range);
+        let window = clamp(1.0 - ratio2 * ratio2, 0.0, 1.0);
+        falloff *= window * window;
+    }
+    if light.kind == LIGHT_POINT && light.source_size > 0.0 {
+        // A sphere light: its cap has sin(half-angle) = radius / distance.
+        result.cap_ratio = min(light.source_size * inverseSqrt(distance2), 1.0);
+    }
+    if light.kind == LIGHT_AREA {
+        let cos_emitter = max(dot(-result.to_light, light.direction_range.xyz), 0.0);
+        falloff *= cos_emitter;
+        // The cap of the same solid angle Ω = A·cos θ/d²: 1 − cos(half-angle) = Ω/(2π).
+        let u = min(light.source_size * cos_emitter / distance2 / (2.0 * PI), 1.0);
+        result.cap_ratio = sqrt(u * (2.0 - u));
+    }
+    if light.kind == LIGHT_SPOT {
+        let cos_angle = dot(-result.to_light, light.direction_range.xyz);
+        let t = clamp((cos_angle - light.spot_cone.x) * light.spot_cone.y, 0.0, 1.0);
+        falloff *= t * t;
+    }
+    result.irradiance = light.intensity_rgb.rgb * falloff;
+    return result;
+}
+
+// What the shading of a fragment needs to know about its surface.
+struct Surface {
+    position: vec3<f32>,
+    // Unit shading normal, turned toward the viewer on back faces.
+    normal: vec3<f32>,
+    k_d: vec3<f32>,
+    k_s: vec3<f32>,
+    phong_exponent: f32,
+    emissive: vec3<f32>,
+};
+
+fn surface(in: VertexOut, front_facing: bool) -> Surface {
+    var base = material.base_color;
+    if material.params.w > 0.5 {
+        base *= textureSample(base_color_texture, base_color_sampler, in.uv);
+    }
+    let metallic = material.params.x;
+    let dielectric_specular = 0.04 * material.params.y;
+    var s: Surface;
+    s.position = in.world_position;
+    s.normal = normalize(in.normal);
+    if !front_facing {
+        s.normal = -s.normal;
+    }
+    s.k_d = base.rgb * (1.0 - metallic) * (1.0 - dielectric_specular);
+    s.k_s = mix(vec3<f32>(dielectric_specular), base.rgb, metallic);
+    s.phong_exponent = material.params.z;
+    s.emissive = material.emissive.rgb;
+    return s;
+}
+
+// Unshadowed radiance toward the eye from one light (0 when the light is below the horizon).
+fn direct_radiance(s: Surface, inc: Incidence) -> vec3<f32> {
+    let n_dot_l = dot(s.normal, inc.to_light);
+    if n_dot_l <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let to_eye = normalize(frame.camera_position.xyz - s.position);
+    let mirrored = reflect(-to_eye, s.normal);
+    let cos_mirror = max(dot(mirrored, inc.to_light), 1e-8);
+    // exp2(r·log2 c) rather than pow: equals 1 at r = 0 even where c underflows.
+    let glossy = (s.phong_exponent + 1.0) / (2.0 * PI) * exp2(s.phong_exponent * log2(cos_mirror));
+    return inc.irradiance * (s.k_d / PI * n_dot_l + s.k_s * glossy);
+}
+
+// Diffuse light of the environment from its irradiance SH (clamped at 0 against ringing).
+fn environment_radiance(s: Surface) -> vec3<f32> {
+    return s.k_d / PI * max(sh3_eval(frame.environment_irradiance, s.normal), vec3<f32>(0.0));
+}

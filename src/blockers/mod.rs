@@ -1,0 +1,294 @@
+//! Shadow proxies: every mesh approximated by a set of spheres (Ren et al. 2006), the
+//! blockers whose log-visibility caps the log-SH renderer sums.
+//!
+//! Each mesh is voxelised as a solid ([`voxel`]) and fitted by k-means spheres ([`fit`]).
+//! The number of spheres comes from an error budget: k grows (1, 2, 3, 4, 6, 8, 12, …) until
+//! the fit error — the volume where mesh and spheres disagree, over the mesh's volume — is
+//! within budget, so a ball gets one sphere and a figure dozens. Meshes with no inside (open
+//! surfaces, or thinner than a cell: floors, walls, cards) and meshes no sphere set fits
+//! within [`BlockerSettings::max_error`] cast no SH shadow; the report says why. Fits are
+//! cached in memory by a hash of the mesh and the settings.
+
+pub mod fit;
+pub mod voxel;
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use glam::Vec3;
+
+use crate::scene::{MeshObject, Scene};
+use voxel::VoxelGrid;
+
+/// One spherical blocker in world space.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Sphere {
+    pub center: Vec3,
+    pub radius_m: f32,
+}
+
+/// How many spheres to use.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SphereBudget {
+    /// Per mesh, the fewest spheres whose fit error is at most this (e.g. 0.35), or
+    /// the best fit found once more spheres stop reducing the error.
+    FitError(f32),
+    /// About this many spheres in the whole scene, shared among meshes by volume.
+    Total(usize),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct BlockerSettings {
+    pub budget: SphereBudget,
+    /// Most spheres for one mesh.
+    pub max_spheres_per_mesh: usize,
+    /// A mesh whose best fit errs more than this casts no shadow (it is not sphere-like).
+    pub max_error: f32,
+    /// Voxel cells over a mesh's bounds: finer grids fit thin limbs better.
+    pub cell_budget: usize,
+}
+
+impl Default for BlockerSettings {
+    fn default() -> Self {
+        BlockerSettings {
+            budget: SphereBudget::FitError(0.35),
+            max_spheres_per_mesh: 64,
+            max_error: 0.8,
+            cell_budget: 150_000,
+        }
+    }
+}
+
+/// The spheres of one mesh and how well they fit it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SphereSet {
+    pub spheres: Vec<Sphere>,
+    /// |mesh △ spheres| / |mesh| of the chosen fit (0 for meshes without spheres).
+    pub fit_error: f32,
+    /// Why the mesh has no spheres, if it has none.
+    pub skipped: Option<String>,
+}
+
+/// The sphere sets of every object of a scene, in object order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SceneBlockers {
+    pub per_object: Vec<SphereSet>,
+}
+
+impl SceneBlockers {
+    /// Every sphere of the scene, object after object.
+    pub fn spheres(&self) -> Vec<Sphere> {
+        self.per_object.iter().flat_map(|s| s.spheres.iter().copied()).collect()
+    }
+
+    pub fn sphere_count(&self) -> usize {
+        self.per_object.iter().map(|s| s.spheres.len()).sum()
+    }
+
+    /// One line per object: its sphere count and fit error, or why it has none.
+    pub fn report(&self, scene: &Scene) -> Vec<String> {
+        self.per_object
+            .iter()
+            .zip(&scene.objects)
+            .map(|(set, object)| match &set.skipped {
+                Some(reason) => format!("{}: no spheres ({reason})", object.name),
+                None => format!(
+                    "{}: {} sphere(s), fit error {:.0} %",
+                    object.name,
+                    set.spheres.len(),
+                    100.0 * set.fit_error
+                ),
+            })
+            .collect()
+    }
+}
+
+/// Sphere counts tried, in order, under [`SphereBudget::FitError`].
+const K_LADDER: [usize; 14] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128];
+
+/// Fits sphere sets to every object of `scene` (in parallel, cached per mesh).
+pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
+    use rayon::prelude::*;
+    let grids: Vec<Arc<Solid>> = scene.objects.par_iter().map(|o| solid(o, settings)).collect();
+    let per_object_k: Vec<Option<usize>> = match settings.budget {
+        SphereBudget::FitError(_) => vec![None; grids.len()],
+        SphereBudget::Total(total) => {
+            let volume_m3 = |g: &Solid| g.inside.len() as f64 * g.grid.cell_volume_m3() as f64;
+            let total_volume_m3: f64 = grids.iter().map(|g| volume_m3(g)).sum();
+            grids
+                .iter()
+                .map(|g| {
+                    let share = total as f64 * volume_m3(g) / total_volume_m3.max(f64::MIN_POSITIVE);
+                    Some((share.round() as usize).max(1))
+                })
+                .collect()
+        }
+    };
+    let per_object = grids
+        .par_iter()
+        .zip(per_object_k)
+        .map(|(solid, k)| fit_solid(solid, settings, k))
+        .collect();
+    SceneBlockers { per_object }
+}
+
+/// A voxelised mesh with its inside cells.
+struct Solid {
+    grid: VoxelGrid,
+    inside: Vec<glam::IVec3>,
+    key: blake3::Hash,
+}
+
+fn solid(object: &MeshObject, settings: &BlockerSettings) -> Arc<Solid> {
+    let mut hasher = blake3::Hasher::new();
+    hasher.update(bytemuck::cast_slice(&object.positions));
+    hasher.update(bytemuck::cast_slice(&object.indices));
+    hasher.update(&(settings.cell_budget as u64).to_le_bytes());
+    let key = hasher.finalize();
+    let grid = VoxelGrid::solid(&object.positions, &object.indices, settings.cell_budget);
+    let inside = grid.inside_cells();
+    Arc::new(Solid { grid, inside, key })
+}
+
+fn fit_solid(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> SphereSet {
+    let cache_key = {
+        let mut hasher = blake3::Hasher::new();
+        hasher.update(solid.key.as_bytes());
+        hasher.update(format!("{settings:?} {k:?}").as_bytes());
+        hasher.finalize()
+    };
+    static CACHE: OnceLock<Mutex<HashMap<blake3::Hash, SphereSet>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(hit) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&cache_key) {
+        return hit.clone();
+    }
+    let set = fit_uncached(solid, settings, k);
+    cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(cache_key, set.clone());
+    set
+}
+
+fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> SphereSet {
+    let none = |reason: &str| SphereSet {
+        spheres: Vec::new(),
+        fit_error: 0.0,
+        skipped: Some(reason.to_string()),
+    };
+    if solid.inside.is_empty() {
+        return none("no inside: an open surface, or thinner than a voxel");
+    }
+    let max_k = settings.max_spheres_per_mesh.max(1);
+    let (spheres, error) = match (k, settings.budget) {
+        (Some(k), _) => fit::fit_k(&solid.grid, &solid.inside, k.min(max_k)),
+        (None, SphereBudget::FitError(budget)) => {
+            let mut best: Option<(Vec<Sphere>, f32)> = None;
+            let mut steps_without_gain = 0;
+            for k in K_LADDER.into_iter().filter(|&k| k <= max_k) {
+                let (spheres, error) = fit::fit_k(&solid.grid, &solid.inside, k);
+                let best_error = best.as_ref().map_or(f32::INFINITY, |(_, e)| *e);
+                // More spheres that do not fit better only cost time in every frame.
+                steps_without_gain = if error < best_error { 0 } else { steps_without_gain + 1 };
+                if error < best_error {
+                    best = Some((spheres, error));
+                }
+                if error <= budget || steps_without_gain >= 3 {
+                    break;
+                }
+            }
+            best.unwrap_or_default()
+        }
+        (None, SphereBudget::Total(total)) => fit::fit_k(&solid.grid, &solid.inside, total.min(max_k)),
+    };
+    if spheres.is_empty() || error > settings.max_error {
+        return SphereSet {
+            fit_error: error,
+            ..none(&format!("not sphere-like: best fit error {:.0} %", 100.0 * error))
+        };
+    }
+    SphereSet {
+        spheres,
+        fit_error: error,
+        skipped: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::shapes::{self, ShapeMesh};
+
+    fn object(name: &str, mesh: ShapeMesh) -> MeshObject {
+        MeshObject {
+            name: name.into(),
+            positions: mesh.positions,
+            normals: mesh.normals,
+            uvs: mesh.uvs,
+            indices: mesh.indices,
+            material: 0,
+        }
+    }
+
+    fn scene(objects: Vec<MeshObject>) -> Scene {
+        Scene {
+            objects,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn a_ball_is_one_sphere_of_its_own_radius() {
+        let ball =
+            shapes::uv_sphere(0.5, 48, 24).transformed(glam::Affine3A::from_translation(Vec3::new(1.0, 2.0, 3.0)));
+        let fitted = fit_scene(&scene(vec![object("ball", ball)]), &BlockerSettings::default());
+        let set = &fitted.per_object[0];
+        assert_eq!(set.spheres.len(), 1, "{set:?}");
+        let s = set.spheres[0];
+        assert!(s.center.distance(Vec3::new(1.0, 2.0, 3.0)) < 0.02, "{s:?}");
+        assert!((s.radius_m - 0.5).abs() < 0.03, "{s:?}");
+        assert!(set.fit_error < 0.15, "{set:?}");
+    }
+
+    #[test]
+    fn an_elongated_box_needs_more_spheres_than_a_ball() {
+        let bar = shapes::cuboid(Vec3::new(2.0, 0.25, 0.25));
+        let fitted = fit_scene(&scene(vec![object("bar", bar)]), &BlockerSettings::default());
+        let set = &fitted.per_object[0];
+        // Spheres cannot fill a box's corners: the ladder stops when more stop helping.
+        assert!((4..=48).contains(&set.spheres.len()), "{set:?}");
+        assert!(set.fit_error <= 0.6, "{set:?}");
+        // Spheres stay within the bar (up to the voxel size).
+        for s in &set.spheres {
+            assert!(s.center.y.abs() + s.radius_m < 0.25 + 0.11, "{s:?}");
+        }
+    }
+
+    #[test]
+    fn open_and_flat_meshes_cast_no_sphere_shadow() {
+        let floor = shapes::plane(10.0, 4, 1.0);
+        let slab = shapes::cuboid(Vec3::new(5.0, 0.02, 5.0));
+        let fitted = fit_scene(
+            &scene(vec![object("floor", floor), object("slab", slab)]),
+            &BlockerSettings::default(),
+        );
+        for set in &fitted.per_object {
+            assert!(set.spheres.is_empty() && set.skipped.is_some(), "{set:?}");
+        }
+    }
+
+    #[test]
+    fn a_total_budget_is_shared_by_volume() {
+        let big = shapes::uv_sphere(1.0, 32, 16);
+        let small = shapes::uv_sphere(0.5, 32, 16).transformed(glam::Affine3A::from_translation(Vec3::X * 4.0));
+        let settings = BlockerSettings {
+            budget: SphereBudget::Total(18),
+            ..Default::default()
+        };
+        let fitted = fit_scene(&scene(vec![object("big", big), object("small", small)]), &settings);
+        let counts: Vec<usize> = fitted.per_object.iter().map(|s| s.spheres.len()).collect();
+        assert!(counts[0] > counts[1] && counts[1] >= 1, "{counts:?}");
+        assert!((16..=18).contains(&fitted.sphere_count()), "{counts:?}");
+    }
+}

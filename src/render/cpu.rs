@@ -1,0 +1,242 @@
+//! The f64 reference of the log-SH shading in `shaders/logsh.wgsl` (and, without blockers,
+//! of `raster.wgsl`), term by term:
+//!
+//! - log-visibility F(p, n) = Σ ln ε·fade·[r/d]·rotate(cap_zh(r/d), toward the blocker),
+//!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
+//!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
+//!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
+//! - visibility G = exp*(F) by the chosen [`ExpMethod`];
+//! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
+//!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1), where V̄ is the mean of G over
+//!   the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d) with w_0 = 1 and
+//!   w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap (s = sin of its
+//!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d).
+//!
+//! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::ShadowSettings;
+use super::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+use crate::blockers::Sphere;
+use crate::sh::{self, ExpMethod};
+
+/// A visible surface point with its material, as `Surface` in scene.wgsl.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    pub position: DVec3,
+    /// Unit shading normal facing the viewer.
+    pub normal: DVec3,
+    pub k_d: DVec3,
+    pub k_s: DVec3,
+    pub phong_exponent: f64,
+    pub emissive: DVec3,
+}
+
+/// Irradiance on a plane facing the light, unit direction to it, and the sine of the
+/// half-angle of the cap it subtends (`incidence` in scene.wgsl).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Incidence {
+    pub irradiance: DVec3,
+    pub to_light: DVec3,
+    pub cap_ratio: f64,
+}
+
+fn v3(a: [f32; 4]) -> DVec3 {
+    DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64)
+}
+
+pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
+    let intensity = v3(light.intensity_rgb);
+    let direction = v3(light.direction_range);
+    if light.kind == LIGHT_DIRECTIONAL {
+        return Incidence {
+            irradiance: intensity,
+            to_light: -direction,
+            cap_ratio: 0.0,
+        };
+    }
+    let offset = v3(light.position) - p;
+    let distance2 = offset.length_squared().max(1e-8);
+    let to_light = offset / distance2.sqrt();
+    let mut falloff = 1.0 / distance2;
+    let range = light.direction_range[3] as f64;
+    if range > 0.0 {
+        let ratio2 = distance2 / (range * range);
+        let window = (1.0 - ratio2 * ratio2).clamp(0.0, 1.0);
+        falloff *= window * window;
+    }
+    let size = light.source_size as f64;
+    let mut cap_ratio = 0.0;
+    if light.kind == LIGHT_POINT && size > 0.0 {
+        cap_ratio = (size / distance2.sqrt()).min(1.0);
+    }
+    if light.kind == LIGHT_AREA {
+        let cos_emitter = (-to_light).dot(direction).max(0.0);
+        falloff *= cos_emitter;
+        let u = (size * cos_emitter / distance2 / (2.0 * PI)).min(1.0);
+        cap_ratio = (u * (2.0 - u)).sqrt();
+    }
+    if light.kind == LIGHT_SPOT {
+        let cos_angle = (-to_light).dot(direction);
+        let t = ((cos_angle - light.spot_cone[0] as f64) * light.spot_cone[1] as f64).clamp(0.0, 1.0);
+        falloff *= t * t;
+    }
+    Incidence {
+        irradiance: intensity * falloff,
+        to_light,
+        cap_ratio,
+    }
+}
+
+/// Unshadowed radiance toward `eye` from one light (`direct_radiance` in scene.wgsl).
+pub fn direct_radiance(s: &SurfacePoint, inc: &Incidence, eye: DVec3) -> DVec3 {
+    let n_dot_l = s.normal.dot(inc.to_light);
+    if n_dot_l <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let to_eye = (eye - s.position).normalize_or_zero();
+    let mirrored = -to_eye - 2.0 * s.normal.dot(-to_eye) * s.normal;
+    let cos_mirror = mirrored.dot(inc.to_light).max(1e-8);
+    let glossy = (s.phong_exponent + 1.0) / (2.0 * PI) * (s.phong_exponent * cos_mirror.log2()).exp2();
+    inc.irradiance * (s.k_d / PI * n_dot_l + s.k_s * glossy)
+}
+
+/// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl).
+pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> Vec<f64> {
+    let order = settings.order;
+    let ln_epsilon = (settings.epsilon as f64).ln();
+    let mut f = vec![0.0; order * order];
+    for b in blockers {
+        let offset = b.center.as_dvec3() - p;
+        let radius = b.radius_m as f64;
+        let distance2 = offset.length_squared();
+        if distance2 <= radius * radius {
+            continue;
+        }
+        let distance = distance2.sqrt();
+        let ratio = radius / distance;
+        let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / radius);
+        if ratio < settings.min_cap_ratio as f64 || horizon <= 0.0 {
+            continue;
+        }
+        let scale = if settings.ratio_attenuation {
+            ln_epsilon * horizon * ratio
+        } else {
+            ln_epsilon * horizon
+        };
+        let cap = sh::rotate_zh(&sh::cap_zh_from_ratio(order, ratio), offset / distance);
+        for (fi, ci) in f.iter_mut().zip(cap) {
+            *fi += scale * ci;
+        }
+    }
+    f
+}
+
+/// WGSL's smoothstep: 0 below `low`, 1 above `high`, t²(3 − 2t) between.
+fn smoothstep(low: f64, high: f64, x: f64) -> f64 {
+    let t = ((x - low) / (high - low)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Mean of the visibility SH `g` over a cap of sin(half-angle) `cap_ratio` around `d`.
+pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
+    let order = sh::order_of(g.len()).unwrap_or(0);
+    let s = cap_ratio.clamp(0.0, 1.0);
+    let c = (1.0 - s * s).max(0.0).sqrt();
+    let dp = sh::legendre_derivative(order, c);
+    let y = sh::basis(order, d);
+    (0..order)
+        .map(|l| {
+            let w = if l == 0 {
+                1.0
+            } else {
+                (1.0 + c) * dp[l] / (l * (l + 1)) as f64
+            };
+            w * (l * l..(l + 1) * (l + 1)).map(|i| g[i] * y[i]).sum::<f64>()
+        })
+        .sum()
+}
+
+/// Clamped-cosine average of `g` about `n`: ⟨G, max(n·ω, 0)/π⟩ (1 when unoccluded).
+pub fn visibility_cosine(g: &[f64], n: DVec3) -> f64 {
+    let order = sh::order_of(g.len()).unwrap_or(0);
+    let cosine = sh::rotate_zh(&clamped_cosine_zh(order), n);
+    g.iter().zip(cosine).map(|(a, b)| a * b).sum()
+}
+
+/// `sh::clamped_cosine_zh`, computed once per order (its quadrature is costly per pixel).
+fn clamped_cosine_zh(order: usize) -> Vec<f64> {
+    static CACHE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
+    let cache = CACHE.get_or_init(|| (0..=16).map(sh::clamped_cosine_zh).collect());
+    cache
+        .get(order)
+        .cloned()
+        .unwrap_or_else(|| sh::clamped_cosine_zh(order))
+}
+
+/// What shades a frame besides the surface: lights, environment, blockers, settings.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadingInputs<'a> {
+    pub lights: &'a [GpuLight],
+    /// Order-3 SH of the environment's irradiance, as `Frame::environment_irradiance`.
+    pub environment_irradiance: &'a [[f32; 4]; 9],
+    pub blockers: &'a [Sphere],
+    pub settings: &'a ShadowSettings,
+    pub eye: DVec3,
+}
+
+/// Diffuse environment light at `s` (`environment_radiance` in scene.wgsl).
+pub fn environment_radiance(s: &SurfacePoint, irradiance_sh: &[[f32; 4]; 9]) -> DVec3 {
+    let y = sh::basis(3, s.normal);
+    let e = irradiance_sh
+        .iter()
+        .zip(&y)
+        .fold(DVec3::ZERO, |acc, (c, yi)| acc + v3(*c) * *yi);
+    s.k_d / PI * e.max(DVec3::ZERO)
+}
+
+/// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
+pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
+    let f = log_visibility(inputs.settings, inputs.blockers, s.position, s.normal);
+    let g = exp_for_shading(inputs.settings.exp, &f);
+    let environment_visibility = visibility_cosine(&g, s.normal).clamp(0.0, 1.0);
+    let mut radiance = s.emissive + environment_radiance(s, inputs.environment_irradiance) * environment_visibility;
+    for light in inputs.lights {
+        let inc = incidence(light, s.position);
+        let unshadowed = direct_radiance(s, &inc, inputs.eye);
+        if unshadowed == DVec3::ZERO {
+            continue;
+        }
+        let visibility = visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0);
+        radiance += unshadowed * visibility;
+    }
+    radiance
+}
+
+/// exp* as the GPU evaluates it: HYB's carried magnitude capped where f32 stops (see
+/// `wgsl_sh::F32_MAX_EXPONENT`); every other method as in `sh::exp`.
+fn exp_for_shading(method: ExpMethod, f: &[f64]) -> Vec<f64> {
+    let g = sh::exp(method, f);
+    if method != ExpMethod::Hyb {
+        return g;
+    }
+    let cap = super::wgsl_sh::F32_MAX_EXPONENT.exp();
+    let norm = g.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if norm > cap {
+        g.into_iter().map(|v| v * cap / norm).collect()
+    } else {
+        g
+    }
+}
+
+/// Exposure, tone curve and sRGB encoding of a linear radiance, to 8 bits per channel.
+pub fn display_srgb8(radiance: DVec3, exposure_ev: f64) -> [u8; 3] {
+    let scaled = radiance * exposure_ev.exp2();
+    [scaled.x, scaled.y, scaled.z].map(|c| {
+        let encoded = super::linear_to_srgb(super::tonemap_aces_fit(c));
+        (encoded * 255.0).round().clamp(0.0, 255.0) as u8
+    })
+}

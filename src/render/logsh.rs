@@ -1,0 +1,325 @@
+//! The log-SH soft-shadow pipeline (shaders/logsh.wgsl): a depth pre-pass, then one
+//! shading pass in which every visible pixel sums its blockers' log-visibility,
+//! exponentiates it and shades each light through it. The SH order and exponentiation
+//! method are baked into the module at creation (generated WGSL, `wgsl_sh`).
+
+use wgpu::util::DeviceExt;
+
+use super::gpu_scene::GpuScene;
+use super::gpu_types::{GpuBlocker, GpuShadowParams, GpuVertex};
+use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
+use super::{ShadowSettings, shaders};
+use crate::blockers::Sphere;
+use crate::sh::ExpMethod;
+
+/// Blockers and shadow parameters on the GPU (bind group 2 of logsh.wgsl).
+pub struct GpuBlockers {
+    params: wgpu::Buffer,
+    spheres: wgpu::Buffer,
+    capacity: usize,
+    pub bind_group: wgpu::BindGroup,
+    pub count: usize,
+}
+
+impl GpuBlockers {
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        spheres: &[Sphere],
+        settings: &ShadowSettings,
+    ) -> GpuBlockers {
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow params"),
+            size: std::mem::size_of::<GpuShadowParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let capacity = spheres.len().max(1);
+        let (spheres_buffer, bind_group) = sphere_storage(device, layout, &params, spheres, capacity);
+        let blockers = GpuBlockers {
+            params,
+            spheres: spheres_buffer,
+            capacity,
+            bind_group,
+            count: spheres.len(),
+        };
+        blockers.write_params(queue, settings);
+        blockers
+    }
+
+    /// Replaces the blockers (growing the buffer when needed) and writes the parameters.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        spheres: &[Sphere],
+        settings: &ShadowSettings,
+    ) {
+        if spheres.len() > self.capacity {
+            self.capacity = spheres.len().next_power_of_two();
+            (self.spheres, self.bind_group) = sphere_storage(device, layout, &self.params, spheres, self.capacity);
+        } else if !spheres.is_empty() {
+            let data: Vec<GpuBlocker> = spheres.iter().map(GpuBlocker::new).collect();
+            queue.write_buffer(&self.spheres, 0, bytemuck::cast_slice(&data));
+        }
+        self.count = spheres.len();
+        self.write_params(queue, settings);
+    }
+
+    /// Writes ε, the influence cut-off and the ratio attenuation flag.
+    pub fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let params = GpuShadowParams {
+            ln_epsilon: settings.epsilon.ln(),
+            min_cap_ratio: settings.min_cap_ratio,
+            blocker_count: self.count as u32,
+            ratio_attenuation: settings.ratio_attenuation as u32,
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+    }
+}
+
+fn sphere_storage(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    spheres: &[Sphere],
+    capacity: usize,
+) -> (wgpu::Buffer, wgpu::BindGroup) {
+    let mut data: Vec<GpuBlocker> = spheres.iter().map(GpuBlocker::new).collect();
+    data.resize(
+        capacity,
+        GpuBlocker {
+            center_radius: [0.0; 4],
+        },
+    );
+    let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("blockers"),
+        contents: bytemuck::cast_slice(&data),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shadow"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: buffer.as_entire_binding(),
+            },
+        ],
+    });
+    (buffer, bind_group)
+}
+
+/// The bind group layout of [`GpuBlockers`].
+pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("shadow"),
+        entries: &[
+            entry(0, wgpu::BufferBindingType::Uniform),
+            entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+        ],
+    })
+}
+
+/// Pipelines drawing a scene with log-SH shadows at one order and method.
+pub struct LogShPipeline {
+    pub order: usize,
+    pub exp: ExpMethod,
+    pub samples: u32,
+    pub shadow_layout: wgpu::BindGroupLayout,
+    depth_prepass: wgpu::RenderPipeline,
+    shade: wgpu::RenderPipeline,
+}
+
+/// What a pipeline's fragment stage is for.
+#[derive(Clone, Copy)]
+enum Stage<'a> {
+    DepthOnly,
+    Shade,
+    /// One surface channel (fs_surface) as raw f32.
+    Surface(u32, &'a str),
+}
+
+impl LogShPipeline {
+    /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
+    /// samples (the settings must be valid: see [`ShadowSettings::problems`]).
+    pub fn new(
+        device: &wgpu::Device,
+        layouts: &SceneLayouts,
+        settings: &ShadowSettings,
+        samples: u32,
+    ) -> LogShPipeline {
+        let shadow_layout = shadow_layout(device);
+        let source = shaders::logsh_source(settings.order, settings.exp);
+        let module = shaders::create_module(device, "log-SH shadows", &source);
+        let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, samples);
+        LogShPipeline {
+            order: settings.order,
+            exp: settings.exp,
+            samples,
+            depth_prepass: make(Stage::DepthOnly),
+            shade: make(Stage::Shade),
+            shadow_layout,
+        }
+    }
+
+    /// Whether this pipeline was built for `settings`' order and method.
+    pub fn matches(&self, settings: &ShadowSettings) -> bool {
+        self.order == settings.order && self.exp == settings.exp
+    }
+
+    /// Clears `target` to `background` (linear RGB) and draws every object with shadows.
+    pub fn draw(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &RenderTarget,
+        scene: &GpuScene,
+        blockers: &GpuBlockers,
+        background_linear: [f64; 3],
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("log-SH scene"),
+            color_attachments: &[Some(target.color_attachment(background_linear))],
+            depth_stencil_attachment: Some(target.depth_attachment()),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+        pass.set_bind_group(2, &blockers.bind_group, &[]);
+        // The pre-pass settles depth, so the costly shading runs once per visible pixel.
+        for pipeline in [&self.depth_prepass, &self.shade] {
+            pass.set_pipeline(pipeline);
+            draw_objects(&mut pass, scene);
+        }
+    }
+}
+
+pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+    for object in &scene.objects {
+        pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
+        pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
+        pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..object.index_count, 0, 0..1);
+    }
+}
+
+/// Format of the surface channels read back for the CPU reference.
+pub const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// A pipeline writing surface channel `channel` (see fs_surface) of every visible pixel
+/// into an [`SURFACE_FORMAT`] target with one sample.
+pub fn surface_pipeline(device: &wgpu::Device, layouts: &SceneLayouts, channel: u32) -> wgpu::RenderPipeline {
+    // Any order and method: fs_surface uses no SH.
+    let source = shaders::logsh_source(2, ExpMethod::Dc);
+    let module = shaders::create_module(device, "surface channels", &source);
+    let shadow_layout = shadow_layout(device);
+    scene_pipeline(
+        device,
+        layouts,
+        &shadow_layout,
+        &module,
+        Stage::Surface(channel, "SURFACE_CHANNEL"),
+        1,
+    )
+}
+
+fn scene_pipeline(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    shadow_layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    stage: Stage,
+    samples: u32,
+) -> wgpu::RenderPipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("log-SH"),
+        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)],
+        immediate_size: 0,
+    });
+    let (entry_point, format, write_mask, depth_write, compare) = match stage {
+        Stage::DepthOnly => (
+            "fs_surface",
+            super::pipeline::COLOR_FORMAT,
+            wgpu::ColorWrites::empty(),
+            true,
+            wgpu::CompareFunction::Less,
+        ),
+        Stage::Shade => (
+            "fs_logsh",
+            super::pipeline::COLOR_FORMAT,
+            wgpu::ColorWrites::ALL,
+            false,
+            wgpu::CompareFunction::LessEqual,
+        ),
+        Stage::Surface(..) => (
+            "fs_surface",
+            SURFACE_FORMAT,
+            wgpu::ColorWrites::ALL,
+            true,
+            wgpu::CompareFunction::Less,
+        ),
+    };
+    let constants: Vec<(&str, f64)> = match stage {
+        Stage::Surface(channel, name) => vec![(name, channel as f64)],
+        _ => Vec::new(),
+    };
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(GpuVertex::layout())],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            front_face: wgpu::FrontFace::Ccw,
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(depth_write),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            targets: &[Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

@@ -1,0 +1,84 @@
+//! The knobs of the log-SH shadow renderer: SH order, exponentiation method, ε, ratio
+//! attenuation and the influence cut-off. Users trade speed for accuracy with them.
+
+use crate::sh::{ExpMethod, MAX_REALTIME_ORDER};
+
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ShadowSettings {
+    /// Number of SH bands, 2..=8 on the GPU (n² coefficients per receiver).
+    pub order: usize,
+    /// How log-visibility is exponentiated. `Reference` is CPU-only.
+    pub exp: ExpMethod,
+    /// Log-visibility of a blocked direction is ln ε (design.md §4; 0.1 measured best).
+    pub epsilon: f32,
+    /// Scale each blocker's log-visibility by r/d (off by default: measured worse, §4b).
+    pub ratio_attenuation: bool,
+    /// Blockers with sin(cap half-angle) = r/d below this are skipped: at 0.03 a cap covers
+    /// under 0.1 % of the hemisphere.
+    pub min_cap_ratio: f32,
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        ShadowSettings {
+            order: 4,
+            exp: ExpMethod::Hyb,
+            epsilon: 0.1,
+            ratio_attenuation: false,
+            min_cap_ratio: 0.03,
+        }
+    }
+}
+
+impl ShadowSettings {
+    /// Every problem with these settings for the GPU renderer, as messages.
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if !(2..=MAX_REALTIME_ORDER).contains(&self.order) {
+            problems.push(format!("order {} is outside 2..={MAX_REALTIME_ORDER}", self.order));
+        }
+        if !(self.epsilon > 0.0 && self.epsilon < 1.0) {
+            problems.push(format!("epsilon {} must be in (0, 1)", self.epsilon));
+        }
+        if !(self.min_cap_ratio.is_finite() && (0.0..1.0).contains(&self.min_cap_ratio)) {
+            problems.push(format!("min_cap_ratio {} must be in [0, 1)", self.min_cap_ratio));
+        }
+        match self.exp {
+            ExpMethod::Reference => problems.push("the reference exponential runs on the CPU only (use --cpu)".into()),
+            ExpMethod::Ps(terms) if !(1..=32).contains(&terms) => {
+                problems.push(format!("power series with {terms} terms: use 1..=32"))
+            }
+            _ => {}
+        }
+        problems
+    }
+}
+
+/// Parses an exponentiation method as the CLI spells it: dc, ol, hyb, ps<k> (e.g. ps8), ref.
+pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
+    let lower = text.trim().to_ascii_lowercase();
+    match lower.as_str() {
+        "dc" => Ok(ExpMethod::Dc),
+        "ol" => Ok(ExpMethod::Ol),
+        "hyb" => Ok(ExpMethod::Hyb),
+        "ref" | "reference" => Ok(ExpMethod::Reference),
+        _ => match lower.strip_prefix("ps").map(str::parse::<usize>) {
+            Some(Ok(terms)) if (1..=32).contains(&terms) => Ok(ExpMethod::Ps(terms)),
+            _ => Err(format!("expected dc, ol, hyb, ps1..ps32 or ref, got '{text}'")),
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_methods_parse() {
+        assert!(ShadowSettings::default().problems().is_empty());
+        assert_eq!(parse_exp_method("HYB"), Ok(ExpMethod::Hyb));
+        assert_eq!(parse_exp_method("ps8"), Ok(ExpMethod::Ps(8)));
+        assert!(parse_exp_method("ps0").is_err());
+        assert!(parse_exp_method("fast").is_err());
+    }
+}

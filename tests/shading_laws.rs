@@ -1,0 +1,258 @@
+//! Laws of the log-SH shading that hold independently of how it is implemented, checked on
+//! the f64 reference (`render::cpu`); `gpu_shadows.rs` checks the GPU against it.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use glam::{DVec3, Vec3};
+use lightpaint::blockers::Sphere;
+use lightpaint::render::ShadowSettings;
+use lightpaint::render::cpu::{self, ShadingInputs, SurfacePoint};
+use lightpaint::render::gpu_types::GpuLight;
+use lightpaint::scene::{Light, LightKind};
+use lightpaint::sh::ExpMethod;
+
+fn white_floor_point(position: DVec3) -> SurfacePoint {
+    SurfacePoint {
+        position,
+        normal: DVec3::Y,
+        k_d: DVec3::ONE,
+        k_s: DVec3::ZERO,
+        phong_exponent: 1.0,
+        emissive: DVec3::ZERO,
+    }
+}
+
+fn light(kind: LightKind, position: Vec3, intensity: f32) -> GpuLight {
+    GpuLight::new(&Light {
+        name: "light".into(),
+        kind,
+        color: Vec3::ONE,
+        intensity,
+        position,
+        direction: Vec3::NEG_Y,
+        range: None,
+    })
+}
+
+fn shade(p: &SurfacePoint, lights: &[GpuLight], blockers: &[Sphere], settings: &ShadowSettings) -> DVec3 {
+    let no_environment = [[0.0f32; 4]; 9];
+    cpu::shadowed_radiance(
+        p,
+        &ShadingInputs {
+            lights,
+            environment_irradiance: &no_environment,
+            blockers,
+            settings,
+            eye: DVec3::new(0.0, 5.0, 0.1),
+        },
+    )
+}
+
+/// A 0.3 m ball 1.5 m above the origin, a point light 3 m up: the ball's cap is centred on
+/// the light, so the light's visibility at the origin is the zonal exp*(ln ε·cap) evaluated
+/// straight up, Σ_l g_l·√((2l+1)/(4π)).
+#[test]
+fn a_blocker_darkens_the_point_below_by_its_cap_exponential() {
+    let blocker = Sphere {
+        center: Vec3::new(0.0, 1.5, 0.0),
+        radius_m: 0.3,
+    };
+    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
+    let p = white_floor_point(DVec3::ZERO);
+    for order in [2, 3, 4, 6] {
+        // The cap axis is world +y while the SH polar axis is +z: the law must not care.
+        let c = (1.0f64 - 0.2 * 0.2).sqrt();
+        let g = common::zonal_exp_reference(order, c, 0.1f64.ln());
+        let expected: f64 = g
+            .iter()
+            .enumerate()
+            .map(|(l, g)| g * ((2 * l + 1) as f64 / (4.0 * PI)).sqrt())
+            .sum();
+        let reference = ShadowSettings {
+            order,
+            exp: ExpMethod::Reference,
+            ..ShadowSettings::default()
+        };
+        let open = shade(&p, &lights, &[], &reference).x;
+        assert!((open - 1.0 / PI).abs() < 1e-12, "unshadowed {open}");
+        let visibility = shade(&p, &lights, &[blocker], &reference).x / open;
+        assert!(
+            (visibility - expected).abs() < 1e-6,
+            "order {order}: {visibility} vs {expected}"
+        );
+        assert!(expected < 0.95, "the ball must shadow visibly: {expected}");
+        // HYB approximates the exact exponential (0.5–2 points here, see sh::hyb_threshold).
+        let hyb = ShadowSettings {
+            order,
+            ..ShadowSettings::default()
+        };
+        let visibility = shade(&p, &lights, &[blocker], &hyb).x / open;
+        assert!(
+            (visibility - expected).abs() < 0.03,
+            "HYB order {order}: {visibility} vs {expected}"
+        );
+    }
+}
+
+#[test]
+fn blockers_below_the_horizon_or_beyond_influence_leave_points_unshadowed() {
+    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
+    let settings = ShadowSettings::default();
+    let p = white_floor_point(DVec3::ZERO);
+    let open = shade(&p, &lights, &[], &settings);
+    let below = Sphere {
+        center: Vec3::new(0.5, -0.6, 0.0),
+        radius_m: 0.5,
+    };
+    // r/d = 0.3/20 is below the influence cut-off of 0.03.
+    let far = Sphere {
+        center: Vec3::new(20.0, 0.5, 0.0),
+        radius_m: 0.3,
+    };
+    assert_eq!(shade(&p, &lights, &[below, far], &settings), open);
+}
+
+#[test]
+fn an_unoccluded_plane_under_a_sphere_light_gets_the_exact_irradiance() {
+    // A uniformly emitting sphere wholly above a receiver's horizon lights it as a point
+    // source of the same intensity at its centre: E = I·cos θ/d².
+    let centre = Vec3::new(0.7, 2.0, -0.4);
+    let lights = [light(LightKind::Sphere { radius_m: 0.5 }, centre, 40.0)];
+    for (x, z) in [(0.0, 0.0), (1.5, 0.3), (-2.0, 1.0)] {
+        let p = white_floor_point(DVec3::new(x, 0.0, z));
+        let offset = centre.as_dvec3() - p.position;
+        let expected = 40.0 * (offset.y / offset.length()) / offset.length_squared() / PI;
+        for order in [2, 4, 8] {
+            let settings = ShadowSettings {
+                order,
+                ..ShadowSettings::default()
+            };
+            let radiance = shade(&p, &lights, &[], &settings);
+            assert!(
+                (radiance.x / expected - 1.0).abs() < 1e-6,
+                "order {order}: {radiance} vs {expected}"
+            );
+        }
+    }
+}
+
+#[test]
+fn white_furnace_shades_to_one() {
+    // A uniform environment of radiance 1 on a white Lambertian surface: L = 1, whatever
+    // the normal, at every order (the environment's order-3 irradiance is exact here).
+    let environment = lightpaint::scene::Environment::uniform([1.0; 3]);
+    let irradiance = lightpaint::render::gpu_types::environment_irradiance(Some(&environment));
+    for normal in [DVec3::Y, DVec3::new(1.0, 1.0, 0.0).normalize(), DVec3::NEG_Z] {
+        let p = SurfacePoint {
+            normal,
+            ..white_floor_point(DVec3::ZERO)
+        };
+        for order in [2, 3, 4, 8] {
+            let settings = ShadowSettings {
+                order,
+                ..ShadowSettings::default()
+            };
+            let inputs = ShadingInputs {
+                lights: &[],
+                environment_irradiance: &irradiance,
+                blockers: &[],
+                settings: &settings,
+                eye: DVec3::new(0.0, 5.0, 0.0),
+            };
+            let radiance = cpu::shadowed_radiance(&p, &inputs);
+            assert!((radiance - DVec3::ONE).abs().max_element() < 1e-6, "{radiance}");
+        }
+    }
+}
+
+fn scattered_blockers() -> Vec<Sphere> {
+    (0..7)
+        .map(|i| {
+            let t = i as f32 * 1.7;
+            Sphere {
+                center: Vec3::new(t.cos() * 0.8, 0.6 + 0.2 * (i % 3) as f32, t.sin() * 0.8),
+                radius_m: 0.15 + 0.03 * i as f32,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn moving_blockers_lights_and_receiver_together_changes_nothing() {
+    let blockers = scattered_blockers();
+    let lights = [
+        light(LightKind::Point, Vec3::new(0.3, 3.0, 0.2), 9.0),
+        light(LightKind::Sphere { radius_m: 0.4 }, Vec3::new(-1.0, 2.0, 0.5), 20.0),
+    ];
+    let shift = Vec3::new(3.0, -2.0, 5.5);
+    let moved_blockers: Vec<Sphere> = blockers
+        .iter()
+        .map(|b| Sphere {
+            center: b.center + shift,
+            ..*b
+        })
+        .collect();
+    let moved_lights = lights.map(|l| GpuLight {
+        position: (Vec3::from_slice(&l.position[..3]) + shift).extend(1.0).to_array(),
+        ..l
+    });
+    let settings = ShadowSettings::default();
+    let no_environment = [[0.0f32; 4]; 9];
+    let eye = DVec3::new(0.0, 5.0, 0.1);
+    for (x, z) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.6)] {
+        let p = white_floor_point(DVec3::new(x, 0.0, z));
+        let moved_p = SurfacePoint {
+            position: p.position + shift.as_dvec3(),
+            ..p
+        };
+        let here = cpu::shadowed_radiance(
+            &p,
+            &ShadingInputs {
+                lights: &lights,
+                environment_irradiance: &no_environment,
+                blockers: &blockers,
+                settings: &settings,
+                eye,
+            },
+        );
+        let there = cpu::shadowed_radiance(
+            &moved_p,
+            &ShadingInputs {
+                lights: &moved_lights,
+                environment_irradiance: &no_environment,
+                blockers: &moved_blockers,
+                settings: &settings,
+                eye: eye + shift.as_dvec3(),
+            },
+        );
+        // f32 positions moved by metres round at ~1e-7 relative.
+        assert!(
+            (here - there).abs().max_element() < 1e-5 * here.max_element().max(1e-3),
+            "{here} vs {there}"
+        );
+        assert!(
+            here.x < 0.95 * shade(&p, &lights, &[], &settings).x,
+            "the blockers must shadow here"
+        );
+    }
+}
+
+#[test]
+fn permuting_blockers_changes_nothing() {
+    let blockers = scattered_blockers();
+    let mut reversed = blockers.clone();
+    reversed.reverse();
+    let lights = [light(LightKind::Point, Vec3::new(0.3, 3.0, 0.2), 9.0)];
+    for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
+        let settings = ShadowSettings {
+            exp: method,
+            ..ShadowSettings::default()
+        };
+        let p = white_floor_point(DVec3::new(0.2, 0.0, 0.1));
+        let a = shade(&p, &lights, &blockers, &settings);
+        let b = shade(&p, &lights, &reversed, &settings);
+        assert!((a - b).abs().max_element() < 1e-12, "{method:?}: {a} vs {b}");
+    }
+}

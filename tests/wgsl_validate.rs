@@ -1,0 +1,34 @@
+//! Every WGSL module the renderer can create parses and validates with naga, without a GPU:
+//! the raster module and the log-SH module at every real-time order and exponentiation
+//! method.
+
+use lightpaint::render::shaders;
+use lightpaint::sh::ExpMethod;
+
+fn validate(label: &str, source: &str) {
+    let module =
+        naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
+}
+
+#[test]
+fn raster_module_validates() {
+    validate("raster", &shaders::raster_source());
+}
+
+#[test]
+fn logsh_modules_validate_at_every_order_and_method() {
+    for order in 2..=lightpaint::sh::MAX_REALTIME_ORDER {
+        for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {
+            validate(
+                &format!("logsh order {order} {method:?}"),
+                &shaders::logsh_source(order, method),
+            );
+        }
+    }
+}
