@@ -19,7 +19,7 @@ pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
 pub use offscreen::{ShadowFrame, capture_surfaces, render_cpu_image, render_image, render_logsh_image};
-pub use pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
+pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{ShadowSettings, parse_exp_method};
 
 /// Settings that change how a frame looks, not what the scene is.

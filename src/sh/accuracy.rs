@@ -166,7 +166,9 @@ pub fn report(per_bucket: usize) -> String {
          {per_bucket} random blocker configurations (1–8 caps of 5°–60°, DC removed) per bucket of\n\
          ‖f̂‖; time is the mean wall-clock time per call of the f64 CPU code on the machine that\n\
          ran the command (2-core CI machine), so compare methods within a column, not across\n\
-         machines. HYB threshold: ‖f̂‖ ≤ {} up to order 4, {} above, before squaring.\n",
+         machines. HYB threshold before squaring: ‖f̂‖ ≤ {} at order 2, {} at orders 3–4, {}\n\
+         above.\n",
+        super::exp::hyb_threshold(2),
         super::exp::hyb_threshold(4),
         super::exp::hyb_threshold(5)
     );

@@ -18,13 +18,18 @@ use super::{coefficient_count, constant, ol_tables, order_of};
 
 const SQRT_4PI: f64 = 3.544_907_701_811_032;
 
-/// Norm ‖f̂‖ up to which HYB applies OL directly at `order`: 0.25 up to order 4, 0.125
-/// above. OL is first-order accurate in f̂ and the higher bands amplify its error: a 11.5°
-/// cap under a point light (‖f̂‖ ≈ 0.3–0.6) erred 8 points at order 6 and 23 at order 8
-/// with threshold 1, and under 2 with these (tests/shading_laws.rs checks it), for two or
-/// three more squarings.
+/// Norm ‖f̂‖ up to which HYB applies OL directly at `order`: 1 at order 2 (where OL is
+/// nearly exact), 0.25 up to order 4, 0.125 above. OL is first-order accurate in f̂ and the
+/// higher bands amplify its error: a 11.5° cap under a point light (‖f̂‖ ≈ 0.3–0.6) erred 8
+/// points at order 6 and 23 at order 8 with threshold 1, under 2 with these
+/// (tests/shading_laws.rs checks it), for two or three more squarings; docs/sh-accuracy.md
+/// has the random-configuration errors.
 pub fn hyb_threshold(order: usize) -> f64 {
-    if order <= 4 { 0.25 } else { 0.125 }
+    match order {
+        0..=2 => 1.0,
+        3 | 4 => 0.25,
+        _ => 0.125,
+    }
 }
 
 /// How to exponentiate an SH vector; see the module documentation.

@@ -2,6 +2,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
+use super::shadow_panel::shadow_section;
+use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
 use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
 use crate::render::describe_adapter;
 
@@ -25,6 +27,8 @@ pub struct EditorApp {
     /// The project as last opened or saved, to tell whether there are unsaved changes.
     saved: Option<ProjectFile>,
     viewport: Option<Viewport>,
+    /// Sphere blockers fitted to the document's meshes.
+    blockers: SceneBlockers,
     adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
     message: String,
@@ -47,6 +51,7 @@ impl EditorApp {
             document: None,
             saved: None,
             viewport: None,
+            blockers: SceneBlockers::default(),
             adapter,
             message: String::new(),
             error: None,
@@ -83,7 +88,9 @@ impl EditorApp {
                         )
                     }
                 );
-                self.viewport = render_state.map(|rs| Viewport::new(rs, scene, document.camera));
+                self.blockers = fit_scene(scene, &BlockerSettings::default());
+                let spheres = self.blockers.spheres();
+                self.viewport = render_state.map(|rs| Viewport::new(rs, scene, document.camera, &spheres));
                 self.saved = document.project_path.as_ref().map(|p| {
                     let mut saved = document.to_project_file(p);
                     // A project without a camera opens on the scene's view: that view is
@@ -232,6 +239,15 @@ impl EditorApp {
                 ui.label("background");
                 ui.color_edit_button_srgb(&mut document.settings.background_srgb8);
             });
+            ui.separator();
+            ui.heading("Shadows");
+            if let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
+                let (mut shadows, mut enabled) = viewport.shadow_settings();
+                let edit = shadow_section(ui, &mut shadows, &mut enabled, &self.blockers, &document.scene);
+                if edit.settings_changed {
+                    viewport.set_shadow_settings(rs, shadows, enabled);
+                }
+            }
             ui.separator();
             ui.heading("Lights");
             let mut changed = false;

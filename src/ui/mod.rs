@@ -2,6 +2,7 @@
 //! settings and a status bar. Every action calls into the library.
 
 mod app;
+mod shadow_panel;
 mod viewport;
 
 pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE};

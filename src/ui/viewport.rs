@@ -1,18 +1,40 @@
-//! The 3D viewport: renders the scene offscreen with the [`ScenePipeline`] into a texture
-//! that egui shows, and turns mouse input into orbit (left drag), pan (right or middle
-//! drag, or shift + left drag) and zoom (scroll).
+//! The 3D viewport: renders the scene offscreen — with log-SH soft shadows
+//! ([`LogShPipeline`]) or the plain raster ([`ScenePipeline`]) — into a texture that egui
+//! shows, and turns mouse input into orbit (left drag), pan (right or middle drag, or
+//! shift + left drag) and zoom (scroll). While the camera moves, frames are shaded at half
+//! the resolution in each direction (a quarter of the pixels), so orbiting stays fluid on
+//! a software GPU; the full-resolution frame follows as soon as the camera rests.
 
-use crate::render::{GpuScene, RenderSettings, RenderTarget, ScenePipeline};
+use crate::blockers::Sphere;
+use crate::render::logsh::{GpuBlockers, LogShPipeline};
+use crate::render::{GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
+
+/// Log-SH shadow state of a viewport.
+struct Shadows {
+    settings: ShadowSettings,
+    enabled: bool,
+    pipeline: LogShPipeline,
+    blockers: GpuBlockers,
+}
+
+/// What the texture shows, to skip redundant renders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Shown {
+    orbit: OrbitCamera,
+    settings: RenderSettings,
+    size: [u32; 2],
+    full_resolution: bool,
+}
 
 pub struct Viewport {
     pipeline: ScenePipeline,
     gpu_scene: GpuScene,
+    shadows: Shadows,
     target: Option<RenderTarget>,
     texture_id: Option<egui::TextureId>,
     pub orbit: OrbitCamera,
-    /// Settings and camera of the image in the texture, to skip redundant renders.
-    rendered: Option<(OrbitCamera, RenderSettings, [u32; 2])>,
+    rendered: Option<Shown>,
     /// Milliseconds the last scene render took on the CPU side (submission included).
     pub last_render_ms: f32,
 }
@@ -30,12 +52,27 @@ const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
 impl Viewport {
     /// A viewport on `scene`, seen from `orbit` or, without one, from the scene's camera.
-    pub fn new(render_state: &egui_wgpu::RenderState, scene: &Scene, orbit: Option<OrbitCamera>) -> Viewport {
-        let pipeline = ScenePipeline::new(&render_state.device);
-        let gpu_scene = GpuScene::upload(&render_state.device, &render_state.queue, &pipeline.layouts, scene);
+    pub fn new(
+        render_state: &egui_wgpu::RenderState,
+        scene: &Scene,
+        orbit: Option<OrbitCamera>,
+        blockers: &[Sphere],
+    ) -> Viewport {
+        let (device, queue) = (&render_state.device, &render_state.queue);
+        let pipeline = ScenePipeline::new(device);
+        let gpu_scene = GpuScene::upload(device, queue, &pipeline.layouts, scene);
+        let settings = ShadowSettings::default();
+        let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT);
+        let gpu_blockers = GpuBlockers::upload(device, queue, &logsh.shadow_layout, blockers, &settings);
         Viewport {
             pipeline,
             gpu_scene,
+            shadows: Shadows {
+                settings,
+                enabled: true,
+                pipeline: logsh,
+                blockers: gpu_blockers,
+            },
             target: None,
             texture_id: None,
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
@@ -61,6 +98,43 @@ impl Viewport {
         self.rendered = None;
     }
 
+    /// The shadow settings in use and whether shadows are drawn.
+    pub fn shadow_settings(&self) -> (ShadowSettings, bool) {
+        (self.shadows.settings, self.shadows.enabled)
+    }
+
+    /// Switches shadows on or off and applies `settings` (valid ones: see
+    /// [`ShadowSettings::problems`]); a new order or method rebuilds the pipeline.
+    pub fn set_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings, enabled: bool) {
+        if !settings.problems().is_empty() {
+            return;
+        }
+        if !self.shadows.pipeline.matches(&settings) {
+            self.shadows.pipeline = LogShPipeline::new(
+                &render_state.device,
+                &self.pipeline.layouts,
+                &settings,
+                crate::render::SAMPLE_COUNT,
+            );
+        }
+        self.shadows.blockers.write_params(&render_state.queue, &settings);
+        self.shadows.settings = settings;
+        self.shadows.enabled = enabled;
+        self.rendered = None;
+    }
+
+    /// Replaces the blockers; the next frame shows their shadows.
+    pub fn set_blockers(&mut self, render_state: &egui_wgpu::RenderState, blockers: &[Sphere]) {
+        self.shadows.blockers.update(
+            &render_state.device,
+            &render_state.queue,
+            &self.shadows.pipeline.shadow_layout,
+            blockers,
+            &self.shadows.settings,
+        );
+        self.rendered = None;
+    }
+
     /// Frames the whole scene.
     pub fn frame_all(&mut self, scene: &Scene) {
         let framing = OrbitCamera::framing(&scene.bounds());
@@ -71,17 +145,27 @@ impl Viewport {
     pub fn show(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState, settings: &RenderSettings) {
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        self.handle_input(ui, &response);
+        let moving = self.handle_input(ui, &response);
 
         let pixels_per_point = ui.ctx().pixels_per_point();
-        let size = [
+        let full = [
             ((rect.width() * pixels_per_point).round() as u32).max(1),
             ((rect.height() * pixels_per_point).round() as u32).max(1),
         ];
-        let wanted = (self.orbit, *settings, size);
+        let size = if moving { full.map(|side| side.div_ceil(2)) } else { full };
+        let wanted = Shown {
+            orbit: self.orbit,
+            settings: *settings,
+            size,
+            full_resolution: !moving,
+        };
         if self.rendered != Some(wanted) {
             self.render(render_state, settings, size);
             self.rendered = Some(wanted);
+        }
+        if moving {
+            // Come back for the full-resolution frame once the camera rests.
+            ui.ctx().request_repaint();
         }
         if let Some(id) = self.texture_id {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
@@ -89,7 +173,8 @@ impl Viewport {
         }
     }
 
-    fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response) {
+    /// Applies orbit, pan and zoom; true while the camera is being moved.
+    fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response) -> bool {
         let shift = ui.input(|i| i.modifiers.shift);
         let delta = response.drag_delta();
         let height = response.rect.height().max(1.0);
@@ -102,12 +187,15 @@ impl Viewport {
         {
             self.orbit.pan(-delta.x / height, delta.y / height);
         }
+        let mut zooming = false;
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
                 self.orbit.zoom((-scroll * 0.002).exp());
+                zooming = true;
             }
         }
+        response.dragged() || zooming
     }
 
     fn render(&mut self, render_state: &egui_wgpu::RenderState, settings: &RenderSettings, size: [u32; 2]) {
@@ -140,8 +228,14 @@ impl Viewport {
             settings.exposure_ev,
         );
         let mut encoder = device.create_command_encoder(&Default::default());
-        self.pipeline
-            .draw(&mut encoder, target, &self.gpu_scene, settings.background_linear());
+        let background = settings.background_linear();
+        if self.shadows.enabled {
+            self.shadows
+                .pipeline
+                .draw(&mut encoder, target, &self.gpu_scene, &self.shadows.blockers, background);
+        } else {
+            self.pipeline.draw(&mut encoder, target, &self.gpu_scene, background);
+        }
         render_state.queue.submit([encoder.finish()]);
         self.last_render_ms = started.elapsed().as_secs_f32() * 1000.0;
     }
