@@ -55,6 +55,22 @@ struct ShadowParams {
     blocker_count: u32,
     // 1: scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     ratio_attenuation: u32,
+    // Number of BlockerGroups (src/render/blocker_groups.rs).
+    group_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+};
+
+// Consecutive blockers first..first + count culled together: every sphere lies within
+// center_extent.w of center_extent.xyz, and a receiver farther than influence_m from the
+// centre is beyond every sphere's influence distance.
+struct BlockerGroup {
+    center_extent: vec4<f32>,
+    influence_m: f32,
+    first: u32,
+    count: u32,
+    _pad0: u32,
 };
 
 // A spherical blocker: xyz = centre (world, metres), w = radius in metres.

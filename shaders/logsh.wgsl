@@ -10,6 +10,7 @@
 
 @group(2) @binding(0) var<uniform> shadow: ShadowParams;
 @group(2) @binding(1) var<storage, read> blockers: array<Blocker>;
+@group(2) @binding(2) var<storage, read> groups: array<BlockerGroup>;
 
 // Which surface property fs_surface writes (see SurfaceChannel in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
@@ -20,30 +21,43 @@ override SURFACE_CHANNEL: u32 = 0u;
 // are faded by smoothstep(−1, 1, (c − p)·n / r).
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
-    for (var i = 0u; i < shadow.blocker_count; i++) {
-        let b = blockers[i].center_radius;
-        let offset = b.xyz - p;
-        let distance2 = dot(offset, offset);
-        let radius = b.w;
-        if distance2 <= radius * radius {
+    for (var g = 0u; g < shadow.group_count; g++) {
+        let group = groups[g];
+        let to_group = group.center_extent.xyz - p;
+        // Conservative group tests (see blocker_groups.rs): every sphere of a skipped group
+        // would be skipped by the tests below.
+        if dot(to_group, to_group) > group.influence_m * group.influence_m
+            || dot(to_group, n) + group.center_extent.w <= 0.0 {
             continue;
         }
-        let distance = sqrt(distance2);
-        let ratio = radius / distance;
-        // Fades out a blocker as it sinks below the tangent plane (0 once wholly below):
-        // a sphere straddling the surface it approximates would otherwise darken its own
-        // receivers in blotches where they leave it.
-        let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / radius);
-        if ratio < shadow.min_cap_ratio || horizon <= 0.0 {
-            continue;
+        for (var i = group.first; i < group.first + group.count; i++) {
+            f = add_blocker(f, blockers[i].center_radius, p, n);
         }
-        var scale = shadow.ln_epsilon * horizon;
-        if shadow.ratio_attenuation != 0u {
-            scale *= ratio;
-        }
-        f = sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
     }
     return f;
+}
+
+fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
+    let offset = b.xyz - p;
+    let distance2 = dot(offset, offset);
+    let radius = b.w;
+    if distance2 <= radius * radius {
+        return f;
+    }
+    let distance = sqrt(distance2);
+    let ratio = radius / distance;
+    // Fades out a blocker as it sinks below the tangent plane (0 once wholly below):
+    // a sphere straddling the surface it approximates would otherwise darken its own
+    // receivers in blotches where they leave it.
+    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / radius);
+    if ratio < shadow.min_cap_ratio || horizon <= 0.0 {
+        return f;
+    }
+    var scale = shadow.ln_epsilon * horizon;
+    if shadow.ratio_attenuation != 0u {
+        scale *= ratio;
+    }
+    return sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {

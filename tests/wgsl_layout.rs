@@ -3,7 +3,7 @@
 
 use std::mem::{offset_of, size_of};
 
-use lightpaint::render::gpu_types::{GpuBlocker, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams};
+use lightpaint::render::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams};
 use lightpaint::render::shaders;
 
 /// (size, [(member name, offset)]) of a WGSL struct, as naga lays it out.
@@ -110,6 +110,7 @@ fn shadow_params_match_wgsl() {
             ("min_cap_ratio", offset_of!(GpuShadowParams, min_cap_ratio)),
             ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
+            ("group_count", offset_of!(GpuShadowParams, group_count)),
         ],
     );
 }
@@ -120,5 +121,19 @@ fn blocker_matches_wgsl() {
         "Blocker",
         size_of::<GpuBlocker>(),
         &[("center_radius", offset_of!(GpuBlocker, center_radius))],
+    );
+}
+
+#[test]
+fn blocker_group_matches_wgsl() {
+    assert_twin(
+        "BlockerGroup",
+        size_of::<GpuBlockerGroup>(),
+        &[
+            ("center_extent", offset_of!(GpuBlockerGroup, center_extent)),
+            ("influence_m", offset_of!(GpuBlockerGroup, influence_m)),
+            ("first", offset_of!(GpuBlockerGroup, first)),
+            ("count", offset_of!(GpuBlockerGroup, count)),
+        ],
     );
 }

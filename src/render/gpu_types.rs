@@ -174,6 +174,32 @@ pub struct GpuShadowParams {
     pub min_cap_ratio: f32,
     pub blocker_count: u32,
     pub ratio_attenuation: u32,
+    pub group_count: u32,
+    pub _pad: [u32; 3],
+}
+
+/// WGSL `BlockerGroup` (see `blocker_groups`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuBlockerGroup {
+    pub center_extent: [f32; 4],
+    pub influence_m: f32,
+    pub first: u32,
+    pub count: u32,
+    pub _pad: u32,
+}
+
+impl GpuBlockerGroup {
+    pub fn new(group: &super::blocker_groups::BlockerGroup) -> GpuBlockerGroup {
+        GpuBlockerGroup {
+            center_extent: group.center.extend(group.extent_m).to_array(),
+            // f32::MAX rather than infinity: squared in the shader, it still compares.
+            influence_m: group.influence_m.min(1e18),
+            first: group.first as u32,
+            count: group.count as u32,
+            _pad: 0,
+        }
+    }
 }
 
 /// WGSL `Blocker`: centre xyz and radius w, world metres.

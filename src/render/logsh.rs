@@ -6,17 +6,22 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_scene::GpuScene;
-use super::gpu_types::{GpuBlocker, GpuShadowParams, GpuVertex};
+use bytemuck::Zeroable;
+
+use super::blocker_groups::group_blockers;
+use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams, GpuVertex};
 use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
 use super::{ShadowSettings, shaders};
 use crate::blockers::Sphere;
 use crate::sh::ExpMethod;
 
-/// Blockers and shadow parameters on the GPU (bind group 2 of logsh.wgsl).
+/// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
+/// logsh.wgsl). Groups depend on the influence cut-off, so they are rebuilt with it.
 pub struct GpuBlockers {
     params: wgpu::Buffer,
-    spheres: wgpu::Buffer,
-    capacity: usize,
+    bind_group_layout: wgpu::BindGroupLayout,
+    spheres: Vec<Sphere>,
+    groups: Vec<GpuBlockerGroup>,
     pub bind_group: wgpu::BindGroup,
     pub count: usize,
 }
@@ -35,12 +40,13 @@ impl GpuBlockers {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let capacity = spheres.len().max(1);
-        let (spheres_buffer, bind_group) = sphere_storage(device, layout, &params, spheres, capacity);
+        let (ordered, groups) = gpu_groups(spheres, settings);
+        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups);
         let blockers = GpuBlockers {
             params,
-            spheres: spheres_buffer,
-            capacity,
+            bind_group_layout: layout.clone(),
+            spheres: spheres.to_vec(),
+            groups,
             bind_group,
             count: spheres.len(),
         };
@@ -48,58 +54,70 @@ impl GpuBlockers {
         blockers
     }
 
-    /// Replaces the blockers (growing the buffer when needed) and writes the parameters.
+    /// Replaces the blockers and writes the parameters.
     pub fn update(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        layout: &wgpu::BindGroupLayout,
         spheres: &[Sphere],
         settings: &ShadowSettings,
     ) {
-        if spheres.len() > self.capacity {
-            self.capacity = spheres.len().next_power_of_two();
-            (self.spheres, self.bind_group) = sphere_storage(device, layout, &self.params, spheres, self.capacity);
-        } else if !spheres.is_empty() {
-            let data: Vec<GpuBlocker> = spheres.iter().map(GpuBlocker::new).collect();
-            queue.write_buffer(&self.spheres, 0, bytemuck::cast_slice(&data));
-        }
-        self.count = spheres.len();
-        self.write_params(queue, settings);
+        *self = GpuBlockers::upload(device, queue, &self.bind_group_layout, spheres, settings);
     }
 
-    /// Writes ε, the influence cut-off and the ratio attenuation flag.
-    pub fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
+    /// Applies new settings; a new influence cut-off regroups the blockers.
+    pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let spheres = std::mem::take(&mut self.spheres);
+        self.update(device, queue, &spheres, settings);
+    }
+
+    fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
         let params = GpuShadowParams {
             ln_epsilon: settings.epsilon.ln(),
             min_cap_ratio: settings.min_cap_ratio,
             blocker_count: self.count as u32,
             ratio_attenuation: settings.ratio_attenuation as u32,
+            group_count: self.groups.len() as u32,
+            _pad: [0; 3],
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }
 }
 
-fn sphere_storage(
+fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>, Vec<GpuBlockerGroup>) {
+    let (ordered, groups) = group_blockers(spheres, settings.min_cap_ratio);
+    (
+        ordered.iter().map(GpuBlocker::new).collect(),
+        groups.iter().map(GpuBlockerGroup::new).collect(),
+    )
+}
+
+fn storage_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     params: &wgpu::Buffer,
-    spheres: &[Sphere],
-    capacity: usize,
-) -> (wgpu::Buffer, wgpu::BindGroup) {
-    let mut data: Vec<GpuBlocker> = spheres.iter().map(GpuBlocker::new).collect();
-    data.resize(
-        capacity,
-        GpuBlocker {
-            center_radius: [0.0; 4],
-        },
-    );
-    let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("blockers"),
-        contents: bytemuck::cast_slice(&data),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+    spheres: &[GpuBlocker],
+    groups: &[GpuBlockerGroup],
+) -> wgpu::BindGroup {
+    // Storage bindings may not be empty: pad with a zero-radius sphere / empty group.
+    let storage = |label, bytes: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    };
+    let sphere_buffer = if spheres.is_empty() {
+        storage("blockers", bytemuck::bytes_of(&GpuBlocker::zeroed()))
+    } else {
+        storage("blockers", bytemuck::cast_slice(spheres))
+    };
+    let group_buffer = if groups.is_empty() {
+        storage("blocker groups", bytemuck::bytes_of(&GpuBlockerGroup::zeroed()))
+    } else {
+        storage("blocker groups", bytemuck::cast_slice(groups))
+    };
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow"),
         layout,
         entries: &[
@@ -109,11 +127,14 @@ fn sphere_storage(
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: buffer.as_entire_binding(),
+                resource: sphere_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: group_buffer.as_entire_binding(),
             },
         ],
-    });
-    (buffer, bind_group)
+    })
 }
 
 /// The bind group layout of [`GpuBlockers`].
@@ -133,6 +154,7 @@ pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         entries: &[
             entry(0, wgpu::BufferBindingType::Uniform),
             entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
         ],
     })
 }

@@ -2,6 +2,7 @@
 //! pipeline and offscreen targets. Colour pipeline (docs/architecture.md): linear radiance
 //! × 2^EV exposure → per-channel ACES fit tone curve → sRGB encode by the target format.
 
+pub mod blocker_groups;
 mod color;
 mod context;
 pub mod cpu;
@@ -18,7 +19,9 @@ pub use color::{linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
-pub use offscreen::{ShadowFrame, capture_surfaces, render_cpu_image, render_image, render_logsh_image};
+pub use offscreen::{
+    ShadowFrame, ShadowRenderer, capture_surfaces, render_cpu_image, render_image, render_logsh_image, shade_surfaces,
+};
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{ShadowSettings, parse_exp_method};
 

@@ -77,28 +77,68 @@ pub fn render_logsh_image(
     frame: &ShadowFrame,
     samples: u32,
 ) -> Result<image::RgbaImage, RenderError> {
-    frame.check(gpu)?;
-    let raster = ScenePipeline::new(&gpu.device);
-    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, frame.shadows, samples);
-    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, frame.scene);
-    let blockers = GpuBlockers::upload(
-        &gpu.device,
-        &gpu.queue,
-        &pipeline.shadow_layout,
-        frame.blockers,
-        frame.shadows,
-    );
-    let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
-    gpu_scene.write_frame(&gpu.queue, frame.camera, frame.aspect(), frame.settings.exposure_ev);
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    pipeline.draw(
-        &mut encoder,
-        &target,
-        &gpu_scene,
-        &blockers,
-        frame.settings.background_linear(),
-    );
-    read_color(gpu, encoder, &target)
+    let renderer = ShadowRenderer::new(gpu, frame, samples)?;
+    let encoder = renderer.encode_frame();
+    read_color(gpu, encoder, &renderer.target)
+}
+
+/// Everything a log-SH frame needs, uploaded once, so frames can be drawn repeatedly
+/// (benchmarks, the study).
+pub struct ShadowRenderer<'a> {
+    gpu: &'a GpuContext,
+    pipeline: LogShPipeline,
+    gpu_scene: GpuScene,
+    blockers: GpuBlockers,
+    target: RenderTarget,
+    background: [f64; 3],
+}
+
+impl<'a> ShadowRenderer<'a> {
+    pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
+        frame.check(gpu)?;
+        let raster = ScenePipeline::new(&gpu.device);
+        let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, frame.shadows, samples);
+        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, frame.scene);
+        let blockers = GpuBlockers::upload(
+            &gpu.device,
+            &gpu.queue,
+            &pipeline.shadow_layout,
+            frame.blockers,
+            frame.shadows,
+        );
+        let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
+        gpu_scene.write_frame(&gpu.queue, frame.camera, frame.aspect(), frame.settings.exposure_ev);
+        Ok(ShadowRenderer {
+            gpu,
+            pipeline,
+            gpu_scene,
+            blockers,
+            target,
+            background: frame.settings.background_linear(),
+        })
+    }
+
+    fn encode_frame(&self) -> wgpu::CommandEncoder {
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        self.pipeline.draw(
+            &mut encoder,
+            &self.target,
+            &self.gpu_scene,
+            &self.blockers,
+            self.background,
+        );
+        encoder
+    }
+
+    /// Draws one frame and waits until the GPU has finished it.
+    pub fn draw_and_wait(&self) -> Result<(), RenderError> {
+        self.gpu.queue.submit([self.encode_frame().finish()]);
+        self.gpu
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| RenderError::Readback(e.to_string()))
+    }
 }
 
 /// The visible surface point of every pixel (row-major; None where no geometry is seen),
@@ -186,6 +226,12 @@ pub fn capture_surfaces(
 pub fn render_cpu_image(gpu: &GpuContext, frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
     check_size(gpu, frame.width, frame.height)?;
     let surfaces = capture_surfaces(gpu, frame.scene, frame.camera, frame.width, frame.height)?;
+    shade_surfaces(&surfaces, frame)
+}
+
+/// Shades captured surface points (row-major, `frame.width` × `frame.height`) in f64 on
+/// all cores: the CPU reference's share of a frame.
+pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
     let lights: Vec<GpuLight> = frame.scene.lights.iter().map(GpuLight::new).collect();
     let environment = environment_irradiance(frame.scene.environment.as_ref());
     let inputs = ShadingInputs {

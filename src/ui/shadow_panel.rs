@@ -25,7 +25,10 @@ pub fn shadow_section(
         egui::Grid::new("shadow settings").num_columns(2).show(ui, |ui| {
             ui.label("SH order");
             changed |= ui
-                .add(egui::Slider::new(&mut settings.order, 2..=crate::sh::MAX_REALTIME_ORDER))
+                .add(egui::Slider::new(
+                    &mut settings.order,
+                    2..=crate::sh::MAX_REALTIME_ORDER,
+                ))
                 .on_hover_text("Bands of the visibility SH: higher is sharper and slower (n² coefficients).")
                 .changed();
             ui.end_row();
@@ -35,7 +38,9 @@ pub fn shadow_section(
                 .on_hover_text("Log-visibility of a blocked direction is ln ε; 0.1 is the measured sweet spot.")
                 .changed();
             ui.end_row();
-            changed |= ui.checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d").changed();
+            changed |= ui
+                .checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d")
+                .changed();
             ui.end_row();
         });
         egui::ComboBox::from_label("exponentiation")

@@ -105,7 +105,12 @@ impl Viewport {
 
     /// Switches shadows on or off and applies `settings` (valid ones: see
     /// [`ShadowSettings::problems`]); a new order or method rebuilds the pipeline.
-    pub fn set_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings, enabled: bool) {
+    pub fn set_shadow_settings(
+        &mut self,
+        render_state: &egui_wgpu::RenderState,
+        settings: ShadowSettings,
+        enabled: bool,
+    ) {
         if !settings.problems().is_empty() {
             return;
         }
@@ -117,7 +122,9 @@ impl Viewport {
                 crate::render::SAMPLE_COUNT,
             );
         }
-        self.shadows.blockers.write_params(&render_state.queue, &settings);
+        self.shadows
+            .blockers
+            .apply_settings(&render_state.device, &render_state.queue, &settings);
         self.shadows.settings = settings;
         self.shadows.enabled = enabled;
         self.rendered = None;
@@ -128,7 +135,6 @@ impl Viewport {
         self.shadows.blockers.update(
             &render_state.device,
             &render_state.queue,
-            &self.shadows.pipeline.shadow_layout,
             blockers,
             &self.shadows.settings,
         );
@@ -152,7 +158,11 @@ impl Viewport {
             ((rect.width() * pixels_per_point).round() as u32).max(1),
             ((rect.height() * pixels_per_point).round() as u32).max(1),
         ];
-        let size = if moving { full.map(|side| side.div_ceil(2)) } else { full };
+        let size = if moving {
+            full.map(|side| side.div_ceil(2))
+        } else {
+            full
+        };
         let wanted = Shown {
             orbit: self.orbit,
             settings: *settings,
@@ -230,9 +240,13 @@ impl Viewport {
         let mut encoder = device.create_command_encoder(&Default::default());
         let background = settings.background_linear();
         if self.shadows.enabled {
-            self.shadows
-                .pipeline
-                .draw(&mut encoder, target, &self.gpu_scene, &self.shadows.blockers, background);
+            self.shadows.pipeline.draw(
+                &mut encoder,
+                target,
+                &self.gpu_scene,
+                &self.shadows.blockers,
+                background,
+            );
         } else {
             self.pipeline.draw(&mut encoder, target, &self.gpu_scene, background);
         }

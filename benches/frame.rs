@@ -1,0 +1,142 @@
+//! Frame time of the log-SH renderer on this machine's GPU (lavapipe in CI), at 960×540:
+//! `cargo bench --profile dev --bench frame`. Groups:
+//! - `frame/blockers/<scene>`: order 4, HYB (the defaults) with the scene's fitted spheres
+//!   and with 10, 50, 400 and 2,000 synthetic spheres scattered over the scene;
+//! - `frame/order-method`: the studio scene with 50 synthetic spheres at orders 2, 3, 4, 6,
+//!   8 and each GPU exponentiation method;
+//! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
+//!
+//! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
+//! without culling would evaluate (culled pairs cost almost nothing).
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::Vec3;
+use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
+use lightpaint::project::Document;
+use lightpaint::render::{
+    GpuContext, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces, shade_surfaces,
+};
+use lightpaint::scene::{Camera, Scene};
+use lightpaint::sh::ExpMethod;
+
+const WIDTH: u32 = 960;
+const HEIGHT: u32 = 540;
+
+fn open(relative: &str) -> (Scene, Camera, RenderSettings) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
+    let document = Document::open(&path).expect("sample project opens");
+    let camera = document
+        .camera
+        .map(|orbit| orbit.camera())
+        .unwrap_or_else(|| document.scene.initial_camera());
+    (document.scene, camera, document.settings)
+}
+
+/// `count` spheres on a jittered grid over the lower half of the scene's bounds, each a
+/// quarter of the grid spacing in radius.
+fn scattered(scene: &Scene, count: usize) -> Vec<Sphere> {
+    let bounds = scene.bounds();
+    let size = bounds.max - bounds.min;
+    let per_axis = (count as f32).cbrt().ceil() as usize;
+    let spacing = size / per_axis as f32;
+    (0..count)
+        .map(|i| {
+            let (x, y, z) = (i % per_axis, (i / per_axis) % per_axis, i / (per_axis * per_axis));
+            let jitter = ((i as f32 * 0.618).fract() - 0.5) * 0.3;
+            let cell = Vec3::new(x as f32 + 0.5 + jitter, (y as f32 + 0.5) * 0.5, z as f32 + 0.5 - jitter);
+            Sphere {
+                center: bounds.min + cell * spacing,
+                radius_m: 0.25 * spacing.min_element().max(0.02),
+            }
+        })
+        .collect()
+}
+
+fn time_frame(
+    c: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: BenchmarkId,
+    gpu: &GpuContext,
+    frame: &ShadowFrame,
+) {
+    let renderer = ShadowRenderer::new(gpu, frame, 4).expect("renderer");
+    renderer.draw_and_wait().expect("warm-up frame");
+    c.throughput(Throughput::Elements(
+        (WIDTH * HEIGHT) as u64 * frame.blockers.len().max(1) as u64,
+    ));
+    c.bench_function(id, |b| b.iter(|| renderer.draw_and_wait().expect("frame")));
+}
+
+fn frames(c: &mut Criterion) {
+    let gpu = GpuContext::headless().expect("a GPU adapter (lavapipe on CI)");
+    eprintln!("adapter: {}", gpu.adapter_summary());
+    let defaults = ShadowSettings::default();
+    for (name, path) in [
+        ("studio", "projects/studio/studio.lightpaint"),
+        ("sample", "projects/sample/sample.lightpaint"),
+    ] {
+        let (scene, camera, settings) = open(path);
+        let mut group = c.benchmark_group(format!("frame/blockers/{name}"));
+        group.sample_size(10).measurement_time(Duration::from_secs(10));
+        let fitted = fit_scene(&scene, &BlockerSettings::default()).spheres();
+        let sets: Vec<(String, Vec<Sphere>)> = std::iter::once((format!("fitted-{}", fitted.len()), fitted))
+            .chain([10, 50, 400, 2000].map(|n| (format!("scattered-{n}"), scattered(&scene, n))))
+            .collect();
+        for (label, blockers) in &sets {
+            let frame = ShadowFrame {
+                scene: &scene,
+                camera: &camera,
+                settings: &settings,
+                shadows: &defaults,
+                blockers,
+                width: WIDTH,
+                height: HEIGHT,
+            };
+            time_frame(&mut group, BenchmarkId::from_parameter(label), &gpu, &frame);
+        }
+        group.finish();
+    }
+
+    let (scene, camera, settings) = open("projects/studio/studio.lightpaint");
+    let blockers = scattered(&scene, 50);
+    let mut group = c.benchmark_group("frame/order-method");
+    group.sample_size(10).measurement_time(Duration::from_secs(8));
+    for order in [2, 3, 4, 6, 8] {
+        for exp in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
+            let shadows = ShadowSettings { order, exp, ..defaults };
+            let frame = ShadowFrame {
+                scene: &scene,
+                camera: &camera,
+                settings: &settings,
+                shadows: &shadows,
+                blockers: &blockers,
+                width: WIDTH,
+                height: HEIGHT,
+            };
+            time_frame(&mut group, BenchmarkId::new(format!("{exp:?}"), order), &gpu, &frame);
+        }
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("cpu-reference");
+    group.sample_size(10).measurement_time(Duration::from_secs(10));
+    let surfaces = capture_surfaces(&gpu, &scene, &camera, WIDTH, HEIGHT).expect("surfaces");
+    let frame = ShadowFrame {
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &defaults,
+        blockers: &blockers,
+        width: WIDTH,
+        height: HEIGHT,
+    };
+    group.throughput(Throughput::Elements((WIDTH * HEIGHT) as u64 * blockers.len() as u64));
+    group.bench_function("studio-scattered-50", |b| {
+        b.iter(|| shade_surfaces(&surfaces, &frame).expect("shade"))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, frames);
+criterion_main!(benches);
