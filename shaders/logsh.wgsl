@@ -61,7 +61,11 @@ fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
-    let g = sh_exp(log_visibility(s.position, s.normal));
+    return radiance_through(s, sh_exp(log_visibility(s.position, s.normal)));
+}
+
+// Radiance of surface s lit through the visibility SH g.
+fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
     let environment_visibility = clamp(sh_visibility_cosine(g, s.normal), 0.0, 1.0);
     var radiance = s.emissive + environment_radiance(s) * environment_visibility;
     for (var i = 0u; i < frame.light_count; i++) {

@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 use lightpaint::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
-    GpuContext, RenderError, ShadowFrame, ShadowSettings, parse_exp_method, render_cpu_image, render_image,
-    render_logsh_image,
+    GpuContext, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method, render_cpu_image,
+    render_image, render_logsh_image,
 };
 use lightpaint::scene::SceneError;
 use lightpaint::sh::ExpMethod;
@@ -69,6 +69,12 @@ struct RenderArgs {
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     ratio_attenuation: bool,
+    /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 7).
+    #[arg(long, conflicts_with = "cpu")]
+    per_vertex: bool,
+    /// Also time this many more GPU frames (after one warm-up) and print ms per frame.
+    #[arg(long, default_value_t = 0, conflicts_with_all = ["cpu", "no_shadows"])]
+    time_frames: u32,
     /// Shade on the CPU in f64 (the reference), from surfaces rasterised on the GPU.
     #[arg(long, conflicts_with = "no_shadows")]
     cpu: bool,
@@ -180,6 +186,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         exp: args.exp,
         epsilon: args.eps,
         ratio_attenuation: args.ratio_attenuation,
+        per_vertex: args.per_vertex,
         ..ShadowSettings::default()
     };
     let problems = shadows.problems();
@@ -229,6 +236,9 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         )
     };
     let elapsed = started.elapsed();
+    if args.time_frames > 0 {
+        time_frames(&gpu, &frame, args.time_frames)?;
+    }
     image.save(&args.output).map_err(|source| CliError::WriteImage {
         path: args.output.clone(),
         source,
@@ -245,10 +255,32 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Draws `count` frames after a warm-up and prints the mean and best time per frame.
+fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32) -> Result<(), CliError> {
+    let renderer = ShadowRenderer::new(gpu, frame, 4)?;
+    renderer.draw_and_wait()?;
+    let mut times_ms = Vec::with_capacity(count as usize);
+    for _ in 0..count {
+        let started = std::time::Instant::now();
+        renderer.draw_and_wait()?;
+        times_ms.push(started.elapsed().as_secs_f64() * 1000.0);
+    }
+    let mean = times_ms.iter().sum::<f64>() / times_ms.len() as f64;
+    let best = times_ms.iter().copied().fold(f64::INFINITY, f64::min);
+    println!(
+        "{count} frames: mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
+        1000.0 / mean
+    );
+    Ok(())
+}
+
 fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers",
-        shadows.order, shadows.exp, shadows.epsilon
+        "order {}, {:?}, eps {}, {blocker_count} blockers{}",
+        shadows.order,
+        shadows.exp,
+        shadows.epsilon,
+        if shadows.per_vertex { ", per vertex" } else { "" }
     )
 }
 

@@ -176,3 +176,98 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     let (a, b) = (shadowed.get_pixel(kx, ky)[0] as f64, lit.get_pixel(kx, ky)[0] as f64);
     assert!((a - b).abs() <= 0.03 * b + 1.0, "corner: {a} vs unshadowed {b}");
 }
+
+/// The per-vertex pass writes, at every vertex, the visibility SH the CPU reference
+/// computes there (f32 against f64).
+#[test]
+fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
+    use lightpaint::render::cpu;
+    use lightpaint::render::logsh::{GpuBlockers, LogShPipeline};
+    use lightpaint::render::{GpuScene, ScenePipeline};
+    let Some(gpu) = common::gpu() else { return };
+    let (scene, _, _) = open("projects/studio/studio.lightpaint");
+    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let shadows = ShadowSettings {
+        per_vertex: true,
+        ..ShadowSettings::default()
+    };
+    let raster = ScenePipeline::new(&gpu.device);
+    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1);
+    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
+    let gpu_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &pipeline.shadow_layout, &blockers, &shadows);
+    let visibility = pipeline
+        .vertex_visibility(&gpu.device, &gpu_scene)
+        .expect("order 4 runs per vertex");
+    let (compute, _) = pipeline.per_vertex.as_ref().expect("per-vertex pipelines");
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    compute.run(&mut encoder, &gpu_blockers.bind_group, &visibility);
+    let objects: Vec<_> = scene.objects.iter().filter(|o| !o.indices.is_empty()).collect();
+    let readbacks: Vec<wgpu::Buffer> = visibility
+        .buffers
+        .iter()
+        .map(|buffer| {
+            let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility readback"),
+                size: buffer.size(),
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            });
+            encoder.copy_buffer_to_buffer(buffer, 0, &readback, 0, buffer.size());
+            readback
+        })
+        .collect();
+    gpu.queue.submit([encoder.finish()]);
+    let mut worst = 0.0f64;
+    for (object, readback) in objects.iter().zip(&readbacks) {
+        readback.map_async(wgpu::MapMode::Read, .., |_| {});
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+        let bytes = readback.get_mapped_range(..).expect("mapped").to_vec();
+        let values: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
+        for (v, (p, n)) in object.positions.iter().zip(&object.normals).enumerate() {
+            let f = cpu::log_visibility(&shadows, &blockers, p.as_dvec3(), n.as_dvec3());
+            let g = lightpaint::sh::exp(shadows.exp, &f);
+            let got = &values[16 * v..16 * v + 16];
+            let scale = g[0].abs().max(0.1);
+            for (a, b) in got.iter().zip(&g) {
+                worst = worst.max((*a as f64 - b).abs() / scale);
+            }
+        }
+    }
+    eprintln!("worst per-vertex visibility error {worst:e} (relative to the DC)");
+    assert!(worst < 2e-3, "{worst}");
+}
+
+/// Per-vertex shading interpolates what per-pixel shading computes: on the studio, with
+/// soft order-4 shadows, the two frames barely differ.
+#[test]
+fn per_vertex_frames_look_like_per_pixel_frames() {
+    let Some(gpu) = common::gpu() else { return };
+    let (scene, camera, settings) = open("projects/studio/studio.lightpaint");
+    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let render = |per_vertex| {
+        let shadows = ShadowSettings {
+            per_vertex,
+            ..ShadowSettings::default()
+        };
+        let frame = ShadowFrame {
+            scene: &scene,
+            camera: &camera,
+            settings: &settings,
+            shadows: &shadows,
+            blockers: &blockers,
+            width: 240,
+            height: 135,
+        };
+        render_logsh_image(&gpu, &frame, 1).expect("render")
+    };
+    let (per_pixel, per_vertex) = (render(false), render(true));
+    save_for_review("studio-per-vertex", &per_vertex);
+    let close = per_pixel
+        .pixels()
+        .zip(per_vertex.pixels())
+        .filter(|(a, b)| (0..3).all(|c| a[c].abs_diff(b[c]) <= 4))
+        .count();
+    let share = close as f64 / (240.0 * 135.0);
+    eprintln!("{:.2} % of pixels within 4/255", 100.0 * share);
+    assert!(share > 0.97, "{share}");
+}

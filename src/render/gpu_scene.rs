@@ -9,7 +9,9 @@ use super::pipeline::SceneLayouts;
 use crate::scene::{Camera, Environment, Light, Scene, TextureImage};
 
 pub struct GpuObject {
+    /// [`GpuVertex`]es, also readable as storage (the per-vertex shadow pass reads them).
     pub vertex_buffer: wgpu::Buffer,
+    pub vertex_count: u32,
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
     pub material: usize,
@@ -44,13 +46,14 @@ impl GpuScene {
                     vertex_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(&object.name),
                         contents: bytemuck::cast_slice(&vertices),
-                        usage: wgpu::BufferUsages::VERTEX,
+                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
                     }),
                     index_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(&object.name),
                         contents: bytemuck::cast_slice(&object.indices),
                         usage: wgpu::BufferUsages::INDEX,
                     }),
+                    vertex_count: vertices.len() as u32,
                     index_count: object.indices.len() as u32,
                     material: object.material.min(scene.materials.len().saturating_sub(1)),
                 }

@@ -5,13 +5,14 @@
 
 use wgpu::util::DeviceExt;
 
-use super::gpu_scene::GpuScene;
+use super::gpu_scene::{GpuObject, GpuScene};
+use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use bytemuck::Zeroable;
 
 use super::blocker_groups::group_blockers;
 use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams, GpuVertex};
 use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
-use super::{ShadowSettings, shaders};
+use super::{ShadowSettings, shaders, wgsl_sh};
 use crate::blockers::Sphere;
 use crate::sh::ExpMethod;
 
@@ -141,7 +142,7 @@ fn storage_bind_group(
 pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Buffer {
             ty,
             has_dynamic_offset: false,
@@ -167,6 +168,8 @@ pub struct LogShPipeline {
     pub shadow_layout: wgpu::BindGroupLayout,
     depth_prepass: wgpu::RenderPipeline,
     shade: wgpu::RenderPipeline,
+    /// Per-vertex shading, where the order allows it.
+    pub per_vertex: Option<(PerVertexCompute, wgpu::RenderPipeline)>,
 }
 
 /// What a pipeline's fragment stage is for.
@@ -174,6 +177,8 @@ pub struct LogShPipeline {
 enum Stage<'a> {
     DepthOnly,
     Shade,
+    /// Shading through per-vertex visibility attributes of this order.
+    ShadePerVertex(usize),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
 }
@@ -191,12 +196,19 @@ impl LogShPipeline {
         let source = shaders::logsh_source(settings.order, settings.exp);
         let module = shaders::create_module(device, "log-SH shadows", &source);
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, samples);
+        let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
+            (
+                PerVertexCompute::new(device, &module, &shadow_layout, settings.order),
+                make(Stage::ShadePerVertex(settings.order)),
+            )
+        });
         LogShPipeline {
             order: settings.order,
             exp: settings.exp,
             samples,
             depth_prepass: make(Stage::DepthOnly),
             shade: make(Stage::Shade),
+            per_vertex,
             shadow_layout,
         }
     }
@@ -206,7 +218,16 @@ impl LogShPipeline {
         self.order == settings.order && self.exp == settings.exp
     }
 
-    /// Clears `target` to `background` (linear RGB) and draws every object with shadows.
+    /// The per-vertex visibility buffers for `scene`, if this order supports them.
+    pub fn vertex_visibility(&self, device: &wgpu::Device, scene: &GpuScene) -> Option<VertexVisibility> {
+        self.per_vertex
+            .as_ref()
+            .map(|(compute, _)| VertexVisibility::new(device, compute, scene))
+    }
+
+    /// Clears `target` to `background` (linear RGB) and draws every object with shadows:
+    /// per pixel, or with `per_vertex` visibility (from [`Self::vertex_visibility`] for
+    /// the same scene) computed at the vertices first.
     pub fn draw(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -214,7 +235,12 @@ impl LogShPipeline {
         scene: &GpuScene,
         blockers: &GpuBlockers,
         background_linear: [f64; 3],
+        per_vertex: Option<&VertexVisibility>,
     ) {
+        let per_vertex = per_vertex.zip(self.per_vertex.as_ref());
+        if let Some((visibility, (compute, _))) = per_vertex {
+            compute.run(encoder, &blockers.bind_group, visibility);
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("log-SH scene"),
             color_attachments: &[Some(target.color_attachment(background_linear))],
@@ -226,20 +252,35 @@ impl LogShPipeline {
         pass.set_bind_group(0, &scene.frame_bind_group, &[]);
         pass.set_bind_group(2, &blockers.bind_group, &[]);
         // The pre-pass settles depth, so the costly shading runs once per visible pixel.
-        for pipeline in [&self.depth_prepass, &self.shade] {
-            pass.set_pipeline(pipeline);
-            draw_objects(&mut pass, scene);
+        pass.set_pipeline(&self.depth_prepass);
+        draw_objects(&mut pass, scene);
+        match per_vertex {
+            Some((visibility, (_, shade))) => {
+                pass.set_pipeline(shade);
+                for (object, buffer) in scene.objects.iter().zip(&visibility.buffers) {
+                    pass.set_vertex_buffer(1, buffer.slice(..));
+                    draw_object(&mut pass, scene, object);
+                }
+            }
+            None => {
+                pass.set_pipeline(&self.shade);
+                draw_objects(&mut pass, scene);
+            }
         }
     }
 }
 
 pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
     for object in &scene.objects {
-        pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
-        pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
-        pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..object.index_count, 0, 0..1);
+        draw_object(pass, scene, object);
     }
+}
+
+fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &GpuObject) {
+    pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
+    pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
+    pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+    pass.draw_indexed(0..object.index_count, 0, 0..1);
 }
 
 /// Format of the surface channels read back for the CPU reference.
@@ -275,6 +316,22 @@ fn scene_pipeline(
         bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)],
         immediate_size: 0,
     });
+    let visibility_attributes = match stage {
+        Stage::ShadePerVertex(order) => PerVertexCompute::attributes(order),
+        _ => Vec::new(),
+    };
+    let visibility_layout = wgpu::VertexBufferLayout {
+        array_stride: 16 * visibility_attributes.len() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &visibility_attributes,
+    };
+    let (vertex_entry, buffers) = match stage {
+        Stage::ShadePerVertex(_) => (
+            "vs_per_vertex",
+            vec![Some(GpuVertex::layout()), Some(visibility_layout)],
+        ),
+        _ => ("vs_main", vec![Some(GpuVertex::layout())]),
+    };
     let (entry_point, format, write_mask, depth_write, compare) = match stage {
         Stage::DepthOnly => (
             "fs_surface",
@@ -282,6 +339,13 @@ fn scene_pipeline(
             wgpu::ColorWrites::empty(),
             true,
             wgpu::CompareFunction::Less,
+        ),
+        Stage::ShadePerVertex(_) => (
+            "fs_per_vertex",
+            super::pipeline::COLOR_FORMAT,
+            wgpu::ColorWrites::ALL,
+            false,
+            wgpu::CompareFunction::LessEqual,
         ),
         Stage::Shade => (
             "fs_logsh",
@@ -307,9 +371,9 @@ fn scene_pipeline(
         layout: Some(&layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(vertex_entry),
             compilation_options: Default::default(),
-            buffers: &[Some(GpuVertex::layout())],
+            buffers: &buffers,
         },
         primitive: wgpu::PrimitiveState {
             topology: wgpu::PrimitiveTopology::TriangleList,

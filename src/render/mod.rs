@@ -10,6 +10,7 @@ mod gpu_scene;
 pub mod gpu_types;
 pub mod logsh;
 mod offscreen;
+pub mod per_vertex;
 mod pipeline;
 pub mod shaders;
 mod shadow_settings;

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use super::cpu::{self, ShadingInputs, SurfacePoint};
 use super::gpu_types::{GpuLight, environment_irradiance};
 use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, surface_pipeline};
+use super::per_vertex::VertexVisibility;
 use super::pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
 use super::{GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
@@ -89,6 +90,7 @@ pub struct ShadowRenderer<'a> {
     pipeline: LogShPipeline,
     gpu_scene: GpuScene,
     blockers: GpuBlockers,
+    visibility: Option<VertexVisibility>,
     target: RenderTarget,
     background: [f64; 3],
 }
@@ -108,11 +110,17 @@ impl<'a> ShadowRenderer<'a> {
         );
         let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
         gpu_scene.write_frame(&gpu.queue, frame.camera, frame.aspect(), frame.settings.exposure_ev);
+        let visibility = if frame.shadows.per_vertex {
+            pipeline.vertex_visibility(&gpu.device, &gpu_scene)
+        } else {
+            None
+        };
         Ok(ShadowRenderer {
             gpu,
             pipeline,
             gpu_scene,
             blockers,
+            visibility,
             target,
             background: frame.settings.background_linear(),
         })
@@ -126,6 +134,7 @@ impl<'a> ShadowRenderer<'a> {
             &self.gpu_scene,
             &self.blockers,
             self.background,
+            self.visibility.as_ref(),
         );
         encoder
     }

@@ -9,6 +9,7 @@ pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
 pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
+pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
 
 /// The shared prelude, then `body`.
 pub fn with_common(body: &str) -> String {
@@ -20,10 +21,16 @@ pub fn raster_source() -> String {
     format!("{COMMON}\n{SCENE}\n{RASTER}")
 }
 
-/// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU form).
+/// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
+/// form), with the per-vertex entry points where the order allows them.
 pub fn logsh_source(order: usize, method: ExpMethod) -> String {
     let generated = super::wgsl_sh::sh_module(order, method);
-    format!("{COMMON}\n{SCENE}\n{generated}\n{LOGSH}")
+    let per_vertex = if super::wgsl_sh::supports_per_vertex(order) {
+        LOGSH_PER_VERTEX
+    } else {
+        ""
+    };
+    format!("{COMMON}\n{SCENE}\n{generated}\n{LOGSH}\n{per_vertex}")
 }
 
 pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {

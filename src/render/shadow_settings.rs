@@ -16,6 +16,10 @@ pub struct ShadowSettings {
     /// Blockers with sin(cap half-angle) = r/d below this are skipped: at 0.03 a cap covers
     /// under 0.1 % of the hemisphere.
     pub min_cap_ratio: f32,
+    /// Exponentiate at the vertices and interpolate the visibility SH across triangles
+    /// (cost follows the vertex count, not the pixel count; orders up to 7).
+    #[serde(default)]
+    pub per_vertex: bool,
 }
 
 impl Default for ShadowSettings {
@@ -26,6 +30,7 @@ impl Default for ShadowSettings {
             epsilon: 0.1,
             ratio_attenuation: false,
             min_cap_ratio: 0.03,
+            per_vertex: false,
         }
     }
 }
@@ -42,6 +47,12 @@ impl ShadowSettings {
         }
         if !(self.min_cap_ratio.is_finite() && (0.0..1.0).contains(&self.min_cap_ratio)) {
             problems.push(format!("min_cap_ratio {} must be in [0, 1)", self.min_cap_ratio));
+        }
+        if self.per_vertex && !super::wgsl_sh::supports_per_vertex(self.order) {
+            problems.push(format!(
+                "per-vertex shading supports orders up to 7, not {}",
+                self.order
+            ));
         }
         match self.exp {
             ExpMethod::Reference => problems.push("the reference exponential runs on the CPU only (use --cpu)".into()),

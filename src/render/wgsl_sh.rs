@@ -71,7 +71,49 @@ pub fn sh_module(order: usize, method: ExpMethod) -> String {
     }
     out += &exp_fn(order, method);
     out += &visibility_fns(order);
+    if supports_per_vertex(order) {
+        out += &per_vertex_structs(order);
+    }
     out
+}
+
+/// Whether per-vertex shading fits `order`: the visibility SH travels from the vertex to
+/// the fragment stage as vec4 varyings after the 3 of scene.wgsl, within WebGPU's 16.
+pub fn supports_per_vertex(order: usize) -> bool {
+    3 + vec4_count(order) <= 16
+}
+
+/// The visibility SH as vertex attributes / varyings at locations 3…, and the vertex
+/// output of the per-vertex pass (scene.wgsl's VertexOut plus those).
+fn per_vertex_structs(order: usize) -> String {
+    let k = vec4_count(order);
+    let fields: Vec<String> = (0..k)
+        .map(|v| format!("    @location({}) g{v}: vec4<f32>,", 3 + v))
+        .collect();
+    let names: Vec<String> = (0..k).map(|v| format!("v.g{v}")).collect();
+    format!(
+        "struct Visibility {{\n{fields}\n}};
+fn sh_from_visibility(v: Visibility) -> Sh {{
+    return Sh({names});
+}}
+fn visibility_from_sh(g: Sh) -> Visibility {{
+    return Visibility({elements});
+}}
+struct VertexOutWithVisibility {{
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+{fields}
+}};
+fn with_visibility(o: VertexOut, v: Visibility) -> VertexOutWithVisibility {{
+    return VertexOutWithVisibility(o.clip, o.world_position, o.normal, o.uv, {names});
+}}
+",
+        fields = fields.join("\n"),
+        names = names.join(", "),
+        elements = (0..k).map(|v| format!("g[{v}]")).collect::<Vec<_>>().join(", "),
+    )
 }
 
 /// `fn sh_basis(d) -> Sh`: the recurrence of `sh::basis_generic`, every loop unrolled.

@@ -7,6 +7,7 @@
 
 use crate::blockers::Sphere;
 use crate::render::logsh::{GpuBlockers, LogShPipeline};
+use crate::render::per_vertex::VertexVisibility;
 use crate::render::{GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
@@ -16,6 +17,8 @@ struct Shadows {
     enabled: bool,
     pipeline: LogShPipeline,
     blockers: GpuBlockers,
+    /// Per-vertex visibility buffers of the scene for the pipeline's order.
+    visibility: Option<VertexVisibility>,
 }
 
 /// What the texture shows, to skip redundant renders.
@@ -64,6 +67,7 @@ impl Viewport {
         let settings = ShadowSettings::default();
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT);
         let gpu_blockers = GpuBlockers::upload(device, queue, &logsh.shadow_layout, blockers, &settings);
+        let visibility = logsh.vertex_visibility(device, &gpu_scene);
         Viewport {
             pipeline,
             gpu_scene,
@@ -72,6 +76,7 @@ impl Viewport {
                 enabled: true,
                 pipeline: logsh,
                 blockers: gpu_blockers,
+                visibility,
             },
             target: None,
             texture_id: None,
@@ -121,6 +126,10 @@ impl Viewport {
                 &settings,
                 crate::render::SAMPLE_COUNT,
             );
+            self.shadows.visibility = self
+                .shadows
+                .pipeline
+                .vertex_visibility(&render_state.device, &self.gpu_scene);
         }
         self.shadows
             .blockers
@@ -246,6 +255,10 @@ impl Viewport {
                 &self.gpu_scene,
                 &self.shadows.blockers,
                 background,
+                self.shadows
+                    .visibility
+                    .as_ref()
+                    .filter(|_| self.shadows.settings.per_vertex),
             );
         } else {
             self.pipeline.draw(&mut encoder, target, &self.gpu_scene, background);
