@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use lightpaint::blockers::{BlockerSettings, SphereBudget, fit_scene};
+use lightpaint::blockers::{SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
     GpuContext, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method, render_cpu_image,
@@ -54,24 +54,29 @@ struct RenderArgs {
     /// Background colour as 8-bit sRGB "R,G,B".
     #[arg(long, value_parser = parse_srgb8)]
     background: Option<[u8; 3]>,
-    /// SH order of the shadows (bands, 2–8 on the GPU).
-    #[arg(long, default_value_t = 4)]
-    order: usize,
-    /// Exponentiation: dc, ol, hyb, ps<k> (power series of k terms) or ref (CPU only).
-    #[arg(long, default_value = "hyb", value_parser = parse_exp_method)]
-    exp: ExpMethod,
-    /// Log-visibility of a blocked direction is ln(eps).
-    #[arg(long, default_value_t = 0.1)]
-    eps: f32,
-    /// Sphere blockers: "auto" (per-mesh error budget) or a total count for the scene.
-    #[arg(long, default_value = "auto", value_parser = parse_blockers)]
-    blockers: SphereBudget,
+    /// SH order of the shadows (bands, 2–8 on the GPU); default: the project's, or 4.
+    #[arg(long)]
+    order: Option<usize>,
+    /// Exponentiation: dc, ol, hyb, ps<k> (power series of k terms) or ref (CPU only);
+    /// default: the project's, or hyb.
+    #[arg(long, value_parser = parse_exp_method)]
+    exp: Option<ExpMethod>,
+    /// Log-visibility of a blocked direction is ln(eps); default: the project's, or 0.1.
+    #[arg(long)]
+    eps: Option<f32>,
+    /// Sphere blockers: "auto" (per-mesh error budget) or a total count for the scene;
+    /// default: the project's.
+    #[arg(long, value_parser = parse_blockers)]
+    blockers: Option<SphereBudget>,
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     ratio_attenuation: bool,
     /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 7).
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
+    /// Samples per pixel on the GPU: 4 (multisampled edges) or 1.
+    #[arg(long, default_value_t = 4, value_parser = parse_msaa)]
+    msaa: u32,
     /// Also time this many more GPU frames (after one warm-up) and print ms per frame.
     #[arg(long, default_value_t = 0, conflicts_with_all = ["cpu", "no_shadows"])]
     time_frames: u32,
@@ -83,9 +88,17 @@ struct RenderArgs {
     no_shadows: bool,
 }
 
+fn parse_msaa(text: &str) -> Result<u32, String> {
+    match text.trim() {
+        "1" => Ok(1),
+        "4" => Ok(4),
+        _ => Err(format!("expected 1 or 4 samples per pixel, got '{text}'")),
+    }
+}
+
 fn parse_blockers(text: &str) -> Result<SphereBudget, String> {
     if text.trim().eq_ignore_ascii_case("auto") {
-        return Ok(BlockerSettings::default().budget);
+        return Ok(lightpaint::blockers::BlockerSettings::default().budget);
     }
     match text.trim().parse::<usize>() {
         Ok(count) if count <= 100_000 => Ok(SphereBudget::Total(count)),
@@ -181,25 +194,24 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         Some(orbit) => orbit.camera(),
         None => document.scene.initial_camera(),
     };
-    let shadows = ShadowSettings {
-        order: args.order,
-        exp: args.exp,
-        epsilon: args.eps,
-        ratio_attenuation: args.ratio_attenuation,
-        per_vertex: args.per_vertex,
-        ..ShadowSettings::default()
-    };
+    let mut shadows = settings.shadows;
+    shadows.order = args.order.unwrap_or(shadows.order);
+    shadows.exp = args.exp.unwrap_or(shadows.exp);
+    shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
+    shadows.ratio_attenuation |= args.ratio_attenuation;
+    shadows.per_vertex |= args.per_vertex;
+    let no_shadows = args.no_shadows || !shadows.enabled;
     let problems = shadows.problems();
     let gpu_only_problem = args.cpu && problems.iter().all(|p| p.contains("CPU only"));
-    if !args.no_shadows && !problems.is_empty() && !gpu_only_problem {
+    if !no_shadows && !problems.is_empty() && !gpu_only_problem {
         return Err(CliError::Usage(problems.join("; ")));
     }
-    let blocker_settings = BlockerSettings {
-        budget: args.blockers,
-        ..BlockerSettings::default()
-    };
+    let mut blocker_settings = settings.blockers;
+    if let Some(budget) = args.blockers {
+        blocker_settings.budget = budget;
+    }
     let fitted = std::time::Instant::now();
-    let blockers = if args.no_shadows {
+    let blockers = if no_shadows {
         Vec::new()
     } else {
         let fit = fit_scene(&document.scene, &blocker_settings);
@@ -219,7 +231,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         height: args.height,
     };
     let started = std::time::Instant::now();
-    let (image, renderer) = if args.no_shadows {
+    let (image, renderer) = if no_shadows {
         (
             render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?,
             "raster, no shadows".to_string(),
@@ -231,13 +243,13 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         )
     } else {
         (
-            render_logsh_image(&gpu, &frame, 4)?,
+            render_logsh_image(&gpu, &frame, args.msaa)?,
             format!("log-SH, {}", describe(&shadows, blockers.len())),
         )
     };
     let elapsed = started.elapsed();
-    if args.time_frames > 0 {
-        time_frames(&gpu, &frame, args.time_frames)?;
+    if args.time_frames > 0 && !no_shadows {
+        time_frames(&gpu, &frame, args.time_frames, args.msaa)?;
     }
     image.save(&args.output).map_err(|source| CliError::WriteImage {
         path: args.output.clone(),
@@ -256,8 +268,8 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 /// Draws `count` frames after a warm-up and prints the mean and best time per frame.
-fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32) -> Result<(), CliError> {
-    let renderer = ShadowRenderer::new(gpu, frame, 4)?;
+fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, samples: u32) -> Result<(), CliError> {
+    let renderer = ShadowRenderer::new(gpu, frame, samples)?;
     renderer.draw_and_wait()?;
     let mut times_ms = Vec::with_capacity(count as usize);
     for _ in 0..count {

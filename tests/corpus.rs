@@ -300,7 +300,11 @@ fn regenerate_corpus() {
     write(
         "newer-version.lightpaint",
         valid
-            .replacen("\"format_version\": 1", "\"format_version\": 7", 1)
+            .replacen(
+                &format!("\"format_version\": {}", lightpaint::project::FORMAT_VERSION),
+                "\"format_version\": 7",
+                1,
+            )
             .as_bytes(),
     );
     write(

@@ -64,6 +64,7 @@ fn plane_under_lights_matches_lambert_through_the_tone_curve() {
             let settings = RenderSettings {
                 exposure_ev,
                 background_srgb8: background,
+                ..RenderSettings::default()
             };
             let image = render_image(&gpu, &scene, &scene.initial_camera(), &settings, 64, 48).expect("render");
             let centre = image.get_pixel(32, 24);

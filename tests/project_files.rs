@@ -109,11 +109,9 @@ fn wrong_types_name_the_field() {
 
 #[test]
 fn unknown_fields_are_refused() {
-    let text = sample_text().replacen(
-        "\"format_version\": 1,",
-        "\"format_version\": 1,\n  \"colour_grading\": 3,",
-        1,
-    );
+    let version = format!("\"format_version\": {FORMAT_VERSION},");
+    let text = sample_text().replacen(&version, &format!("{version}\n  \"colour_grading\": 3,"), 1);
+    assert_ne!(text, sample_text());
     assert!(matches!(
         open_bad("unknown.lightpaint", text.as_bytes()),
         ProjectError::Field { .. }
@@ -141,7 +139,12 @@ fn every_bad_value_is_reported_at_once() {
 
 #[test]
 fn a_newer_format_is_refused_clearly() {
-    let text = sample_text().replacen("\"format_version\": 1", "\"format_version\": 99", 1);
+    let text = sample_text().replacen(
+        &format!("\"format_version\": {FORMAT_VERSION}"),
+        "\"format_version\": 99",
+        1,
+    );
+    assert_ne!(text, sample_text());
     let error = open_bad("newer.lightpaint", text.as_bytes());
     assert!(matches!(
         error,
@@ -210,4 +213,28 @@ fn read_project_file_accepts_the_sample() {
     let file = read_project_file(&sample_project()).expect("valid");
     assert_eq!(file.format_version, FORMAT_VERSION);
     assert_eq!(file.scene.gltf, Path::new("sample.glb"));
+}
+
+/// A project saved by format 1 (lightpaint before shadows) opens with the default shadow
+/// and blocker settings, keeps everything it had, and is saved back as the current format.
+#[test]
+fn a_format_1_project_opens_and_saves_as_the_current_format() {
+    let v1 = common::repo_path("tests/fixtures/format-1.lightpaint");
+    let text = std::fs::read_to_string(&v1).expect("fixture");
+    assert!(text.contains("\"format_version\": 1"), "the fixture is format 1");
+    let document = lightpaint::project::Document::open(&v1).expect("a format 1 project opens");
+    assert_eq!(document.settings.shadows, lightpaint::render::ShadowSettings::default());
+    assert_eq!(
+        document.settings.blockers,
+        lightpaint::blockers::BlockerSettings::default()
+    );
+    let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    assert_eq!(document.scene.lights, current.scene.lights);
+    assert_eq!(document.settings, current.settings);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let saved = dir.path().join("saved.lightpaint");
+    let mut document = document;
+    document.save(&saved).expect("save");
+    let file = read_project_file(&saved).expect("the saved file reads back");
+    assert_eq!(file.format_version, FORMAT_VERSION);
 }

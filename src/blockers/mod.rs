@@ -29,7 +29,7 @@ pub struct Sphere {
 
 /// How many spheres to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum SphereBudget {
     /// Per mesh, the fewest spheres whose fit error is at most this (e.g. 0.35), or
     /// the best fit found once more spheres stop reducing the error.
@@ -39,6 +39,7 @@ pub enum SphereBudget {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BlockerSettings {
     pub budget: SphereBudget,
     /// Most spheres for one mesh.
@@ -47,6 +48,38 @@ pub struct BlockerSettings {
     pub max_error: f32,
     /// Voxel cells over a mesh's bounds: finer grids fit thin limbs better.
     pub cell_budget: usize,
+}
+
+impl BlockerSettings {
+    /// Every problem with these settings, as (field, message) pairs.
+    pub fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut problems = Vec::new();
+        match self.budget {
+            SphereBudget::FitError(e) if !(e.is_finite() && e > 0.0) => {
+                problems.push(("budget", format!("fit error budget {e} must be positive")))
+            }
+            SphereBudget::Total(n) if n > 100_000 => {
+                problems.push(("budget", format!("{n} spheres is more than the 100000 supported")))
+            }
+            _ => {}
+        }
+        if !(1..=4096).contains(&self.max_spheres_per_mesh) {
+            problems.push((
+                "max_spheres_per_mesh",
+                format!("{} is outside 1..=4096", self.max_spheres_per_mesh),
+            ));
+        }
+        if !(self.max_error.is_finite() && self.max_error > 0.0) {
+            problems.push(("max_error", format!("{} must be positive", self.max_error)));
+        }
+        if !(1_000..=20_000_000).contains(&self.cell_budget) {
+            problems.push((
+                "cell_budget",
+                format!("{} is outside 1000..=20000000 cells", self.cell_budget),
+            ));
+        }
+        problems
+    }
 }
 
 impl Default for BlockerSettings {

@@ -12,12 +12,12 @@ use crate::render::RenderSettings;
 use crate::scene::{Light, OrbitCamera};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 1;
+pub const FORMAT_VERSION: u64 = 2;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
 
-/// Everything a project file holds (format version 1).
+/// Everything a project file holds (format version 2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProjectFile {
@@ -79,6 +79,18 @@ impl ProjectFile {
             problems.push(Problem {
                 field: "render.exposure_ev".into(),
                 message: format!("{} is not an exposure between −64 and 64 EV", self.render.exposure_ev),
+            });
+        }
+        for message in self.render.shadows.problems_for_files() {
+            problems.push(Problem {
+                field: "render.shadows".into(),
+                message,
+            });
+        }
+        for (field, message) in self.render.blockers.problems() {
+            problems.push(Problem {
+                field: format!("render.blockers.{field}"),
+                message,
             });
         }
         if let Some(camera) = &self.camera

@@ -3,7 +3,10 @@
 //!
 //! Format history:
 //! - 1 (lightpaint 0.1): scene reference, lights, render settings (exposure, background),
-//!   camera.
+//!   camera, environment.
+//! - 2: render settings gain `shadows` (log-SH knobs) and `blockers` (sphere fit); files
+//!   of format 1 get the defaults, which is how they were drawn (format 1 had no shadows
+//!   setting because it had no shadows: they open with shadows on).
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -11,8 +14,46 @@
 use serde_json::Value;
 
 /// Brings `value`, a project of format `version` (1 ≤ version ≤ current), to the current
-/// format. Format 1 is the first, so there is nothing to migrate yet.
-pub fn to_current(value: Value, version: u64) -> Value {
+/// format, one step at a time.
+pub fn to_current(mut value: Value, version: u64) -> Value {
     debug_assert!((1..=super::FORMAT_VERSION).contains(&version));
+    if version < 2 {
+        value = v1_to_v2(value);
+    }
     value
+}
+
+fn v1_to_v2(mut value: Value) -> Value {
+    let defaults = crate::render::RenderSettings::default();
+    if let Some(render) = value.get_mut("render").and_then(Value::as_object_mut) {
+        let shadows = serde_json::to_value(defaults.shadows).unwrap_or(Value::Null);
+        let blockers = serde_json::to_value(defaults.blockers).unwrap_or(Value::Null);
+        render.entry("shadows").or_insert(shadows);
+        render.entry("blockers").or_insert(blockers);
+    }
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(2));
+    }
+    value
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_1_render_settings_gain_the_default_shadows_and_blockers() {
+        let v1 = serde_json::json!({
+            "format_version": 1,
+            "render": {"exposure_ev": 0.5, "background_srgb8": [1, 2, 3]},
+        });
+        let v2 = to_current(v1, 1);
+        assert_eq!(v2["format_version"], 2);
+        let render: crate::render::RenderSettings =
+            serde_json::from_value(v2["render"].clone()).expect("format 2 render settings");
+        assert_eq!(render.exposure_ev, 0.5);
+        assert_eq!(render.background_srgb8, [1, 2, 3]);
+        assert_eq!(render.shadows, crate::render::ShadowSettings::default());
+        assert_eq!(render.blockers, crate::blockers::BlockerSettings::default());
+    }
 }

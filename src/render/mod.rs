@@ -28,11 +28,16 @@ pub use shadow_settings::{ShadowSettings, parse_exp_method};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct RenderSettings {
     /// Exposure in stops: radiance is multiplied by 2^EV before tone mapping.
     pub exposure_ev: f32,
     /// Colour where no geometry is seen, as 8-bit sRGB.
     pub background_srgb8: [u8; 3],
+    /// Log-SH shadow knobs (project format 2).
+    pub shadows: ShadowSettings,
+    /// How meshes are approximated by sphere blockers (project format 2).
+    pub blockers: crate::blockers::BlockerSettings,
 }
 
 impl Default for RenderSettings {
@@ -40,6 +45,8 @@ impl Default for RenderSettings {
         RenderSettings {
             exposure_ev: 0.0,
             background_srgb8: [46, 50, 58],
+            shadows: ShadowSettings::default(),
+            blockers: crate::blockers::BlockerSettings::default(),
         }
     }
 }

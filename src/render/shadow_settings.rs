@@ -4,7 +4,10 @@
 use crate::sh::{ExpMethod, MAX_REALTIME_ORDER};
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ShadowSettings {
+    /// Draw log-SH shadows (false: the plain raster pass).
+    pub enabled: bool,
     /// Number of SH bands, 2..=8 on the GPU (n² coefficients per receiver).
     pub order: usize,
     /// How log-visibility is exponentiated. `Reference` is CPU-only.
@@ -18,13 +21,13 @@ pub struct ShadowSettings {
     pub min_cap_ratio: f32,
     /// Exponentiate at the vertices and interpolate the visibility SH across triangles
     /// (cost follows the vertex count, not the pixel count; orders up to 7).
-    #[serde(default)]
     pub per_vertex: bool,
 }
 
 impl Default for ShadowSettings {
     fn default() -> Self {
         ShadowSettings {
+            enabled: true,
             order: 4,
             exp: ExpMethod::Hyb,
             epsilon: 0.1,
@@ -62,6 +65,22 @@ impl ShadowSettings {
             _ => {}
         }
         problems
+    }
+}
+
+impl ShadowSettings {
+    /// The problems that make these settings unfit for a project file: those of
+    /// [`Self::problems`] except choosing the CPU-only reference, which a file may hold.
+    pub fn problems_for_files(&self) -> Vec<String> {
+        let gpu_ready = ShadowSettings {
+            exp: if self.exp == ExpMethod::Reference {
+                ExpMethod::Hyb
+            } else {
+                self.exp
+            },
+            ..*self
+        };
+        gpu_ready.problems()
     }
 }
 

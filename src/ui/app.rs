@@ -27,8 +27,9 @@ pub struct EditorApp {
     /// The project as last opened or saved, to tell whether there are unsaved changes.
     saved: Option<ProjectFile>,
     viewport: Option<Viewport>,
-    /// Sphere blockers fitted to the document's meshes.
+    /// Sphere blockers fitted to the document's meshes, and the settings they were fitted with.
     blockers: SceneBlockers,
+    fitted_with: BlockerSettings,
     adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
     message: String,
@@ -52,6 +53,7 @@ impl EditorApp {
             saved: None,
             viewport: None,
             blockers: SceneBlockers::default(),
+            fitted_with: BlockerSettings::default(),
             adapter,
             message: String::new(),
             error: None,
@@ -88,9 +90,11 @@ impl EditorApp {
                         )
                     }
                 );
-                self.blockers = fit_scene(scene, &BlockerSettings::default());
+                self.blockers = fit_scene(scene, &document.settings.blockers);
+                self.fitted_with = document.settings.blockers;
                 let spheres = self.blockers.spheres();
-                self.viewport = render_state.map(|rs| Viewport::new(rs, scene, document.camera, &spheres));
+                self.viewport = render_state
+                    .map(|rs| Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows));
                 self.saved = document.project_path.as_ref().map(|p| {
                     let mut saved = document.to_project_file(p);
                     // A project without a camera opens on the scene's view: that view is
@@ -241,12 +245,16 @@ impl EditorApp {
             });
             ui.separator();
             ui.heading("Shadows");
-            if let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
-                let (mut shadows, mut enabled) = viewport.shadow_settings();
-                let edit = shadow_section(ui, &mut shadows, &mut enabled, &self.blockers, &document.scene);
-                if edit.settings_changed {
-                    viewport.set_shadow_settings(rs, shadows, enabled);
-                }
+            shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
+            // Refit once the slider is let go: a fit takes a good part of a second.
+            if document.settings.blockers != self.fitted_with
+                && document.settings.blockers.problems().is_empty()
+                && !ui.input(|i| i.pointer.any_down())
+                && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state)
+            {
+                self.blockers = fit_scene(&document.scene, &document.settings.blockers);
+                self.fitted_with = document.settings.blockers;
+                viewport.set_blockers(rs, &self.blockers.spheres());
             }
             ui.separator();
             ui.heading("Lights");

@@ -1,57 +1,53 @@
 //! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, and the
 //! sphere blockers fitted to the scene's meshes (count and fit per object).
 
-use crate::blockers::SceneBlockers;
-use crate::render::ShadowSettings;
+use crate::blockers::{SceneBlockers, SphereBudget};
+use crate::render::RenderSettings;
 use crate::scene::Scene;
 use crate::sh::ExpMethod;
 
-/// What the user changed in the section this frame.
-#[derive(Debug, Default, Clone, Copy, PartialEq)]
-pub struct ShadowEdit {
-    pub settings_changed: bool,
-}
-
-/// Draws the section; edits `settings` and `enabled` in place.
-pub fn shadow_section(
-    ui: &mut egui::Ui,
-    settings: &mut ShadowSettings,
-    enabled: &mut bool,
-    blockers: &SceneBlockers,
-    scene: &Scene,
-) -> ShadowEdit {
-    let mut changed = ui.checkbox(enabled, "log-SH soft shadows").changed();
-    ui.add_enabled_ui(*enabled, |ui| {
+/// Draws the section and edits the shadow and blocker settings in place; the viewport and
+/// the blocker fit follow the settings.
+pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: &SceneBlockers, scene: &Scene) {
+    let settings = &mut render.shadows;
+    ui.checkbox(&mut settings.enabled, "log-SH soft shadows");
+    ui.add_enabled_ui(settings.enabled, |ui| {
         egui::Grid::new("shadow settings").num_columns(2).show(ui, |ui| {
             ui.label("SH order");
-            changed |= ui
-                .add(egui::Slider::new(
-                    &mut settings.order,
-                    2..=crate::sh::MAX_REALTIME_ORDER,
-                ))
-                .on_hover_text("Bands of the visibility SH: higher is sharper and slower (n² coefficients).")
-                .changed();
+            ui.add(egui::Slider::new(
+                &mut settings.order,
+                2..=crate::sh::MAX_REALTIME_ORDER,
+            ))
+            .on_hover_text("Bands of the visibility SH: higher is sharper and slower (n² coefficients).");
             ui.end_row();
             ui.label("ε (blocked)");
-            changed |= ui
-                .add(egui::Slider::new(&mut settings.epsilon, 0.01..=0.5).logarithmic(true))
-                .on_hover_text("Log-visibility of a blocked direction is ln ε; 0.1 is the measured sweet spot.")
-                .changed();
+            ui.add(egui::Slider::new(&mut settings.epsilon, 0.01..=0.5).logarithmic(true))
+                .on_hover_text("Log-visibility of a blocked direction is ln ε; 0.1 is the measured sweet spot.");
             ui.end_row();
-            changed |= ui
-                .checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d")
-                .changed();
+            ui.checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d");
+            ui.end_row();
+            let per_vertex_fits = crate::render::wgsl_sh::supports_per_vertex(settings.order);
+            ui.add_enabled_ui(per_vertex_fits, |ui| {
+                ui.checkbox(&mut settings.per_vertex, "per vertex").on_hover_text(
+                    "Exponentiate at the vertices and interpolate: faster on dense meshes (orders ≤ 7).",
+                );
+            });
+            if !per_vertex_fits {
+                settings.per_vertex = false;
+            }
             ui.end_row();
         });
         egui::ComboBox::from_label("exponentiation")
             .selected_text(method_label(settings.exp))
             .show_ui(ui, |ui| {
                 for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
-                    changed |= ui
-                        .selectable_value(&mut settings.exp, method, method_label(method))
-                        .changed();
+                    ui.selectable_value(&mut settings.exp, method, method_label(method));
                 }
             });
+        if let SphereBudget::FitError(budget) = &mut render.blockers.budget {
+            ui.add(egui::Slider::new(budget, 0.1..=0.8).text("sphere fit error budget"))
+                .on_hover_text("Per mesh, the fewest spheres whose volume error is within this share.");
+        }
         ui.label(format!("{} sphere blockers", blockers.sphere_count()));
         egui::CollapsingHeader::new("blocker fit").show(ui, |ui| {
             for line in blockers.report(scene) {
@@ -59,9 +55,6 @@ pub fn shadow_section(
             }
         });
     });
-    ShadowEdit {
-        settings_changed: changed,
-    }
 }
 
 fn method_label(method: ExpMethod) -> String {

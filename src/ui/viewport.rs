@@ -13,8 +13,8 @@ use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
 /// Log-SH shadow state of a viewport.
 struct Shadows {
+    /// The settings the pipeline and buffers were made for.
     settings: ShadowSettings,
-    enabled: bool,
     pipeline: LogShPipeline,
     blockers: GpuBlockers,
     /// Per-vertex visibility buffers of the scene for the pipeline's order.
@@ -60,11 +60,16 @@ impl Viewport {
         scene: &Scene,
         orbit: Option<OrbitCamera>,
         blockers: &[Sphere],
+        shadows: &ShadowSettings,
     ) -> Viewport {
         let (device, queue) = (&render_state.device, &render_state.queue);
         let pipeline = ScenePipeline::new(device);
         let gpu_scene = GpuScene::upload(device, queue, &pipeline.layouts, scene);
-        let settings = ShadowSettings::default();
+        let settings = if shadows.problems().is_empty() {
+            *shadows
+        } else {
+            ShadowSettings::default()
+        };
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT);
         let gpu_blockers = GpuBlockers::upload(device, queue, &logsh.shadow_layout, blockers, &settings);
         let visibility = logsh.vertex_visibility(device, &gpu_scene);
@@ -73,7 +78,6 @@ impl Viewport {
             gpu_scene,
             shadows: Shadows {
                 settings,
-                enabled: true,
                 pipeline: logsh,
                 blockers: gpu_blockers,
                 visibility,
@@ -103,19 +107,9 @@ impl Viewport {
         self.rendered = None;
     }
 
-    /// The shadow settings in use and whether shadows are drawn.
-    pub fn shadow_settings(&self) -> (ShadowSettings, bool) {
-        (self.shadows.settings, self.shadows.enabled)
-    }
-
-    /// Switches shadows on or off and applies `settings` (valid ones: see
+    /// Applies new shadow settings (invalid ones are ignored: see
     /// [`ShadowSettings::problems`]); a new order or method rebuilds the pipeline.
-    pub fn set_shadow_settings(
-        &mut self,
-        render_state: &egui_wgpu::RenderState,
-        settings: ShadowSettings,
-        enabled: bool,
-    ) {
+    fn apply_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings) {
         if !settings.problems().is_empty() {
             return;
         }
@@ -135,7 +129,6 @@ impl Viewport {
             .blockers
             .apply_settings(&render_state.device, &render_state.queue, &settings);
         self.shadows.settings = settings;
-        self.shadows.enabled = enabled;
         self.rendered = None;
     }
 
@@ -158,6 +151,9 @@ impl Viewport {
 
     /// Lays out the viewport in the remaining space of `ui`, handles its input and paints it.
     pub fn show(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState, settings: &RenderSettings) {
+        if settings.shadows != self.shadows.settings {
+            self.apply_shadow_settings(render_state, settings.shadows);
+        }
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
         let moving = self.handle_input(ui, &response);
@@ -248,7 +244,7 @@ impl Viewport {
         );
         let mut encoder = device.create_command_encoder(&Default::default());
         let background = settings.background_linear();
-        if self.shadows.enabled {
+        if settings.shadows.enabled && self.shadows.settings == settings.shadows {
             self.shadows.pipeline.draw(
                 &mut encoder,
                 target,
