@@ -42,7 +42,7 @@ pub enum SphereBudget {
 #[serde(deny_unknown_fields)]
 pub struct BlockerSettings {
     pub budget: SphereBudget,
-    /// Most spheres for one mesh.
+    /// Most spheres for one mesh under [`SphereBudget::FitError`].
     pub max_spheres_per_mesh: usize,
     /// A mesh whose best fit errs more than this casts no shadow (it is not sphere-like).
     pub max_error: f32,
@@ -215,7 +215,8 @@ fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> 
     }
     let max_k = settings.max_spheres_per_mesh.max(1);
     let (spheres, error) = match (k, settings.budget) {
-        (Some(k), _) => fit::fit_k(&solid.grid, &solid.inside, k.min(max_k)),
+        // A total asked for explicitly is honoured beyond the per-mesh cap of the ladder.
+        (Some(k), _) => fit::fit_k(&solid.grid, &solid.inside, k),
         (None, SphereBudget::FitError(budget)) => {
             let mut best: Option<(Vec<Sphere>, f32)> = None;
             let mut steps_without_gain = 0;
@@ -233,7 +234,7 @@ fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> 
             }
             best.unwrap_or_default()
         }
-        (None, SphereBudget::Total(total)) => fit::fit_k(&solid.grid, &solid.inside, total.min(max_k)),
+        (None, SphereBudget::Total(total)) => fit::fit_k(&solid.grid, &solid.inside, total),
     };
     if spheres.is_empty() || error > settings.max_error {
         return SphereSet {

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Times log-SH frames at 960×540 on this machine's GPU with `lightpaint render
+# --time-frames`, for the table in docs/performance.md. Run it on an otherwise idle machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/system-packages.sh
+lightpaint_runtime_dir
+cargo build --quiet --bin lightpaint
+bin="${CARGO_TARGET_DIR}/debug/lightpaint"
+frames="${FRAMES:-10}"
+out="$(mktemp -d)"
+row() {
+    local label="$1"
+    shift
+    local timing
+    timing=$("$bin" render "$@" -o "$out/frame.png" --width 960 --height 540 --time-frames "$frames" | awk "NR == 1")
+    echo "| $label | $timing |"
+}
+studio=projects/studio/studio.lightpaint
+sample=projects/sample/sample.lightpaint
+echo "| configuration | $frames frames after a warm-up |"
+echo "|---|---|"
+row "studio, raster pass of the shading only (0 blockers), MSAA 4" "$studio" --blockers 0
+row "studio, defaults (order 4, HYB, 48 fitted spheres), MSAA 4" "$studio"
+row "studio, defaults, MSAA 1" "$studio" --msaa 1
+row "studio, defaults, per vertex, MSAA 4" "$studio" --per-vertex
+row "studio, defaults, per vertex, MSAA 1" "$studio" --per-vertex --msaa 1
+row "studio, order 2, DC, MSAA 1" "$studio" --order 2 --exp dc --msaa 1
+row "studio, order 8, HYB, MSAA 1" "$studio" --order 8 --msaa 1
+row "studio, 400 spheres (fitted), MSAA 1" "$studio" --blockers 400 --msaa 1
+row "sample, defaults (19 fitted spheres), MSAA 4" "$sample"
+row "sample, defaults, per vertex, MSAA 1" "$sample" --per-vertex --msaa 1
