@@ -159,6 +159,15 @@ impl CliError {
     }
 }
 
+/// Prints a line to stdout, ignoring a closed pipe (`lightpaint check FILE | head` must not
+/// panic); `println!` would.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     lightpaint::panic_guard::install_quiet_panic_hook();
@@ -255,7 +264,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         path: args.output.clone(),
         source,
     })?;
-    println!(
+    say!(
         "rendered {} ({}×{}, {renderer}) with {} in {:.0} ms (sphere fit {fit_ms:.0} ms) → {}",
         args.file.display(),
         args.width,
@@ -279,7 +288,7 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, samples: u32) 
     }
     let mean = times_ms.iter().sum::<f64>() / times_ms.len() as f64;
     let best = times_ms.iter().copied().fold(f64::INFINITY, f64::min);
-    println!(
+    say!(
         "{count} frames: mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
         1000.0 / mean
     );
@@ -301,7 +310,7 @@ fn check(file: &Path) -> Result<(), CliError> {
         Ok(document) => document,
         Err(ProjectError::Invalid { path, problems }) => {
             for problem in &problems {
-                println!("problem: {}: {problem}", path.display());
+                say!("problem: {}: {problem}", path.display());
             }
             return Err(CliError::Problems {
                 path,
@@ -311,10 +320,10 @@ fn check(file: &Path) -> Result<(), CliError> {
         Err(e) => return Err(e.into()),
     };
     for warning in &document.warnings {
-        println!("problem: {}: {warning}", file.display());
+        say!("problem: {}: {warning}", file.display());
     }
     let scene = &document.scene;
-    println!(
+    say!(
         "{}: {} objects, {} vertices, {} triangles, {} materials, {} textures, {} lights, {}",
         file.display(),
         scene.objects.len(),
@@ -326,7 +335,7 @@ fn check(file: &Path) -> Result<(), CliError> {
         if scene.camera.is_some() { "camera" } else { "no camera" }
     );
     if document.warnings.is_empty() {
-        println!("{}: ok", file.display());
+        say!("{}: ok", file.display());
         Ok(())
     } else {
         Err(CliError::Problems {

@@ -132,3 +132,46 @@ fn a_file_that_crashes_the_gltf_validator_is_reported_not_panicked() {
     std::fs::write(&path, common::scenes::dangling_position_accessor()).unwrap();
     assert_rejected(&path, "structure is inconsistent");
 }
+
+#[test]
+fn a_closed_stdout_is_not_a_crash() {
+    // `lightpaint check FILE | head -c 0`: the reader is gone before anything is printed.
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    let runtime = tempfile::tempdir().expect("temp dir");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_lightpaint"))
+        .args([OsStr::new("check"), sample.as_os_str()])
+        .env("XDG_RUNTIME_DIR", runtime.path())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("the binary ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn render_rejects_bad_shadow_settings_with_exit_code_2() {
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out_png = dir.path().join("out.png");
+    for args in [
+        &["--order", "9"][..],
+        &["--eps", "0"][..],
+        &["--exp", "ref"][..],
+        &["--exp", "fast"][..],
+        &["--order", "8", "--per-vertex"][..],
+        &["--blockers", "many"][..],
+        &["--msaa", "2"][..],
+    ] {
+        let mut all: Vec<&OsStr> = vec![OsStr::new("render"), sample.as_os_str(), OsStr::new("-o"), out_png.as_os_str()];
+        all.extend(args.iter().map(OsStr::new));
+        let out = common::run_lightpaint(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(!out_png.exists(), "{args:?} wrote an image");
+    }
+}
