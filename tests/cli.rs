@@ -166,7 +166,12 @@ fn render_rejects_bad_shadow_settings_with_exit_code_2() {
         &["--blockers", "many"][..],
         &["--msaa", "2"][..],
     ] {
-        let mut all: Vec<&OsStr> = vec![OsStr::new("render"), sample.as_os_str(), OsStr::new("-o"), out_png.as_os_str()];
+        let mut all: Vec<&OsStr> = vec![
+            OsStr::new("render"),
+            sample.as_os_str(),
+            OsStr::new("-o"),
+            out_png.as_os_str(),
+        ];
         all.extend(args.iter().map(OsStr::new));
         let out = common::run_lightpaint(&all);
         let stderr = String::from_utf8_lossy(&out.stderr);

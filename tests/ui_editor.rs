@@ -59,3 +59,23 @@ fn editor_looks_as_reviewed() {
     harness.run();
     harness.snapshot("editor_sample");
 }
+
+/// Shadow settings changed in the inspector are drawn, marked unsaved, and saved into the
+/// project (format 2 keeps them).
+#[test]
+fn shadow_settings_edited_in_the_inspector_are_saved() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label("per vertex").click();
+    harness.run();
+    harness.get_by_label("log-SH soft shadows").click();
+    harness.run();
+    assert!(harness.state().has_unsaved_changes(), "shadow edits are changes");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert!(reopened.settings.shadows.per_vertex, "per vertex was saved");
+    assert!(!reopened.settings.shadows.enabled, "shadows off was saved");
+}

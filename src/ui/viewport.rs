@@ -2,8 +2,8 @@
 //! ([`LogShPipeline`]) or the plain raster ([`ScenePipeline`]) — into a texture that egui
 //! shows, and turns mouse input into orbit (left drag), pan (right or middle drag, or
 //! shift + left drag) and zoom (scroll). While the camera moves, frames are shaded at half
-//! the resolution in each direction (a quarter of the pixels), so orbiting stays fluid on
-//! a software GPU; the full-resolution frame follows as soon as the camera rests.
+//! the resolution in each direction (a quarter of the pixels) and per vertex, so orbiting
+//! stays fluid on a software GPU; the full frame follows as soon as the camera rests.
 
 use crate::blockers::Sphere;
 use crate::render::logsh::{GpuBlockers, LogShPipeline};
@@ -175,7 +175,7 @@ impl Viewport {
             full_resolution: !moving,
         };
         if self.rendered != Some(wanted) {
-            self.render(render_state, settings, size);
+            self.render(render_state, settings, size, moving);
             self.rendered = Some(wanted);
         }
         if moving {
@@ -213,7 +213,15 @@ impl Viewport {
         response.dragged() || zooming
     }
 
-    fn render(&mut self, render_state: &egui_wgpu::RenderState, settings: &RenderSettings, size: [u32; 2]) {
+    /// Renders into the texture; while `moving`, shadows are shaded per vertex where the
+    /// order allows (cheaper, and hard to tell apart from per-pixel in motion).
+    fn render(
+        &mut self,
+        render_state: &egui_wgpu::RenderState,
+        settings: &RenderSettings,
+        size: [u32; 2],
+        moving: bool,
+    ) {
         let started = std::time::Instant::now();
         let device = &render_state.device;
         let resized = self.target.as_ref().is_none_or(|t| [t.width, t.height] != size);
@@ -254,7 +262,7 @@ impl Viewport {
                 self.shadows
                     .visibility
                     .as_ref()
-                    .filter(|_| self.shadows.settings.per_vertex),
+                    .filter(|_| moving || self.shadows.settings.per_vertex),
             );
         } else {
             self.pipeline.draw(&mut encoder, target, &self.gpu_scene, background);
