@@ -10,6 +10,7 @@
 pub mod blockers;
 pub mod panic_guard;
 pub mod project;
+pub(crate) mod random;
 pub mod render;
 pub mod samples;
 pub mod scene;

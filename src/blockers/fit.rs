@@ -9,6 +9,7 @@ use glam::{IVec3, Vec3};
 
 use super::Sphere;
 use super::voxel::VoxelGrid;
+use crate::random::SplitMix64;
 
 /// Lloyd iterations per fit; the cell centres of a solid converge well before this.
 const LLOYD_ITERATIONS: usize = 24;
@@ -133,7 +134,7 @@ fn k_means(points: &[Vec3], k: usize) -> Vec<Vec3> {
         if total <= 0.0 {
             break;
         }
-        let mut target = random.unit() * total;
+        let mut target = random.next_f64() * total;
         let mut chosen = points.len() - 1;
         for (i, &d) in distance2.iter().enumerate() {
             target -= d as f64;
@@ -168,26 +169,4 @@ fn k_means(points: &[Vec3], k: usize) -> Vec<Vec3> {
         }
     }
     centres
-}
-
-/// A small deterministic generator (Steele, Lea & Flood's SplitMix64).
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        ((self.unit() * n as f64) as usize).min(n - 1)
-    }
 }

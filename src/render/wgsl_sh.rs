@@ -185,7 +185,23 @@ fn cap_zh_fn(order: usize) -> String {
         "fn sh_cap_zh(ratio: f32) -> Zh {\n    let s = clamp(ratio, 0.0, 1.0);\n    let s2 = s * s;\n    let c = sqrt(max(1.0 - s2, 0.0));\n",
     );
     s += &format!("    let z0 = {} * s2 / (1.0 + c);\n", lit(PI.sqrt()));
-    s += "    let p0 = 1.0;\n    let dp0 = 0.0;\n";
+    s += &legendre_lets(order);
+    let mut terms = vec!["z0".to_string()];
+    for l in 1..order {
+        let lf = l as f64;
+        terms.push(format!(
+            "{} * s2 * dp{l}",
+            lit((PI * (2.0 * lf + 1.0)).sqrt() / (lf * (lf + 1.0)))
+        ));
+    }
+    s += &format!("    return Zh({});\n}}\n", terms.join(", "));
+    s
+}
+
+/// `let` statements for P_l(c) as `p{l}` and P_l′(c) as `dp{l}`, l < `order`: Bonnet's
+/// recurrence and P_{l+1}′ = P_{l−1}′ + (2l+1)·P_l, as `sh::legendre_derivative`.
+fn legendre_lets(order: usize) -> String {
+    let mut s = String::from("    let p0 = 1.0;\n    let dp0 = 0.0;\n");
     if order > 1 {
         s += "    let p1 = c;\n    let dp1 = 1.0;\n";
     }
@@ -201,15 +217,6 @@ fn cap_zh_fn(order: usize) -> String {
             b = l - 2
         );
     }
-    let mut terms = vec!["z0".to_string()];
-    for l in 1..order {
-        let lf = l as f64;
-        terms.push(format!(
-            "{} * s2 * dp{l}",
-            lit((PI * (2.0 * lf + 1.0)).sqrt() / (lf * (lf + 1.0)))
-        ));
-    }
-    s += &format!("    return Zh({});\n}}\n", terms.join(", "));
     s
 }
 
@@ -428,22 +435,7 @@ fn visibility_fns(order: usize) -> String {
     let mut s = String::from(
         "fn sh_visibility_toward(g: Sh, d: vec3<f32>, ratio: f32) -> f32 {\n    let s = clamp(ratio, 0.0, 1.0);\n    let c = sqrt(max(1.0 - s * s, 0.0));\n    let y = sh_basis(d);\n    let w0 = 1.0;\n",
     );
-    s += "    let p0 = 1.0;\n    let dp0 = 0.0;\n";
-    if order > 1 {
-        s += "    let p1 = c;\n    let dp1 = 1.0;\n";
-    }
-    for l in 2..order {
-        let lf = l as f64 - 1.0;
-        s += &format!(
-            "    let p{l} = ({} * c * p{a} - {} * p{b}) / {};\n    let dp{l} = dp{b} + {} * p{a};\n",
-            lit(2.0 * lf + 1.0),
-            lit(lf),
-            lit(lf + 1.0),
-            lit(2.0 * lf + 1.0),
-            a = l - 1,
-            b = l - 2
-        );
-    }
+    s += &legendre_lets(order);
     for l in 1..order {
         s += &format!("    let w{l} = (1.0 + c) * dp{l} / {};\n", lit((l * (l + 1)) as f64));
     }

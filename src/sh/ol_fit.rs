@@ -11,6 +11,7 @@
 use glam::DVec3;
 
 use super::{exp_reference, log_visibility};
+use crate::random::SplitMix64;
 
 /// Settings of the committed tables.
 pub const OL_TABLE_ORDERS: std::ops::RangeInclusive<usize> = 2..=8;
@@ -18,29 +19,12 @@ pub const OL_TABLE_ENTRIES: usize = 65;
 pub const OL_TRAINING_SHAPES: usize = 48;
 pub const OL_TRAINING_SEED: u64 = 0x5eed_0f01;
 
-/// SplitMix64: a tiny, well-known deterministic generator (Steele et al. 2014).
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn direction(&mut self) -> DVec3 {
-        let z = 2.0 * self.next_f64() - 1.0;
-        let phi = std::f64::consts::TAU * self.next_f64();
-        let r = (1.0 - z * z).sqrt();
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
+/// A uniformly distributed unit direction.
+fn random_direction(rng: &mut SplitMix64) -> DVec3 {
+    let z = 2.0 * rng.next_f64() - 1.0;
+    let phi = std::f64::consts::TAU * rng.next_f64();
+    let r = (1.0 - z * z).sqrt();
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 /// Unit-norm, DC-free training shapes at `order`.
@@ -52,7 +36,7 @@ pub fn training_shapes(order: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
         let caps: Vec<(DVec3, f64)> = (0..count)
             .map(|_| {
                 let half_angle = (5.0 + 55.0 * rng.next_f64()).to_radians();
-                (rng.direction(), half_angle)
+                (random_direction(&mut rng), half_angle)
             })
             .collect();
         let mut f = log_visibility(order, &caps, 0.1);
