@@ -12,7 +12,7 @@
 @group(2) @binding(1) var<storage, read> blockers: array<Blocker>;
 @group(2) @binding(2) var<storage, read> groups: array<BlockerGroup>;
 
-// Which surface property fs_surface writes (see SurfaceChannel in src/render/logsh.rs).
+// Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
 // Σ of the blockers' log-visibility seen from p with normal n. Skipped: blockers that

@@ -208,7 +208,8 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.exp = args.exp.unwrap_or(shadows.exp);
     shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
     shadows.ratio_attenuation |= args.ratio_attenuation;
-    shadows.per_vertex |= args.per_vertex;
+    // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
+    shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
     let no_shadows = args.no_shadows || !shadows.enabled;
     let problems = shadows.problems();
     let gpu_only_problem = args.cpu && problems.iter().all(|p| p.contains("CPU only"));

@@ -6,6 +6,7 @@ pub mod blocker_groups;
 mod color;
 mod context;
 pub mod cpu;
+mod gpu_blockers;
 mod gpu_scene;
 pub mod gpu_types;
 pub mod logsh;

@@ -1,0 +1,154 @@
+//! Blockers, their culling groups and the shadow parameters on the GPU: bind group 2 of
+//! logsh.wgsl, shared by the shading pass and the per-vertex compute pass.
+
+use bytemuck::Zeroable;
+use wgpu::util::DeviceExt;
+
+use super::ShadowSettings;
+use super::blocker_groups::group_blockers;
+use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams};
+use crate::blockers::Sphere;
+
+/// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
+/// logsh.wgsl). Groups depend on the influence cut-off, so they are rebuilt with it.
+pub struct GpuBlockers {
+    params: wgpu::Buffer,
+    bind_group_layout: wgpu::BindGroupLayout,
+    spheres: Vec<Sphere>,
+    groups: Vec<GpuBlockerGroup>,
+    pub bind_group: wgpu::BindGroup,
+    pub count: usize,
+}
+
+impl GpuBlockers {
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        spheres: &[Sphere],
+        settings: &ShadowSettings,
+    ) -> GpuBlockers {
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow params"),
+            size: std::mem::size_of::<GpuShadowParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (ordered, groups) = gpu_groups(spheres, settings);
+        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups);
+        let blockers = GpuBlockers {
+            params,
+            bind_group_layout: layout.clone(),
+            spheres: spheres.to_vec(),
+            groups,
+            bind_group,
+            count: spheres.len(),
+        };
+        blockers.write_params(queue, settings);
+        blockers
+    }
+
+    /// Replaces the blockers and writes the parameters.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        spheres: &[Sphere],
+        settings: &ShadowSettings,
+    ) {
+        *self = GpuBlockers::upload(device, queue, &self.bind_group_layout, spheres, settings);
+    }
+
+    /// Applies new settings; a new influence cut-off regroups the blockers.
+    pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let spheres = std::mem::take(&mut self.spheres);
+        self.update(device, queue, &spheres, settings);
+    }
+
+    fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let params = GpuShadowParams {
+            ln_epsilon: settings.epsilon.ln(),
+            min_cap_ratio: settings.min_cap_ratio,
+            blocker_count: self.count as u32,
+            ratio_attenuation: settings.ratio_attenuation as u32,
+            group_count: self.groups.len() as u32,
+            _pad: [0; 3],
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+    }
+}
+
+fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>, Vec<GpuBlockerGroup>) {
+    let (ordered, groups) = group_blockers(spheres, settings.min_cap_ratio);
+    (
+        ordered.iter().map(GpuBlocker::new).collect(),
+        groups.iter().map(GpuBlockerGroup::new).collect(),
+    )
+}
+
+fn storage_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    spheres: &[GpuBlocker],
+    groups: &[GpuBlockerGroup],
+) -> wgpu::BindGroup {
+    // Storage bindings may not be empty: pad with a zero-radius sphere / empty group.
+    let storage = |label, bytes: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    };
+    let sphere_buffer = if spheres.is_empty() {
+        storage("blockers", bytemuck::bytes_of(&GpuBlocker::zeroed()))
+    } else {
+        storage("blockers", bytemuck::cast_slice(spheres))
+    };
+    let group_buffer = if groups.is_empty() {
+        storage("blocker groups", bytemuck::bytes_of(&GpuBlockerGroup::zeroed()))
+    } else {
+        storage("blocker groups", bytemuck::cast_slice(groups))
+    };
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shadow"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: sphere_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: group_buffer.as_entire_binding(),
+            },
+        ],
+    })
+}
+
+/// The bind group layout of [`GpuBlockers`].
+pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("shadow"),
+        entries: &[
+            entry(0, wgpu::BufferBindingType::Uniform),
+            entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+        ],
+    })
+}
