@@ -81,6 +81,13 @@ impl ProjectFile {
                 message: format!("{} is not an exposure between −64 and 64 EV", self.render.exposure_ev),
             });
         }
+        let scale = self.render.viewport_resolution_scale;
+        if !(0.25..=1.0).contains(&scale) {
+            problems.push(Problem {
+                field: "render.viewport_resolution_scale".into(),
+                message: format!("{scale} is outside 0.25–1"),
+            });
+        }
         for message in self.render.shadows.problems_for_files() {
             problems.push(Problem {
                 field: "render.shadows".into(),

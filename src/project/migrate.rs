@@ -4,7 +4,8 @@
 //! Format history:
 //! - 1 (lightpaint 0.1): scene reference, lights, render settings (exposure, background),
 //!   camera, environment.
-//! - 2: render settings gain `shadows` (log-SH knobs) and `blockers` (sphere fit); files
+//! - 2: render settings gain `shadows` (log-SH knobs), `blockers` (sphere fit) and
+//!   `viewport_resolution_scale`; files
 //!   of format 1 get the defaults, which is how they were drawn (format 1 had no shadows
 //!   setting because it had no shadows: they open with shadows on).
 //!
@@ -24,12 +25,15 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
 }
 
 fn v1_to_v2(mut value: Value) -> Value {
-    let defaults = crate::render::RenderSettings::default();
-    if let Some(render) = value.get_mut("render").and_then(Value::as_object_mut) {
-        let shadows = serde_json::to_value(defaults.shadows).unwrap_or(Value::Null);
-        let blockers = serde_json::to_value(defaults.blockers).unwrap_or(Value::Null);
-        render.entry("shadows").or_insert(shadows);
-        render.entry("blockers").or_insert(blockers);
+    let defaults = serde_json::to_value(crate::render::RenderSettings::default()).unwrap_or(Value::Null);
+    if let (Some(render), Some(defaults)) = (
+        value.get_mut("render").and_then(Value::as_object_mut),
+        defaults.as_object(),
+    ) {
+        // Every render setting format 1 did not have takes its default.
+        for (key, default) in defaults {
+            render.entry(key.clone()).or_insert_with(|| default.clone());
+        }
     }
     if let Some(object) = value.as_object_mut() {
         object.insert("format_version".into(), Value::from(2));
@@ -55,5 +59,6 @@ mod tests {
         assert_eq!(render.background_srgb8, [1, 2, 3]);
         assert_eq!(render.shadows, crate::render::ShadowSettings::default());
         assert_eq!(render.blockers, crate::blockers::BlockerSettings::default());
+        assert_eq!(render.viewport_resolution_scale, 1.0);
     }
 }

@@ -243,6 +243,20 @@ impl EditorApp {
                 ui.label("background");
                 ui.color_edit_button_srgb(&mut document.settings.background_srgb8);
             });
+            ui.add(
+                egui::Slider::new(&mut document.settings.viewport_resolution_scale, 0.25..=1.0)
+                    .text("viewport resolution")
+                    .custom_formatter(|v, _| format!("{:.0} %", 100.0 * v))
+                    .custom_parser(|text| {
+                        text.trim()
+                            .trim_end_matches('%')
+                            .trim()
+                            .parse::<f64>()
+                            .ok()
+                            .map(|p| p / 100.0)
+                    }),
+            )
+            .on_hover_text("Share of the viewport's pixels shaded along each side: lower is faster.");
             ui.separator();
             ui.heading("Shadows");
             shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);

@@ -159,9 +159,10 @@ impl Viewport {
         let moving = self.handle_input(ui, &response);
 
         let pixels_per_point = ui.ctx().pixels_per_point();
+        let scale = pixels_per_point * settings.viewport_resolution_scale.clamp(0.25, 1.0);
         let full = [
-            ((rect.width() * pixels_per_point).round() as u32).max(1),
-            ((rect.height() * pixels_per_point).round() as u32).max(1),
+            ((rect.width() * scale).round() as u32).max(1),
+            ((rect.height() * scale).round() as u32).max(1),
         ];
         let size = if moving {
             full.map(|side| side.div_ceil(2))
