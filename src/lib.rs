@@ -7,6 +7,7 @@
 //! - [`ui`]: the eframe editor shell.
 //! - [`samples`]: the generator of the bundled sample scene.
 
+pub mod bake;
 pub mod blockers;
 pub mod panic_guard;
 pub mod project;
