@@ -180,3 +180,19 @@ fn render_rejects_bad_shadow_settings_with_exit_code_2() {
         assert!(!out_png.exists(), "{args:?} wrote an image");
     }
 }
+
+#[test]
+fn bake_reports_the_maps_of_the_sample() {
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    let out = common::run_lightpaint(&[OsStr::new("bake"), sample.as_os_str()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("(vertex, light) pairs stored"), "{stdout}");
+    let bad = common::run_lightpaint(&[
+        OsStr::new("bake"),
+        sample.as_os_str(),
+        OsStr::new("--order"),
+        OsStr::new("0"),
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+}

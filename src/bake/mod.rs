@@ -7,6 +7,8 @@
 pub mod direct;
 pub mod scene_bvh;
 
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
 use rayon::prelude::*;
 
 use crate::scene::Scene;
@@ -58,40 +60,63 @@ impl ImportanceMaps {
 
 /// Bakes the direct light of every light at every vertex, on all cores.
 pub fn bake_direct(scene: &Scene, settings: &BakeSettings) -> ImportanceMaps {
+    let never = AtomicBool::new(false);
+    bake_direct_with(scene, settings, &|_, _| {}, &never).unwrap_or(ImportanceMaps {
+        order: settings.order,
+        objects: Vec::new(),
+    })
+}
+
+/// [`bake_direct`] reporting `progress(vertices done, vertices in all)` as it goes and
+/// stopping early, with None and nothing kept, once `cancel` is set.
+pub fn bake_direct_with(
+    scene: &Scene,
+    settings: &BakeSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<ImportanceMaps> {
     let bvh = SceneBvh::build(scene);
-    let objects = scene
-        .objects
-        .iter()
-        .map(|object| {
-            (0..object.positions.len())
-                .into_par_iter()
-                .map(|v| {
-                    let (p, n) = (object.positions[v], object.normals[v]);
-                    scene
-                        .lights
-                        .iter()
-                        .enumerate()
-                        .filter_map(|(i, light)| {
-                            direct::direct_sh(
-                                &bvh,
-                                light,
-                                p,
-                                n,
-                                settings.order,
-                                settings.light_samples,
-                                settings.ray_offset_m,
-                            )
-                            .map(|sh| LightContribution { light: i as u32, sh })
-                        })
-                        .collect()
-                })
-                .collect()
-        })
-        .collect();
-    ImportanceMaps {
+    let total = scene.vertex_count();
+    let done = AtomicUsize::new(0);
+    let mut objects = Vec::with_capacity(scene.objects.len());
+    for object in &scene.objects {
+        let vertices: Option<Vec<Vec<LightContribution>>> = (0..object.positions.len())
+            .into_par_iter()
+            .map(|v| {
+                if cancel.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let (p, n) = (object.positions[v], object.normals[v]);
+                let entries = scene
+                    .lights
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, light)| {
+                        direct::direct_sh(
+                            &bvh,
+                            light,
+                            p,
+                            n,
+                            settings.order,
+                            settings.light_samples,
+                            settings.ray_offset_m,
+                        )
+                        .map(|sh| LightContribution { light: i as u32, sh })
+                    })
+                    .collect();
+                let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if finished % 1024 == 0 || finished == total {
+                    progress(finished, total);
+                }
+                Some(entries)
+            })
+            .collect();
+        objects.push(vertices?);
+    }
+    Some(ImportanceMaps {
         order: settings.order,
         objects,
-    }
+    })
 }
 
 #[cfg(test)]
@@ -191,6 +216,27 @@ mod tests {
             let dc = entries[0].sh[0] as f64 * 2.0 * PI.sqrt();
             assert!((dc / e - 1.0).abs() < 0.005, "vertex {v}: {dc} vs {e}");
         }
+    }
+
+    #[test]
+    fn a_cancelled_bake_keeps_nothing_and_progress_reaches_the_end() {
+        let scene = floor_box_light();
+        let cancelled = AtomicBool::new(true);
+        assert!(bake_direct_with(&scene, &BakeSettings::default(), &|_, _| {}, &cancelled).is_none());
+        let last = std::sync::Mutex::new((0, 0));
+        let go = AtomicBool::new(false);
+        let maps = bake_direct_with(
+            &scene,
+            &BakeSettings::default(),
+            &|done, total| {
+                let mut last = last.lock().unwrap();
+                *last = (last.0.max(done), total);
+            },
+            &go,
+        );
+        assert!(maps.is_some());
+        let (done, total) = *last.lock().unwrap();
+        assert_eq!((done, total), (scene.vertex_count(), scene.vertex_count()));
     }
 
     #[test]
