@@ -105,7 +105,7 @@ pub fn bake_direct_with(
                     })
                     .collect();
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if finished % 1024 == 0 || finished == total {
+                if finished.is_multiple_of(1024) || finished == total {
                     progress(finished, total);
                 }
                 Some(entries)
