@@ -35,8 +35,8 @@ enum Command {
         /// The project (.lightpaint) or .gltf/.glb file to check.
         file: PathBuf,
     },
-    /// Bake the source-importance maps (direct light of every light at every vertex, as
-    /// SH) and report their size and the time taken. Indirect bounces are not baked yet.
+    /// Bake the source-importance maps (direct light and one diffuse bounce of every light
+    /// at every vertex, as SH) and report their size and the time taken.
     Bake {
         /// The project (.lightpaint) or .gltf/.glb scene.
         file: PathBuf,
@@ -46,6 +46,12 @@ enum Command {
         /// Emitter samples per extended light (sphere, rect, disk) and vertex.
         #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..=4096))]
         light_samples: u16,
+        /// Diffuse bounces of indirect light (0 or 1 so far).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
+        bounces: u8,
+        /// Hemisphere directions per vertex for the bounce.
+        #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u16).range(1..=4096))]
+        directions: u16,
     },
 }
 
@@ -191,7 +197,18 @@ fn main() -> ExitCode {
             file,
             order,
             light_samples,
-        }) => bake(&file, order as usize, light_samples as usize),
+            bounces,
+            directions,
+        }) => {
+            let settings = lightpaint::bake::BakeSettings {
+                order: order as usize,
+                light_samples: light_samples as usize,
+                bounces: bounces as usize,
+                indirect_directions: directions as usize,
+                ..Default::default()
+            };
+            bake(&file, &settings)
+        }
         None => editor(cli.file),
     };
     match result {
@@ -323,17 +340,13 @@ fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {
     )
 }
 
-fn bake(file: &Path, order: usize, light_samples: usize) -> Result<(), CliError> {
+fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), CliError> {
     let document = Document::open(file)?;
     for warning in &document.warnings {
         eprintln!("warning: {}: {warning}", file.display());
     }
     let scene = &document.scene;
-    let settings = lightpaint::bake::BakeSettings {
-        order,
-        light_samples,
-        ..Default::default()
-    };
+    let order = settings.order;
     let bar = indicatif::ProgressBar::new(scene.vertex_count() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("baking {bar:40} {pos}/{len} vertices, {eta} left")
@@ -341,7 +354,7 @@ fn bake(file: &Path, order: usize, light_samples: usize) -> Result<(), CliError>
     );
     let started = std::time::Instant::now();
     let never = std::sync::atomic::AtomicBool::new(false);
-    let maps = lightpaint::bake::bake_direct_with(scene, &settings, &|done, _| bar.set_position(done as u64), &never);
+    let maps = lightpaint::bake::bake_direct_with(scene, settings, &|done, _| bar.set_position(done as u64), &never);
     bar.finish_and_clear();
     let Some(maps) = maps else {
         return Err(CliError::Usage("the bake was cancelled".into()));
@@ -350,7 +363,7 @@ fn bake(file: &Path, order: usize, light_samples: usize) -> Result<(), CliError>
     let entries = maps.entry_count();
     let bytes = entries * (order * order * 4 + std::mem::size_of::<lightpaint::bake::LightContribution>());
     say!(
-        "baked {}: {} vertices × {} lights, {entries} (vertex, light) pairs stored ({:.0} % of {pairs}), order {order}, about {:.1} MiB, in {:.0} ms (direct light only)",
+        "baked {}: {} vertices × {} lights, {entries} (vertex, light) pairs stored ({:.0} % of {pairs}), order {order}, about {:.1} MiB, in {:.0} ms ({} bounce(s))",
         file.display(),
         scene.vertex_count(),
         scene.lights.len(),
@@ -360,7 +373,8 @@ fn bake(file: &Path, order: usize, light_samples: usize) -> Result<(), CliError>
             100.0 * entries as f64 / pairs as f64
         },
         bytes as f64 / (1024.0 * 1024.0),
-        started.elapsed().as_secs_f64() * 1000.0
+        started.elapsed().as_secs_f64() * 1000.0,
+        settings.bounces
     );
     Ok(())
 }

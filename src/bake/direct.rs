@@ -122,8 +122,31 @@ fn unit_irradiance(light: &Light, source: Vec3, p: Vec3) -> (f32, Vec3, f32) {
     (falloff, to_light, distance)
 }
 
+/// The visible emitter samples of `light` from `p` (normal `n`) above its horizon: each
+/// with the irradiance it gives a plane facing it per unit intensity, and its direction.
+/// Rays start `offset_m` off the surface.
+pub fn visible_samples(
+    bvh: &SceneBvh,
+    light: &Light,
+    p: Vec3,
+    n: Vec3,
+    samples: usize,
+    offset_m: f32,
+) -> Vec<(f32, Vec3)> {
+    let origin = p + n * offset_m;
+    emitter_samples(light, p, samples)
+        .into_iter()
+        .filter_map(|sample| {
+            let (irradiance, to_light, distance) = unit_irradiance(light, sample.position, p);
+            let above = irradiance > 0.0 && n.dot(to_light) > 0.0;
+            (above && !bvh.occluded(origin, to_light, 0.0, distance - offset_m * 2.0))
+                .then_some((sample.share * irradiance, to_light))
+        })
+        .collect()
+}
+
 /// The SH (order `order`) of the radiance arriving at `p` (normal `n`) from `light` at unit
-/// intensity, or None if none arrives. Rays start `offset_m` off the surface.
+/// intensity, or None if none arrives.
 pub fn direct_sh(
     bvh: &SceneBvh,
     light: &Light,
@@ -133,22 +156,24 @@ pub fn direct_sh(
     samples: usize,
     offset_m: f32,
 ) -> Option<Vec<f32>> {
-    let origin = p + n * offset_m;
-    let mut sum = vec![0.0f64; order * order];
-    let mut any = false;
-    for sample in emitter_samples(light, p, samples) {
-        let (irradiance, to_light, distance) = unit_irradiance(light, sample.position, p);
-        if irradiance <= 0.0 || n.dot(to_light) <= 0.0 {
-            continue;
-        }
-        if bvh.occluded(origin, to_light, 0.0, distance - offset_m * 2.0) {
-            continue;
-        }
-        let weight = (sample.share * irradiance) as f64;
-        for (s, y) in sum.iter_mut().zip(sh::basis(order, to_light.as_dvec3())) {
-            *s += weight * y;
-        }
-        any = true;
+    let visible = visible_samples(bvh, light, p, n, samples, offset_m);
+    if visible.is_empty() {
+        return None;
     }
-    any.then(|| sum.into_iter().map(|v| v as f32).collect())
+    let mut sum = vec![0.0f64; order * order];
+    for (weight, to_light) in visible {
+        for (s, y) in sum.iter_mut().zip(sh::basis(order, to_light.as_dvec3())) {
+            *s += weight as f64 * y;
+        }
+    }
+    Some(sum.into_iter().map(|v| v as f32).collect())
+}
+
+/// Irradiance at `p` (normal `n`) from `light` at unit intensity: Σ E_k·(n·l_k) over its
+/// visible samples.
+pub fn direct_irradiance(bvh: &SceneBvh, light: &Light, p: Vec3, n: Vec3, samples: usize, offset_m: f32) -> f32 {
+    visible_samples(bvh, light, p, n, samples, offset_m)
+        .into_iter()
+        .map(|(weight, to_light)| weight * n.dot(to_light))
+        .sum()
 }

@@ -1,10 +1,11 @@
 //! Source-importance maps (Rozon 2009, with SH instead of wavelets): for every vertex and
 //! light, the SH vector of the radiance arriving at the vertex from the light at unit
-//! intensity. This first part bakes direct light with exact visibility (obvhs rays over
-//! every triangle of the scene); indirect bounces, progress, cancellation and the cache
-//! come next (issue #7).
+//! intensity: direct light with exact visibility (obvhs rays over every triangle of the
+//! scene, `direct`) plus one diffuse bounce (`indirect`). More bounces with Russian
+//! roulette, glossy bounces and the cache come next (issue #7).
 
 pub mod direct;
+pub mod indirect;
 pub mod scene_bvh;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -23,6 +24,10 @@ pub struct BakeSettings {
     pub light_samples: usize,
     /// Rays start this far off the surface, along the normal (self-intersection guard).
     pub ray_offset_m: f32,
+    /// Diffuse bounces of indirect light (0 or 1 so far).
+    pub bounces: usize,
+    /// Hemisphere directions per vertex for the indirect bounce.
+    pub indirect_directions: usize,
 }
 
 impl Default for BakeSettings {
@@ -31,6 +36,8 @@ impl Default for BakeSettings {
             order: 3,
             light_samples: 16,
             ray_offset_m: 1e-3,
+            bounces: 1,
+            indirect_directions: 32,
         }
     }
 }
@@ -87,7 +94,7 @@ pub fn bake_direct_with(
                     return None;
                 }
                 let (p, n) = (object.positions[v], object.normals[v]);
-                let entries = scene
+                let mut entries: Vec<LightContribution> = scene
                     .lights
                     .iter()
                     .enumerate()
@@ -104,6 +111,18 @@ pub fn bake_direct_with(
                         .map(|sh| LightContribution { light: i as u32, sh })
                     })
                     .collect();
+                if settings.bounces > 0 {
+                    let bounced = indirect::indirect_sh(
+                        &bvh,
+                        scene,
+                        p,
+                        n,
+                        settings.order,
+                        settings.indirect_directions,
+                        settings,
+                    );
+                    merge(&mut entries, bounced);
+                }
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
                 if finished.is_multiple_of(1024) || finished == total {
                     progress(finished, total);
@@ -117,6 +136,17 @@ pub fn bake_direct_with(
         order: settings.order,
         objects,
     })
+}
+
+/// Adds each (light, SH) of `more` into `entries` (which stay sorted by light).
+fn merge(entries: &mut Vec<LightContribution>, more: Vec<(u32, Vec<f32>)>) {
+    for (light, sh) in more {
+        match entries.iter_mut().find(|e| e.light == light) {
+            Some(entry) => entry.sh.iter_mut().zip(&sh).for_each(|(a, b)| *a += b),
+            None => entries.push(LightContribution { light, sh }),
+        }
+    }
+    entries.sort_by_key(|e| e.light);
 }
 
 #[cfg(test)]
@@ -237,6 +267,57 @@ mod tests {
         assert!(maps.is_some());
         let (done, total) = *last.lock().unwrap();
         assert_eq!((done, total), (scene.vertex_count(), scene.vertex_count()));
+    }
+
+    /// One bounce under a large lit ceiling: a directional light travelling up lights a
+    /// 40 m ceiling 1 m above a tiny floor patch with E = 1 lx, so the ceiling reflects a
+    /// uniform ρ/π; the patch (which the light cannot reach) sees that radiance over the
+    /// square's solid angle Ω = 4·asin(a²/(a² + h²)), and the DC of its map is
+    /// ρ/π · Ω · y₀.
+    #[test]
+    fn one_bounce_from_a_uniformly_lit_ceiling_matches_the_solid_angle() {
+        let patch = shapes::plane(0.02, 1, 1.0);
+        let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
+            glam::Quat::from_rotation_x(std::f32::consts::PI),
+            Vec3::Y,
+        ));
+        let albedo = 0.5f32;
+        let mut ceiling_object = object("ceiling", ceiling);
+        ceiling_object.material = 1;
+        let scene = Scene {
+            objects: vec![object("patch", patch), ceiling_object],
+            materials: vec![
+                crate::scene::Material::default(),
+                crate::scene::Material {
+                    base_color: glam::Vec4::new(albedo, albedo, albedo, 1.0),
+                    specular: 0.0,
+                    metallic: 0.0,
+                    ..Default::default()
+                },
+            ],
+            lights: vec![Light {
+                kind: LightKind::Directional,
+                direction: Vec3::Y,
+                ..point_light(Vec3::ZERO)
+            }],
+            ..Default::default()
+        };
+        let settings = BakeSettings {
+            indirect_directions: 512,
+            ..BakeSettings::default()
+        };
+        let maps = bake_direct(&scene, &settings);
+        let (a, h) = (20.0f64, 1.0f64);
+        let omega = 4.0 * (a * a / (a * a + h * h)).asin();
+        let expected = albedo as f64 / PI * omega / (2.0 * PI.sqrt());
+        for entries in &maps.objects[0] {
+            assert_eq!(entries.len(), 1, "{entries:?}");
+            let dc = entries[0].sh[0] as f64;
+            assert!((dc / expected - 1.0).abs() < 0.02, "{dc} vs {expected}");
+        }
+        // The light never reaches the patch directly, and the ceiling gets no bounce back
+        // from the dark patch below it beyond its own direct light.
+        assert!(maps.objects[1].iter().all(|e| e.len() == 1));
     }
 
     #[test]

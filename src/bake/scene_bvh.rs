@@ -8,9 +8,22 @@ use obvhs::triangle::Triangle;
 
 use crate::scene::Scene;
 
+/// Where a ray first hit the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    pub distance_m: f32,
+    pub object: usize,
+    /// Index of the triangle in the object's index list (its indices are 3·triangle…).
+    pub triangle: usize,
+    /// Barycentric weights of the triangle's three vertices at the hit point.
+    pub barycentric: Vec3,
+}
+
 /// The scene's triangles (degenerate ones left out) and their BVH.
 pub struct SceneBvh {
     triangles: Vec<Triangle>,
+    /// (object, triangle) of each entry of `triangles`.
+    owners: Vec<(u32, u32)>,
     /// None when the scene has no triangle: every ray is unoccluded.
     bvh: Option<CwBvh>,
 }
@@ -18,8 +31,9 @@ pub struct SceneBvh {
 impl SceneBvh {
     pub fn build(scene: &Scene) -> SceneBvh {
         let mut triangles = Vec::with_capacity(scene.triangle_count());
-        for object in &scene.objects {
-            for tri in object.indices.chunks_exact(3) {
+        let mut owners = Vec::with_capacity(scene.triangle_count());
+        for (o, object) in scene.objects.iter().enumerate() {
+            for (t, tri) in object.indices.chunks_exact(3).enumerate() {
                 let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| object.positions.get(i as usize).copied());
                 let (Some(a), Some(b), Some(c)) = (a, b, c) else {
                     continue;
@@ -30,6 +44,7 @@ impl SceneBvh {
                         v1: b.into(),
                         v2: c.into(),
                     });
+                    owners.push((o as u32, t as u32));
                 }
             }
         }
@@ -40,7 +55,30 @@ impl SceneBvh {
                 &mut std::time::Duration::default(),
             )
         });
-        SceneBvh { triangles, bvh }
+        SceneBvh { triangles, owners, bvh }
+    }
+
+    /// The first surface the ray from `origin` along the unit `direction` meets between
+    /// `t_min` and `t_max` metres, if any.
+    pub fn closest_hit(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> Option<Hit> {
+        let bvh = self.bvh.as_ref()?;
+        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(direction), t_min, t_max);
+        let mut hit = obvhs::ray::RayHit::none();
+        if !bvh.ray_traverse(ray, &mut hit, |ray, id| {
+            self.triangles[bvh.primitive_indices[id] as usize].intersect(ray)
+        }) {
+            return None;
+        }
+        let index = bvh.primitive_indices[hit.primitive_id as usize] as usize;
+        let tri = &self.triangles[index];
+        let point = Vec3A::from(origin) + Vec3A::from(direction) * hit.t;
+        let (object, triangle) = self.owners[index];
+        Some(Hit {
+            distance_m: hit.t,
+            object: object as usize,
+            triangle: triangle as usize,
+            barycentric: barycentric(tri, point),
+        })
     }
 
     pub fn triangle_count(&self) -> usize {
@@ -56,6 +94,20 @@ impl SceneBvh {
             self.triangles[bvh.primitive_indices[id] as usize].intersect(ray)
         })
     }
+}
+
+/// Barycentric weights of `p` (on the triangle's plane) for its three vertices.
+fn barycentric(tri: &Triangle, p: Vec3A) -> Vec3 {
+    let (e1, e2, ep) = (tri.v1 - tri.v0, tri.v2 - tri.v0, p - tri.v0);
+    let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (dp1, dp2) = (ep.dot(e1), ep.dot(e2));
+    let denominator = d11 * d22 - d12 * d12;
+    if denominator.abs() < f32::MIN_POSITIVE {
+        return Vec3::new(1.0, 0.0, 0.0);
+    }
+    let v = (d22 * dp1 - d12 * dp2) / denominator;
+    let w = (d11 * dp2 - d12 * dp1) / denominator;
+    Vec3::new(1.0 - v - w, v, w)
 }
 
 #[cfg(test)]
@@ -97,6 +149,30 @@ mod tests {
         );
         assert!(!bvh.occluded(Vec3::new(3.0, 0.0, 0.0), Vec3::Y, 0.0, 10.0));
         assert!(!bvh.occluded(below, -Vec3::Y, 0.0, 10.0));
+    }
+
+    #[test]
+    fn closest_hits_name_the_triangle_and_where_on_it() {
+        let scene = Scene {
+            objects: vec![quad_at_height(1.0), quad_at_height(2.0)],
+            ..Default::default()
+        };
+        let bvh = SceneBvh::build(&scene);
+        let hit = bvh
+            .closest_hit(Vec3::new(0.5, 0.0, -0.5), Vec3::Y, 0.0, 10.0)
+            .expect("hit");
+        assert_eq!(hit.object, 0);
+        assert!((hit.distance_m - 1.0).abs() < 1e-5);
+        let object = &scene.objects[0];
+        let corners = [0, 1, 2].map(|k| object.positions[object.indices[3 * hit.triangle + k] as usize]);
+        let p = corners[0] * hit.barycentric.x + corners[1] * hit.barycentric.y + corners[2] * hit.barycentric.z;
+        assert!((p - Vec3::new(0.5, 1.0, -0.5)).length() < 1e-5, "{p}");
+        assert!(
+            bvh.closest_hit(Vec3::new(0.5, 1.5, -0.5), Vec3::Y, 0.0, 10.0)
+                .expect("hit")
+                .object
+                == 1
+        );
     }
 
     #[test]
