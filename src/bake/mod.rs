@@ -160,14 +160,7 @@ mod tests {
     use crate::scene::{Light, LightKind, MeshObject};
 
     fn object(name: &str, mesh: ShapeMesh) -> MeshObject {
-        MeshObject {
-            name: name.into(),
-            positions: mesh.positions,
-            normals: mesh.normals,
-            uvs: mesh.uvs,
-            indices: mesh.indices,
-            material: 0,
-        }
+        mesh.into_object(name)
     }
 
     fn point_light(position: Vec3) -> Light {

@@ -255,14 +255,7 @@ mod tests {
     use crate::scene::shapes::{self, ShapeMesh};
 
     fn object(name: &str, mesh: ShapeMesh) -> MeshObject {
-        MeshObject {
-            name: name.into(),
-            positions: mesh.positions,
-            normals: mesh.normals,
-            uvs: mesh.uvs,
-            indices: mesh.indices,
-            material: 0,
-        }
+        mesh.into_object(name)
     }
 
     fn scene(objects: Vec<MeshObject>) -> Scene {

@@ -56,6 +56,18 @@ impl ShapeMesh {
         self
     }
 
+    /// This mesh as a scene object named `name` with material 0.
+    pub fn into_object(self, name: &str) -> super::MeshObject {
+        super::MeshObject {
+            name: name.into(),
+            positions: self.positions,
+            normals: self.normals,
+            uvs: self.uvs,
+            indices: self.indices,
+            material: 0,
+        }
+    }
+
     /// The union of two meshes (indices of `other` offset).
     pub fn merged(mut self, other: ShapeMesh) -> ShapeMesh {
         let offset = self.positions.len() as u32;
