@@ -354,7 +354,7 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
     );
     let started = std::time::Instant::now();
     let never = std::sync::atomic::AtomicBool::new(false);
-    let maps = lightpaint::bake::bake_direct_with(scene, settings, &|done, _| bar.set_position(done as u64), &never);
+    let maps = lightpaint::bake::bake_maps_with(scene, settings, &|done, _| bar.set_position(done as u64), &never);
     bar.finish_and_clear();
     let Some(maps) = maps else {
         return Err(CliError::Usage("the bake was cancelled".into()));

@@ -38,17 +38,17 @@ fn hemisphere_directions(n: Vec3, count: usize, turn_rad: f32) -> impl Iterator<
     })
 }
 
-/// Per light (index, SH at `order`) of the once-reflected radiance arriving at `p`
-/// (normal `n`), lights that contribute nothing left out.
+/// Per light of `lights` (index, SH at the settings' order) of the once-reflected radiance
+/// arriving at `p` (normal `n`), lights that contribute nothing left out.
 pub fn indirect_sh(
     bvh: &SceneBvh,
     scene: &Scene,
+    lights: &[usize],
     p: Vec3,
     n: Vec3,
-    order: usize,
-    directions: usize,
     settings: &super::BakeSettings,
 ) -> Vec<(u32, Vec<f32>)> {
+    let (order, directions) = (settings.order, settings.indirect_directions);
     let offset = settings.ray_offset_m;
     let origin = p + n * offset;
     let albedo: Vec<f32> = scene.materials.iter().map(diffuse_luminance).collect();
@@ -75,7 +75,8 @@ pub fn indirect_sh(
         }
         let q = origin + omega * hit.distance_m;
         let y = sh::basis(order, omega.as_dvec3());
-        for (i, light) in scene.lights.iter().enumerate() {
+        for &i in lights {
+            let Some(light) = scene.lights.get(i) else { continue };
             let e = direct_irradiance(bvh, light, q, normal, settings.light_samples, offset);
             if e <= 0.0 {
                 continue;

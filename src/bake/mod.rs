@@ -65,20 +65,81 @@ impl ImportanceMaps {
     }
 }
 
-/// Bakes the direct light of every light at every vertex, on all cores.
-pub fn bake_direct(scene: &Scene, settings: &BakeSettings) -> ImportanceMaps {
+/// Bakes the maps of every light at every vertex, on all cores.
+pub fn bake_maps(scene: &Scene, settings: &BakeSettings) -> ImportanceMaps {
     let never = AtomicBool::new(false);
-    bake_direct_with(scene, settings, &|_, _| {}, &never).unwrap_or(ImportanceMaps {
+    bake_maps_with(scene, settings, &|_, _| {}, &never).unwrap_or(ImportanceMaps {
         order: settings.order,
         objects: Vec::new(),
     })
 }
 
-/// [`bake_direct`] reporting `progress(vertices done, vertices in all)` as it goes and
+/// [`bake_maps`] reporting `progress(vertices done, vertices in all)` as it goes and
 /// stopping early, with None and nothing kept, once `cancel` is set.
-pub fn bake_direct_with(
+pub fn bake_maps_with(
     scene: &Scene,
     settings: &BakeSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<ImportanceMaps> {
+    let all: Vec<usize> = (0..scene.lights.len()).collect();
+    bake_lights(scene, settings, &all, progress, cancel)
+}
+
+/// Re-bakes only `lights` (say, the one the artist moved) and keeps every other light's
+/// maps from `previous`: light transport is linear and lights are independent, so the
+/// result equals a full bake. Falls back to a full bake when `previous` does not match
+/// the scene's geometry or order. None if cancelled (then `previous` is still whole).
+pub fn rebake_lights(
+    scene: &Scene,
+    settings: &BakeSettings,
+    previous: &ImportanceMaps,
+    lights: &[usize],
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<ImportanceMaps> {
+    let same_shape = previous.order == settings.order
+        && previous.objects.len() == scene.objects.len()
+        && previous
+            .objects
+            .iter()
+            .zip(&scene.objects)
+            .all(|(m, o)| m.len() == o.positions.len());
+    if !same_shape {
+        return bake_maps_with(scene, settings, progress, cancel);
+    }
+    let fresh = bake_lights(scene, settings, lights, progress, cancel)?;
+    let objects = previous
+        .objects
+        .iter()
+        .zip(fresh.objects)
+        .map(|(old, new)| {
+            old.iter()
+                .zip(new)
+                .map(|(old_entries, new_entries)| {
+                    let mut kept: Vec<LightContribution> = old_entries
+                        .iter()
+                        .filter(|e| !lights.contains(&(e.light as usize)))
+                        .cloned()
+                        .collect();
+                    kept.extend(new_entries);
+                    kept.sort_by_key(|e| e.light);
+                    kept
+                })
+                .collect()
+        })
+        .collect();
+    Some(ImportanceMaps {
+        order: settings.order,
+        objects,
+    })
+}
+
+/// The maps of `lights` only (indices into `scene.lights`).
+fn bake_lights(
+    scene: &Scene,
+    settings: &BakeSettings,
+    lights: &[usize],
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Option<ImportanceMaps> {
@@ -94,11 +155,10 @@ pub fn bake_direct_with(
                     return None;
                 }
                 let (p, n) = (object.positions[v], object.normals[v]);
-                let mut entries: Vec<LightContribution> = scene
-                    .lights
+                let mut entries: Vec<LightContribution> = lights
                     .iter()
-                    .enumerate()
-                    .filter_map(|(i, light)| {
+                    .filter_map(|&i| {
+                        let light = scene.lights.get(i)?;
                         direct::direct_sh(
                             &bvh,
                             light,
@@ -112,15 +172,7 @@ pub fn bake_direct_with(
                     })
                     .collect();
                 if settings.bounces > 0 {
-                    let bounced = indirect::indirect_sh(
-                        &bvh,
-                        scene,
-                        p,
-                        n,
-                        settings.order,
-                        settings.indirect_directions,
-                        settings,
-                    );
+                    let bounced = indirect::indirect_sh(&bvh, scene, lights, p, n, settings);
                     merge(&mut entries, bounced);
                 }
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
@@ -190,7 +242,7 @@ mod tests {
     #[test]
     fn lit_vertices_get_the_projected_point_source_and_shadowed_ones_nothing() {
         let scene = floor_box_light();
-        let maps = bake_direct(&scene, &BakeSettings::default());
+        let maps = bake_maps(&scene, &BakeSettings::default());
         let floor = &scene.objects[0];
         let mut lit = 0;
         for (v, entries) in maps.objects[0].iter().enumerate() {
@@ -231,7 +283,7 @@ mod tests {
             light_samples: 256,
             ..BakeSettings::default()
         };
-        let maps = bake_direct(&scene, &settings);
+        let maps = bake_maps(&scene, &settings);
         let floor = &scene.objects[0];
         for (v, entries) in maps.objects[0].iter().enumerate() {
             let offset = (scene.lights[0].position - floor.positions[v]).as_dvec3();
@@ -245,10 +297,10 @@ mod tests {
     fn a_cancelled_bake_keeps_nothing_and_progress_reaches_the_end() {
         let scene = floor_box_light();
         let cancelled = AtomicBool::new(true);
-        assert!(bake_direct_with(&scene, &BakeSettings::default(), &|_, _| {}, &cancelled).is_none());
+        assert!(bake_maps_with(&scene, &BakeSettings::default(), &|_, _| {}, &cancelled).is_none());
         let last = std::sync::Mutex::new((0, 0));
         let go = AtomicBool::new(false);
-        let maps = bake_direct_with(
+        let maps = bake_maps_with(
             &scene,
             &BakeSettings::default(),
             &|done, total| {
@@ -299,7 +351,7 @@ mod tests {
             indirect_directions: 512,
             ..BakeSettings::default()
         };
-        let maps = bake_direct(&scene, &settings);
+        let maps = bake_maps(&scene, &settings);
         let (a, h) = (20.0f64, 1.0f64);
         let omega = 4.0 * (a * a / (a * a + h * h)).asin();
         let expected = albedo as f64 / PI * omega / (2.0 * PI.sqrt());
@@ -314,14 +366,30 @@ mod tests {
     }
 
     #[test]
+    fn re_baking_a_moved_light_equals_a_full_bake() {
+        let mut scene = floor_box_light();
+        scene.lights.push(Light {
+            position: Vec3::new(1.5, 2.0, 1.0),
+            ..point_light(Vec3::ZERO)
+        });
+        let settings = BakeSettings::default();
+        let before = bake_maps(&scene, &settings);
+        scene.lights[1].position = Vec3::new(-1.5, 2.5, -1.0);
+        let never = AtomicBool::new(false);
+        let rebaked = rebake_lights(&scene, &settings, &before, &[1], &|_, _| {}, &never).expect("not cancelled");
+        assert_eq!(rebaked, bake_maps(&scene, &settings));
+        assert_ne!(rebaked, before, "the moved light changed its maps");
+    }
+
+    #[test]
     fn no_lights_or_no_geometry_bake_to_empty_maps() {
         let mut scene = floor_box_light();
         scene.lights.clear();
-        assert_eq!(bake_direct(&scene, &BakeSettings::default()).entry_count(), 0);
+        assert_eq!(bake_maps(&scene, &BakeSettings::default()).entry_count(), 0);
         let empty = Scene {
             lights: vec![point_light(Vec3::Y)],
             ..Default::default()
         };
-        assert!(bake_direct(&empty, &BakeSettings::default()).objects.is_empty());
+        assert!(bake_maps(&empty, &BakeSettings::default()).objects.is_empty());
     }
 }
