@@ -257,6 +257,9 @@ impl EditorApp {
                     }),
             )
             .on_hover_text("Share of the viewport's pixels shaded along each side: lower is faster.");
+            // The slider clamps typed values, but not NaN: a saved project must reopen.
+            let scale = &mut document.settings.viewport_resolution_scale;
+            *scale = if scale.is_finite() { scale.clamp(0.25, 1.0) } else { 1.0 };
             ui.separator();
             ui.heading("Shadows");
             shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
