@@ -137,21 +137,31 @@ fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &GpuOb
 /// Format of the surface channels read back for the CPU reference.
 pub const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// A pipeline writing surface channel `channel` (see fs_surface) of every visible pixel
-/// into an [`SURFACE_FORMAT`] target with one sample.
-pub fn surface_pipeline(device: &wgpu::Device, layouts: &SceneLayouts, channel: u32) -> wgpu::RenderPipeline {
+/// Number of surface channels fs_surface writes (position, normal, k_d, k_s, emissive).
+pub const SURFACE_CHANNELS: u32 = 5;
+
+/// One pipeline per surface channel (see fs_surface), each writing that property of every
+/// visible pixel into an [`SURFACE_FORMAT`] target with one sample, all from one module.
+pub fn surface_pipelines(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    shadow_layout: &wgpu::BindGroupLayout,
+) -> Vec<wgpu::RenderPipeline> {
     // Any order and method: fs_surface uses no SH.
     let source = shaders::logsh_source(2, ExpMethod::Dc);
     let module = shaders::create_module(device, "surface channels", &source);
-    let shadow_layout = shadow_layout(device);
-    scene_pipeline(
-        device,
-        layouts,
-        &shadow_layout,
-        &module,
-        Stage::Surface(channel, "SURFACE_CHANNEL"),
-        1,
-    )
+    (0..SURFACE_CHANNELS)
+        .map(|channel| {
+            scene_pipeline(
+                device,
+                layouts,
+                shadow_layout,
+                &module,
+                Stage::Surface(channel, "SURFACE_CHANNEL"),
+                1,
+            )
+        })
+        .collect()
 }
 
 fn scene_pipeline(

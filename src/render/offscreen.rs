@@ -6,9 +6,9 @@ use rayon::prelude::*;
 
 use super::cpu::{self, ShadingInputs, SurfacePoint};
 use super::gpu_types::{GpuLight, environment_irradiance};
-use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, surface_pipeline};
+use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, shadow_layout, surface_pipelines};
 use super::per_vertex::VertexVisibility;
-use super::pipeline::{COLOR_FORMAT, RenderTarget, ScenePipeline};
+use super::pipeline::{COLOR_FORMAT, RenderTarget, SceneLayouts, ScenePipeline};
 use super::{GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
@@ -98,9 +98,9 @@ pub struct ShadowRenderer<'a> {
 impl<'a> ShadowRenderer<'a> {
     pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
-        let raster = ScenePipeline::new(&gpu.device);
-        let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, frame.shadows, samples);
-        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, frame.scene);
+        let layouts = SceneLayouts::new(&gpu.device);
+        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples);
+        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
         let blockers = GpuBlockers::upload(
             &gpu.device,
             &gpu.queue,
@@ -160,12 +160,14 @@ pub fn capture_surfaces(
     height: u32,
 ) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
     check_size(gpu, width, height)?;
-    let raster = ScenePipeline::new(&gpu.device);
-    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, scene);
+    let layouts = SceneLayouts::new(&gpu.device);
+    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, 0.0);
+    // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
+    let shadows = shadow_layout(&gpu.device);
+    let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], &ShadowSettings::default());
     let mut channels: Vec<Vec<[f32; 4]>> = Vec::with_capacity(5);
-    for channel in 0..5 {
-        let pipeline = surface_pipeline(&gpu.device, &raster.layouts, channel);
+    for pipeline in surface_pipelines(&gpu.device, &layouts, &shadows) {
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("surface channel"),
             size: wgpu::Extent3d {
@@ -202,14 +204,7 @@ pub fn capture_surfaces(
             });
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &gpu_scene.frame_bind_group, &[]);
-            let empty = GpuBlockers::upload(
-                &gpu.device,
-                &gpu.queue,
-                &super::logsh::shadow_layout(&gpu.device),
-                &[],
-                &ShadowSettings::default(),
-            );
-            pass.set_bind_group(2, &empty.bind_group, &[]);
+            pass.set_bind_group(2, &no_blockers.bind_group, &[]);
             draw_objects(&mut pass, &gpu_scene);
         }
         let bytes = read_texture(gpu, encoder, &texture, 16, width, height)?;

@@ -20,7 +20,7 @@ pub struct SceneLayouts {
 }
 
 impl SceneLayouts {
-    fn new(device: &wgpu::Device) -> SceneLayouts {
+    pub fn new(device: &wgpu::Device) -> SceneLayouts {
         let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
             binding,
             visibility,
