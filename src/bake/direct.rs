@@ -104,20 +104,12 @@ fn unit_irradiance(light: &Light, source: Vec3, p: Vec3) -> (f32, Vec3, f32) {
         let window = (1.0 - ratio2 * ratio2).clamp(0.0, 1.0);
         falloff *= window * window;
     }
-    match light.kind {
-        LightKind::Spot {
-            inner_cone_rad,
-            outer_cone_rad,
-        } => {
-            let cos_outer = outer_cone_rad.cos();
-            let transition = (inner_cone_rad.cos() - cos_outer).max(1e-4);
-            let t = (((-to_light).dot(light.direction) - cos_outer) / transition).clamp(0.0, 1.0);
-            falloff *= t * t;
-        }
-        LightKind::Rect { .. } | LightKind::Disk { .. } => {
-            falloff *= (-to_light).dot(light.direction).max(0.0) * light.kind.emitting_area_m2().unwrap_or(0.0);
-        }
-        _ => {}
+    if let Some((cos_outer, inverse_transition)) = light.kind.spot_cone() {
+        let t = (((-to_light).dot(light.direction) - cos_outer) * inverse_transition).clamp(0.0, 1.0);
+        falloff *= t * t;
+    }
+    if let Some(area_m2) = light.kind.emitting_area_m2() {
+        falloff *= (-to_light).dot(light.direction).max(0.0) * area_m2;
     }
     (falloff, to_light, distance)
 }

@@ -119,14 +119,9 @@ impl GpuLight {
                 (LIGHT_AREA, [0.0; 4])
             }
             LightKind::Directional => (LIGHT_DIRECTIONAL, [0.0; 4]),
-            LightKind::Spot {
-                inner_cone_rad,
-                outer_cone_rad,
-            } => {
-                let cos_outer = outer_cone_rad.cos();
-                // A zero-width transition would divide by zero: keep it at least 1e-4.
-                let transition = (inner_cone_rad.cos() - cos_outer).max(1e-4);
-                (LIGHT_SPOT, [cos_outer, 1.0 / transition, 0.0, 0.0])
+            LightKind::Spot { .. } => {
+                let (cos_outer, inverse_transition) = light.kind.spot_cone().unwrap_or((-1.0, 1.0));
+                (LIGHT_SPOT, [cos_outer, inverse_transition, 0.0, 0.0])
             }
         };
         let intensity: Vec3 = light.color * light.intensity * intensity_scale;

@@ -69,6 +69,23 @@ impl LightKind {
         }
     }
 
+    /// A spot's cone as (cos outer half-angle, 1 / (cos inner − cos outer)), the
+    /// parameters of KHR_lights_punctual's smooth falloff (None for other kinds). The
+    /// transition is kept at least 1e-4 wide so a zero-width one does not divide by zero.
+    pub fn spot_cone(&self) -> Option<(f32, f32)> {
+        match *self {
+            LightKind::Spot {
+                inner_cone_rad,
+                outer_cone_rad,
+            } => {
+                let cos_outer = outer_cone_rad.cos();
+                let transition = (inner_cone_rad.cos() - cos_outer).max(1e-4);
+                Some((cos_outer, 1.0 / transition))
+            }
+            _ => None,
+        }
+    }
+
     /// Emitting area in m² of area lights (None for the others).
     pub fn emitting_area_m2(&self) -> Option<f32> {
         match *self {
