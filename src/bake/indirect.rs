@@ -40,9 +40,11 @@ fn hemisphere_directions(n: Vec3, count: usize, turn_rad: f32) -> impl Iterator<
 
 /// Per light of `lights` (index, SH at the settings' order) of the once-reflected radiance
 /// arriving at `p` (normal `n`), lights that contribute nothing left out.
+/// `albedo` holds [`diffuse_luminance`] of each of the scene's materials.
 pub fn indirect_sh(
     bvh: &SceneBvh,
     scene: &Scene,
+    albedo: &[f32],
     lights: &[usize],
     p: Vec3,
     n: Vec3,
@@ -51,7 +53,6 @@ pub fn indirect_sh(
     let (order, directions) = (settings.order, settings.indirect_directions);
     let offset = settings.ray_offset_m;
     let origin = p + n * offset;
-    let albedo: Vec<f32> = scene.materials.iter().map(diffuse_luminance).collect();
     // A per-vertex turn from its position, so the spiral differs between neighbours.
     let turn = (p.dot(Vec3::new(12.9898, 78.233, 37.719)).sin() * 43_758.547).fract() * TAU;
     let mut sums: Vec<Option<Vec<f64>>> = vec![None; scene.lights.len()];

@@ -144,6 +144,7 @@ fn bake_lights(
     cancel: &AtomicBool,
 ) -> Option<ImportanceMaps> {
     let bvh = SceneBvh::build(scene);
+    let albedo: Vec<f32> = scene.materials.iter().map(indirect::diffuse_luminance).collect();
     let total = scene.vertex_count();
     let done = AtomicUsize::new(0);
     let mut objects = Vec::with_capacity(scene.objects.len());
@@ -172,7 +173,7 @@ fn bake_lights(
                     })
                     .collect();
                 if settings.bounces > 0 {
-                    let bounced = indirect::indirect_sh(&bvh, scene, lights, p, n, settings);
+                    let bounced = indirect::indirect_sh(&bvh, scene, &albedo, lights, p, n, settings);
                     merge(&mut entries, bounced);
                 }
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
