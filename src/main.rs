@@ -245,9 +245,12 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
     shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
     let no_shadows = args.no_shadows || !shadows.enabled;
-    let problems = shadows.problems();
-    let gpu_only_problem = args.cpu && problems.iter().all(|p| p.contains("CPU only"));
-    if !no_shadows && !problems.is_empty() && !gpu_only_problem {
+    let problems = if args.cpu {
+        shadows.problems()
+    } else {
+        shadows.gpu_problems()
+    };
+    if !no_shadows && !problems.is_empty() {
         return Err(CliError::Usage(problems.join("; ")));
     }
     let mut blocker_settings = settings.blockers;

@@ -88,7 +88,7 @@ impl ProjectFile {
                 message: format!("{scale} is outside 0.25–1"),
             });
         }
-        for message in self.render.shadows.problems_for_files() {
+        for message in self.render.shadows.problems() {
             problems.push(Problem {
                 field: "render.shadows".into(),
                 message,

@@ -36,7 +36,7 @@ enum Stage<'a> {
 
 impl LogShPipeline {
     /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
-    /// samples (the settings must be valid: see [`ShadowSettings::problems`]).
+    /// samples (the settings must be valid: see [`ShadowSettings::gpu_problems`]).
     pub fn new(
         device: &wgpu::Device,
         layouts: &SceneLayouts,

@@ -60,7 +60,7 @@ pub struct ShadowFrame<'a> {
 impl ShadowFrame<'_> {
     fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
         check_size(gpu, self.width, self.height)?;
-        let problems = self.shadows.problems();
+        let problems = self.shadows.gpu_problems();
         if !problems.is_empty() {
             return Err(RenderError::BadSettings(problems.join("; ")));
         }

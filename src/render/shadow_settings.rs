@@ -39,7 +39,18 @@ impl Default for ShadowSettings {
 }
 
 impl ShadowSettings {
-    /// Every problem with these settings for the GPU renderer, as messages.
+    /// Every problem with these settings for the GPU renderer, as messages: those of
+    /// [`Self::problems`], and the reference exponential, which has no GPU form.
+    pub fn gpu_problems(&self) -> Vec<String> {
+        let mut problems = self.problems();
+        if self.exp == ExpMethod::Reference {
+            problems.push("the reference exponential runs on the CPU only (use --cpu)".into());
+        }
+        problems
+    }
+
+    /// Every problem with these settings wherever they are used (a project file, the CPU
+    /// reference), as messages.
     pub fn problems(&self) -> Vec<String> {
         let mut problems = Vec::new();
         if !(2..=MAX_REALTIME_ORDER).contains(&self.order) {
@@ -57,30 +68,12 @@ impl ShadowSettings {
                 self.order
             ));
         }
-        match self.exp {
-            ExpMethod::Reference => problems.push("the reference exponential runs on the CPU only (use --cpu)".into()),
-            ExpMethod::Ps(terms) if !(1..=32).contains(&terms) => {
-                problems.push(format!("power series with {terms} terms: use 1..=32"))
-            }
-            _ => {}
+        if let ExpMethod::Ps(terms) = self.exp
+            && !(1..=32).contains(&terms)
+        {
+            problems.push(format!("power series with {terms} terms: use 1..=32"));
         }
         problems
-    }
-}
-
-impl ShadowSettings {
-    /// The problems that make these settings unfit for a project file: those of
-    /// [`Self::problems`] except choosing the CPU-only reference, which a file may hold.
-    pub fn problems_for_files(&self) -> Vec<String> {
-        let gpu_ready = ShadowSettings {
-            exp: if self.exp == ExpMethod::Reference {
-                ExpMethod::Hyb
-            } else {
-                self.exp
-            },
-            ..*self
-        };
-        gpu_ready.problems()
     }
 }
 
@@ -105,7 +98,12 @@ mod tests {
 
     #[test]
     fn defaults_are_valid_and_methods_parse() {
-        assert!(ShadowSettings::default().problems().is_empty());
+        assert!(ShadowSettings::default().gpu_problems().is_empty());
+        let reference = ShadowSettings {
+            exp: ExpMethod::Reference,
+            ..ShadowSettings::default()
+        };
+        assert!(reference.problems().is_empty() && reference.gpu_problems().len() == 1);
         assert_eq!(parse_exp_method("HYB"), Ok(ExpMethod::Hyb));
         assert_eq!(parse_exp_method("ps8"), Ok(ExpMethod::Ps(8)));
         assert!(parse_exp_method("ps0").is_err());

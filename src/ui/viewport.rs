@@ -65,7 +65,7 @@ impl Viewport {
         let (device, queue) = (&render_state.device, &render_state.queue);
         let pipeline = ScenePipeline::new(device);
         let gpu_scene = GpuScene::upload(device, queue, &pipeline.layouts, scene);
-        let settings = if shadows.problems().is_empty() {
+        let settings = if shadows.gpu_problems().is_empty() {
             *shadows
         } else {
             ShadowSettings::default()
@@ -108,9 +108,9 @@ impl Viewport {
     }
 
     /// Applies new shadow settings (invalid ones are ignored: see
-    /// [`ShadowSettings::problems`]); a new order or method rebuilds the pipeline.
+    /// [`ShadowSettings::gpu_problems`]); a new order or method rebuilds the pipeline.
     fn apply_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings) {
-        if !settings.problems().is_empty() {
+        if !settings.gpu_problems().is_empty() {
             return;
         }
         if !self.shadows.pipeline.matches(&settings) {
