@@ -16,8 +16,9 @@ pub struct GpuBlockers {
     bind_group_layout: wgpu::BindGroupLayout,
     spheres: Vec<Sphere>,
     groups: Vec<GpuBlockerGroup>,
+    /// The influence cut-off the groups were built for.
+    grouped_for_min_cap_ratio: f32,
     pub bind_group: wgpu::BindGroup,
-    pub count: usize,
 }
 
 impl GpuBlockers {
@@ -41,8 +42,8 @@ impl GpuBlockers {
             bind_group_layout: layout.clone(),
             spheres: spheres.to_vec(),
             groups,
+            grouped_for_min_cap_ratio: settings.min_cap_ratio,
             bind_group,
-            count: spheres.len(),
         };
         blockers.write_params(queue, settings);
         blockers
@@ -61,15 +62,19 @@ impl GpuBlockers {
 
     /// Applies new settings; a new influence cut-off regroups the blockers.
     pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
-        let spheres = std::mem::take(&mut self.spheres);
-        self.update(device, queue, &spheres, settings);
+        if settings.min_cap_ratio == self.grouped_for_min_cap_ratio {
+            self.write_params(queue, settings);
+        } else {
+            let spheres = std::mem::take(&mut self.spheres);
+            self.update(device, queue, &spheres, settings);
+        }
     }
 
     fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
         let params = GpuShadowParams {
             ln_epsilon: settings.epsilon.ln(),
             min_cap_ratio: settings.min_cap_ratio,
-            blocker_count: self.count as u32,
+            blocker_count: self.spheres.len() as u32,
             ratio_attenuation: settings.ratio_attenuation as u32,
             group_count: self.groups.len() as u32,
             _pad: [0; 3],
