@@ -9,6 +9,7 @@
 
 pub mod bake;
 pub mod blockers;
+pub mod paint;
 pub mod panic_guard;
 pub mod project;
 pub(crate) mod random;

@@ -362,8 +362,11 @@ mod tests {
             assert!((dc / expected - 1.0).abs() < 0.02, "{dc} vs {expected}");
         }
         // The light never reaches the patch directly, and the ceiling gets no bounce back
-        // from the dark patch below it beyond its own direct light.
-        assert!(maps.objects[1].iter().all(|e| e.len() == 1));
+        // from the dark patch below it beyond its own direct light; the one ceiling vertex
+        // right above the patch is in its shadow (the ray meets the patch on its diagonal).
+        assert!(maps.objects[1].iter().all(|e| e.len() <= 1));
+        let lit = maps.objects[1].iter().filter(|e| e.len() == 1).count();
+        assert_eq!(lit, maps.objects[1].len() - 1);
     }
 
     #[test]

@@ -62,10 +62,10 @@ impl SceneBvh {
     /// `t_min` and `t_max` metres, if any.
     pub fn closest_hit(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(direction), t_min, t_max);
+        let ray = Ray::new(Vec3A::from(origin), positive_zeros(direction), t_min, t_max);
         let mut hit = obvhs::ray::RayHit::none();
         if !bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            self.triangles[bvh.primitive_indices[id] as usize].intersect(ray)
+            intersect(&self.triangles[bvh.primitive_indices[id] as usize], ray)
         }) {
             return None;
         }
@@ -89,10 +89,46 @@ impl SceneBvh {
     /// between `t_min` and `t_max` metres.
     pub fn occluded(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> bool {
         let Some(bvh) = &self.bvh else { return false };
-        let ray = Ray::new(Vec3A::from(origin), Vec3A::from(direction), t_min, t_max);
+        let ray = Ray::new(Vec3A::from(origin), positive_zeros(direction), t_min, t_max);
         !bvh.ray_traverse_miss(ray, |ray, id| {
-            self.triangles[bvh.primitive_indices[id] as usize].intersect(ray)
+            intersect(&self.triangles[bvh.primitive_indices[id] as usize], ray)
         })
+    }
+}
+
+/// `direction` with −0.0 components made +0.0: obvhs's traversal misses boxes for a ray
+/// whose direction has a −0.0 component (it reads the sign two ways), and vertex-to-eye
+/// directions of axis-aligned meshes often have one.
+fn positive_zeros(direction: Vec3) -> Vec3A {
+    Vec3A::from(direction) + Vec3A::ZERO
+}
+
+/// Möller–Trumbore ray/triangle intersection with a tolerance of 1e-6 in barycentric
+/// units, so a ray through a vertex or along an edge shared by two triangles hits
+/// (obvhs's bitwise sign test rejects u or v = −0.0, and such rays slipped through
+/// meshes). Returns the distance, or +∞ for a miss.
+fn intersect(tri: &Triangle, ray: &Ray) -> f32 {
+    const SLACK: f32 = 1e-6;
+    let e1 = tri.v1 - tri.v0;
+    let e2 = tri.v2 - tri.v0;
+    let p = ray.direction.cross(e2);
+    let determinant = e1.dot(p);
+    if determinant.abs() < f32::MIN_POSITIVE {
+        return f32::INFINITY;
+    }
+    let inverse = 1.0 / determinant;
+    let s = ray.origin - tri.v0;
+    let u = s.dot(p) * inverse;
+    let q = s.cross(e1);
+    let v = ray.direction.dot(q) * inverse;
+    if u < -SLACK || v < -SLACK || u + v > 1.0 + SLACK {
+        return f32::INFINITY;
+    }
+    let t = e2.dot(q) * inverse;
+    if t >= ray.tmin && t <= ray.tmax {
+        t
+    } else {
+        f32::INFINITY
     }
 }
 
@@ -173,6 +209,24 @@ mod tests {
                 .object
                 == 1
         );
+    }
+
+    #[test]
+    fn a_ray_along_an_edge_between_two_triangles_is_blocked_whatever_the_zero_sign() {
+        // A 2×2-quad plate: the ray crosses it on the shared edge x = 0, on the faces of
+        // the BVH boxes of both halves.
+        let plate = crate::scene::shapes::plane(1.0, 2, 1.0)
+            .transformed(glam::Affine3A::from_translation(Vec3::Y))
+            .into_object("plate");
+        let scene = Scene {
+            objects: vec![plate],
+            ..Default::default()
+        };
+        let bvh = SceneBvh::build(&scene);
+        for x in [0.0f32, -0.0] {
+            let direction = Vec3::new(x, -0.995_037_2, -0.099_503_72);
+            assert!(bvh.occluded(Vec3::new(0.0, 5.0, 0.0), direction, 0.0, 6.0), "x = {x:?}");
+        }
     }
 
     #[test]

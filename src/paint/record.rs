@@ -1,0 +1,210 @@
+//! What a stroke is, as saved in a project and replayed: the view it was painted from,
+//! its dabs, the brush and the strategies. Replaying the same records from the same
+//! intensities gives bit-identical intensities.
+
+use glam::{Vec2, Vec3};
+
+use super::brush::Brush;
+use super::modify::ModificationStrategy;
+use super::pick::View;
+use super::select::SelectionStrategy;
+use crate::scene::Camera;
+
+/// Which importance the selection ranks lights by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ranking {
+    /// Light the stroke receives now, P_i·T_i: "which light lights this spot".
+    #[default]
+    Received,
+    /// Transfer alone, T_i: also finds lights that are off (P = 0) but would reach it.
+    Transfer,
+}
+
+/// Whether a stroke stands alone or is solved together with every earlier one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolveMode {
+    /// Rozon's additive model: each stroke changes its selected lights only; a later
+    /// stroke may undo an earlier one.
+    #[default]
+    Additive,
+    /// After the additive step, every recorded stroke (its achieved mean luminance) and
+    /// every constrained vertex becomes a least-squares equation, and all intensities are
+    /// solved together, non-negative (`nnls`), so strokes stop undoing each other.
+    Global,
+}
+
+/// Every knob of the painting engine except the brush.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PaintSettings {
+    pub selection: SelectionStrategy,
+    pub modification: ModificationStrategy,
+    pub ranking: Ranking,
+    pub solve: SolveMode,
+    /// λ of the constraint penalty: importance ÷ (1 + λ·share of the constrained light the
+    /// light supplies).
+    pub constraint_penalty: f64,
+    /// Relative change of a constrained vertex's luminance that later strokes may cause.
+    pub constraint_tolerance: f64,
+}
+
+impl Default for PaintSettings {
+    fn default() -> Self {
+        PaintSettings {
+            selection: SelectionStrategy::default(),
+            modification: ModificationStrategy::default(),
+            ranking: Ranking::default(),
+            solve: SolveMode::default(),
+            constraint_penalty: 10.0,
+            constraint_tolerance: 0.02,
+        }
+    }
+}
+
+impl PaintSettings {
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = self.selection.problems();
+        problems.extend(self.modification.problems());
+        if !(self.constraint_penalty.is_finite() && self.constraint_penalty >= 0.0) {
+            problems.push(format!(
+                "constraint_penalty must be finite and ≥ 0, not {}",
+                self.constraint_penalty
+            ));
+        }
+        if !(self.constraint_tolerance.is_finite() && self.constraint_tolerance >= 0.0) {
+            problems.push(format!(
+                "constraint_tolerance must be finite and ≥ 0, not {}",
+                self.constraint_tolerance
+            ));
+        }
+        problems
+    }
+}
+
+/// A camera and viewport as saved with a stroke.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewRecord {
+    pub eye: Vec3,
+    pub forward: Vec3,
+    pub up: Vec3,
+    pub yfov_rad: f32,
+    pub width_px: u32,
+    pub height_px: u32,
+}
+
+impl ViewRecord {
+    pub fn of(view: &View) -> ViewRecord {
+        ViewRecord {
+            eye: view.camera.position,
+            forward: view.camera.forward,
+            up: view.camera.up,
+            yfov_rad: view.camera.yfov_rad,
+            width_px: view.width_px,
+            height_px: view.height_px,
+        }
+    }
+
+    pub fn view(&self) -> View {
+        View {
+            camera: Camera {
+                position: self.eye,
+                forward: self.forward,
+                up: self.up,
+                yfov_rad: self.yfov_rad,
+                znear: 1e-3,
+                zfar: None,
+            },
+            width_px: self.width_px,
+            height_px: self.height_px,
+        }
+    }
+
+    /// What is unusable about the view, if anything.
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if !(self.eye.is_finite() && self.forward.is_finite() && self.up.is_finite()) {
+            problems.push("the view's eye, forward and up must be finite".to_string());
+        }
+        if self.forward.length_squared() < 1e-12 || self.forward.cross(self.up).length_squared() < 1e-12 {
+            problems.push("the view's forward and up must be non-zero and not parallel".to_string());
+        }
+        if !(self.yfov_rad > 0.0 && self.yfov_rad < std::f32::consts::PI) {
+            problems.push(format!("yfov_rad must be in (0, π), not {}", self.yfov_rad));
+        }
+        if self.width_px == 0 || self.height_px == 0 || self.width_px > 16384 || self.height_px > 16384 {
+            problems.push(format!(
+                "the viewport must be 1–16384 pixels on each side, not {}×{}",
+                self.width_px, self.height_px
+            ));
+        }
+        problems
+    }
+}
+
+/// One stroke: a polyline of dab centres painted from one view.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrokeRecord {
+    pub view: ViewRecord,
+    /// Dab centres in pixels (top-left origin, y down).
+    pub dabs_px: Vec<Vec2>,
+    pub brush: Brush,
+    pub settings: PaintSettings,
+    /// Seed of the stroke's random choices (Russian roulette).
+    pub seed: u64,
+}
+
+impl StrokeRecord {
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = self.view.problems();
+        problems.extend(self.brush.problems());
+        problems.extend(self.settings.problems());
+        if self.dabs_px.iter().any(|d| !d.is_finite()) {
+            problems.push("every dab position must be finite".to_string());
+        }
+        problems
+    }
+}
+
+/// Dab centres every `spacing_px` along a screen polyline (its first point always).
+pub fn dabs_along(points_px: &[Vec2], spacing_px: f32) -> Vec<Vec2> {
+    let spacing = spacing_px.max(0.5);
+    let mut dabs: Vec<Vec2> = points_px.first().copied().into_iter().collect();
+    let mut carried = 0.0;
+    for segment in points_px.windows(2) {
+        let (a, b) = (segment[0], segment[1]);
+        let length = a.distance(b);
+        let mut along = spacing - carried;
+        while along <= length {
+            dabs.push(a.lerp(b, along / length));
+            along += spacing;
+        }
+        carried = (carried + length) % spacing;
+    }
+    if let Some(&last) = points_px.last()
+        && dabs.last().is_some_and(|d| d.distance(last) > 0.25 * spacing)
+    {
+        dabs.push(last);
+    }
+    dabs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dabs_are_spaced_along_the_polyline_and_end_at_its_end() {
+        let dabs = dabs_along(&[Vec2::ZERO, Vec2::new(10.0, 0.0), Vec2::new(10.0, 10.0)], 4.0);
+        for pair in dabs.windows(2) {
+            assert!(pair[0].distance(pair[1]) <= 4.0 + 1e-4);
+        }
+        assert_eq!(dabs.first(), Some(&Vec2::ZERO));
+        assert_eq!(dabs.last(), Some(&Vec2::new(10.0, 10.0)));
+        assert_eq!(dabs_along(&[Vec2::ONE], 4.0), vec![Vec2::ONE]);
+        assert!(dabs_along(&[], 4.0).is_empty());
+    }
+}

@@ -1,0 +1,429 @@
+//! The painting engine's state: the applied strokes (each with the intensity changes it
+//! made, the vertices it constrained and, for the global solve, its equation) and the
+//! undone ones. Intensities live with the caller (the scene's lights); a stroke reads them
+//! and writes the new ones back.
+//!
+//! One stroke: pick the hit vertices → their transfer → importance per light (penalised
+//! by constraints) → selection → modification → constraint guard → (global solve) →
+//! intensities, always finite and ≥ 0.
+
+use rayon::prelude::*;
+
+use super::BrushKind;
+use super::constraint::{ConstrainedVertex, allowed_fraction, penalty_shares};
+use super::modify::{self, Step, mean_luminance};
+use super::nnls;
+use super::pick::{Hits, VertexRef, pick_dab};
+use super::record::{Ranking, SolveMode, StrokeRecord};
+use super::select::select;
+use super::transfer::Transfer;
+use crate::bake::scene_bvh::SceneBvh;
+use crate::scene::Scene;
+
+/// One light's intensity before and after a stroke.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightChange {
+    pub light: u32,
+    pub before: f32,
+    pub after: f32,
+}
+
+/// A stroke's mean luminance as a linear function of the intensities, and the value the
+/// stroke settled on: one row of the global solve.
+#[derive(Debug, Clone, PartialEq)]
+struct Equation {
+    transfer: Vec<f64>,
+    fixed: f64,
+    target: f64,
+}
+
+/// An applied stroke, enough to undo and redo it exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edit {
+    pub record: StrokeRecord,
+    pub changes: Vec<LightChange>,
+    constrained: Vec<ConstrainedVertex>,
+    equation: Option<Equation>,
+}
+
+/// What a stroke did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Intensities changed.
+    Changed,
+    /// A constraint stroke marked vertices; no intensity changed.
+    Constrained,
+    /// The stroke touched no vertex the camera sees.
+    NoVisibleVertex,
+    /// No light reaches the painted vertices (directly or, with a bake, by bounces).
+    NoLightReaches,
+    /// Lights reach the vertices but the strategy left every intensity as it was (a
+    /// direct target already met, lights at 0 under "double", or the constraints).
+    Unchanged,
+}
+
+/// The result of one stroke, for the status bar, the CLI and tests.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrokeReport {
+    pub outcome: Outcome,
+    pub hit_vertices: usize,
+    /// Importance of every light (after the constraint penalty).
+    pub importance: Vec<f64>,
+    pub selected: Vec<usize>,
+    /// Weighted mean luminance of the painted vertices before and after, cd/m².
+    pub mean_before: f64,
+    pub mean_after: f64,
+    /// Whether the constraint guard shortened the step.
+    pub limited_by_constraints: bool,
+    pub message: String,
+}
+
+impl StrokeReport {
+    fn without_change(outcome: Outcome, hits: usize, mean: f64, message: impl Into<String>) -> StrokeReport {
+        StrokeReport {
+            outcome,
+            hit_vertices: hits,
+            importance: Vec::new(),
+            selected: Vec::new(),
+            mean_before: mean,
+            mean_after: mean,
+            limited_by_constraints: false,
+            message: message.into(),
+        }
+    }
+}
+
+/// A painted vertex: brush weight, fixed luminance and (light, transfer) entries.
+struct PaintedVertex {
+    vertex: VertexRef,
+    weight: f64,
+    fixed: f64,
+    transfer: Vec<(u32, f64)>,
+}
+
+/// The stroke's painted vertices with their transfer, reduced to means.
+struct StrokeTransfer {
+    vertices: Vec<PaintedVertex>,
+    /// Σ_v w_v t_{i,v} / Σ_v w_v for every light.
+    mean: Vec<f64>,
+    fixed: f64,
+}
+
+fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> StrokeTransfer {
+    let listed: Vec<(VertexRef, f32)> = hits.weights.iter().map(|(v, w)| (*v, *w)).collect();
+    let vertices: Vec<PaintedVertex> = listed
+        .par_iter()
+        .map(|&(vertex, w)| PaintedVertex {
+            vertex,
+            weight: w as f64,
+            fixed: transfer.fixed_luminance(vertex, eye),
+            transfer: transfer.vertex_transfer(vertex, eye),
+        })
+        .collect();
+    let mut mean = vec![0.0; transfer.light_count()];
+    let mut fixed = 0.0;
+    let mut weight_sum = 0.0;
+    for v in &vertices {
+        weight_sum += v.weight;
+        fixed += v.weight * v.fixed;
+        for &(i, t) in &v.transfer {
+            if let Some(m) = mean.get_mut(i as usize) {
+                *m += v.weight * t;
+            }
+        }
+    }
+    if weight_sum > 0.0 {
+        mean.iter_mut().for_each(|m| *m /= weight_sum);
+        fixed /= weight_sum;
+    }
+    StrokeTransfer { vertices, mean, fixed }
+}
+
+/// Strokes applied and undone.
+#[derive(Debug, Clone, Default)]
+pub struct Painter {
+    done: Vec<Edit>,
+    undone: Vec<Edit>,
+}
+
+impl Painter {
+    pub fn new() -> Painter {
+        Painter::default()
+    }
+
+    /// The applied strokes, oldest first: the log a project saves.
+    pub fn log(&self) -> impl Iterator<Item = &StrokeRecord> {
+        self.done.iter().map(|e| &e.record)
+    }
+
+    pub fn applied(&self) -> &[Edit] {
+        &self.done
+    }
+
+    pub fn can_undo(&self) -> bool {
+        !self.done.is_empty()
+    }
+
+    pub fn can_redo(&self) -> bool {
+        !self.undone.is_empty()
+    }
+
+    fn constrained(&self) -> impl Iterator<Item = &ConstrainedVertex> + Clone {
+        self.done.iter().flat_map(|e| e.constrained.iter())
+    }
+
+    /// Paints `record` on `scene`, reading and writing `intensities` (one per light).
+    pub fn paint(
+        &mut self,
+        scene: &Scene,
+        bvh: &SceneBvh,
+        transfer: &dyn Transfer,
+        intensities: &mut [f32],
+        record: StrokeRecord,
+    ) -> StrokeReport {
+        let view = record.view.view();
+        let mut hits = Hits::default();
+        for &dab in &record.dabs_px {
+            pick_dab(scene, bvh, &view, dab, &record.brush, &mut hits);
+        }
+        let vertices_per_object: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
+        self.apply(transfer, &vertices_per_object, intensities, record, &hits)
+    }
+
+    /// Applies a stroke whose hit vertices are known.
+    pub fn apply(
+        &mut self,
+        transfer: &dyn Transfer,
+        vertices_per_object: &[usize],
+        intensities: &mut [f32],
+        record: StrokeRecord,
+        hits: &Hits,
+    ) -> StrokeReport {
+        let problems = record.problems();
+        if !problems.is_empty() || intensities.len() != transfer.light_count() {
+            let message = if problems.is_empty() {
+                format!(
+                    "{} intensities for {} lights",
+                    intensities.len(),
+                    transfer.light_count()
+                )
+            } else {
+                problems.join("; ")
+            };
+            return StrokeReport::without_change(Outcome::Unchanged, 0, 0.0, format!("stroke ignored: {message}"));
+        }
+        if hits.is_empty() {
+            return StrokeReport::without_change(
+                Outcome::NoVisibleVertex,
+                0,
+                0.0,
+                "the brush touched no surface the camera sees",
+            );
+        }
+        let p: Vec<f64> = intensities.iter().map(|&v| sanitized(v as f64)).collect();
+        let stroke = stroke_transfer(transfer, hits, record.view.eye);
+        let mean_before = stroke.fixed + mean_luminance(&p, &stroke.mean);
+        if record.brush.kind == BrushKind::Constraint {
+            let constrained: Vec<ConstrainedVertex> = stroke
+                .vertices
+                .into_iter()
+                .map(|v| {
+                    let mut c = ConstrainedVertex {
+                        vertex: v.vertex,
+                        weight: v.weight,
+                        luminance: 0.0,
+                        fixed: v.fixed,
+                        transfer: v.transfer,
+                    };
+                    c.luminance = c.luminance_at(&p);
+                    c
+                })
+                .collect();
+            let count = constrained.len();
+            self.push(Edit {
+                record,
+                changes: Vec::new(),
+                constrained,
+                equation: None,
+            });
+            return StrokeReport::without_change(
+                Outcome::Constrained,
+                count,
+                mean_before,
+                format!("{count} vertices kept as they are"),
+            );
+        }
+        if stroke.mean.iter().sum::<f64>() <= 0.0 {
+            return StrokeReport::without_change(
+                Outcome::NoLightReaches,
+                hits.len(),
+                mean_before,
+                "no light reaches the painted area",
+            );
+        }
+        let settings = record.settings;
+        let scale_of = |ranking: Ranking| -> Vec<f64> {
+            match ranking {
+                Ranking::Received => p.clone(),
+                Ranking::Transfer => vec![1.0; p.len()],
+            }
+        };
+        let mut ranking = settings.ranking;
+        let mut note = String::new();
+        if ranking == Ranking::Received && mean_luminance(&p, &stroke.mean) <= 0.0 {
+            // Every light that reaches the stroke is off: rank by what they would give.
+            ranking = Ranking::Transfer;
+            note = " (the lights that reach it are off: ranked by transfer)".to_string();
+        }
+        let scale = scale_of(ranking);
+        let shares = penalty_shares(self.constrained(), vertices_per_object, &scale);
+        let importance: Vec<f64> = (0..p.len())
+            .map(|i| scale[i] * stroke.mean[i] / (1.0 + settings.constraint_penalty * shares[i]))
+            .collect();
+        let selected = select(settings.selection, &importance, record.seed);
+        let proposed = modify::modify(&Step {
+            kind: record.brush.kind,
+            strategy: settings.modification,
+            strength: record.brush.strength as f64,
+            target_luminance: record.brush.target_luminance_nits as f64 - stroke.fixed,
+            intensities: &p,
+            transfer: &stroke.mean,
+            selected: &selected,
+        });
+        let fraction = allowed_fraction(self.constrained(), &p, &proposed, settings.constraint_tolerance);
+        let mut new: Vec<f64> = p
+            .iter()
+            .zip(&proposed)
+            .map(|(a, b)| if fraction >= 1.0 { *b } else { a + fraction * (b - a) })
+            .collect();
+        let equation = Equation {
+            transfer: stroke.mean.clone(),
+            fixed: stroke.fixed,
+            target: stroke.fixed + mean_luminance(&new, &stroke.mean),
+        };
+        if settings.solve == SolveMode::Global {
+            new = self.solve_globally(&new, &equation);
+        }
+        let changes: Vec<LightChange> = new
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &after)| {
+                let after = sanitized(after) as f32;
+                (after != intensities[i]).then_some(LightChange {
+                    light: i as u32,
+                    before: intensities[i],
+                    after,
+                })
+            })
+            .collect();
+        let limited = fraction < 1.0;
+        let mut report = StrokeReport {
+            outcome: Outcome::Changed,
+            hit_vertices: hits.len(),
+            importance,
+            selected,
+            mean_before,
+            mean_after: mean_before,
+            limited_by_constraints: limited,
+            message: String::new(),
+        };
+        if changes.is_empty() {
+            report.outcome = Outcome::Unchanged;
+            report.message = if limited {
+                "the constraints keep every light that reaches this area as it is".to_string()
+            } else {
+                format!("{} left every light as it was{note}", settings.modification.label())
+            };
+            return report;
+        }
+        for change in &changes {
+            intensities[change.light as usize] = change.after;
+        }
+        let after: Vec<f64> = intensities.iter().map(|&v| v as f64).collect();
+        report.mean_after = stroke.fixed + mean_luminance(&after, &stroke.mean);
+        report.message = format!(
+            "{} light(s) changed; painted luminance {:.4} → {:.4} cd/m²{}{note}",
+            changes.len(),
+            report.mean_before,
+            report.mean_after,
+            if limited { " (limited by constraints)" } else { "" }
+        );
+        self.push(Edit {
+            record,
+            changes,
+            constrained: Vec::new(),
+            equation: Some(equation),
+        });
+        report
+    }
+
+    /// All recorded stroke equations plus the new one, and every constrained vertex, solved
+    /// together: min Σ rows² + μ Σ ((P_i − P̂_i)/s_i)², P ≥ 0, each row relative to its
+    /// target, unknowns scaled by s_i so lights of different units weigh alike; P̂ is the
+    /// additive result, the point the solve stays near where the equations say nothing.
+    fn solve_globally(&self, additive: &[f64], newest: &Equation) -> Vec<f64> {
+        let n = additive.len();
+        let mean = additive.iter().sum::<f64>() / n.max(1) as f64;
+        let scale: Vec<f64> = additive.iter().map(|&p| p.max(mean).max(1e-9)).collect();
+        let mut rows: Vec<(Vec<f64>, f64)> = Vec::new();
+        let mut add = |coefficients: Vec<(usize, f64)>, fixed: f64, target: f64, weight: f64| {
+            let norm = target.abs().max(1e-12);
+            let mut a = vec![0.0; n];
+            for (i, t) in coefficients {
+                a[i] += weight * t * scale[i] / norm;
+            }
+            rows.push((a, weight * (target - fixed) / norm));
+        };
+        let equations = self.done.iter().filter_map(|e| e.equation.as_ref()).chain([newest]);
+        for e in equations {
+            add(e.transfer.iter().copied().enumerate().collect(), e.fixed, e.target, 1.0);
+        }
+        let constrained: Vec<&ConstrainedVertex> = self.constrained().collect();
+        // A constrained set counts like ten strokes, however many vertices it has.
+        let weight = (10.0 / constrained.len().max(1) as f64).sqrt();
+        for c in constrained {
+            let coefficients = c.transfer.iter().map(|&(i, t)| (i as usize, t)).collect();
+            add(coefficients, c.fixed, c.luminance, weight);
+        }
+        let x0: Vec<f64> = additive.iter().zip(&scale).map(|(p, s)| p / s).collect();
+        nnls::solve(&rows, 1e-4, &x0)
+            .into_iter()
+            .zip(&scale)
+            .map(|(x, s)| x * s)
+            .collect()
+    }
+
+    fn push(&mut self, edit: Edit) {
+        self.done.push(edit);
+        self.undone.clear();
+    }
+
+    /// Undoes the last stroke, restoring the exact intensities before it. False if none.
+    pub fn undo(&mut self, intensities: &mut [f32]) -> bool {
+        let Some(edit) = self.done.pop() else { return false };
+        for change in &edit.changes {
+            if let Some(p) = intensities.get_mut(change.light as usize) {
+                *p = change.before;
+            }
+        }
+        self.undone.push(edit);
+        true
+    }
+
+    /// Re-applies the last undone stroke exactly. False if none.
+    pub fn redo(&mut self, intensities: &mut [f32]) -> bool {
+        let Some(edit) = self.undone.pop() else { return false };
+        for change in &edit.changes {
+            if let Some(p) = intensities.get_mut(change.light as usize) {
+                *p = change.after;
+            }
+        }
+        self.done.push(edit);
+        true
+    }
+}
+
+/// Finite and ≥ 0 (NaN and negatives become 0, +∞ the largest f32).
+fn sanitized(p: f64) -> f64 {
+    if p.is_nan() { 0.0 } else { p.clamp(0.0, f32::MAX as f64) }
+}

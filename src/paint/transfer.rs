@@ -1,0 +1,200 @@
+//! Transfer: the luminance (cd/m², linear) that a painted vertex shows the camera per unit
+//! intensity of each light — t_{i,v} of Rozon's points system, t = luminance(BRDF · I_{i,v}).
+//! Light transport is linear in the intensities P_i, so a vertex's luminance is
+//! y_v = fixed_v + Σ_i P_i t_{i,v} (fixed: what no light changes, e.g. emission).
+//!
+//! Two sources implement [`Transfer`]: [`BakedTransfer`] from the baked importance maps
+//! (direct and indirect light, exact visibility), and the renderer's direct-only estimate
+//! from the real-time log-SH visibility (`render::paint_estimate`), used before a bake.
+
+use glam::Vec3;
+
+use super::pick::VertexRef;
+use crate::bake::ImportanceMaps;
+use crate::scene::{Material, Scene};
+use crate::sh;
+
+/// Rec. 709 luminance of a linear RGB colour.
+pub fn luminance(rgb: Vec3) -> f64 {
+    0.2126 * rgb.x as f64 + 0.7152 * rgb.y as f64 + 0.0722 * rgb.z as f64
+}
+
+/// Per-vertex, per-light transfer toward an eye.
+pub trait Transfer: Sync {
+    /// Number of lights the transfer knows (the scene's light count).
+    fn light_count(&self) -> usize;
+
+    /// (light, t ≥ 0) of every light that reaches `vertex` as seen from `eye`, by light.
+    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)>;
+
+    /// Luminance of `vertex` toward `eye` that no light intensity changes.
+    fn fixed_luminance(&self, vertex: VertexRef, eye: Vec3) -> f64;
+}
+
+/// What a material reflects, reduced to what the transfer needs.
+struct Reflectance {
+    diffuse: f64,
+    specular: f64,
+    /// ZH of the normalised Phong lobe ((r + 1)/2π)·cos^r on its upper hemisphere.
+    lobe_zh: Vec<f64>,
+    emitted: f64,
+}
+
+impl Reflectance {
+    fn new(material: &Material, order: usize) -> Reflectance {
+        let exponent = material.phong_exponent() as f64;
+        let lobe = |t: f64| {
+            if t > 0.0 {
+                (exponent + 1.0) / (2.0 * std::f64::consts::PI) * t.powf(exponent)
+            } else {
+                0.0
+            }
+        };
+        Reflectance {
+            diffuse: luminance(material.diffuse_albedo()),
+            specular: luminance(material.specular_color()),
+            lobe_zh: sh::zh_of_function(order, lobe, &[0.0]),
+            emitted: luminance(material.emissive),
+        }
+    }
+}
+
+/// Transfer from baked importance maps, with the renderer's diffuse + Phong model (base
+/// colour factors; textures are not sampled per vertex yet):
+/// t_{i,v} = lum(colour_i)·(k_d·⟨I_{i,v}, cos⁺/π⟩ + k_s·⟨I_{i,v}, Phong lobe about the
+/// mirrored view⟩).
+pub struct BakedTransfer<'a> {
+    scene: &'a Scene,
+    maps: &'a ImportanceMaps,
+    reflectance: Vec<Reflectance>,
+    cosine_zh: Vec<f64>,
+    light_luminance: Vec<f64>,
+}
+
+impl<'a> BakedTransfer<'a> {
+    pub fn new(scene: &'a Scene, maps: &'a ImportanceMaps) -> BakedTransfer<'a> {
+        let order = maps.order;
+        let mut reflectance: Vec<Reflectance> = scene.materials.iter().map(|m| Reflectance::new(m, order)).collect();
+        reflectance.push(Reflectance::new(&Material::default(), order));
+        BakedTransfer {
+            scene,
+            maps,
+            reflectance,
+            cosine_zh: sh::clamped_cosine_zh(order),
+            light_luminance: scene.lights.iter().map(|l| luminance(l.color)).collect(),
+        }
+    }
+
+    fn reflectance_of(&self, object: usize) -> &Reflectance {
+        let material = self.scene.objects[object].material;
+        self.reflectance
+            .get(material)
+            .unwrap_or_else(|| &self.reflectance[self.reflectance.len() - 1])
+    }
+}
+
+impl Transfer for BakedTransfer<'_> {
+    fn light_count(&self) -> usize {
+        self.scene.lights.len()
+    }
+
+    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
+        let (o, v) = (vertex.object as usize, vertex.vertex as usize);
+        let Some(entries) = self.maps.objects.get(o).and_then(|m| m.get(v)) else {
+            return Vec::new();
+        };
+        let object = &self.scene.objects[o];
+        let (p, n) = (object.positions[v].as_dvec3(), object.normals[v].as_dvec3());
+        let reflectance = self.reflectance_of(o);
+        let diffuse = sh::rotate_zh(&self.cosine_zh, n);
+        let glossy = (reflectance.specular > 0.0).then(|| {
+            let to_eye = (eye.as_dvec3() - p).normalize_or(n);
+            let mirrored = 2.0 * n.dot(to_eye) * n - to_eye;
+            sh::rotate_zh(&reflectance.lobe_zh, mirrored.normalize_or(n))
+        });
+        entries
+            .iter()
+            .filter_map(|entry| {
+                let dot = |basis: &[f64]| -> f64 { entry.sh.iter().zip(basis).map(|(a, b)| *a as f64 * b).sum() };
+                let mut t = reflectance.diffuse * dot(&diffuse);
+                if let Some(glossy) = &glossy {
+                    t += reflectance.specular * dot(glossy);
+                }
+                let t = self.light_luminance.get(entry.light as usize)? * t;
+                (t.is_finite() && t > 0.0).then_some((entry.light, t))
+            })
+            .collect()
+    }
+
+    fn fixed_luminance(&self, vertex: VertexRef, _eye: Vec3) -> f64 {
+        self.reflectance_of(vertex.object as usize).emitted
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use glam::DVec3;
+
+    use super::*;
+    use crate::bake::{BakeSettings, bake_maps};
+    use crate::scene::{Light, LightKind, shapes};
+
+    /// A white Lambertian floor 2 m under a point light. The map holds E·y(d) (E = cos θ/d²
+    /// is not applied: E_facing = 1/d²), so ⟨I, cos⁺/π⟩ is, by Funk–Hecke, the order-4
+    /// truncation of cos⁺/π at d: Σ_l z_l·√((2l+1)/4π)·P_l(cos θ)/d², with the clamped
+    /// cosine ZH [0.282095, 0.325735, 0.157696, 0] of design.md §4.
+    #[test]
+    fn a_lambertian_floor_under_a_point_light_has_the_closed_form_transfer() {
+        let mut floor = shapes::plane(2.0, 4, 1.0).into_object("floor");
+        floor.material = 0;
+        let scene = Scene {
+            objects: vec![floor],
+            materials: vec![Material {
+                metallic: 0.0,
+                specular: 0.0,
+                ..Material::default()
+            }],
+            lights: vec![Light {
+                name: "bulb".into(),
+                kind: LightKind::Point,
+                color: Vec3::ONE,
+                intensity: 1.0,
+                position: Vec3::new(0.0, 2.0, 0.0),
+                direction: Vec3::NEG_Y,
+                range: None,
+            }],
+            ..Default::default()
+        };
+        let settings = BakeSettings {
+            order: 4,
+            bounces: 0,
+            ..BakeSettings::default()
+        };
+        let maps = bake_maps(&scene, &settings);
+        let transfer = BakedTransfer::new(&scene, &maps);
+        for v in 0..scene.objects[0].positions.len() {
+            let p = scene.objects[0].positions[v].as_dvec3();
+            let offset = DVec3::new(0.0, 2.0, 0.0) - p;
+            let cos = offset.normalize().y;
+            let zh = [0.282_095, 0.325_735, 0.157_696];
+            let legendre = [1.0, cos, 0.5 * (3.0 * cos * cos - 1.0)];
+            let truncated: f64 = (0..3)
+                .map(|l| zh[l] * ((2 * l + 1) as f64 / (4.0 * PI)).sqrt() * legendre[l])
+                .sum();
+            let expected = truncated / offset.length_squared();
+            let vertex = VertexRef {
+                object: 0,
+                vertex: v as u32,
+            };
+            let t = transfer.vertex_transfer(vertex, Vec3::new(0.0, 5.0, 5.0));
+            assert_eq!(t.len(), 1);
+            assert!(
+                (t[0].1 / expected - 1.0).abs() < 1e-5,
+                "vertex {v}: {} vs {expected}",
+                t[0].1
+            );
+        }
+    }
+}
