@@ -122,4 +122,30 @@ mod tests {
             assert!(chosen[0] == 1 || chosen[0] == 3);
         }
     }
+
+    /// Over many seeded strokes, each light is drawn in proportion to its importance:
+    /// Pearson's χ² with 3 degrees of freedom stays below 16.27 (p = 0.001).
+    #[test]
+    fn russian_roulette_frequencies_match_the_importances() {
+        let importance = [0.1, 0.4, 0.2, 0.3];
+        let trials = 20_000u64;
+        let mut counts = [0usize; 4];
+        for seed in 0..trials {
+            counts[select(SelectionStrategy::RussianRoulette, &importance, seed)[0]] += 1;
+        }
+        let chi_square: f64 = counts
+            .iter()
+            .zip(importance)
+            .map(|(&observed, p)| {
+                let expected = p * trials as f64;
+                (observed as f64 - expected).powi(2) / expected
+            })
+            .sum();
+        assert!(chi_square < 16.27, "χ² = {chi_square}, counts {counts:?}");
+        // Reproducible with a fixed seed.
+        assert_eq!(
+            select(SelectionStrategy::RussianRoulette, &importance, 42),
+            select(SelectionStrategy::RussianRoulette, &importance, 42)
+        );
+    }
 }

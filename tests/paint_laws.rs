@@ -1,0 +1,364 @@
+//! Laws of the painting engine on a real baked scene: a floor with a box on it, lit by a
+//! ranged point light, a spot and a second ranged point light; a dark plate far away that
+//! no light reaches. Luminances are re-evaluated from the transfer after each stroke,
+//! independently of the engine's own report.
+
+use std::sync::OnceLock;
+
+use glam::{Affine3A, Vec2, Vec3};
+use lightpaint::bake::scene_bvh::SceneBvh;
+use lightpaint::bake::{BakeSettings, ImportanceMaps, bake_maps};
+use lightpaint::paint::{
+    BakedTransfer, Brush, BrushKind, Falloff, Hits, ModificationStrategy, Outcome, PaintSettings, Painter,
+    SelectionStrategy, SolveMode, StrokeRecord, Transfer, ViewRecord, pick_dab,
+};
+use lightpaint::scene::{Light, LightKind, Material, Scene, shapes};
+use proptest::prelude::*;
+
+fn light(name: &str, kind: LightKind, position: Vec3, intensity: f32, range: Option<f32>) -> Light {
+    Light {
+        name: name.into(),
+        kind,
+        color: Vec3::ONE,
+        intensity,
+        position,
+        direction: Vec3::NEG_Y,
+        range,
+    }
+}
+
+fn scene() -> Scene {
+    let floor = shapes::plane(6.0, 24, 1.0).into_object("floor");
+    let block = shapes::cuboid(Vec3::splat(0.4))
+        .transformed(Affine3A::from_translation(Vec3::new(0.0, 0.4, 0.0)))
+        .into_object("box");
+    let dark = shapes::plane(1.0, 4, 1.0)
+        .transformed(Affine3A::from_translation(Vec3::new(30.0, 0.0, 0.0)))
+        .into_object("dark plate");
+    let grey = Material {
+        metallic: 0.0,
+        roughness: 0.8,
+        base_color: glam::Vec4::new(0.6, 0.6, 0.6, 1.0),
+        ..Material::default()
+    };
+    Scene {
+        objects: vec![floor, block, dark],
+        materials: vec![grey],
+        lights: vec![
+            light("left", LightKind::Point, Vec3::new(-2.0, 2.0, 0.0), 8.0, Some(6.0)),
+            light(
+                "spot",
+                LightKind::Spot {
+                    inner_cone_rad: 0.3,
+                    outer_cone_rad: 0.5,
+                },
+                Vec3::new(2.0, 3.0, 0.0),
+                20.0,
+                Some(10.0),
+            ),
+            light("back", LightKind::Point, Vec3::new(0.0, 2.0, -2.5), 4.0, Some(5.0)),
+        ],
+        ..Default::default()
+    }
+}
+
+struct Fixture {
+    scene: Scene,
+    bvh: SceneBvh,
+    maps: ImportanceMaps,
+}
+
+fn fixture() -> &'static Fixture {
+    static FIXTURE: OnceLock<Fixture> = OnceLock::new();
+    FIXTURE.get_or_init(|| {
+        let scene = scene();
+        let maps = bake_maps(
+            &scene,
+            &BakeSettings {
+                order: 3,
+                indirect_directions: 16,
+                ..BakeSettings::default()
+            },
+        );
+        Fixture {
+            bvh: SceneBvh::build(&scene),
+            scene,
+            maps,
+        }
+    })
+}
+
+fn view() -> ViewRecord {
+    let eye = Vec3::new(0.0, 7.0, 6.0);
+    let forward = (-eye).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    ViewRecord {
+        eye,
+        forward,
+        up: right.cross(forward),
+        yfov_rad: 50f32.to_radians(),
+        width_px: 320,
+        height_px: 240,
+    }
+}
+
+fn record(kind: BrushKind, at: Vec3, settings: PaintSettings, seed: u64) -> StrokeRecord {
+    let view = view();
+    let centre = view.view().project(at).expect("in front of the camera");
+    StrokeRecord {
+        view,
+        dabs_px: vec![centre, centre + Vec2::new(6.0, 0.0)],
+        brush: Brush {
+            kind,
+            radius_px: 14.0,
+            falloff: Falloff::Smooth,
+            strength: 1.0,
+            target_luminance_nits: 0.5,
+        },
+        settings,
+        seed,
+    }
+}
+
+fn intensities(scene: &Scene) -> Vec<f32> {
+    scene.lights.iter().map(|l| l.intensity).collect()
+}
+
+/// The stroke's hit vertices, picked again, and their weighted mean luminance under `p`,
+/// computed here from the transfer rather than taken from the engine's report.
+fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
+    let f = fixture();
+    let transfer = BakedTransfer::new(&f.scene, &f.maps);
+    let mut hits = Hits::default();
+    for &dab in &record.dabs_px {
+        pick_dab(&f.scene, &f.bvh, &record.view.view(), dab, &record.brush, &mut hits);
+    }
+    let (mut sum, mut weights) = (0.0, 0.0);
+    for (&vertex, &w) in &hits.weights {
+        let y: f64 = transfer
+            .vertex_transfer(vertex, record.view.eye)
+            .iter()
+            .map(|&(i, t)| p[i as usize] as f64 * t)
+            .sum::<f64>()
+            + transfer.fixed_luminance(vertex, record.view.eye);
+        sum += w as f64 * y;
+        weights += w as f64;
+    }
+    sum / weights
+}
+
+fn paint(painter: &mut Painter, p: &mut [f32], record: StrokeRecord) -> lightpaint::paint::StrokeReport {
+    let f = fixture();
+    let transfer = BakedTransfer::new(&f.scene, &f.maps);
+    painter.paint(&f.scene, &f.bvh, &transfer, p, record)
+}
+
+fn strategies() -> impl Strategy<Value = PaintSettings> {
+    let selection = prop_oneof![
+        Just(SelectionStrategy::MostImportant),
+        (0.05f64..=1.0).prop_map(|share| SelectionStrategy::Histogram { share }),
+        Just(SelectionStrategy::RussianRoulette),
+    ];
+    let modification = prop_oneof![
+        (0.01f64..50.0).prop_map(|amount| ModificationStrategy::Constant { amount }),
+        (1.01f64..8.0).prop_map(|factor| ModificationStrategy::Double { factor }),
+        Just(ModificationStrategy::Direct),
+        (0.01f64..=1.0).prop_map(|fraction| ModificationStrategy::FractionOfDirect { fraction }),
+    ];
+    (selection, modification, any::<bool>()).prop_map(|(selection, modification, global)| PaintSettings {
+        selection,
+        modification,
+        solve: if global { SolveMode::Global } else { SolveMode::Additive },
+        ..PaintSettings::default()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    /// Positive strokes never darken, negative ones never brighten, intensities stay
+    /// finite and ≥ 0, whatever the strategy, the place, the target and the start.
+    #[test]
+    fn strokes_move_the_painted_luminance_the_way_the_brush_says(
+        settings in strategies(),
+        x in -2.5f32..2.5,
+        z in -2.5f32..2.5,
+        target in 0.0f32..5.0,
+        start in prop::collection::vec(prop_oneof![Just(0.0f32), 0.0f32..50.0, Just(1e6)], 3),
+        positive in any::<bool>(),
+        seed in any::<u64>(),
+    ) {
+        let kind = if positive { BrushKind::Positive } else { BrushKind::Negative };
+        let mut stroke = record(kind, Vec3::new(x, 0.0, z), settings, seed);
+        stroke.brush.target_luminance_nits = target;
+        let mut p = start.clone();
+        let before = painted_mean(&stroke, &p);
+        let mut painter = Painter::new();
+        let report = paint(&mut painter, &mut p, stroke.clone());
+        prop_assert!(p.iter().all(|v| v.is_finite() && *v >= 0.0), "{p:?}");
+        let after = painted_mean(&stroke, &p);
+        prop_assert!(before.is_finite() && after.is_finite());
+        let slack = 1e-6 * before.abs().max(1.0);
+        if positive {
+            prop_assert!(after >= before - slack, "{before} → {after}: {report:?}");
+        } else {
+            prop_assert!(after <= before + slack, "{before} → {after}: {report:?}");
+        }
+    }
+}
+
+#[test]
+fn direct_reaches_its_target_within_one_percent() {
+    let settings = PaintSettings {
+        modification: ModificationStrategy::Direct,
+        selection: SelectionStrategy::Histogram { share: 1.0 },
+        ..PaintSettings::default()
+    };
+    for (kind, target) in [(BrushKind::Positive, 2.0), (BrushKind::Negative, 0.05)] {
+        let mut stroke = record(kind, Vec3::new(-1.5, 0.0, 1.0), settings, 1);
+        stroke.brush.target_luminance_nits = target;
+        let mut p = intensities(&fixture().scene);
+        let report = paint(&mut Painter::new(), &mut p, stroke.clone());
+        assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
+        let mean = painted_mean(&stroke, &p);
+        assert!((mean / target as f64 - 1.0).abs() < 0.01, "{kind:?}: {mean} vs {target}");
+    }
+}
+
+#[test]
+fn painting_where_no_light_reaches_says_so_and_changes_nothing() {
+    let mut stroke = record(BrushKind::Positive, Vec3::new(30.0, 0.0, 0.0), PaintSettings::default(), 0);
+    // Look at the far plate from above it.
+    stroke.view.eye = Vec3::new(30.0, 4.0, 3.0);
+    stroke.view.forward = (Vec3::new(30.0, 0.0, 0.0) - stroke.view.eye).normalize();
+    let right = stroke.view.forward.cross(Vec3::Y).normalize();
+    stroke.view.up = right.cross(stroke.view.forward);
+    let centre = stroke.view.view().project(Vec3::new(30.0, 0.0, 0.0)).unwrap();
+    stroke.dabs_px = vec![centre];
+    let mut p = intensities(&fixture().scene);
+    let before = p.clone();
+    let mut painter = Painter::new();
+    let report = paint(&mut painter, &mut p, stroke);
+    assert_eq!(report.outcome, Outcome::NoLightReaches, "{report:?}");
+    assert!(report.message.contains("no light reaches the painted area"));
+    assert_eq!(p, before);
+    assert!(!painter.can_undo(), "a stroke that changed nothing is not an edit");
+}
+
+#[test]
+fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
+    let settings = [
+        PaintSettings::default(),
+        PaintSettings {
+            selection: SelectionStrategy::RussianRoulette,
+            modification: ModificationStrategy::FractionOfDirect { fraction: 0.37 },
+            ..PaintSettings::default()
+        },
+        PaintSettings {
+            selection: SelectionStrategy::Histogram { share: 0.6 },
+            modification: ModificationStrategy::Constant { amount: 1.3 },
+            solve: SolveMode::Global,
+            ..PaintSettings::default()
+        },
+    ];
+    let strokes: Vec<StrokeRecord> = (0..9)
+        .map(|k| {
+            let kind = if k % 3 == 2 { BrushKind::Negative } else { BrushKind::Positive };
+            let at = Vec3::new(-2.0 + 0.5 * k as f32, 0.0, 1.5 - 0.3 * k as f32);
+            record(kind, at, settings[k % 3], 1000 + k as u64)
+        })
+        .collect();
+    let start = intensities(&fixture().scene);
+    let mut p = start.clone();
+    let mut painter = Painter::new();
+    let mut states = vec![p.clone()];
+    for stroke in &strokes {
+        paint(&mut painter, &mut p, stroke.clone());
+        states.push(p.clone());
+    }
+    let applied = painter.applied().len();
+    assert!(applied >= 6, "most strokes change something: {applied}");
+    let end = p.clone();
+    // Undo everything, checking each intermediate state exactly, then redo all.
+    let distinct: Vec<Vec<f32>> = {
+        let mut d = states.clone();
+        d.dedup();
+        d
+    };
+    for expected in distinct.iter().rev().skip(1) {
+        assert!(painter.undo(&mut p));
+        assert_eq!(&p, expected);
+    }
+    assert!(!painter.undo(&mut p));
+    assert_eq!(p, start);
+    while painter.redo(&mut p) {}
+    assert_eq!(p, end);
+    // Replay the log from the start: bit-identical.
+    let log: Vec<StrokeRecord> = painter.log().cloned().collect();
+    let mut replayed = start.clone();
+    let mut again = Painter::new();
+    for stroke in log {
+        paint(&mut again, &mut replayed, stroke);
+    }
+    assert_eq!(
+        replayed.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+        end.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
+    let mut p = intensities(&fixture().scene);
+    let mut painter = Painter::new();
+    let keep = record(BrushKind::Constraint, Vec3::new(-1.0, 0.0, 0.5), PaintSettings::default(), 0);
+    let kept_before = painted_mean(&keep, &p);
+    assert_eq!(paint(&mut painter, &mut p, keep.clone()).outcome, Outcome::Constrained);
+    for (k, at) in [Vec3::new(-0.5, 0.0, 0.8), Vec3::new(1.5, 0.0, 0.0), Vec3::new(-1.2, 0.0, 0.2)]
+        .into_iter()
+        .enumerate()
+    {
+        for kind in [BrushKind::Positive, BrushKind::Negative] {
+            let settings = PaintSettings {
+                selection: SelectionStrategy::Histogram { share: 1.0 },
+                modification: ModificationStrategy::Double { factor: 4.0 },
+                ..PaintSettings::default()
+            };
+            paint(&mut painter, &mut p, record(kind, at, settings, k as u64));
+        }
+    }
+    let kept_after = painted_mean(&keep, &p);
+    assert!(
+        (kept_after / kept_before - 1.0).abs() <= 0.02 + 1e-9,
+        "{kept_before} → {kept_after}"
+    );
+}
+
+#[test]
+fn the_global_solve_honours_two_strokes_that_the_additive_model_lets_fight() {
+    // Darken the left, then brighten the middle: additively, the second stroke raises the
+    // lights the first dimmed; solved together both targets hold.
+    const A: f32 = 0.1;
+    const B: f32 = 2.0;
+    let direct = |solve| PaintSettings {
+        modification: ModificationStrategy::Direct,
+        selection: SelectionStrategy::Histogram { share: 1.0 },
+        solve,
+        ..PaintSettings::default()
+    };
+    let mut errors = Vec::new();
+    for solve in [SolveMode::Additive, SolveMode::Global] {
+        let mut first = record(BrushKind::Negative, Vec3::new(-2.0, 0.0, 0.5), direct(solve), 0);
+        first.brush.target_luminance_nits = A;
+        let mut second = record(BrushKind::Positive, Vec3::new(0.8, 0.0, 0.5), direct(solve), 1);
+        second.brush.target_luminance_nits = B;
+        let mut p = intensities(&fixture().scene);
+        let mut painter = Painter::new();
+        paint(&mut painter, &mut p, first.clone());
+        paint(&mut painter, &mut p, second.clone());
+        let error_first = (painted_mean(&first, &p) / A as f64 - 1.0).abs();
+        let error_second = (painted_mean(&second, &p) / B as f64 - 1.0).abs();
+        errors.push(error_first.max(error_second));
+    }
+    assert!(errors[1] < errors[0], "global {} vs additive {}", errors[1], errors[0]);
+    assert!(errors[1] < 0.05, "global solve misses a target by {}", errors[1]);
+}
