@@ -53,6 +53,21 @@ enum Command {
         #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u16).range(1..=4096))]
         directions: u16,
     },
+    /// Apply scripted strokes (docs/strokes.md) to a project or scene and save the result,
+    /// with the strokes in its log, as a project.
+    Paint {
+        /// The project (.lightpaint) or .gltf/.glb scene to paint.
+        file: PathBuf,
+        /// The stroke script (JSON).
+        #[arg(long)]
+        strokes: PathBuf,
+        /// The project file to write (.lightpaint).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Diffuse bounces in the bake the strokes read (0 or 1).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
+        bounces: u8,
+    },
 }
 
 #[derive(clap::Args)]
@@ -157,6 +172,8 @@ enum CliError {
         #[source]
         source: image::ImageError,
     },
+    #[error(transparent)]
+    Script(#[from] lightpaint::paint::script::ScriptError),
     #[error("{0}")]
     Usage(String),
     #[error("the editor failed: {0}")]
@@ -170,6 +187,7 @@ impl CliError {
             | CliError::Project(_)
             | CliError::Problems { .. }
             | CliError::Usage(_)
+            | CliError::Script(_)
             | CliError::Render(RenderError::BadSettings(_))
             | CliError::Render(RenderError::BadSize { .. }) => ExitCode::from(2),
             _ => ExitCode::from(1),
@@ -209,6 +227,12 @@ fn main() -> ExitCode {
             };
             bake(&file, &settings)
         }
+        Some(Command::Paint {
+            file,
+            strokes,
+            output,
+            bounces,
+        }) => paint(&file, &strokes, &output, bounces as usize),
         None => editor(cli.file),
     };
     match result {
@@ -378,6 +402,76 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
         bytes as f64 / (1024.0 * 1024.0),
         started.elapsed().as_secs_f64() * 1000.0,
         settings.bounces
+    );
+    Ok(())
+}
+
+fn paint(file: &Path, strokes: &Path, output: &Path, bounces: usize) -> Result<(), CliError> {
+    use lightpaint::paint::{BakedTransfer, Painter, View, ViewRecord, script::Script};
+    if !lightpaint::project::is_project_path(output) {
+        return Err(CliError::Usage(format!(
+            "{}: the output must be a project file (.lightpaint)",
+            output.display()
+        )));
+    }
+    let mut document = Document::open(file)?;
+    for warning in &document.warnings {
+        eprintln!("warning: {}: {warning}", file.display());
+    }
+    let script = Script::load(strokes)?;
+    let camera = match document.camera {
+        Some(orbit) => orbit.camera(),
+        None => document.scene.initial_camera(),
+    };
+    let fallback = ViewRecord::of(&View {
+        camera,
+        width_px: 1280,
+        height_px: 720,
+    });
+    let records = script.records(strokes, fallback)?;
+    let settings = lightpaint::bake::BakeSettings {
+        bounces,
+        ..Default::default()
+    };
+    let started = std::time::Instant::now();
+    let maps = lightpaint::bake::bake_maps(&document.scene, &settings);
+    let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(&document.scene);
+    say!(
+        "baked the transfer of {} lights in {:.0} ms",
+        document.scene.lights.len(),
+        started.elapsed().as_secs_f64() * 1000.0
+    );
+    let mut intensities: Vec<f32> = document.scene.lights.iter().map(|l| l.intensity).collect();
+    let mut painter = Painter::new();
+    {
+        let transfer = BakedTransfer::new(&document.scene, &maps);
+        for (k, record) in records.into_iter().enumerate() {
+            let started = std::time::Instant::now();
+            let report = painter.paint(&document.scene, &bvh, &transfer, &mut intensities, record);
+            let names: Vec<&str> = report
+                .selected
+                .iter()
+                .map(|&i| document.scene.lights[i].name.as_str())
+                .collect();
+            say!(
+                "stroke {k}: {:?}, {} vertices, lights [{}]: {} ({:.1} ms)",
+                report.outcome,
+                report.hit_vertices,
+                names.join(", "),
+                report.message,
+                started.elapsed().as_secs_f64() * 1000.0
+            );
+        }
+    }
+    for (light, intensity) in document.scene.lights.iter_mut().zip(&intensities) {
+        light.intensity = *intensity;
+    }
+    document.painting.strokes.extend(painter.log().cloned());
+    document.save(output)?;
+    say!(
+        "wrote {} ({} strokes in its log)",
+        output.display(),
+        document.painting.strokes.len()
     );
     Ok(())
 }

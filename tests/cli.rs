@@ -196,3 +196,86 @@ fn bake_reports_the_maps_of_the_sample() {
     ]);
     assert_eq!(bad.status.code(), Some(2));
 }
+
+/// `paint` applies a script to the studio and writes a project whose log holds the
+/// strokes that changed something, with the positive stroke's lights brighter; the
+/// original project is untouched.
+#[test]
+fn paint_applies_scripted_strokes_and_saves_them_in_the_project_log() {
+    let studio = common::repo_path("projects/studio/studio.lightpaint");
+    let original = std::fs::read(&studio).expect("studio project");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let script = dir.path().join("strokes.json");
+    std::fs::write(
+        &script,
+        r#"{"seed": 3, "strokes": [
+            {"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 1.0, 0.3]]},
+            {"brush": {"kind": "constraint", "radius_px": 30}, "world": [[1.0, 0.0, 1.0]]}
+        ]}"#,
+    )
+    .expect("script");
+    let output = dir.path().join("painted.lightpaint");
+    let out = common::run_lightpaint(&[
+        OsStr::new("paint"),
+        studio.as_os_str(),
+        OsStr::new("--strokes"),
+        script.as_os_str(),
+        OsStr::new("-o"),
+        output.as_os_str(),
+        OsStr::new("--bounces"),
+        OsStr::new("0"),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("stroke 0: Changed"), "{stdout}");
+    assert_eq!(std::fs::read(&studio).expect("studio"), original, "the input is untouched");
+    let before = lightpaint::project::Document::open(&studio).expect("studio opens");
+    let after = lightpaint::project::Document::open(&output).expect("the painted project opens");
+    assert_eq!(after.painting.strokes.len(), 2);
+    let raised = before
+        .scene
+        .lights
+        .iter()
+        .zip(&after.scene.lights)
+        .filter(|(b, a)| a.intensity > b.intensity)
+        .count();
+    assert!(raised >= 1, "a positive stroke raises a light");
+    assert!(
+        before
+            .scene
+            .lights
+            .iter()
+            .zip(&after.scene.lights)
+            .all(|(b, a)| a.intensity >= b.intensity)
+    );
+}
+
+#[test]
+fn paint_rejects_a_bad_script_naming_the_file_and_the_field() {
+    let studio = common::repo_path("projects/studio/studio.lightpaint");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let script = dir.path().join("bad.json");
+    std::fs::write(&script, r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": "big"}, "world": []}]}"#)
+        .expect("script");
+    let output = dir.path().join("out.lightpaint");
+    let run = |script: &Path, output: &Path| {
+        common::run_lightpaint(&[
+            OsStr::new("paint"),
+            studio.as_os_str(),
+            OsStr::new("--strokes"),
+            script.as_os_str(),
+            OsStr::new("-o"),
+            output.as_os_str(),
+        ])
+    };
+    let out = run(&script, &output);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("bad.json") && stderr.contains("strokes[0].brush.radius_px"), "{stderr}");
+    assert!(!output.exists(), "nothing is written for a bad script");
+    let png = dir.path().join("out.png");
+    std::fs::write(&script, r#"{"strokes": []}"#).expect("script");
+    let out = run(&script, &png);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".lightpaint"));
+}

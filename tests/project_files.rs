@@ -238,3 +238,24 @@ fn a_format_1_project_opens_and_saves_as_the_current_format() {
     let file = read_project_file(&saved).expect("the saved file reads back");
     assert_eq!(file.format_version, FORMAT_VERSION);
 }
+
+/// A project saved by format 2 (before painting) opens with an empty stroke log and the
+/// default painting strategies, keeps its lights and settings, and saves as the current
+/// format.
+#[test]
+fn a_format_2_project_opens_with_an_empty_stroke_log() {
+    let v2 = common::repo_path("tests/fixtures/format-2.lightpaint");
+    let text = std::fs::read_to_string(&v2).expect("fixture");
+    assert!(text.contains("\"format_version\": 2"), "the fixture is format 2");
+    let document = lightpaint::project::Document::open(&v2).expect("a format 2 project opens");
+    assert!(document.painting.strokes.is_empty());
+    assert_eq!(document.painting.settings, lightpaint::paint::PaintSettings::default());
+    let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    assert_eq!(document.scene.lights, current.scene.lights);
+    assert_eq!(document.settings, current.settings);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let saved = dir.path().join("saved.lightpaint");
+    let mut document = document;
+    document.save(&saved).expect("save");
+    assert_eq!(read_project_file(&saved).expect("reads back").format_version, FORMAT_VERSION);
+}

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 use super::atomic::write_atomically;
 use super::error::ProjectError;
 use super::file::{
-    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, read_project_file,
+    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, PaintingState, ProjectFile, SceneReference,
+    read_project_file,
 };
 use crate::render::RenderSettings;
 use crate::scene::{Environment, OrbitCamera, Scene};
@@ -23,6 +24,8 @@ pub struct Document {
     pub project_path: Option<PathBuf>,
     /// Things the user should know that did not stop the document from opening.
     pub warnings: Vec<String>,
+    /// The stroke log, brush and painting strategies.
+    pub painting: PaintingState,
 }
 
 /// Whether `path` names a project file (by extension) rather than a glTF scene.
@@ -53,6 +56,7 @@ impl Document {
             camera: None,
             project_path: None,
             warnings,
+            painting: PaintingState::default(),
         })
     }
 
@@ -101,6 +105,7 @@ impl Document {
             camera: file.camera,
             project_path: Some(path.to_path_buf()),
             warnings,
+            painting: file.painting,
         })
     }
 
@@ -127,6 +132,7 @@ impl Document {
             render: self.settings,
             camera: self.camera,
             environment,
+            painting: self.painting.clone(),
         }
     }
 

@@ -8,16 +8,17 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::error::{Problem, ProjectError};
+use crate::paint::{Brush, PaintSettings, StrokeRecord};
 use crate::render::RenderSettings;
 use crate::scene::{Light, OrbitCamera};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 2;
+pub const FORMAT_VERSION: u64 = 3;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
 
-/// Everything a project file holds (format version 2).
+/// Everything a project file holds (format version 3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProjectFile {
@@ -31,6 +32,18 @@ pub struct ProjectFile {
     /// Light from an equirectangular HDR image all around the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub environment: Option<EnvironmentReference>,
+    /// The strokes painted so far and the brush the next one uses.
+    pub painting: PaintingState,
+}
+
+/// The painting state a project restores: the applied strokes (oldest first, replayable)
+/// and the brush and strategies the artist had chosen.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PaintingState {
+    pub strokes: Vec<StrokeRecord>,
+    pub brush: Option<Brush>,
+    pub settings: PaintSettings,
 }
 
 /// An environment light: an equirectangular HDR image, scaled and turned about +y.
@@ -119,6 +132,28 @@ impl ProjectFile {
                 problems.push(Problem {
                     field: "environment.rotation_rad".into(),
                     message: "must be finite".into(),
+                });
+            }
+        }
+        for (i, stroke) in self.painting.strokes.iter().enumerate() {
+            for message in stroke.problems() {
+                problems.push(Problem {
+                    field: format!("painting.strokes[{i}]"),
+                    message,
+                });
+            }
+        }
+        for message in self.painting.settings.problems() {
+            problems.push(Problem {
+                field: "painting.settings".into(),
+                message,
+            });
+        }
+        if let Some(brush) = &self.painting.brush {
+            for message in brush.problems() {
+                problems.push(Problem {
+                    field: "painting.brush".into(),
+                    message,
                 });
             }
         }

@@ -8,6 +8,8 @@
 //!   `viewport_resolution_scale`; files
 //!   of format 1 get the defaults, which is how they were drawn (format 1 had no shadows
 //!   setting because it had no shadows: they open with shadows on).
+//! - 3: `painting` (the stroke log, the brush and the painting strategies); files of
+//!   format 2 had no painting, so they get an empty log and the default strategies.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -20,6 +22,18 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     debug_assert!((1..=super::FORMAT_VERSION).contains(&version));
     if version < 2 {
         value = v1_to_v2(value);
+    }
+    if version < 3 {
+        value = v2_to_v3(value);
+    }
+    value
+}
+
+fn v2_to_v3(mut value: Value) -> Value {
+    if let Some(object) = value.as_object_mut() {
+        let painting = serde_json::to_value(super::file::PaintingState::default()).unwrap_or(Value::Null);
+        object.entry("painting").or_insert(painting);
+        object.insert("format_version".into(), Value::from(3));
     }
     value
 }
@@ -51,7 +65,7 @@ mod tests {
             "format_version": 1,
             "render": {"exposure_ev": 0.5, "background_srgb8": [1, 2, 3]},
         });
-        let v2 = to_current(v1, 1);
+        let v2 = v1_to_v2(v1);
         assert_eq!(v2["format_version"], 2);
         let render: crate::render::RenderSettings =
             serde_json::from_value(v2["render"].clone()).expect("format 2 render settings");
