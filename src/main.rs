@@ -67,6 +67,10 @@ enum Command {
         /// Diffuse bounces in the bake the strokes read (0 or 1).
         #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
         bounces: u8,
+        /// Read the transfer from the real-time log-SH shading (direct light only) instead
+        /// of baking.
+        #[arg(long, conflicts_with = "bounces")]
+        no_bake: bool,
     },
 }
 
@@ -232,7 +236,8 @@ fn main() -> ExitCode {
             strokes,
             output,
             bounces,
-        }) => paint(&file, &strokes, &output, bounces as usize),
+            no_bake,
+        }) => paint(&file, &strokes, &output, (!no_bake).then_some(bounces as usize)),
         None => editor(cli.file),
     };
     match result {
@@ -406,8 +411,10 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
     Ok(())
 }
 
-fn paint(file: &Path, strokes: &Path, output: &Path, bounces: usize) -> Result<(), CliError> {
-    use lightpaint::paint::{BakedTransfer, Painter, View, ViewRecord, script::Script};
+/// `paint`: the transfer comes from a bake with `bounces`, or (None) from the direct-only
+/// log-SH estimate.
+fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> Result<(), CliError> {
+    use lightpaint::paint::{BakedTransfer, Painter, Transfer, View, ViewRecord, script::Script};
     if !lightpaint::project::is_project_path(output) {
         return Err(CliError::Usage(format!(
             "{}: the output must be a project file (.lightpaint)",
@@ -429,30 +436,43 @@ fn paint(file: &Path, strokes: &Path, output: &Path, bounces: usize) -> Result<(
         height_px: 720,
     });
     let records = script.records(strokes, fallback)?;
-    let settings = lightpaint::bake::BakeSettings {
-        bounces,
-        ..Default::default()
-    };
     let started = std::time::Instant::now();
-    let maps = lightpaint::bake::bake_maps(&document.scene, &settings);
-    let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(&document.scene);
+    let scene = &document.scene;
+    let maps = bounces.map(|bounces| {
+        let settings = lightpaint::bake::BakeSettings {
+            bounces,
+            ..Default::default()
+        };
+        lightpaint::bake::bake_maps(scene, &settings)
+    });
+    let estimate_blockers = || fit_scene(scene, &document.settings.blockers).spheres();
+    let transfer: Box<dyn Transfer> = match &maps {
+        Some(maps) => Box::new(BakedTransfer::new(scene, maps)),
+        None => Box::new(lightpaint::render::paint_estimate::DirectEstimate::new(
+            scene,
+            estimate_blockers(),
+            document.settings.shadows,
+        )),
+    };
+    let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(scene);
     say!(
-        "baked the transfer of {} lights in {:.0} ms",
-        document.scene.lights.len(),
+        "{} the transfer of {} lights in {:.0} ms",
+        if maps.is_some() {
+            "baked"
+        } else {
+            "estimated (direct light, log-SH shadows)"
+        },
+        scene.lights.len(),
         started.elapsed().as_secs_f64() * 1000.0
     );
-    let mut intensities: Vec<f32> = document.scene.lights.iter().map(|l| l.intensity).collect();
+    let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
     let mut painter = Painter::new();
     {
-        let transfer = BakedTransfer::new(&document.scene, &maps);
+        let transfer = transfer.as_ref();
         for (k, record) in records.into_iter().enumerate() {
             let started = std::time::Instant::now();
-            let report = painter.paint(&document.scene, &bvh, &transfer, &mut intensities, record);
-            let names: Vec<&str> = report
-                .selected
-                .iter()
-                .map(|&i| document.scene.lights[i].name.as_str())
-                .collect();
+            let report = painter.paint(scene, &bvh, transfer, &mut intensities, record);
+            let names: Vec<&str> = report.selected.iter().map(|&i| scene.lights[i].name.as_str()).collect();
             say!(
                 "stroke {k}: {:?}, {} vertices, lights [{}]: {} ({:.1} ms)",
                 report.outcome,
@@ -463,6 +483,7 @@ fn paint(file: &Path, strokes: &Path, output: &Path, bounces: usize) -> Result<(
             );
         }
     }
+    drop(transfer);
     for (light, intensity) in document.scene.lights.iter_mut().zip(&intensities) {
         light.intensity = *intensity;
     }

@@ -226,9 +226,18 @@ fn paint_applies_scripted_strokes_and_saves_them_in_the_project_log() {
         OsStr::new("0"),
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(stdout.contains("stroke 0: Changed"), "{stdout}");
-    assert_eq!(std::fs::read(&studio).expect("studio"), original, "the input is untouched");
+    assert_eq!(
+        std::fs::read(&studio).expect("studio"),
+        original,
+        "the input is untouched"
+    );
     let before = lightpaint::project::Document::open(&studio).expect("studio opens");
     let after = lightpaint::project::Document::open(&output).expect("the painted project opens");
     assert_eq!(after.painting.strokes.len(), 2);
@@ -255,8 +264,11 @@ fn paint_rejects_a_bad_script_naming_the_file_and_the_field() {
     let studio = common::repo_path("projects/studio/studio.lightpaint");
     let dir = tempfile::tempdir().expect("temp dir");
     let script = dir.path().join("bad.json");
-    std::fs::write(&script, r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": "big"}, "world": []}]}"#)
-        .expect("script");
+    std::fs::write(
+        &script,
+        r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": "big"}, "world": []}]}"#,
+    )
+    .expect("script");
     let output = dir.path().join("out.lightpaint");
     let run = |script: &Path, output: &Path| {
         common::run_lightpaint(&[
@@ -271,11 +283,41 @@ fn paint_rejects_a_bad_script_naming_the_file_and_the_field() {
     let out = run(&script, &output);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("bad.json") && stderr.contains("strokes[0].brush.radius_px"), "{stderr}");
+    assert!(
+        stderr.contains("bad.json") && stderr.contains("strokes[0].brush.radius_px"),
+        "{stderr}"
+    );
     assert!(!output.exists(), "nothing is written for a bad script");
     let png = dir.path().join("out.png");
     std::fs::write(&script, r#"{"strokes": []}"#).expect("script");
     let out = run(&script, &png);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains(".lightpaint"));
+}
+
+/// Without a bake, `paint --no-bake` reads the transfer from the real-time log-SH shading
+/// and still finds and raises a light.
+#[test]
+fn paint_without_a_bake_uses_the_direct_estimate() {
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let script = dir.path().join("strokes.json");
+    std::fs::write(
+        &script,
+        r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 80}, "screen_px": [[640, 500]]}]}"#,
+    )
+    .expect("script");
+    let output = dir.path().join("painted.lightpaint");
+    let out = common::run_lightpaint(&[
+        OsStr::new("paint"),
+        sample.as_os_str(),
+        OsStr::new("--strokes"),
+        script.as_os_str(),
+        OsStr::new("-o"),
+        output.as_os_str(),
+        OsStr::new("--no-bake"),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("estimated") && stdout.contains("stroke 0: Changed"), "{stdout}");
 }

@@ -221,13 +221,21 @@ fn direct_reaches_its_target_within_one_percent() {
         let report = paint(&mut Painter::new(), &mut p, stroke.clone());
         assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
         let mean = painted_mean(&stroke, &p);
-        assert!((mean / target as f64 - 1.0).abs() < 0.01, "{kind:?}: {mean} vs {target}");
+        assert!(
+            (mean / target as f64 - 1.0).abs() < 0.01,
+            "{kind:?}: {mean} vs {target}"
+        );
     }
 }
 
 #[test]
 fn painting_where_no_light_reaches_says_so_and_changes_nothing() {
-    let mut stroke = record(BrushKind::Positive, Vec3::new(30.0, 0.0, 0.0), PaintSettings::default(), 0);
+    let mut stroke = record(
+        BrushKind::Positive,
+        Vec3::new(30.0, 0.0, 0.0),
+        PaintSettings::default(),
+        0,
+    );
     // Look at the far plate from above it.
     stroke.view.eye = Vec3::new(30.0, 4.0, 3.0);
     stroke.view.forward = (Vec3::new(30.0, 0.0, 0.0) - stroke.view.eye).normalize();
@@ -263,7 +271,11 @@ fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
     ];
     let strokes: Vec<StrokeRecord> = (0..9)
         .map(|k| {
-            let kind = if k % 3 == 2 { BrushKind::Negative } else { BrushKind::Positive };
+            let kind = if k % 3 == 2 {
+                BrushKind::Negative
+            } else {
+                BrushKind::Positive
+            };
             let at = Vec3::new(-2.0 + 0.5 * k as f32, 0.0, 1.5 - 0.3 * k as f32);
             record(kind, at, settings[k % 3], 1000 + k as u64)
         })
@@ -310,12 +322,21 @@ fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
 fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
     let mut p = intensities(&fixture().scene);
     let mut painter = Painter::new();
-    let keep = record(BrushKind::Constraint, Vec3::new(-1.0, 0.0, 0.5), PaintSettings::default(), 0);
+    let keep = record(
+        BrushKind::Constraint,
+        Vec3::new(-1.0, 0.0, 0.5),
+        PaintSettings::default(),
+        0,
+    );
     let kept_before = painted_mean(&keep, &p);
     assert_eq!(paint(&mut painter, &mut p, keep.clone()).outcome, Outcome::Constrained);
-    for (k, at) in [Vec3::new(-0.5, 0.0, 0.8), Vec3::new(1.5, 0.0, 0.0), Vec3::new(-1.2, 0.0, 0.2)]
-        .into_iter()
-        .enumerate()
+    for (k, at) in [
+        Vec3::new(-0.5, 0.0, 0.8),
+        Vec3::new(1.5, 0.0, 0.0),
+        Vec3::new(-1.2, 0.0, 0.2),
+    ]
+    .into_iter()
+    .enumerate()
     {
         for kind in [BrushKind::Positive, BrushKind::Negative] {
             let settings = PaintSettings {

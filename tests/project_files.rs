@@ -257,5 +257,8 @@ fn a_format_2_project_opens_with_an_empty_stroke_log() {
     let saved = dir.path().join("saved.lightpaint");
     let mut document = document;
     document.save(&saved).expect("save");
-    assert_eq!(read_project_file(&saved).expect("reads back").format_version, FORMAT_VERSION);
+    assert_eq!(
+        read_project_file(&saved).expect("reads back").format_version,
+        FORMAT_VERSION
+    );
 }

@@ -11,6 +11,7 @@ mod gpu_scene;
 pub mod gpu_types;
 pub mod logsh;
 mod offscreen;
+pub mod paint_estimate;
 pub mod per_vertex;
 mod pipeline;
 pub mod shaders;

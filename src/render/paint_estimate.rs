@@ -1,0 +1,155 @@
+//! The direct-only transfer estimate painting uses before (or instead of) a bake: the
+//! real-time renderer's own shading (`cpu.rs`, the f64 twin of logsh.wgsl), evaluated at
+//! the painted vertices, one light at a time at unit intensity. Visibility comes from the
+//! log-SH sphere blockers, so it needs no ray tracing and answers at once; indirect light
+//! is left out (the bake adds it).
+
+use glam::{DVec3, Vec3};
+
+use super::ShadowSettings;
+use super::cpu::{self, SurfacePoint};
+use super::gpu_types::{GpuLight, environment_irradiance};
+use crate::blockers::Sphere;
+use crate::paint::{Transfer, VertexRef, luminance};
+use crate::scene::{Light, Material, Scene};
+use crate::sh;
+
+/// [`Transfer`] from the log-SH shading of the scene's lights, each at unit intensity.
+pub struct DirectEstimate<'a> {
+    scene: &'a Scene,
+    blockers: Vec<Sphere>,
+    settings: ShadowSettings,
+    unit_lights: Vec<GpuLight>,
+    environment: [[f32; 4]; 9],
+}
+
+impl<'a> DirectEstimate<'a> {
+    pub fn new(scene: &'a Scene, blockers: Vec<Sphere>, settings: ShadowSettings) -> DirectEstimate<'a> {
+        let unit_lights = scene
+            .lights
+            .iter()
+            .map(|light| {
+                GpuLight::new(&Light {
+                    intensity: 1.0,
+                    ..light.clone()
+                })
+            })
+            .collect();
+        DirectEstimate {
+            scene,
+            blockers,
+            settings,
+            unit_lights,
+            environment: environment_irradiance(scene.environment.as_ref()),
+        }
+    }
+
+    fn surface(&self, vertex: VertexRef) -> Option<SurfacePoint> {
+        let object = self.scene.objects.get(vertex.object as usize)?;
+        let v = vertex.vertex as usize;
+        let default = Material::default();
+        let material = self.scene.materials.get(object.material).unwrap_or(&default);
+        Some(SurfacePoint {
+            position: object.positions.get(v)?.as_dvec3(),
+            normal: object.normals.get(v)?.as_dvec3(),
+            k_d: material.diffuse_albedo().as_dvec3(),
+            k_s: material.specular_color().as_dvec3(),
+            phong_exponent: material.phong_exponent() as f64,
+            emissive: material.emissive.as_dvec3(),
+        })
+    }
+
+    /// Exponentiated visibility SH at the surface point.
+    fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
+        let f = cpu::log_visibility(&self.settings, &self.blockers, s.position, s.normal);
+        sh::exp(self.settings.exp, &f)
+    }
+}
+
+fn luminance_of(rgb: DVec3) -> f64 {
+    luminance(Vec3::new(rgb.x as f32, rgb.y as f32, rgb.z as f32))
+}
+
+impl Transfer for DirectEstimate<'_> {
+    fn light_count(&self) -> usize {
+        self.unit_lights.len()
+    }
+
+    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
+        let Some(s) = self.surface(vertex) else {
+            return Vec::new();
+        };
+        let mut g: Option<Vec<f64>> = None;
+        let eye = eye.as_dvec3();
+        self.unit_lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, light)| {
+                let incidence = cpu::incidence(light, s.position);
+                let unshadowed = cpu::direct_radiance(&s, &incidence, eye);
+                if unshadowed == DVec3::ZERO {
+                    return None;
+                }
+                let g = g.get_or_insert_with(|| self.visibility(&s));
+                let visible = cpu::visibility_toward(g, incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0);
+                let t = luminance_of(unshadowed) * visible;
+                (t.is_finite() && t > 0.0).then_some((i as u32, t))
+            })
+            .collect()
+    }
+
+    fn fixed_luminance(&self, vertex: VertexRef, _eye: Vec3) -> f64 {
+        let Some(s) = self.surface(vertex) else { return 0.0 };
+        let mut radiance = s.emissive;
+        if self.scene.environment.is_some() {
+            let visible = cpu::visibility_cosine(&self.visibility(&s), s.normal).clamp(0.0, 1.0);
+            radiance += cpu::environment_radiance(&s, &self.environment) * visible;
+        }
+        luminance_of(radiance)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+    use crate::scene::{LightKind, shapes};
+
+    /// Without blockers, a white Lambertian floor under a unit point light shows
+    /// L = (1/π)·cos θ/d² (closed form).
+    #[test]
+    fn an_unoccluded_lambertian_floor_matches_the_closed_form() {
+        let scene = Scene {
+            objects: vec![shapes::plane(2.0, 2, 1.0).into_object("floor")],
+            materials: vec![Material {
+                metallic: 0.0,
+                specular: 0.0,
+                ..Material::default()
+            }],
+            lights: vec![Light {
+                name: "bulb".into(),
+                kind: LightKind::Point,
+                color: Vec3::ONE,
+                intensity: 30.0,
+                position: Vec3::new(0.5, 2.0, 0.0),
+                direction: Vec3::NEG_Y,
+                range: None,
+            }],
+            ..Default::default()
+        };
+        let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
+        for v in 0..scene.objects[0].positions.len() {
+            let p = scene.objects[0].positions[v].as_dvec3();
+            let offset = DVec3::new(0.5, 2.0, 0.0) - p;
+            let expected = offset.normalize().y / offset.length_squared() / PI;
+            let vertex = VertexRef {
+                object: 0,
+                vertex: v as u32,
+            };
+            let t = estimate.vertex_transfer(vertex, Vec3::new(0.0, 3.0, 3.0));
+            assert_eq!(t.len(), 1);
+            assert!((t[0].1 / expected - 1.0).abs() < 1e-6, "{} vs {expected}", t[0].1);
+        }
+    }
+}
