@@ -318,6 +318,14 @@ fn paint_without_a_bake_uses_the_direct_estimate() {
         OsStr::new("--no-bake"),
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
-    assert!(stdout.contains("estimated") && stdout.contains("stroke 0: Changed"), "{stdout}");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("estimated") && stdout.contains("stroke 0: Changed"),
+        "{stdout}"
+    );
 }
