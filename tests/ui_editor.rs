@@ -79,3 +79,140 @@ fn shadow_settings_edited_in_the_inspector_are_saved() {
     assert!(reopened.settings.shadows.per_vertex, "per vertex was saved");
     assert!(!reopened.settings.shadows.enabled, "shadows off was saved");
 }
+
+/// Mean Rec. 709 luma (sRGB values) of the image within `radius` of `centre`.
+fn mean_luma_near(image: &image::RgbaImage, centre: egui::Pos2, radius: f32, pixels_per_point: f32) -> f64 {
+    let (cx, cy, r) = (
+        centre.x * pixels_per_point,
+        centre.y * pixels_per_point,
+        radius * pixels_per_point,
+    );
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (x, y, p) in image.enumerate_pixels() {
+        if (x as f32 - cx).hypot(y as f32 - cy) <= r {
+            sum += 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+            count += 1;
+        }
+    }
+    sum / count.max(1) as f64
+}
+
+/// The bake runs in the background: the editor keeps drawing frames while it runs, shows
+/// its progress, and strokes read the baked maps once it is done.
+#[test]
+fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label_contains("direct estimate");
+    harness.get_by_label("Bake importance maps").click();
+    let started = std::time::Instant::now();
+    let mut frames = 0;
+    while harness.query_by_label_contains("Transfer: baked maps").is_none() {
+        assert!(started.elapsed().as_secs() < 120, "the bake finishes");
+        harness.step();
+        frames += 1;
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(frames > 1, "frames were drawn while the bake ran");
+    let centre = harness.state().viewport_rect().center();
+    harness.key_press(egui::Key::B);
+    harness.run();
+    harness.hover_at(centre);
+    harness.run();
+    harness.drag_at(centre);
+    harness.run();
+    harness.drop_at(centre);
+    harness.run();
+    assert!(harness.state().has_unsaved_changes());
+}
+
+/// The studio sample: pick the brighten brush, drag across the floor in front of the
+/// figure; the selected lights rise (none falls), the painted floor gets brighter in the
+/// rendered image, and Ctrl+Z restores the intensities and the image exactly.
+#[test]
+fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
+    if common::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let project = lightpaint::samples::Sample::Studio.write(dir.path()).unwrap();
+    let options = EditorOptions {
+        file: project,
+        close_when_file_exists: None,
+        hide_frame_timings: true,
+    };
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, options));
+    harness.run();
+    let before_lights = harness.state().light_intensities();
+    let before = harness.render().expect("render");
+    harness.get_by_label("Brighten (B)").click();
+    harness.run();
+    assert_eq!(
+        harness.state().tool(),
+        lightpaint::ui::Tool::Brush(lightpaint::paint::BrushKind::Positive)
+    );
+    let path: Vec<egui::Pos2> = [[-0.6f32, 1.2], [-0.2, 1.3], [0.2, 1.3], [0.6, 1.2]]
+        .iter()
+        .map(|&[x, z]| {
+            harness
+                .state()
+                .screen_position(glam::Vec3::new(x, 0.0, z))
+                .expect("the floor in front of the figure is in view")
+        })
+        .collect();
+    harness.hover_at(path[0]);
+    harness.run();
+    harness.drag_at(path[0]);
+    harness.run();
+    for pair in path.windows(2) {
+        for k in 1..=6 {
+            harness.hover_at(pair[0] + (pair[1] - pair[0]) * (k as f32 / 6.0));
+            harness.run();
+        }
+    }
+    harness.drop_at(path[3]);
+    harness.run();
+    let after_lights = harness.state().light_intensities();
+    assert!(
+        after_lights.iter().zip(&before_lights).any(|(a, b)| a > b),
+        "a light rose: {before_lights:?} → {after_lights:?}"
+    );
+    assert!(after_lights.iter().zip(&before_lights).all(|(a, b)| a >= b));
+    let after = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let middle = path[1] + (path[2] - path[1]) * 0.5;
+    let (luma_before, luma_after) = (
+        mean_luma_near(&before, middle, 12.0, ppp),
+        mean_luma_near(&after, middle, 12.0, ppp),
+    );
+    assert!(
+        luma_after > luma_before + 1.0,
+        "painted floor {luma_before} → {luma_after}"
+    );
+    assert!(harness.state().has_unsaved_changes());
+
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(
+        harness.state().light_intensities(),
+        before_lights,
+        "undo restores the intensities"
+    );
+    // Move the pointer off the viewport so no brush outline is drawn, as before.
+    harness.hover_at(egui::pos2(5.0, 790.0));
+    harness.run();
+    let undone = harness.render().expect("render");
+    let viewport = harness.state().viewport_rect();
+    let differing = undone
+        .enumerate_pixels()
+        .filter(|(x, y, _)| viewport.contains(egui::pos2(*x as f32 / ppp, *y as f32 / ppp)))
+        .filter(|(x, y, p)| before.get_pixel(*x, *y) != *p)
+        .count();
+    assert_eq!(differing, 0, "undo restores the viewport image exactly");
+}

@@ -342,7 +342,7 @@ impl Painter {
         let after: Vec<f64> = intensities.iter().map(|&v| v as f64).collect();
         report.mean_after = stroke.fixed + mean_luminance(&after, &stroke.mean);
         report.message = format!(
-            "{} light(s) changed; painted luminance {:.4} → {:.4} cd/m²{}{note}",
+            "{} light(s) changed; painted luminance from {:.4} to {:.4} cd/m²{}{note}",
             changes.len(),
             report.mean_before,
             report.mean_after,

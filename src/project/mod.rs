@@ -11,6 +11,6 @@ pub use atomic::{backup_path, write_atomically, write_atomically_with};
 pub use document::{Document, is_project_path};
 pub use error::{Problem, ProjectError};
 pub use file::{
-    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, ProjectFile, SceneReference, parse_project,
+    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, PaintingState, ProjectFile, SceneReference, parse_project,
     read_project_file,
 };

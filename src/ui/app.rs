@@ -2,8 +2,12 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
+use super::brush_input::{BrushInput, FinishedStroke};
+use super::brush_panel::{PaintAction, painting_section, tool_bar};
+use super::painting::{Painting, Tool};
 use super::shadow_panel::shadow_section;
 use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
+use crate::paint::BrushKind;
 use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
 use crate::render::describe_adapter;
 
@@ -39,6 +43,9 @@ pub struct EditorApp {
     last_frame: Option<Instant>,
     frame_ms: f32,
     first_frame_reported: bool,
+    /// The document's painting state (None without a document).
+    painting: Option<Painting>,
+    brush_input: BrushInput,
 }
 
 impl EditorApp {
@@ -61,6 +68,8 @@ impl EditorApp {
             last_frame: None,
             frame_ms: 0.0,
             first_frame_reported: false,
+            painting: None,
+            brush_input: BrushInput::default(),
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -104,9 +113,103 @@ impl EditorApp {
                     }
                     saved
                 });
+                self.painting = Some(Painting::for_document(&document));
                 self.document = Some(document);
             }
             Err(e) => self.report_error(e.to_string()),
+        }
+    }
+
+    /// Where world point `p` appears on screen (points), if the viewport shows it.
+    pub fn screen_position(&self, p: glam::Vec3) -> Option<egui::Pos2> {
+        let viewport = self.viewport.as_ref()?;
+        let rect = viewport.rect;
+        let view = crate::paint::View {
+            camera: viewport.orbit.camera(),
+            width_px: rect.width().round().max(1.0) as u32,
+            height_px: rect.height().round().max(1.0) as u32,
+        };
+        let q = view.project(p)?;
+        let pos = rect.min + egui::vec2(q.x, q.y);
+        rect.contains(pos).then_some(pos)
+    }
+
+    /// Where the viewport is on screen, in points (nothing before the first frame).
+    pub fn viewport_rect(&self) -> egui::Rect {
+        self.viewport.as_ref().map_or(egui::Rect::NOTHING, |v| v.rect)
+    }
+
+    /// Intensities of the document's lights, in order.
+    pub fn light_intensities(&self) -> Vec<f32> {
+        self.document
+            .as_ref()
+            .map(|d| d.scene.lights.iter().map(|l| l.intensity).collect())
+            .unwrap_or_default()
+    }
+
+    /// The current tool (what a left drag in the viewport does).
+    pub fn tool(&self) -> Tool {
+        self.painting.as_ref().map_or(Tool::Navigate, |p| p.tool)
+    }
+
+    pub fn set_tool(&mut self, tool: Tool) {
+        if let Some(painting) = &mut self.painting {
+            painting.tool = tool;
+        }
+    }
+
+    /// The painting state (brush, strategies, stroke history), if a document is open.
+    pub fn painting_mut(&mut self) -> Option<&mut Painting> {
+        self.painting.as_mut()
+    }
+
+    /// Applies a stroke painted in the viewport with the current tool and brush.
+    pub fn paint_stroke(&mut self, stroke: &FinishedStroke, render_state: Option<&egui_wgpu::RenderState>) {
+        let (Some(document), Some(painting), Some(viewport)) = (&mut self.document, &mut self.painting, &self.viewport)
+        else {
+            return;
+        };
+        let spheres = self.blockers.spheres();
+        let camera = viewport.orbit.camera();
+        let shadows = document.settings.shadows;
+        if let Some(report) = painting.paint(&mut document.scene, camera, stroke, &spheres, &shadows) {
+            self.message = report.message;
+            self.lights_changed(render_state);
+        }
+    }
+
+    /// Undoes the last stroke (Ctrl+Z).
+    pub fn undo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let (Some(document), Some(painting)) = (&mut self.document, &mut self.painting) else {
+            return;
+        };
+        self.message = if painting.undo(&mut document.scene) {
+            "undid the last stroke".into()
+        } else {
+            "nothing to undo".into()
+        };
+        self.lights_changed(render_state);
+    }
+
+    /// Redoes the last undone stroke (Ctrl+Shift+Z or Ctrl+Y).
+    pub fn redo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let (Some(document), Some(painting)) = (&mut self.document, &mut self.painting) else {
+            return;
+        };
+        self.message = if painting.redo(&mut document.scene) {
+            "redid the stroke".into()
+        } else {
+            "nothing to redo".into()
+        };
+        self.lights_changed(render_state);
+    }
+
+    fn lights_changed(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
+            document.painting = painting.state();
+        }
+        if let (Some(viewport), Some(document), Some(rs)) = (&mut self.viewport, &self.document, render_state) {
+            viewport.set_lights(rs, &document.scene.lights);
         }
     }
 
@@ -196,6 +299,24 @@ impl EditorApp {
                         ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
                     }
                 });
+                ui.menu_button("Edit", |ui| {
+                    let (can_undo, can_redo) = self
+                        .painting
+                        .as_ref()
+                        .map_or((false, false), |p| (p.can_undo(), p.can_redo()));
+                    if ui
+                        .add_enabled(can_undo, egui::Button::new("Undo stroke (Ctrl+Z)"))
+                        .clicked()
+                    {
+                        self.undo(render_state);
+                    }
+                    if ui
+                        .add_enabled(can_redo, egui::Button::new("Redo stroke (Ctrl+Shift+Z)"))
+                        .clicked()
+                    {
+                        self.redo(render_state);
+                    }
+                });
                 ui.menu_button("View", |ui| {
                     if ui.button("Frame all (F)").clicked() {
                         self.frame_all();
@@ -203,6 +324,11 @@ impl EditorApp {
                 });
             });
         });
+    }
+
+    fn tool_bar(&mut self, ui: &mut egui::Ui) {
+        let Some(painting) = &mut self.painting else { return };
+        egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, &mut painting.tool));
     }
 
     fn frame_all(&mut self) {
@@ -235,7 +361,24 @@ impl EditorApp {
     }
 
     fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
-        egui::Panel::right("inspector").default_size(260.0).show(ui, |ui| {
+        let mut pending_history = None;
+        egui::Panel::right("inspector").default_size(280.0).show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| self.inspector_contents(ui, render_state, &mut pending_history));
+        });
+        match pending_history {
+            Some(PaintAction::Undo) => self.undo(render_state),
+            Some(PaintAction::Redo) => self.redo(render_state),
+            _ => {}
+        }
+    }
+
+    fn inspector_contents(
+        &mut self,
+        ui: &mut egui::Ui,
+        render_state: Option<&egui_wgpu::RenderState>,
+        pending_history: &mut Option<PaintAction>,
+    ) {
+        {
             let Some(document) = &mut self.document else { return };
             ui.heading("Render");
             ui.add(egui::Slider::new(&mut document.settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
@@ -272,6 +415,23 @@ impl EditorApp {
                 self.blockers = fit_scene(&document.scene, &document.settings.blockers);
                 self.fitted_with = document.settings.blockers;
                 viewport.set_blockers(rs, &self.blockers.spheres());
+            }
+            ui.separator();
+            let mut action = None;
+            if let Some(painting) = &mut self.painting {
+                egui::CollapsingHeader::new("Painting")
+                    .default_open(true)
+                    .show(ui, |ui| action = painting_section(ui, painting));
+            }
+            match action {
+                Some(PaintAction::StartBake) => {
+                    if let Some(painting) = &mut self.painting {
+                        painting.start_bake(&document.scene);
+                    }
+                }
+                Some(PaintAction::Undo) => *pending_history = Some(PaintAction::Undo),
+                Some(PaintAction::Redo) => *pending_history = Some(PaintAction::Redo),
+                None => {}
             }
             ui.separator();
             ui.heading("Lights");
@@ -328,7 +488,7 @@ impl EditorApp {
                     viewport.set_environment(Some(environment));
                 }
             }
-        });
+        }
     }
 
     fn status_bar(&mut self, ui: &mut egui::Ui) {
@@ -385,6 +545,36 @@ impl EditorApp {
                 i.raw.dropped_files.first().map(|f| f.path().to_path_buf()),
             )
         });
+        let (undo_key, redo_key) = ctx.input(|i| {
+            let z = i.key_pressed(egui::Key::Z) && i.modifiers.command;
+            (
+                z && !i.modifiers.shift,
+                (z && i.modifiers.shift) || (i.key_pressed(egui::Key::Y) && i.modifiers.command),
+            )
+        });
+        if !typing {
+            let tool = ctx.input(|i| {
+                let plain = |key| i.key_pressed(key) && !i.modifiers.any();
+                [
+                    (egui::Key::B, Tool::Brush(BrushKind::Positive)),
+                    (egui::Key::N, Tool::Brush(BrushKind::Negative)),
+                    (egui::Key::C, Tool::Brush(BrushKind::Constraint)),
+                    (egui::Key::Escape, Tool::Navigate),
+                ]
+                .into_iter()
+                .find(|(key, _)| plain(*key))
+                .map(|(_, tool)| tool)
+            });
+            if let Some(tool) = tool {
+                self.set_tool(tool);
+            }
+            if undo_key {
+                self.undo(render_state);
+            }
+            if redo_key {
+                self.redo(render_state);
+            }
+        }
         if frame_key && !typing {
             self.frame_all();
         }
@@ -430,17 +620,42 @@ impl eframe::App for EditorApp {
         let ctx = ui.ctx().clone();
         self.handle_shortcuts_and_drops(&ctx, render_state.as_ref());
         self.menu_bar(ui, render_state.as_ref());
+        self.tool_bar(ui);
         self.status_bar(ui);
         self.outliner(ui);
         self.inspector(ui, render_state.as_ref());
+        if let Some(message) = self.painting.as_mut().and_then(Painting::poll_bake) {
+            self.message = message;
+        }
+        let brush_radius = match self.painting.as_ref() {
+            Some(p) if p.tool != Tool::Navigate => Some(p.brush.radius_px),
+            _ => None,
+        };
+        let mut finished = None;
         egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
             match (&mut self.viewport, &self.document, &render_state) {
-                (Some(viewport), Some(document), Some(rs)) => viewport.show(ui, rs, &document.settings),
+                (Some(viewport), Some(document), Some(rs)) => {
+                    let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
+                    if let Some(radius) = brush_radius {
+                        finished = self.brush_input.update(ui, &response);
+                        self.brush_input.draw(ui, &response, radius);
+                    }
+                }
                 _ => {
                     ui.centered_and_justified(|ui| ui.label("Nothing open. File ▸ Open…"));
                 }
             }
         });
+        if let Some(stroke) = finished {
+            self.paint_stroke(&stroke, render_state.as_ref());
+        }
+        if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
+            // Brush and strategy edits are part of the project (restored on reopening).
+            let state = painting.state();
+            if document.painting != state {
+                document.painting = state;
+            }
+        }
         self.error_window(&ctx);
         if !self.first_frame_reported {
             self.first_frame_reported = true;

@@ -2,10 +2,15 @@
 //! settings and a status bar. Every action calls into the library.
 
 mod app;
+mod bake_job;
+mod brush_input;
+mod brush_panel;
+mod painting;
 mod shadow_panel;
 mod viewport;
 
 pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE};
+pub use painting::Tool;
 pub use viewport::Viewport;
 
 /// Opens the editor window and runs until it is closed.

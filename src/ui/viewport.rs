@@ -1,7 +1,8 @@
 //! The 3D viewport: renders the scene offscreen — with log-SH soft shadows
 //! ([`LogShPipeline`]) or the plain raster ([`ScenePipeline`]) — into a texture that egui
 //! shows, and turns mouse input into orbit (left drag), pan (right or middle drag, or
-//! shift + left drag) and zoom (scroll). While the camera moves, frames are shaded at half
+//! shift + left drag) and zoom (scroll); with a brush tool the left drag belongs to the
+//! brush (`brush_input.rs`) and the right drag orbits. While the camera moves, frames are shaded at half
 //! the resolution in each direction (a quarter of the pixels) and per vertex, so orbiting
 //! stays fluid on a software GPU; the full frame follows as soon as the camera rests.
 
@@ -40,6 +41,8 @@ pub struct Viewport {
     rendered: Option<Shown>,
     /// Milliseconds the last scene render took on the CPU side (submission included).
     pub last_render_ms: f32,
+    /// Where the viewport was last shown, in points.
+    pub rect: egui::Rect,
 }
 
 /// The orbit camera matching the scene's initial camera, pivoting at the scene's centre
@@ -87,6 +90,7 @@ impl Viewport {
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
             rendered: None,
             last_render_ms: 0.0,
+            rect: egui::Rect::NOTHING,
         }
     }
 
@@ -150,13 +154,22 @@ impl Viewport {
     }
 
     /// Lays out the viewport in the remaining space of `ui`, handles its input and paints it.
-    pub fn show(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState, settings: &RenderSettings) {
+    /// Draws the viewport and handles camera input; returns the viewport's response so a
+    /// brush can read the pointer (`brush_tool`: the left drag is the brush's).
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        render_state: &egui_wgpu::RenderState,
+        settings: &RenderSettings,
+        brush_tool: bool,
+    ) -> egui::Response {
         if settings.shadows != self.shadows.settings {
             self.apply_shadow_settings(render_state, settings.shadows);
         }
         let rect = ui.available_rect_before_wrap();
+        self.rect = rect;
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        let moving = self.handle_input(ui, &response);
+        let moving = self.handle_input(ui, &response, brush_tool);
 
         let pixels_per_point = ui.ctx().pixels_per_point();
         let scale = pixels_per_point * settings.viewport_resolution_scale.clamp(0.25, 1.0);
@@ -187,20 +200,25 @@ impl Viewport {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
             ui.painter().image(id, rect, uv, egui::Color32::WHITE);
         }
+        response
     }
 
     /// Applies orbit, pan and zoom; true while the camera is being moved.
-    fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response) -> bool {
+    fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response, brush_tool: bool) -> bool {
         let shift = ui.input(|i| i.modifiers.shift);
         let delta = response.drag_delta();
         let height = response.rect.height().max(1.0);
-        if response.dragged_by(egui::PointerButton::Primary) && !shift {
+        let orbit_button = if brush_tool {
+            egui::PointerButton::Secondary
+        } else {
+            egui::PointerButton::Primary
+        };
+        let pan_buttons = response.dragged_by(egui::PointerButton::Middle)
+            || (!brush_tool && response.dragged_by(egui::PointerButton::Secondary));
+        if response.dragged_by(orbit_button) && !shift {
             self.orbit
                 .orbit(-delta.x * ORBIT_RAD_PER_POINT, delta.y * ORBIT_RAD_PER_POINT);
-        } else if response.dragged_by(egui::PointerButton::Secondary)
-            || response.dragged_by(egui::PointerButton::Middle)
-            || (response.dragged_by(egui::PointerButton::Primary) && shift)
-        {
+        } else if pan_buttons || (response.dragged_by(egui::PointerButton::Primary) && shift) {
             self.orbit.pan(-delta.x / height, delta.y / height);
         }
         let mut zooming = false;
@@ -211,7 +229,9 @@ impl Viewport {
                 zooming = true;
             }
         }
-        response.dragged() || zooming
+        let camera_drag =
+            response.dragged() && !(brush_tool && response.dragged_by(egui::PointerButton::Primary) && !shift);
+        camera_drag || zooming
     }
 
     /// Renders into the texture; while `moving`, shadows are shaded per vertex where the

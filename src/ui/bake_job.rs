@@ -1,0 +1,93 @@
+//! A bake running on a background thread while the editor stays responsive: progress for
+//! the panel (with an ETA from the rate so far), cancellation that keeps nothing, and the
+//! maps handed over when it finishes.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::bake::{BakeSettings, ImportanceMaps, bake_maps_with};
+use crate::scene::Scene;
+
+pub struct BakeJob {
+    done: Arc<AtomicUsize>,
+    total: usize,
+    cancel: Arc<AtomicBool>,
+    started: Instant,
+    handle: Option<JoinHandle<Option<ImportanceMaps>>>,
+}
+
+/// What a poll of the job found.
+pub enum BakePoll {
+    Running,
+    Finished(ImportanceMaps),
+    Cancelled,
+}
+
+impl BakeJob {
+    /// Starts baking a copy of `scene` on its own thread (which uses rayon's pool).
+    pub fn start(scene: &Scene, settings: BakeSettings) -> BakeJob {
+        let scene = scene.clone();
+        let done = Arc::new(AtomicUsize::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let total = scene.vertex_count();
+        let (done_in, cancel_in) = (done.clone(), cancel.clone());
+        let handle = std::thread::spawn(move || {
+            bake_maps_with(
+                &scene,
+                &settings,
+                &|finished, _| done_in.store(finished, Ordering::Relaxed),
+                &cancel_in,
+            )
+        });
+        BakeJob {
+            done,
+            total,
+            cancel,
+            started: Instant::now(),
+            handle: Some(handle),
+        }
+    }
+
+    /// Share of the vertices baked, 0–1.
+    pub fn fraction(&self) -> f32 {
+        if self.total == 0 {
+            return 1.0;
+        }
+        self.done.load(Ordering::Relaxed) as f32 / self.total as f32
+    }
+
+    /// Time left at the rate so far, once there is a rate to go by.
+    pub fn eta(&self) -> Option<Duration> {
+        let fraction = self.fraction() as f64;
+        let elapsed = self.started.elapsed().as_secs_f64();
+        (fraction > 0.02 && fraction < 1.0).then(|| Duration::from_secs_f64(elapsed * (1.0 - fraction) / fraction))
+    }
+
+    pub fn elapsed(&self) -> Duration {
+        self.started.elapsed()
+    }
+
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    /// Collects the result once the thread has finished.
+    pub fn poll(&mut self) -> BakePoll {
+        if self.handle.as_ref().is_some_and(|h| !h.is_finished()) {
+            return BakePoll::Running;
+        }
+        match self.handle.take().map(JoinHandle::join) {
+            Some(Ok(Some(maps))) => BakePoll::Finished(maps),
+            _ => BakePoll::Cancelled,
+        }
+    }
+}
+
+impl Drop for BakeJob {
+    fn drop(&mut self) {
+        // A job dropped with its document (closing, opening another) stops working.
+        self.cancel();
+    }
+}

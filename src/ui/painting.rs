@@ -1,0 +1,194 @@
+//! The editor's painting state: the tool, brush and strategies, the `Painter` with this
+//! session's undoable strokes, and where the transfer comes from (baked maps once a
+//! background bake finished, the log-SH direct estimate until then, so painting never
+//! waits). The logic is the library's (`paint`); this file only holds state and turns a
+//! viewport stroke into a stroke record.
+
+use std::sync::Arc;
+
+use glam::Vec2;
+
+use super::bake_job::{BakeJob, BakePoll};
+use super::brush_input::FinishedStroke;
+use crate::bake::scene_bvh::SceneBvh;
+use crate::bake::{BakeSettings, ImportanceMaps};
+use crate::blockers::Sphere;
+use crate::paint::{
+    BakedTransfer, Brush, BrushKind, PaintSettings, Painter, StrokeRecord, StrokeReport, Transfer, View, ViewRecord,
+    dabs_along,
+};
+use crate::project::{Document, PaintingState};
+use crate::render::ShadowSettings;
+use crate::render::paint_estimate::DirectEstimate;
+use crate::scene::{Camera, Scene};
+
+/// What the left mouse button does in the viewport.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Tool {
+    #[default]
+    Navigate,
+    Brush(BrushKind),
+}
+
+pub struct Painting {
+    pub tool: Tool,
+    /// Radius, falloff, strength and target of the brush (its kind comes from the tool).
+    pub brush: Brush,
+    /// The brush the project file named (None: it had none, and the default applies).
+    opened_brush: Option<Brush>,
+    pub settings: PaintSettings,
+    painter: Painter,
+    /// Strokes the document's log held when it was opened (applied, not undoable here).
+    earlier: Vec<StrokeRecord>,
+    bvh: Option<Arc<SceneBvh>>,
+    maps: Option<ImportanceMaps>,
+    pub bake: Option<BakeJob>,
+    pub bake_settings: BakeSettings,
+    next_seed: u64,
+    pub last_report: Option<StrokeReport>,
+}
+
+impl Painting {
+    pub fn for_document(document: &Document) -> Painting {
+        let state = &document.painting;
+        Painting {
+            tool: Tool::Navigate,
+            brush: state.brush.unwrap_or_else(|| Brush::new(BrushKind::Positive)),
+            opened_brush: state.brush,
+            settings: state.settings,
+            painter: Painter::new(),
+            earlier: state.strokes.clone(),
+            bvh: None,
+            maps: None,
+            bake: None,
+            bake_settings: BakeSettings::default(),
+            next_seed: state.strokes.len() as u64 + 1,
+            last_report: None,
+        }
+    }
+
+    /// The painting state the project saves: every applied stroke, brush and settings.
+    pub fn state(&self) -> PaintingState {
+        let mut strokes = self.earlier.clone();
+        strokes.extend(self.painter.log().cloned());
+        // An untouched default brush stays unnamed, so opening a project is not a change.
+        let untouched = self.opened_brush.is_none() && self.brush == Brush::new(BrushKind::Positive);
+        PaintingState {
+            strokes,
+            brush: (!untouched).then_some(self.brush),
+            settings: self.settings,
+        }
+    }
+
+    pub fn can_undo(&self) -> bool {
+        self.painter.can_undo()
+    }
+
+    pub fn can_redo(&self) -> bool {
+        self.painter.can_redo()
+    }
+
+    /// Where strokes read the transfer from, for the panel.
+    pub fn transfer_label(&self) -> String {
+        match &self.maps {
+            Some(maps) => format!("baked maps ({} vertex-light pairs)", maps.entry_count()),
+            None => "direct estimate from the log-SH shadows (no bake yet)".to_string(),
+        }
+    }
+
+    pub fn start_bake(&mut self, scene: &Scene) {
+        self.bake = Some(BakeJob::start(scene, self.bake_settings));
+    }
+
+    /// Takes the maps of a finished bake; the message to show, if something finished.
+    pub fn poll_bake(&mut self) -> Option<String> {
+        let job = self.bake.as_mut()?;
+        let seconds = job.elapsed().as_secs_f32();
+        match job.poll() {
+            BakePoll::Running => None,
+            BakePoll::Finished(maps) => {
+                self.bake = None;
+                let message = format!("baked {} vertex-light pairs in {seconds:.1} s", maps.entry_count());
+                self.maps = Some(maps);
+                Some(message)
+            }
+            BakePoll::Cancelled => {
+                self.bake = None;
+                Some("bake cancelled; strokes keep using the direct estimate".to_string())
+            }
+        }
+    }
+
+    /// Whether `maps` were baked for this geometry (same objects and vertex counts).
+    fn maps_fit(maps: &ImportanceMaps, scene: &Scene) -> bool {
+        maps.objects.len() == scene.objects.len()
+            && maps
+                .objects
+                .iter()
+                .zip(&scene.objects)
+                .all(|(m, o)| m.len() == o.positions.len())
+    }
+
+    /// Paints a stroke finished in the viewport, seen by `camera`, and writes the new
+    /// intensities into `scene`'s lights.
+    pub fn paint(
+        &mut self,
+        scene: &mut Scene,
+        camera: Camera,
+        stroke: &FinishedStroke,
+        blockers: &[Sphere],
+        shadows: &ShadowSettings,
+    ) -> Option<StrokeReport> {
+        let Tool::Brush(kind) = self.tool else { return None };
+        let view = View {
+            camera,
+            width_px: stroke.viewport_size.x.round().max(1.0) as u32,
+            height_px: stroke.viewport_size.y.round().max(1.0) as u32,
+        };
+        let points: Vec<Vec2> = stroke.points.iter().map(|p| Vec2::new(p.x, p.y)).collect();
+        let brush = Brush { kind, ..self.brush };
+        let record = StrokeRecord {
+            view: ViewRecord::of(&view),
+            dabs_px: dabs_along(&points, (brush.radius_px * 0.25).max(1.0)),
+            brush,
+            settings: self.settings,
+            seed: self.next_seed,
+        };
+        self.next_seed += 1;
+        let bvh = self.bvh.get_or_insert_with(|| Arc::new(SceneBvh::build(scene))).clone();
+        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let report = {
+            let scene: &Scene = scene;
+            let transfer: Box<dyn Transfer> = match &self.maps {
+                Some(maps) if Self::maps_fit(maps, scene) => Box::new(BakedTransfer::new(scene, maps)),
+                _ => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
+            };
+            self.painter
+                .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
+        };
+        write_intensities(scene, &intensities);
+        self.last_report = Some(report.clone());
+        Some(report)
+    }
+
+    /// Undoes the last stroke of this session; false if there is none.
+    pub fn undo(&mut self, scene: &mut Scene) -> bool {
+        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let undone = self.painter.undo(&mut intensities);
+        write_intensities(scene, &intensities);
+        undone
+    }
+
+    pub fn redo(&mut self, scene: &mut Scene) -> bool {
+        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let redone = self.painter.redo(&mut intensities);
+        write_intensities(scene, &intensities);
+        redone
+    }
+}
+
+fn write_intensities(scene: &mut Scene, intensities: &[f32]) {
+    for (light, &p) in scene.lights.iter_mut().zip(intensities) {
+        light.intensity = p;
+    }
+}
