@@ -386,7 +386,21 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
     );
     let started = std::time::Instant::now();
     let never = std::sync::atomic::AtomicBool::new(false);
-    let maps = lightpaint::bake::bake_maps_with(scene, settings, &|done, _| bar.set_position(done as u64), &never);
+    let progress = |done: usize, _: usize| bar.set_position(done as u64);
+    // A project keeps its maps in the bake cache beside it; a bare scene has none.
+    let maps = match &document.project_path {
+        Some(project) => {
+            let cache = lightpaint::project::bake_cache::cache_path(project);
+            lightpaint::project::bake_cache::bake_with_cache(scene, settings, &cache, &progress, &never).map(
+                |(maps, what)| {
+                    bar.finish_and_clear();
+                    say!("{what}");
+                    maps
+                },
+            )
+        }
+        None => lightpaint::bake::bake_maps_with(scene, settings, &progress, &never),
+    };
     bar.finish_and_clear();
     let Some(maps) = maps else {
         return Err(CliError::Usage("the bake was cancelled".into()));
@@ -439,11 +453,27 @@ fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> 
     let started = std::time::Instant::now();
     let scene = &document.scene;
     let maps = bounces.map(|bounces| {
+        use lightpaint::project::bake_cache::{self, BakeKey, CacheLookup};
         let settings = lightpaint::bake::BakeSettings {
             bounces,
             ..Default::default()
         };
-        lightpaint::bake::bake_maps(scene, &settings)
+        let key = BakeKey::of(scene, &settings);
+        let cached = document
+            .project_path
+            .as_deref()
+            .map(|p| bake_cache::load(&bake_cache::cache_path(p), &key));
+        let maps = match cached {
+            Some(CacheLookup::Fresh(maps)) => {
+                say!("read the bake cache of {}", file.display());
+                maps
+            }
+            _ => lightpaint::bake::bake_maps(scene, &settings),
+        };
+        if let Err(e) = bake_cache::save(&bake_cache::cache_path(output), &key, &maps) {
+            eprintln!("warning: {}: cannot write the bake cache: {e}", output.display());
+        }
+        maps
     });
     let estimate_blockers = || fit_scene(scene, &document.settings.blockers).spheres();
     let transfer: Box<dyn Transfer> = match &maps {

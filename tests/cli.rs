@@ -183,7 +183,9 @@ fn render_rejects_bad_shadow_settings_with_exit_code_2() {
 
 #[test]
 fn bake_reports_the_maps_of_the_sample() {
-    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    // A copy: baking a project writes its cache beside it.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let sample = lightpaint::samples::Sample::Sample.write(dir.path()).expect("sample");
     let out = common::run_lightpaint(&[OsStr::new("bake"), sample.as_os_str()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
@@ -328,4 +330,40 @@ fn paint_without_a_bake_uses_the_direct_estimate() {
         stdout.contains("estimated") && stdout.contains("stroke 0: Changed"),
         "{stdout}"
     );
+}
+
+/// `bake` on a project fills the cache beside it; a second run reads it instead of
+/// baking; a moved light re-bakes only that light; a corrupt cache is rebuilt.
+#[test]
+fn bake_uses_the_cache_beside_the_project_and_never_trusts_a_bad_one() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let project = lightpaint::samples::Sample::Sample.write(dir.path()).expect("sample");
+    let bake = || {
+        let out = common::run_lightpaint(&[OsStr::new("bake"), project.as_os_str()]);
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let first = bake();
+    assert!(first.contains("baked; cache written"), "{first}");
+    let cache = lightpaint::project::bake_cache::cache_path(&project);
+    let second = bake();
+    assert!(second.contains("read the bake cache"), "{second}");
+
+    let mut document = lightpaint::project::Document::open(&project).expect("opens");
+    document.scene.lights[1].position += Vec3::new(0.3, 0.0, 0.0);
+    document.scene.lights[2].intensity *= 2.0;
+    document.save(&project).expect("save");
+    let third = bake();
+    assert!(third.contains("re-baked 1 changed light(s)"), "{third}");
+
+    let mut bytes = std::fs::read(&cache).expect("cache");
+    let middle = bytes.len() / 2;
+    bytes[middle] ^= 1;
+    std::fs::write(&cache, &bytes).expect("corrupt it");
+    let fourth = bake();
+    assert!(
+        fourth.contains("baked again") && fourth.contains("checksum"),
+        "{fourth}"
+    );
+    assert!(bake().contains("read the bake cache"));
 }

@@ -101,7 +101,7 @@ fn mean_luma_near(image: &image::RgbaImage, centre: egui::Pos2, radius: f32, pix
 /// its progress, and strokes read the baked maps once it is done.
 #[test]
 fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
-    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
         return;
     };
     harness.run();
@@ -126,6 +126,27 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
     harness.drop_at(centre);
     harness.run();
     assert!(harness.state().has_unsaved_changes());
+    drop(harness);
+
+    // The bake went to the cache beside the project: reopening reads it, no re-bake.
+    assert!(lightpaint::project::bake_cache::cache_path(&project).exists());
+    let options = EditorOptions {
+        file: project,
+        close_when_file_exists: None,
+        hide_frame_timings: true,
+    };
+    let mut reopened = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, options));
+    let started = std::time::Instant::now();
+    while reopened.query_by_label_contains("Transfer: baked maps").is_none() {
+        assert!(started.elapsed().as_secs() < 60, "the cache is read");
+        reopened.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    reopened.run();
+    reopened.get_by_label_contains("read the bake cache");
 }
 
 /// The studio sample: pick the brighten brush, drag across the floor in front of the

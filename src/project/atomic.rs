@@ -25,6 +25,21 @@ pub fn write_atomically_with(
     bytes: &[u8],
     before_rename: impl FnOnce() -> std::io::Result<()>,
 ) -> std::io::Result<()> {
+    write(path, bytes, true, before_rename)
+}
+
+/// [`write_atomically`] without the backup: for files that can be rebuilt (the bake
+/// cache), where a second copy would only double the disk used.
+pub fn replace_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write(path, bytes, false, || Ok(()))
+}
+
+fn write(
+    path: &Path,
+    bytes: &[u8],
+    keep_backup: bool,
+    before_rename: impl FnOnce() -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let directory = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
         _ => PathBuf::from("."),
@@ -39,7 +54,7 @@ pub fn write_atomically_with(
         file.write_all(bytes)?;
         file.sync_all()?;
         drop(file);
-        if path.exists() {
+        if keep_backup && path.exists() {
             std::fs::copy(path, backup_path(path))?;
         }
         before_rename()?;

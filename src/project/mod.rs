@@ -2,12 +2,13 @@
 //! saved atomically (docs/file-format.md).
 
 mod atomic;
+pub mod bake_cache;
 mod document;
 mod error;
 mod file;
 mod migrate;
 
-pub use atomic::{backup_path, write_atomically, write_atomically_with};
+pub use atomic::{backup_path, replace_atomically, write_atomically, write_atomically_with};
 pub use document::{Document, is_project_path};
 pub use error::{Problem, ProjectError};
 pub use file::{

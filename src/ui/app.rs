@@ -113,7 +113,9 @@ impl EditorApp {
                     }
                     saved
                 });
-                self.painting = Some(Painting::for_document(&document));
+                let mut painting = Painting::for_document(&document);
+                painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
+                self.painting = Some(painting);
                 self.document = Some(document);
             }
             Err(e) => self.report_error(e.to_string()),
@@ -223,6 +225,9 @@ impl EditorApp {
             Ok(()) => {
                 self.saved = Some(document.to_project_file(path));
                 self.message = format!("saved {}", path.display());
+                if let Some(problem) = self.painting.as_mut().and_then(|p| p.save_cache(&document.scene, path)) {
+                    self.message = problem;
+                }
             }
             Err(e) => self.report_error(e.to_string()),
         }
@@ -426,7 +431,7 @@ impl EditorApp {
             match action {
                 Some(PaintAction::StartBake) => {
                     if let Some(painting) = &mut self.painting {
-                        painting.start_bake(&document.scene);
+                        painting.start_bake(&document.scene, document.project_path.as_deref());
                     }
                 }
                 Some(PaintAction::Undo) => *pending_history = Some(PaintAction::Undo),

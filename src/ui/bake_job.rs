@@ -2,12 +2,14 @@
 //! the panel (with an ETA from the rate so far), cancellation that keeps nothing, and the
 //! maps handed over when it finishes.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crate::bake::{BakeSettings, ImportanceMaps, bake_maps_with};
+use crate::project::bake_cache::bake_with_cache;
 use crate::scene::Scene;
 
 pub struct BakeJob {
@@ -15,31 +17,32 @@ pub struct BakeJob {
     total: usize,
     cancel: Arc<AtomicBool>,
     started: Instant,
-    handle: Option<JoinHandle<Option<ImportanceMaps>>>,
+    handle: Option<JoinHandle<Option<(ImportanceMaps, String)>>>,
 }
 
 /// What a poll of the job found.
 pub enum BakePoll {
     Running,
-    Finished(ImportanceMaps),
+    /// The maps and what happened (baked, read from the cache, …).
+    Finished(ImportanceMaps, String),
     Cancelled,
 }
 
 impl BakeJob {
-    /// Starts baking a copy of `scene` on its own thread (which uses rayon's pool).
-    pub fn start(scene: &Scene, settings: BakeSettings) -> BakeJob {
+    /// Starts baking a copy of `scene` on its own thread (which uses rayon's pool); with a
+    /// `cache` file, reads it when it is fresh and writes it after a bake.
+    pub fn start(scene: &Scene, settings: BakeSettings, cache: Option<PathBuf>) -> BakeJob {
         let scene = scene.clone();
         let done = Arc::new(AtomicUsize::new(0));
         let cancel = Arc::new(AtomicBool::new(false));
         let total = scene.vertex_count();
         let (done_in, cancel_in) = (done.clone(), cancel.clone());
         let handle = std::thread::spawn(move || {
-            bake_maps_with(
-                &scene,
-                &settings,
-                &|finished, _| done_in.store(finished, Ordering::Relaxed),
-                &cancel_in,
-            )
+            let progress = |finished, _| done_in.store(finished, Ordering::Relaxed);
+            match cache {
+                Some(path) => bake_with_cache(&scene, &settings, &path, &progress, &cancel_in),
+                None => bake_maps_with(&scene, &settings, &progress, &cancel_in).map(|m| (m, "baked".to_string())),
+            }
         });
         BakeJob {
             done,
@@ -79,7 +82,7 @@ impl BakeJob {
             return BakePoll::Running;
         }
         match self.handle.take().map(JoinHandle::join) {
-            Some(Ok(Some(maps))) => BakePoll::Finished(maps),
+            Some(Ok(Some((maps, what)))) => BakePoll::Finished(maps, what),
             _ => BakePoll::Cancelled,
         }
     }

@@ -44,6 +44,11 @@ pub struct Painting {
     maps: Option<ImportanceMaps>,
     pub bake: Option<BakeJob>,
     pub bake_settings: BakeSettings,
+    /// The cache file the maps were last written to or read from, and their key then.
+    cached_at: Option<(std::path::PathBuf, crate::project::bake_cache::BakeKey)>,
+    /// The cache file of the running bake, if it has one, and the key it bakes for.
+    bake_cache: Option<std::path::PathBuf>,
+    bake_key: Option<crate::project::bake_cache::BakeKey>,
     next_seed: u64,
     pub last_report: Option<StrokeReport>,
 }
@@ -62,6 +67,9 @@ impl Painting {
             maps: None,
             bake: None,
             bake_settings: BakeSettings::default(),
+            cached_at: None,
+            bake_cache: None,
+            bake_key: None,
             next_seed: state.strokes.len() as u64 + 1,
             last_report: None,
         }
@@ -96,8 +104,42 @@ impl Painting {
         }
     }
 
-    pub fn start_bake(&mut self, scene: &Scene) {
-        self.bake = Some(BakeJob::start(scene, self.bake_settings));
+    /// Bakes in the background; a saved project's maps go to (or come from) its cache.
+    pub fn start_bake(&mut self, scene: &Scene, project: Option<&std::path::Path>) {
+        let cache = project.map(crate::project::bake_cache::cache_path);
+        self.bake_cache = cache.clone();
+        self.bake_key = Some(crate::project::bake_cache::BakeKey::of(scene, &self.bake_settings));
+        self.bake = Some(BakeJob::start(scene, self.bake_settings, cache));
+    }
+
+    /// On opening a project with a bake cache: load it (or re-bake what changed) in the
+    /// background, so strokes get the baked maps without asking.
+    pub fn resume_cached_bake(&mut self, scene: &Scene, project: Option<&std::path::Path>) {
+        if let Some(project) = project
+            && crate::project::bake_cache::cache_path(project).exists()
+        {
+            self.start_bake(scene, Some(project));
+        }
+    }
+
+    /// Writes the maps to the cache of `project` (after Save As, or the first save).
+    pub fn save_cache(&mut self, scene: &Scene, project: &std::path::Path) -> Option<String> {
+        let maps = self.maps.as_ref()?;
+        let key = crate::project::bake_cache::BakeKey::of(scene, &self.bake_settings);
+        let path = crate::project::bake_cache::cache_path(project);
+        if self.cached_at.as_ref() == Some(&(path.clone(), key.clone())) {
+            return None;
+        }
+        match crate::project::bake_cache::save(&path, &key, maps) {
+            Ok(()) => {
+                self.cached_at = Some((path, key));
+                None
+            }
+            Err(e) => Some(format!(
+                "the bake cache could not be written to {}: {e}",
+                path.display()
+            )),
+        }
     }
 
     /// Takes the maps of a finished bake; the message to show, if something finished.
@@ -106,14 +148,19 @@ impl Painting {
         let seconds = job.elapsed().as_secs_f32();
         match job.poll() {
             BakePoll::Running => None,
-            BakePoll::Finished(maps) => {
+            BakePoll::Finished(maps, what) => {
                 self.bake = None;
-                let message = format!("baked {} vertex-light pairs in {seconds:.1} s", maps.entry_count());
+                let message = format!("{what}: {} vertex-light pairs in {seconds:.1} s", maps.entry_count());
+                if let (Some(path), Some(key)) = (self.bake_cache.take(), self.bake_key.take()) {
+                    self.cached_at = Some((path, key));
+                }
                 self.maps = Some(maps);
                 Some(message)
             }
             BakePoll::Cancelled => {
                 self.bake = None;
+                self.bake_cache = None;
+                self.bake_key = None;
                 Some("bake cancelled; strokes keep using the direct estimate".to_string())
             }
         }

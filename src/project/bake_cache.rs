@@ -1,0 +1,334 @@
+//! The bake cache beside a project (`NAME.lightpaint.bake`): the importance maps with the
+//! key of the inputs they were baked from, so a reopened project with unchanged geometry,
+//! lights and settings uses them without a re-bake. The key is a BLAKE3 hash of the
+//! geometry, the materials' diffuse albedo (the bounce reads it) and the bake settings,
+//! plus one hash per light of what shapes its maps (kind, position, direction, range; not
+//! its intensity or colour, which the maps leave out). A cache whose scene key differs is
+//! stale; one whose light hashes differ names the lights to re-bake; a file that is
+//! truncated, corrupt or of another version fails its checksum or header and is never
+//! trusted. Writes are atomic, and only finished bakes are written.
+//!
+//! Layout (little-endian): magic `LPBAKE`, u16 version, the 32-byte scene key, u32 light
+//! count and 32 bytes per light, u32 order, u32 object count, per object u32 vertex count,
+//! per vertex u32 entry count then per entry u32 light and order² f32, and last the
+//! BLAKE3 hash of everything before it.
+
+use std::path::{Path, PathBuf};
+
+use std::sync::atomic::AtomicBool;
+
+use crate::bake::{BakeSettings, ImportanceMaps, LightContribution, bake_maps_with, rebake_lights};
+use crate::scene::Scene;
+
+const MAGIC: &[u8; 6] = b"LPBAKE";
+const VERSION: u16 = 1;
+
+/// What the maps were baked from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BakeKey {
+    pub scene: [u8; 32],
+    pub lights: Vec<[u8; 32]>,
+}
+
+impl BakeKey {
+    pub fn of(scene: &Scene, settings: &BakeSettings) -> BakeKey {
+        let mut hasher = blake3::Hasher::new();
+        hasher.update(format!("{settings:?}").as_bytes());
+        for object in &scene.objects {
+            hasher.update(&(object.positions.len() as u64).to_le_bytes());
+            hasher.update(bytemuck::cast_slice(&object.positions));
+            hasher.update(bytemuck::cast_slice(&object.normals));
+            hasher.update(bytemuck::cast_slice(&object.indices));
+            let albedo = scene
+                .materials
+                .get(object.material)
+                .map(|m| m.diffuse_albedo())
+                .unwrap_or(glam::Vec3::ONE);
+            hasher.update(bytemuck::bytes_of(&albedo));
+        }
+        let lights = scene
+            .lights
+            .iter()
+            .map(|l| *blake3::hash(format!("{:?}", (l.kind, l.position, l.direction, l.range)).as_bytes()).as_bytes())
+            .collect();
+        BakeKey {
+            scene: *hasher.finalize().as_bytes(),
+            lights,
+        }
+    }
+}
+
+/// The cache file of a project.
+pub fn cache_path(project: &Path) -> PathBuf {
+    let mut name = project.file_name().unwrap_or_default().to_os_string();
+    name.push(".bake");
+    project.with_file_name(name)
+}
+
+/// What looking up the cache found.
+#[derive(Debug)]
+pub enum CacheLookup {
+    /// Baked from exactly these inputs.
+    Fresh(ImportanceMaps),
+    /// Same geometry and settings; the listed lights changed (re-bake only them).
+    LightsChanged { maps: ImportanceMaps, lights: Vec<usize> },
+    /// No cache file.
+    Missing,
+    /// A cache that cannot be used, and why (it will be rebuilt).
+    Unusable(String),
+}
+
+pub fn save(path: &Path, key: &BakeKey, maps: &ImportanceMaps) -> std::io::Result<()> {
+    let mut bytes = Vec::with_capacity(64 + maps.entry_count() * (4 + 4 * maps.order * maps.order));
+    bytes.extend_from_slice(MAGIC);
+    bytes.extend_from_slice(&VERSION.to_le_bytes());
+    bytes.extend_from_slice(&key.scene);
+    put_u32(&mut bytes, key.lights.len());
+    key.lights.iter().for_each(|h| bytes.extend_from_slice(h));
+    put_u32(&mut bytes, maps.order);
+    put_u32(&mut bytes, maps.objects.len());
+    for object in &maps.objects {
+        put_u32(&mut bytes, object.len());
+    }
+    for vertex in maps.objects.iter().flatten() {
+        put_u32(&mut bytes, vertex.len());
+        for entry in vertex {
+            bytes.extend_from_slice(&entry.light.to_le_bytes());
+            bytes.extend_from_slice(bytemuck::cast_slice(&entry.sh));
+        }
+    }
+    let checksum = blake3::hash(&bytes);
+    bytes.extend_from_slice(checksum.as_bytes());
+    super::replace_atomically(path, &bytes)
+}
+
+fn put_u32(bytes: &mut Vec<u8>, value: usize) {
+    bytes.extend_from_slice(&(value as u32).to_le_bytes());
+}
+
+/// Reads the cache at `path` and compares it with `key`.
+pub fn load(path: &Path, key: &BakeKey) -> CacheLookup {
+    let bytes = match std::fs::read(path) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return CacheLookup::Missing,
+        Err(e) => return CacheLookup::Unusable(format!("{}: cannot read: {e}", path.display())),
+    };
+    match parse(&bytes, key) {
+        Ok(lookup) => lookup,
+        Err(reason) => CacheLookup::Unusable(format!("{}: {reason}", path.display())),
+    }
+}
+
+fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
+    if bytes.len() < MAGIC.len() + 2 + 32 || &bytes[..MAGIC.len()] != MAGIC {
+        return Err("not a lightpaint bake cache".into());
+    }
+    let (body, checksum) = bytes.split_at(bytes.len() - 32);
+    if blake3::hash(body).as_bytes() != checksum {
+        return Err("corrupt or truncated (checksum mismatch)".into());
+    }
+    let mut reader = Reader {
+        bytes: body,
+        at: MAGIC.len(),
+    };
+    let version = u16::from_le_bytes(reader.take(2)?.try_into().map_err(|_| "short")?);
+    if version != VERSION {
+        return Err(format!("cache version {version}, this build reads {VERSION}"));
+    }
+    let scene: [u8; 32] = reader.take(32)?.try_into().map_err(|_| "short scene key")?;
+    if scene != key.scene {
+        return Err("baked for other geometry, materials or settings".into());
+    }
+    let light_count = reader.u32()?;
+    let lights: Vec<[u8; 32]> = (0..light_count)
+        .map(|_| {
+            reader
+                .take(32)
+                .and_then(|h| h.try_into().map_err(|_| "short".to_string()))
+        })
+        .collect::<Result<_, _>>()?;
+    let order = reader.u32()?;
+    if !(1..=16).contains(&order) {
+        return Err(format!("order {order} is out of range"));
+    }
+    let object_count = reader.u32()?;
+    let vertex_counts: Vec<usize> = (0..object_count).map(|_| reader.u32()).collect::<Result<_, _>>()?;
+    let mut objects = Vec::with_capacity(object_count);
+    for &vertices in &vertex_counts {
+        let mut object = Vec::with_capacity(vertices);
+        for _ in 0..vertices {
+            let entries = reader.u32()?;
+            let mut vertex = Vec::with_capacity(entries.min(4096));
+            for _ in 0..entries {
+                let light = reader.u32()? as u32;
+                if light as usize >= light_count {
+                    return Err(format!("an entry names light {light} of {light_count}"));
+                }
+                let sh: Vec<f32> = bytemuck::pod_collect_to_vec(reader.take(4 * order * order)?);
+                vertex.push(LightContribution { light, sh });
+            }
+            object.push(vertex);
+        }
+        objects.push(object);
+    }
+    if reader.at != body.len() {
+        return Err("trailing bytes after the maps".into());
+    }
+    let mut maps = ImportanceMaps { order, objects };
+    if lights.len() != key.lights.len() {
+        return Err(format!(
+            "baked for {} lights, the scene has {}",
+            lights.len(),
+            key.lights.len()
+        ));
+    }
+    let changed: Vec<usize> = (0..lights.len()).filter(|&i| lights[i] != key.lights[i]).collect();
+    if changed.is_empty() {
+        return Ok(CacheLookup::Fresh(maps));
+    }
+    // The changed lights' old maps must not be used in the meantime.
+    for vertex in maps.objects.iter_mut().flatten() {
+        vertex.retain(|e| !changed.contains(&(e.light as usize)));
+    }
+    Ok(CacheLookup::LightsChanged { maps, lights: changed })
+}
+
+/// The maps for `scene` and `settings`, from the cache at `path` when it is fresh, else
+/// baked (only the changed lights when just lights moved) and written back. None if
+/// cancelled (the cache is left as it was). The second value says what happened.
+pub fn bake_with_cache(
+    scene: &Scene,
+    settings: &BakeSettings,
+    path: &Path,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(ImportanceMaps, String)> {
+    let key = BakeKey::of(scene, settings);
+    let (maps, what) = match load(path, &key) {
+        CacheLookup::Fresh(maps) => return Some((maps, format!("read the bake cache {}", path.display()))),
+        CacheLookup::LightsChanged { maps, lights } => {
+            let count = lights.len();
+            let maps = rebake_lights(scene, settings, &maps, &lights, progress, cancel)?;
+            (maps, format!("re-baked {count} changed light(s)"))
+        }
+        CacheLookup::Missing => (bake_maps_with(scene, settings, progress, cancel)?, "baked".to_string()),
+        CacheLookup::Unusable(reason) => (
+            bake_maps_with(scene, settings, progress, cancel)?,
+            format!("baked again ({reason})"),
+        ),
+    };
+    let what = match save(path, &key, &maps) {
+        Ok(()) => format!("{what}; cache written to {}", path.display()),
+        Err(e) => format!("{what}; the cache could not be written to {}: {e}", path.display()),
+    };
+    Some((maps, what))
+}
+
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl Reader<'_> {
+    fn take(&mut self, n: usize) -> Result<&[u8], String> {
+        let end = self
+            .at
+            .checked_add(n)
+            .filter(|&e| e <= self.bytes.len())
+            .ok_or("truncated")?;
+        let slice = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(slice)
+    }
+
+    fn u32(&mut self) -> Result<usize, String> {
+        let bytes: [u8; 4] = self.take(4)?.try_into().map_err(|_| "short")?;
+        Ok(u32::from_le_bytes(bytes) as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::bake::bake_maps;
+    use crate::scene::{Light, LightKind, shapes};
+
+    fn scene() -> Scene {
+        let light = |x: f32| Light {
+            name: "bulb".into(),
+            kind: LightKind::Point,
+            color: Vec3::ONE,
+            intensity: 3.0,
+            position: Vec3::new(x, 2.0, 0.0),
+            direction: Vec3::NEG_Y,
+            range: None,
+        };
+        Scene {
+            objects: vec![shapes::plane(2.0, 3, 1.0).into_object("floor")],
+            lights: vec![light(-1.0), light(1.0)],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn a_saved_cache_reads_back_fresh_and_names_changed_lights() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.lightpaint.bake");
+        let mut scene = scene();
+        let settings = BakeSettings::default();
+        let maps = bake_maps(&scene, &settings);
+        save(&path, &BakeKey::of(&scene, &settings), &maps).unwrap();
+        match load(&path, &BakeKey::of(&scene, &settings)) {
+            CacheLookup::Fresh(read) => assert_eq!(read, maps),
+            other => panic!("{other:?}"),
+        }
+        // Intensity and colour do not touch the maps; moving a light does.
+        scene.lights[0].intensity = 99.0;
+        scene.lights[0].color = Vec3::X;
+        assert!(matches!(
+            load(&path, &BakeKey::of(&scene, &settings)),
+            CacheLookup::Fresh(_)
+        ));
+        scene.lights[1].position.x = 0.5;
+        match load(&path, &BakeKey::of(&scene, &settings)) {
+            CacheLookup::LightsChanged { maps, lights } => {
+                assert_eq!(lights, vec![1]);
+                assert!(maps.objects.iter().flatten().flatten().all(|e| e.light == 0));
+            }
+            other => panic!("{other:?}"),
+        }
+        let other_settings = BakeSettings { order: 4, ..settings };
+        assert!(matches!(
+            load(&path, &BakeKey::of(&scene, &other_settings)),
+            CacheLookup::Unusable(_)
+        ));
+    }
+
+    #[test]
+    fn truncated_or_corrupt_caches_are_never_trusted() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.lightpaint.bake");
+        let scene = scene();
+        let settings = BakeSettings::default();
+        let key = BakeKey::of(&scene, &settings);
+        save(&path, &key, &bake_maps(&scene, &settings)).unwrap();
+        let good = std::fs::read(&path).unwrap();
+        for cut in [0, 5, 40, good.len() / 2, good.len() - 1] {
+            std::fs::write(&path, &good[..cut]).unwrap();
+            assert!(matches!(load(&path, &key), CacheLookup::Unusable(_)), "cut at {cut}");
+        }
+        let mut flipped = good.clone();
+        flipped[good.len() / 2] ^= 0x10;
+        std::fs::write(&path, &flipped).unwrap();
+        match load(&path, &key) {
+            CacheLookup::Unusable(reason) => assert!(reason.contains("checksum"), "{reason}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            load(&dir.path().join("none.bake"), &key),
+            CacheLookup::Missing
+        ));
+    }
+}
