@@ -44,7 +44,7 @@ enum Command {
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=8))]
         order: u8,
         /// Emitter samples per extended light (sphere, rect, disk) and vertex.
-        #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..=4096))]
+        #[arg(long, visible_alias = "samples", default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..=4096))]
         light_samples: u16,
         /// Diffuse bounces of indirect light (0 or 1 so far).
         #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
@@ -52,6 +52,9 @@ enum Command {
         /// Hemisphere directions per vertex for the bounce.
         #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u16).range(1..=4096))]
         directions: u16,
+        /// Drop a vertex's entry for a light under this share of the light's peak (0–1).
+        #[arg(long, default_value_t = 1e-4, value_parser = parse_threshold)]
+        threshold: f32,
     },
     /// Apply scripted strokes (docs/strokes.md) to a project or scene and save the result,
     /// with the strokes in its log, as a project.
@@ -143,6 +146,13 @@ fn parse_blockers(text: &str) -> Result<SphereBudget, String> {
     }
 }
 
+fn parse_threshold(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(t) if (0.0..=1.0).contains(&t) => Ok(t),
+        _ => Err(format!("expected a share between 0 and 1, got '{text}'")),
+    }
+}
+
 fn parse_exposure(text: &str) -> Result<f32, String> {
     match text.parse::<f32>() {
         Ok(ev) if ev.is_finite() && ev.abs() <= 64.0 => Ok(ev),
@@ -221,12 +231,14 @@ fn main() -> ExitCode {
             light_samples,
             bounces,
             directions,
+            threshold,
         }) => {
             let settings = lightpaint::bake::BakeSettings {
                 order: order as usize,
                 light_samples: light_samples as usize,
                 bounces: bounces as usize,
                 indirect_directions: directions as usize,
+                relative_threshold: threshold,
                 ..Default::default()
             };
             bake(&file, &settings)
@@ -399,7 +411,12 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
                 },
             )
         }
-        None => lightpaint::bake::bake_maps_with(scene, settings, &progress, &never),
+        None => lightpaint::bake::bake_maps_counting(scene, settings, &progress, &never).map(|(maps, rays)| {
+            let seconds = started.elapsed().as_secs_f64().max(1e-9);
+            bar.finish_and_clear();
+            say!("baked ({rays} rays, {:.2} M rays/s)", rays as f64 / seconds / 1e6);
+            maps
+        }),
     };
     bar.finish_and_clear();
     let Some(maps) = maps else {
@@ -407,9 +424,8 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
     };
     let pairs = scene.vertex_count() * scene.lights.len();
     let entries = maps.entry_count();
-    let bytes = entries * (order * order * 4 + std::mem::size_of::<lightpaint::bake::LightContribution>());
     say!(
-        "baked {}: {} vertices × {} lights, {entries} (vertex, light) pairs stored ({:.0} % of {pairs}), order {order}, about {:.1} MiB, in {:.0} ms ({} bounce(s))",
+        "maps of {}: {} vertices × {} lights, {entries} (vertex, light) pairs stored ({:.0} % of {pairs}; {:.2} % of the pairs light reaches kept at threshold {}), order {order}, {:.1} MiB in memory, in {:.0} ms ({} bounce(s))",
         file.display(),
         scene.vertex_count(),
         scene.lights.len(),
@@ -418,7 +434,9 @@ fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), Cl
         } else {
             100.0 * entries as f64 / pairs as f64
         },
-        bytes as f64 / (1024.0 * 1024.0),
+        100.0 * maps.kept_fraction(),
+        settings.relative_threshold,
+        maps.memory_bytes() as f64 / (1024.0 * 1024.0),
         started.elapsed().as_secs_f64() * 1000.0,
         settings.bounces
     );

@@ -190,6 +190,10 @@ fn bake_reports_the_maps_of_the_sample() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("(vertex, light) pairs stored"), "{stdout}");
+    assert!(
+        stdout.contains("MiB in memory") && stdout.contains("M rays/s"),
+        "{stdout}"
+    );
     let bad = common::run_lightpaint(&[
         OsStr::new("bake"),
         sample.as_os_str(),
@@ -344,7 +348,10 @@ fn bake_uses_the_cache_beside_the_project_and_never_trusts_a_bad_one() {
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
     let first = bake();
-    assert!(first.contains("baked; cache written"), "{first}");
+    assert!(
+        first.contains("baked (") && first.contains("rays/s); cache written"),
+        "{first}"
+    );
     let cache = lightpaint::project::bake_cache::cache_path(&project);
     let second = bake();
     assert!(second.contains("read the bake cache"), "{second}");

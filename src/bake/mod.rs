@@ -28,6 +28,11 @@ pub struct BakeSettings {
     pub bounces: usize,
     /// Hemisphere directions per vertex for the indirect bounce.
     pub indirect_directions: usize,
+    /// A vertex's entry for a light is dropped when its DC (the light's unit-intensity
+    /// incident power there) is below this share of that light's largest DC over the
+    /// scene (0 keeps everything). Judged per light, so re-baking one light gives what a
+    /// full bake would.
+    pub relative_threshold: f32,
 }
 
 impl Default for BakeSettings {
@@ -38,6 +43,7 @@ impl Default for BakeSettings {
             ray_offset_m: 1e-3,
             bounces: 1,
             indirect_directions: 32,
+            relative_threshold: 1e-4,
         }
     }
 }
@@ -56,6 +62,8 @@ pub struct LightContribution {
 pub struct ImportanceMaps {
     pub order: usize,
     pub objects: Vec<Vec<Vec<LightContribution>>>,
+    /// (vertex, light) pairs that reached the vertex but fell under the threshold.
+    pub dropped_entries: usize,
 }
 
 impl ImportanceMaps {
@@ -63,6 +71,50 @@ impl ImportanceMaps {
     pub fn entry_count(&self) -> usize {
         self.objects.iter().flatten().map(Vec::len).sum()
     }
+
+    /// Share of the pairs that reached a vertex which were kept (1 when none were dropped).
+    pub fn kept_fraction(&self) -> f64 {
+        let kept = self.entry_count();
+        let all = kept + self.dropped_entries;
+        if all == 0 { 1.0 } else { kept as f64 / all as f64 }
+    }
+
+    /// Bytes the maps take in memory: the coefficients, each entry's header and each
+    /// vertex's list.
+    pub fn memory_bytes(&self) -> usize {
+        let entries = self.entry_count();
+        let vertices: usize = self.objects.iter().map(Vec::len).sum();
+        entries * (self.order * self.order * std::mem::size_of::<f32>() + std::mem::size_of::<LightContribution>())
+            + vertices * std::mem::size_of::<Vec<LightContribution>>()
+    }
+}
+
+/// Drops every entry whose DC is under `threshold` × its light's largest DC in `objects`
+/// (and any entry that is not finite or not positive); returns how many were dropped.
+fn sparsify(objects: &mut [Vec<Vec<LightContribution>>], light_count: usize, threshold: f32) -> usize {
+    let mut peak = vec![0.0f32; light_count];
+    for entry in objects.iter().flatten().flatten() {
+        if let Some(p) = peak.get_mut(entry.light as usize)
+            && entry.sh[0].is_finite()
+        {
+            *p = p.max(entry.sh[0]);
+        }
+    }
+    objects
+        .par_iter_mut()
+        .map(|object| {
+            let mut dropped = 0;
+            for entries in object.iter_mut() {
+                let before = entries.len();
+                entries.retain(|e| {
+                    let floor = threshold * peak.get(e.light as usize).copied().unwrap_or(0.0);
+                    e.sh.iter().all(|c| c.is_finite()) && e.sh[0] > 0.0 && e.sh[0] >= floor
+                });
+                dropped += before - entries.len();
+            }
+            dropped
+        })
+        .sum()
 }
 
 /// Bakes the maps of every light at every vertex, on all cores.
@@ -71,6 +123,7 @@ pub fn bake_maps(scene: &Scene, settings: &BakeSettings) -> ImportanceMaps {
     bake_maps_with(scene, settings, &|_, _| {}, &never).unwrap_or(ImportanceMaps {
         order: settings.order,
         objects: Vec::new(),
+        dropped_entries: 0,
     })
 }
 
@@ -82,6 +135,16 @@ pub fn bake_maps_with(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Option<ImportanceMaps> {
+    bake_maps_counting(scene, settings, progress, cancel).map(|(maps, _)| maps)
+}
+
+/// [`bake_maps_with`], also returning the number of rays traced.
+pub fn bake_maps_counting(
+    scene: &Scene,
+    settings: &BakeSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(ImportanceMaps, u64)> {
     let all: Vec<usize> = (0..scene.lights.len()).collect();
     bake_lights(scene, settings, &all, progress, cancel)
 }
@@ -108,7 +171,7 @@ pub fn rebake_lights(
     if !same_shape {
         return bake_maps_with(scene, settings, progress, cancel);
     }
-    let fresh = bake_lights(scene, settings, lights, progress, cancel)?;
+    let (fresh, _) = bake_lights(scene, settings, lights, progress, cancel)?;
     let objects = previous
         .objects
         .iter()
@@ -129,20 +192,23 @@ pub fn rebake_lights(
                 .collect()
         })
         .collect();
+    // The re-baked lights' dropped count replaces theirs in the old total only
+    // approximately (the old maps do not say which light each drop was); it is a report.
     Some(ImportanceMaps {
         order: settings.order,
         objects,
+        dropped_entries: previous.dropped_entries.max(fresh.dropped_entries),
     })
 }
 
-/// The maps of `lights` only (indices into `scene.lights`).
+/// The maps of `lights` only (indices into `scene.lights`), and the rays traced.
 fn bake_lights(
     scene: &Scene,
     settings: &BakeSettings,
     lights: &[usize],
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
-) -> Option<ImportanceMaps> {
+) -> Option<(ImportanceMaps, u64)> {
     let bvh = SceneBvh::build(scene);
     let albedo: Vec<f32> = scene.materials.iter().map(indirect::diffuse_luminance).collect();
     let total = scene.vertex_count();
@@ -185,10 +251,13 @@ fn bake_lights(
             .collect();
         objects.push(vertices?);
     }
-    Some(ImportanceMaps {
+    let dropped_entries = sparsify(&mut objects, scene.lights.len(), settings.relative_threshold);
+    let maps = ImportanceMaps {
         order: settings.order,
         objects,
-    })
+        dropped_entries,
+    };
+    Some((maps, bvh.rays_cast()))
 }
 
 /// Adds each (light, SH) of `more` into `entries` (which stay sorted by light).

@@ -26,6 +26,8 @@ pub struct SceneBvh {
     owners: Vec<(u32, u32)>,
     /// None when the scene has no triangle: every ray is unoccluded.
     bvh: Option<CwBvh>,
+    /// Rays traced so far (for rays-per-second reports).
+    rays: std::sync::atomic::AtomicU64,
 }
 
 impl SceneBvh {
@@ -55,12 +57,27 @@ impl SceneBvh {
                 &mut std::time::Duration::default(),
             )
         });
-        SceneBvh { triangles, owners, bvh }
+        SceneBvh {
+            triangles,
+            owners,
+            bvh,
+            rays: std::sync::atomic::AtomicU64::new(0),
+        }
     }
 
     /// The first surface the ray from `origin` along the unit `direction` meets between
     /// `t_min` and `t_max` metres, if any.
+    /// Rays traced through this BVH so far.
+    pub fn rays_cast(&self) -> u64 {
+        self.rays.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    fn count_ray(&self) {
+        self.rays.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+
     pub fn closest_hit(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> Option<Hit> {
+        self.count_ray();
         let bvh = self.bvh.as_ref()?;
         let ray = Ray::new(Vec3A::from(origin), positive_zeros(direction), t_min, t_max);
         let mut hit = obvhs::ray::RayHit::none();
@@ -88,6 +105,7 @@ impl SceneBvh {
     /// Whether anything lies on the segment from `origin` along the unit `direction`
     /// between `t_min` and `t_max` metres.
     pub fn occluded(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> bool {
+        self.count_ray();
         let Some(bvh) = &self.bvh else { return false };
         let ray = Ray::new(Vec3A::from(origin), positive_zeros(direction), t_min, t_max);
         !bvh.ray_traverse_miss(ray, |ray, id| {

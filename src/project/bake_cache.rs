@@ -9,7 +9,7 @@
 //! trusted. Writes are atomic, and only finished bakes are written.
 //!
 //! Layout (little-endian): magic `LPBAKE`, u16 version, the 32-byte scene key, u32 light
-//! count and 32 bytes per light, u32 order, u32 object count, per object u32 vertex count,
+//! count and 32 bytes per light, u32 order, u64 dropped entries, u32 object count, per object u32 vertex count,
 //! per vertex u32 entry count then per entry u32 light and order² f32, and last the
 //! BLAKE3 hash of everything before it.
 
@@ -17,11 +17,11 @@ use std::path::{Path, PathBuf};
 
 use std::sync::atomic::AtomicBool;
 
-use crate::bake::{BakeSettings, ImportanceMaps, LightContribution, bake_maps_with, rebake_lights};
+use crate::bake::{BakeSettings, ImportanceMaps, LightContribution, bake_maps_counting, rebake_lights};
 use crate::scene::Scene;
 
 const MAGIC: &[u8; 6] = b"LPBAKE";
-const VERSION: u16 = 1;
+const VERSION: u16 = 2;
 
 /// What the maps were baked from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -86,6 +86,7 @@ pub fn save(path: &Path, key: &BakeKey, maps: &ImportanceMaps) -> std::io::Resul
     put_u32(&mut bytes, key.lights.len());
     key.lights.iter().for_each(|h| bytes.extend_from_slice(h));
     put_u32(&mut bytes, maps.order);
+    bytes.extend_from_slice(&(maps.dropped_entries as u64).to_le_bytes());
     put_u32(&mut bytes, maps.objects.len());
     for object in &maps.objects {
         put_u32(&mut bytes, object.len());
@@ -151,6 +152,7 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
     if !(1..=16).contains(&order) {
         return Err(format!("order {order} is out of range"));
     }
+    let dropped_entries = u64::from_le_bytes(reader.take(8)?.try_into().map_err(|_| "short")?) as usize;
     let object_count = reader.u32()?;
     let vertex_counts: Vec<usize> = (0..object_count).map(|_| reader.u32()).collect::<Result<_, _>>()?;
     let mut objects = Vec::with_capacity(object_count);
@@ -174,7 +176,11 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
     if reader.at != body.len() {
         return Err("trailing bytes after the maps".into());
     }
-    let mut maps = ImportanceMaps { order, objects };
+    let mut maps = ImportanceMaps {
+        order,
+        objects,
+        dropped_entries,
+    };
     if lights.len() != key.lights.len() {
         return Err(format!(
             "baked for {} lights, the scene has {}",
@@ -211,17 +217,33 @@ pub fn bake_with_cache(
             let maps = rebake_lights(scene, settings, &maps, &lights, progress, cancel)?;
             (maps, format!("re-baked {count} changed light(s)"))
         }
-        CacheLookup::Missing => (bake_maps_with(scene, settings, progress, cancel)?, "baked".to_string()),
-        CacheLookup::Unusable(reason) => (
-            bake_maps_with(scene, settings, progress, cancel)?,
-            format!("baked again ({reason})"),
-        ),
+        CacheLookup::Missing => bake_counting(scene, settings, progress, cancel, "baked".to_string())?,
+        CacheLookup::Unusable(reason) => {
+            bake_counting(scene, settings, progress, cancel, format!("baked again ({reason})"))?
+        }
     };
     let what = match save(path, &key, &maps) {
         Ok(()) => format!("{what}; cache written to {}", path.display()),
         Err(e) => format!("{what}; the cache could not be written to {}: {e}", path.display()),
     };
     Some((maps, what))
+}
+
+/// A full bake, its `what` extended with the rays traced per second.
+fn bake_counting(
+    scene: &Scene,
+    settings: &BakeSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+    what: String,
+) -> Option<(ImportanceMaps, String)> {
+    let started = std::time::Instant::now();
+    let (maps, rays) = bake_maps_counting(scene, settings, progress, cancel)?;
+    let seconds = started.elapsed().as_secs_f64().max(1e-9);
+    Some((
+        maps,
+        format!("{what} ({rays} rays, {:.2} M rays/s)", rays as f64 / seconds / 1e6),
+    ))
 }
 
 struct Reader<'a> {
