@@ -46,8 +46,8 @@ enum Command {
         /// Emitter samples per extended light (sphere, rect, disk) and vertex.
         #[arg(long, visible_alias = "samples", default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..=4096))]
         light_samples: u16,
-        /// Diffuse bounces of indirect light (0 or 1 so far).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
+        /// Diffuse bounces of indirect light (0–8; Russian roulette from the third).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=8))]
         bounces: u8,
         /// Hemisphere directions per vertex for the bounce.
         #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u16).range(1..=4096))]
@@ -67,8 +67,8 @@ enum Command {
         /// The project file to write (.lightpaint).
         #[arg(short, long)]
         output: PathBuf,
-        /// Diffuse bounces in the bake the strokes read (0 or 1).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=1))]
+        /// Diffuse bounces in the bake the strokes read (0–8).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=8))]
         bounces: u8,
         /// Read the transfer from the real-time log-SH shading (direct light only) instead
         /// of baking.

@@ -1,9 +1,10 @@
-//! One diffuse bounce of every light at every vertex: rays leave the vertex in evenly
+//! Diffuse bounces of every light at every vertex: rays leave the vertex in evenly
 //! spread directions ω_k of its upper hemisphere (a Fibonacci spiral, equal solid angle
 //! 2π/M each, turned per vertex so neighbours do not share directions); where a ray meets
 //! a surface q, that surface reflects light i diffusely with radiance ρ(q)/π·E_i(q), E_i
 //! the direct irradiance at q from light i at unit intensity (exact visibility rays, next
-//! event estimation). The SH of the incident radiance is then (2π/M)·Σ_k L_k·y(ω_k).
+//! event estimation), and further bounces follow the path on from q ([`indirect_sh`]).
+//! The SH of the incident radiance is then (2π/M)·Σ_k L_k·y(ω_k).
 //! ρ is the luminance of the hit material's diffuse colour (base colour factor × (1 −
 //! metallic) × (1 − 0.04·specular), as the renderer maps it; textures are not sampled).
 
@@ -13,6 +14,7 @@ use glam::Vec3;
 
 use super::direct::direct_irradiance;
 use super::scene_bvh::SceneBvh;
+use crate::random::SplitMix64;
 use crate::scene::{Material, Scene};
 use crate::sh;
 
@@ -38,9 +40,56 @@ fn hemisphere_directions(n: Vec3, count: usize, turn_rad: f32) -> impl Iterator<
     })
 }
 
-/// Per light of `lights` (index, SH at the settings' order) of the once-reflected radiance
-/// arriving at `p` (normal `n`), lights that contribute nothing left out.
-/// `albedo` holds [`diffuse_luminance`] of each of the scene's materials.
+/// Where a path meets a surface: the point, the normal facing the arriving ray, and the
+/// surface's albedo.
+struct PathVertex {
+    point: Vec3,
+    normal: Vec3,
+    albedo: f32,
+}
+
+/// The first surface along `direction` from `origin`, if it reflects anything.
+fn next_surface(bvh: &SceneBvh, scene: &Scene, albedo: &[f32], origin: Vec3, direction: Vec3) -> Option<PathVertex> {
+    let hit = bvh.closest_hit(origin, direction, 0.0, f32::INFINITY)?;
+    let object = &scene.objects[hit.object];
+    let rho = albedo.get(object.material).copied().unwrap_or(0.0);
+    if rho <= 0.0 {
+        return None;
+    }
+    let corners = [0, 1, 2].map(|k| object.indices[3 * hit.triangle + k] as usize);
+    let mut normal = (object.normals[corners[0]] * hit.barycentric.x
+        + object.normals[corners[1]] * hit.barycentric.y
+        + object.normals[corners[2]] * hit.barycentric.z)
+        .normalize_or_zero();
+    if normal.dot(direction) > 0.0 {
+        normal = -normal; // two-sided: the side the ray arrives on
+    }
+    Some(PathVertex {
+        point: origin + direction * hit.distance_m,
+        normal,
+        albedo: rho,
+    })
+}
+
+/// A cosine-distributed direction about unit `n` from two uniform numbers.
+fn cosine_direction(n: Vec3, u1: f64, u2: f64) -> Vec3 {
+    let t = n.any_orthonormal_vector();
+    let b = n.cross(t);
+    let r = u1.sqrt() as f32;
+    let phi = (u2 * std::f64::consts::TAU) as f32;
+    (t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - u1 as f32).max(0.0).sqrt()).normalize_or(n)
+}
+
+/// Per light of `lights` (index, SH at the settings' order) of the reflected radiance
+/// arriving at `p` (normal `n`) after 1 to `settings.bounces` diffuse bounces; lights that
+/// contribute nothing left out. `albedo` holds [`diffuse_luminance`] of each material.
+///
+/// From each of the evenly spread directions ω_k a path is followed: at its j-th surface
+/// q_j, next-event estimation adds T_j·ρ_j/π·E_i(q_j) for every light i (E_i the exact
+/// direct irradiance at unit intensity), then the path goes on in a cosine-distributed
+/// direction with T_{j+1} = T_j·ρ_j (the Lambertian f·cos/pdf); from the third surface on
+/// it survives with probability min(ρ_j, 0.95) and T is divided by it (Russian roulette,
+/// unbiased). Paths are seeded by the vertex position, so a bake is deterministic.
 pub fn indirect_sh(
     bvh: &SceneBvh,
     scene: &Scene,
@@ -56,37 +105,44 @@ pub fn indirect_sh(
     // A per-vertex turn from its position, so the spiral differs between neighbours.
     let turn = (p.dot(Vec3::new(12.9898, 78.233, 37.719)).sin() * 43_758.547).fract() * TAU;
     let mut sums: Vec<Option<Vec<f64>>> = vec![None; scene.lights.len()];
-    let solid_angle = 2.0 * PI / directions.max(1) as f32;
+    let solid_angle = 2.0 * PI as f64 / directions.max(1) as f64;
+    let seed = p
+        .to_array()
+        .iter()
+        .fold(0x5eed_u64, |h, c| h.rotate_left(21) ^ c.to_bits() as u64);
+    let mut random = SplitMix64(seed);
     for omega in hemisphere_directions(n, directions.max(1), turn) {
-        let Some(hit) = bvh.closest_hit(origin, omega, 0.0, f32::INFINITY) else {
-            continue;
-        };
-        let object = &scene.objects[hit.object];
-        let rho = albedo.get(object.material).copied().unwrap_or(0.0);
-        if rho <= 0.0 {
-            continue;
-        }
-        let corners = [0, 1, 2].map(|k| object.indices[3 * hit.triangle + k] as usize);
-        let mut normal = (object.normals[corners[0]] * hit.barycentric.x
-            + object.normals[corners[1]] * hit.barycentric.y
-            + object.normals[corners[2]] * hit.barycentric.z)
-            .normalize_or_zero();
-        if normal.dot(omega) > 0.0 {
-            normal = -normal; // two-sided: the side the ray arrives on
-        }
-        let q = origin + omega * hit.distance_m;
         let y = sh::basis(order, omega.as_dvec3());
-        for &i in lights {
-            let Some(light) = scene.lights.get(i) else { continue };
-            let e = direct_irradiance(bvh, light, q, normal, settings.light_samples, offset);
-            if e <= 0.0 {
-                continue;
+        let mut surface = next_surface(bvh, scene, albedo, origin, omega);
+        let mut throughput = 1.0f64;
+        let mut bounce = 1;
+        while let Some(q) = surface {
+            for &i in lights {
+                let Some(light) = scene.lights.get(i) else { continue };
+                let e = direct_irradiance(bvh, light, q.point, q.normal, settings.light_samples, offset);
+                if e <= 0.0 {
+                    continue;
+                }
+                let weight = solid_angle * throughput * q.albedo as f64 / PI as f64 * e as f64;
+                let sum = sums[i].get_or_insert_with(|| vec![0.0; order * order]);
+                for (s, yk) in sum.iter_mut().zip(&y) {
+                    *s += weight * yk;
+                }
             }
-            let weight = (solid_angle * rho / PI * e) as f64;
-            let sum = sums[i].get_or_insert_with(|| vec![0.0; order * order]);
-            for (s, yk) in sum.iter_mut().zip(&y) {
-                *s += weight * yk;
+            if bounce >= settings.bounces {
+                break;
             }
+            throughput *= q.albedo as f64;
+            if bounce >= 2 {
+                let survival = (q.albedo as f64).min(0.95);
+                if random.next_f64() >= survival {
+                    break;
+                }
+                throughput /= survival;
+            }
+            let next = cosine_direction(q.normal, random.next_f64(), random.next_f64());
+            surface = next_surface(bvh, scene, albedo, q.point + q.normal * offset, next);
+            bounce += 1;
         }
     }
     sums.into_iter()

@@ -24,7 +24,7 @@ pub struct BakeSettings {
     pub light_samples: usize,
     /// Rays start this far off the surface, along the normal (self-intersection guard).
     pub ray_offset_m: f32,
-    /// Diffuse bounces of indirect light (0 or 1 so far).
+    /// Diffuse bounces of indirect light (0: direct only), Russian roulette from the third.
     pub bounces: usize,
     /// Hemisphere directions per vertex for the indirect bounce.
     pub indirect_directions: usize,
@@ -436,6 +436,75 @@ mod tests {
         assert!(maps.objects[1].iter().all(|e| e.len() <= 1));
         let lit = maps.objects[1].iter().filter(|e| e.len() == 1).count();
         assert_eq!(lit, maps.objects[1].len() - 1);
+    }
+
+    /// Inside a closed 2 m box of albedo ρ = 0.5 with a unit point light at its centre:
+    /// each extra bounce adds light, and the indirect light stays under the geometric
+    /// bound: after the first bounce no radiance exceeds ρ·E_max/π, each further bounce at
+    /// most ρ times the last, so ∫L_ind dω ≤ 2π·ρ·E_max/(π(1 − ρ)) over the hemisphere
+    /// (E_max = 1/(1 m)² at the middle of a wall); the DC is that integral / (2√π).
+    #[test]
+    fn indirect_light_in_a_closed_box_grows_with_bounces_within_the_albedo_bound() {
+        let rho = 0.5f32;
+        // Six 2 m walls of 6×6 quads facing in (a plane faces +y; turn it onto each face).
+        use glam::{Affine3A, Quat};
+        use std::f32::consts::{FRAC_PI_2, PI as PI32};
+        let turns = [
+            Quat::IDENTITY,
+            Quat::from_rotation_x(PI32),
+            Quat::from_rotation_x(FRAC_PI_2),
+            Quat::from_rotation_x(-FRAC_PI_2),
+            Quat::from_rotation_z(FRAC_PI_2),
+            Quat::from_rotation_z(-FRAC_PI_2),
+        ];
+        let walls: Vec<MeshObject> = turns
+            .iter()
+            .map(|&turn| {
+                let wall = shapes::plane(2.0, 6, 1.0).transformed(Affine3A::from_translation(Vec3::NEG_Y));
+                object("wall", wall.transformed(Affine3A::from_quat(turn)))
+            })
+            .collect();
+        let scene = Scene {
+            objects: walls,
+            materials: vec![crate::scene::Material {
+                base_color: glam::Vec4::new(rho, rho, rho, 1.0),
+                specular: 0.0,
+                metallic: 0.0,
+                ..Default::default()
+            }],
+            lights: vec![Light {
+                intensity: 1.0,
+                ..point_light(Vec3::ZERO)
+            }],
+            ..Default::default()
+        };
+        let dc = |bounces: usize| -> Vec<f64> {
+            let settings = BakeSettings {
+                bounces,
+                indirect_directions: 512,
+                ..BakeSettings::default()
+            };
+            let maps = bake_maps(&scene, &settings);
+            maps.objects
+                .iter()
+                .flatten()
+                .map(|e| e.first().map_or(0.0, |c| c.sh[0] as f64))
+                .collect()
+        };
+        let direct = dc(0);
+        let levels: Vec<Vec<f64>> = [1, 2, 4].into_iter().map(dc).collect();
+        let total = |v: &[f64]| v.iter().sum::<f64>();
+        assert!(total(&levels[0]) > total(&direct) * 1.05, "one bounce adds light");
+        assert!(
+            total(&levels[1]) > total(&levels[0]) * 1.02,
+            "a second bounce adds more"
+        );
+        assert!(total(&levels[2]) > total(&levels[1]), "and more bounces more still");
+        let bound = 2.0 * PI * rho as f64 / (PI * (1.0 - rho as f64)) / (2.0 * PI.sqrt());
+        for (v, (with, without)) in levels[2].iter().zip(&direct).enumerate() {
+            let indirect = with - without;
+            assert!(indirect >= 0.0 && indirect <= bound, "vertex {v}: {indirect} > {bound}");
+        }
     }
 
     #[test]

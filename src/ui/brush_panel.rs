@@ -106,7 +106,7 @@ pub fn painting_section(ui: &mut egui::Ui, painting: &mut Painting) -> Option<Pa
                 ui.add(egui::DragValue::new(&mut painting.bake_settings.light_samples).range(1..=1024))
                     .on_hover_text("emitter samples per extended light and vertex");
                 ui.label("bounces");
-                ui.add(egui::DragValue::new(&mut painting.bake_settings.bounces).range(0..=1))
+                ui.add(egui::DragValue::new(&mut painting.bake_settings.bounces).range(0..=8))
                     .on_hover_text("diffuse bounces of indirect light");
             });
             if ui.button("Bake importance maps").clicked() {
