@@ -55,6 +55,9 @@ enum Command {
         /// Drop a vertex's entry for a light under this share of the light's peak (0–1).
         #[arg(long, default_value_t = 1e-4, value_parser = parse_threshold)]
         threshold: f32,
+        /// Store the coefficients in half precision (half the memory, 3 digits).
+        #[arg(long)]
+        f16: bool,
     },
     /// Apply scripted strokes (docs/strokes.md) to a project or scene and save the result,
     /// with the strokes in its log, as a project.
@@ -232,6 +235,7 @@ fn main() -> ExitCode {
             bounces,
             directions,
             threshold,
+            f16,
         }) => {
             let settings = lightpaint::bake::BakeSettings {
                 order: order as usize,
@@ -239,6 +243,11 @@ fn main() -> ExitCode {
                 bounces: bounces as usize,
                 indirect_directions: directions as usize,
                 relative_threshold: threshold,
+                precision: if f16 {
+                    lightpaint::bake::Precision::F16
+                } else {
+                    lightpaint::bake::Precision::F32
+                },
                 ..Default::default()
             };
             bake(&file, &settings)

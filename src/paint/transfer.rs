@@ -100,9 +100,10 @@ impl Transfer for BakedTransfer<'_> {
 
     fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
         let (o, v) = (vertex.object as usize, vertex.vertex as usize);
-        let Some(entries) = self.maps.objects.get(o).and_then(|m| m.get(v)) else {
+        let Some(maps) = self.maps.objects.get(o) else {
             return Vec::new();
         };
+        let entries = maps.entries(v);
         let object = &self.scene.objects[o];
         let (p, n) = (object.positions[v].as_dvec3(), object.normals[v].as_dvec3());
         let reflectance = self.reflectance_of(o);
@@ -113,9 +114,8 @@ impl Transfer for BakedTransfer<'_> {
             sh::rotate_zh(&reflectance.lobe_zh, mirrored.normalize_or(n))
         });
         entries
-            .iter()
             .filter_map(|entry| {
-                let dot = |basis: &[f64]| -> f64 { entry.sh.iter().zip(basis).map(|(a, b)| *a as f64 * b).sum() };
+                let dot = |basis: &[f64]| -> f64 { entry.sh.dot(basis) };
                 let mut t = reflectance.diffuse * dot(&diffuse);
                 if let Some(glossy) = &glossy {
                     t += reflectance.specular * dot(glossy);

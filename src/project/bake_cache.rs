@@ -9,19 +9,20 @@
 //! trusted. Writes are atomic, and only finished bakes are written.
 //!
 //! Layout (little-endian): magic `LPBAKE`, u16 version, the 32-byte scene key, u32 light
-//! count and 32 bytes per light, u32 order, u64 dropped entries, u32 object count, per object u32 vertex count,
-//! per vertex u32 entry count then per entry u32 light and order² f32, and last the
-//! BLAKE3 hash of everything before it.
+//! count and 32 bytes per light, u32 order, u64 dropped entries, u32 object count, per
+//! object the u32 lengths of its offset and light arrays, the u32 offsets and lights, a
+//! storage byte (0: f32 coefficients follow; 1: a u32 count of per-light f32 scales, the
+//! scales, then f16 coefficients), and last the BLAKE3 hash of everything before it.
 
 use std::path::{Path, PathBuf};
 
 use std::sync::atomic::AtomicBool;
 
-use crate::bake::{BakeSettings, ImportanceMaps, LightContribution, bake_maps_counting, rebake_lights};
+use crate::bake::{BakeSettings, ImportanceMaps, ObjectMaps, RawCoefficients, bake_maps_counting, rebake_lights};
 use crate::scene::Scene;
 
 const MAGIC: &[u8; 6] = b"LPBAKE";
-const VERSION: u16 = 2;
+const VERSION: u16 = 4;
 
 /// What the maps were baked from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -89,13 +90,23 @@ pub fn save(path: &Path, key: &BakeKey, maps: &ImportanceMaps) -> std::io::Resul
     bytes.extend_from_slice(&(maps.dropped_entries as u64).to_le_bytes());
     put_u32(&mut bytes, maps.objects.len());
     for object in &maps.objects {
-        put_u32(&mut bytes, object.len());
-    }
-    for vertex in maps.objects.iter().flatten() {
-        put_u32(&mut bytes, vertex.len());
-        for entry in vertex {
-            bytes.extend_from_slice(&entry.light.to_le_bytes());
-            bytes.extend_from_slice(bytemuck::cast_slice(&entry.sh));
+        let raw = object.raw();
+        put_u32(&mut bytes, raw.first.len());
+        put_u32(&mut bytes, raw.lights.len());
+        bytes.extend_from_slice(bytemuck::cast_slice(raw.first));
+        bytes.extend_from_slice(bytemuck::cast_slice(raw.lights));
+        match (raw.f32_coefficients, raw.f16_coefficients) {
+            (Some(values), _) => {
+                bytes.push(0);
+                bytes.extend_from_slice(bytemuck::cast_slice(values));
+            }
+            (None, Some((values, scales))) => {
+                bytes.push(1);
+                put_u32(&mut bytes, scales.len());
+                bytes.extend_from_slice(bytemuck::cast_slice(scales));
+                bytes.extend_from_slice(bytemuck::cast_slice(values));
+            }
+            (None, None) => bytes.push(0),
         }
     }
     let checksum = blake3::hash(&bytes);
@@ -154,24 +165,24 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
     }
     let dropped_entries = u64::from_le_bytes(reader.take(8)?.try_into().map_err(|_| "short")?) as usize;
     let object_count = reader.u32()?;
-    let vertex_counts: Vec<usize> = (0..object_count).map(|_| reader.u32()).collect::<Result<_, _>>()?;
-    let mut objects = Vec::with_capacity(object_count);
-    for &vertices in &vertex_counts {
-        let mut object = Vec::with_capacity(vertices);
-        for _ in 0..vertices {
-            let entries = reader.u32()?;
-            let mut vertex = Vec::with_capacity(entries.min(4096));
-            for _ in 0..entries {
-                let light = reader.u32()? as u32;
-                if light as usize >= light_count {
-                    return Err(format!("an entry names light {light} of {light_count}"));
-                }
-                let sh: Vec<f32> = bytemuck::pod_collect_to_vec(reader.take(4 * order * order)?);
-                vertex.push(LightContribution { light, sh });
+    let mut objects = Vec::with_capacity(object_count.min(1 << 20));
+    for _ in 0..object_count {
+        let offsets = reader.u32()?;
+        let entries = reader.u32()?;
+        let first: Vec<u32> = bytemuck::pod_collect_to_vec(reader.take(4 * offsets)?);
+        let lights: Vec<u32> = bytemuck::pod_collect_to_vec(reader.take(4 * entries)?);
+        let count = entries * order * order;
+        let coefficients = match reader.take(1)?[0] {
+            0 => RawCoefficients::F32(bytemuck::pod_collect_to_vec(reader.take(4 * count)?)),
+            1 => {
+                let scale_count = reader.u32()?;
+                let scales = bytemuck::pod_collect_to_vec(reader.take(4 * scale_count)?);
+                let values = bytemuck::pod_collect_to_vec(reader.take(2 * count)?);
+                RawCoefficients::F16 { values, scales }
             }
-            object.push(vertex);
-        }
-        objects.push(object);
+            tag => return Err(format!("unknown coefficient storage {tag}")),
+        };
+        objects.push(ObjectMaps::from_raw(order, light_count, first, lights, coefficients)?);
     }
     if reader.at != body.len() {
         return Err("trailing bytes after the maps".into());
@@ -193,8 +204,8 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
         return Ok(CacheLookup::Fresh(maps));
     }
     // The changed lights' old maps must not be used in the meantime.
-    for vertex in maps.objects.iter_mut().flatten() {
-        vertex.retain(|e| !changed.contains(&(e.light as usize)));
+    for object in &mut maps.objects {
+        *object = object.filtered(|e| !changed.contains(&(e.light as usize))).0;
     }
     Ok(CacheLookup::LightsChanged { maps, lights: changed })
 }
@@ -317,7 +328,12 @@ mod tests {
         match load(&path, &BakeKey::of(&scene, &settings)) {
             CacheLookup::LightsChanged { maps, lights } => {
                 assert_eq!(lights, vec![1]);
-                assert!(maps.objects.iter().flatten().flatten().all(|e| e.light == 0));
+                assert!(
+                    maps.objects
+                        .iter()
+                        .flat_map(ObjectMaps::all_entries)
+                        .all(|e| e.light == 0)
+                );
             }
             other => panic!("{other:?}"),
         }
@@ -326,6 +342,44 @@ mod tests {
             load(&path, &BakeKey::of(&scene, &other_settings)),
             CacheLookup::Unusable(_)
         ));
+    }
+
+    #[test]
+    fn f16_maps_round_trip_through_the_cache() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.lightpaint.bake");
+        let scene = scene();
+        let settings = BakeSettings {
+            precision: crate::bake::Precision::F16,
+            ..BakeSettings::default()
+        };
+        let maps = bake_maps(&scene, &settings);
+        save(&path, &BakeKey::of(&scene, &settings), &maps).unwrap();
+        match load(&path, &BakeKey::of(&scene, &settings)) {
+            CacheLookup::Fresh(read) => assert_eq!(read, maps),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_cancelled_bake_writes_no_cache_and_keeps_the_old_one() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.lightpaint.bake");
+        let scene = scene();
+        let settings = BakeSettings::default();
+        let cancelled = AtomicBool::new(true);
+        assert!(bake_with_cache(&scene, &settings, &path, &|_, _| {}, &cancelled).is_none());
+        assert!(!path.exists(), "no partial cache");
+        let go = AtomicBool::new(false);
+        bake_with_cache(&scene, &settings, &path, &|_, _| {}, &go).expect("baked");
+        let written = std::fs::read(&path).unwrap();
+        let other = BakeSettings { order: 4, ..settings };
+        assert!(bake_with_cache(&scene, &other, &path, &|_, _| {}, &cancelled).is_none());
+        assert_eq!(
+            std::fs::read(&path).unwrap(),
+            written,
+            "a cancelled re-bake leaves the cache"
+        );
     }
 
     #[test]

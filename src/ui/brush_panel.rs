@@ -109,6 +109,18 @@ pub fn painting_section(ui: &mut egui::Ui, painting: &mut Painting) -> Option<Pa
                 ui.add(egui::DragValue::new(&mut painting.bake_settings.bounces).range(0..=8))
                     .on_hover_text("diffuse bounces of indirect light");
             });
+            let mut half = painting.bake_settings.precision == crate::bake::Precision::F16;
+            if ui
+                .checkbox(&mut half, "half-precision maps")
+                .on_hover_text("half the memory, three significant digits")
+                .changed()
+            {
+                painting.bake_settings.precision = if half {
+                    crate::bake::Precision::F16
+                } else {
+                    crate::bake::Precision::F32
+                };
+            }
             if ui.button("Bake importance maps").clicked() {
                 action = Some(PaintAction::StartBake);
             }

@@ -173,7 +173,7 @@ impl Painting {
                 .objects
                 .iter()
                 .zip(&scene.objects)
-                .all(|(m, o)| m.len() == o.positions.len())
+                .all(|(m, o)| m.vertex_count() == o.positions.len())
     }
 
     /// Paints a stroke finished in the viewport, seen by `camera`, and writes the new
