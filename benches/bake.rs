@@ -19,7 +19,9 @@ fn rays(c: &mut Criterion) {
     // A fixed pseudo-random pairing (an LCG over the vertex list).
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
         (state >> 33) as usize % points.len()
     };
     let segments: Vec<(Vec3, Vec3, f32)> = (0..100_000)

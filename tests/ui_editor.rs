@@ -237,3 +237,77 @@ fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
         .count();
     assert_eq!(differing, 0, "undo restores the viewport image exactly");
 }
+
+/// Paint, save, reopen: the same intensities, the same stroke history, the same image.
+#[test]
+fn a_painted_project_reopens_exactly_as_saved() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.key_press(egui::Key::B);
+    harness.run();
+    let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
+    harness.hover_at(centre);
+    harness.run();
+    harness.drag_at(centre);
+    harness.run();
+    harness.hover_at(centre + egui::vec2(40.0, 0.0));
+    harness.run();
+    harness.drop_at(centre + egui::vec2(40.0, 0.0));
+    harness.run();
+    let painted = harness.state().light_intensities();
+    let strokes = harness.state().document().expect("open").painting.strokes.clone();
+    assert_eq!(strokes.len(), 1, "one stroke in the history");
+    harness.key_press(egui::Key::Escape);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.hover_at(egui::pos2(5.0, 790.0));
+    harness.run();
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    let image = harness.render().expect("render");
+    drop(harness);
+
+    let options = EditorOptions {
+        file: project,
+        close_when_file_exists: None,
+        hide_frame_timings: true,
+    };
+    let mut reopened = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, options));
+    reopened.hover_at(egui::pos2(5.0, 790.0));
+    reopened.run();
+    assert_eq!(reopened.state().light_intensities(), painted);
+    assert_eq!(reopened.state().document().expect("open").painting.strokes, strokes);
+    assert!(!reopened.state().has_unsaved_changes());
+    let again = reopened.render().expect("render");
+    let differing = again
+        .enumerate_pixels()
+        .filter(|(x, y, _)| viewport.contains(egui::pos2(*x as f32 / ppp, *y as f32 / ppp)))
+        .filter(|(x, y, p)| image.get_pixel(*x, *y) != *p)
+        .count();
+    assert_eq!(differing, 0, "the reopened viewport is pixel-identical");
+}
+
+/// A corrupt project shows a readable error naming the file; the open document stays.
+#[test]
+fn opening_a_corrupt_file_shows_an_error_and_keeps_the_document() {
+    let Some((dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let lights = harness.state().light_intensities();
+    let bad = dir.path().join("broken.lightpaint");
+    std::fs::write(&bad, "{ \"format_version\": 3, \"scene\": ").unwrap();
+    harness.state_mut().open(&bad, None);
+    harness.run();
+    harness.get_by_label("Error");
+    assert!(harness.query_all_by_label_contains("broken.lightpaint").count() >= 1);
+    assert_eq!(harness.state().light_intensities(), lights, "the sample is still open");
+    harness.get_by_label("OK").click();
+    harness.run();
+    assert!(harness.query_by_label("Error").is_none(), "the error window closes");
+    harness.get_by_label("Lights (4)");
+}

@@ -359,7 +359,10 @@ mod tests {
     fn f16_maps_keep_three_digits_for_weak_and_strong_lights_alike() {
         // Light 0 is 10⁶ times weaker than light 1: its own scale (its largest magnitude
         // on the object, 1e-6) keeps its error within 2⁻¹¹ of that, not of light 1's.
-        let weak = |sh: [f32; 4]| LightContribution { light: 0, sh: sh.to_vec() };
+        let weak = |sh: [f32; 4]| LightContribution {
+            light: 0,
+            sh: sh.to_vec(),
+        };
         let vertices = vec![
             vec![weak([1e-6, 5e-7, -2.5e-7, 1.25e-7]), c(1, 1.0)],
             vec![weak([3e-7, -1e-7, 2e-8, 0.0])],
