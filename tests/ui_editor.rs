@@ -106,7 +106,16 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
     };
     harness.run();
     harness.get_by_label_contains("direct estimate");
+    // The bake button sits low in the inspector: scroll to it as an artist would.
+    harness.get_by_label("Bake importance maps").scroll_to_me();
+    harness.run();
     harness.get_by_label("Bake importance maps").click();
+    harness.run();
+    assert!(
+        harness.query_by_label("Cancel bake").is_some()
+            || harness.query_by_label_contains("Transfer: baked maps").is_some(),
+        "the click started the bake"
+    );
     let started = std::time::Instant::now();
     let mut frames = 0;
     while harness.query_by_label_contains("Transfer: baked maps").is_none() {
