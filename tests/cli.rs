@@ -203,6 +203,24 @@ fn bake_reports_the_maps_of_the_sample() {
     assert_eq!(bad.status.code(), Some(2));
 }
 
+/// Runs `lightpaint paint INPUT --strokes S -o DIR/painted.lightpaint EXTRA…` with the
+/// script text `script` written to DIR/strokes.json; the output and the project path.
+fn run_paint(input: &Path, script: &str, dir: &Path, extra: &[&str]) -> (std::process::Output, std::path::PathBuf) {
+    let script_path = dir.join("strokes.json");
+    std::fs::write(&script_path, script).expect("script");
+    let output = dir.join("painted.lightpaint");
+    let mut args = vec![
+        OsStr::new("paint"),
+        input.as_os_str(),
+        OsStr::new("--strokes"),
+        script_path.as_os_str(),
+        OsStr::new("-o"),
+        output.as_os_str(),
+    ];
+    args.extend(extra.iter().map(OsStr::new));
+    (common::run_lightpaint(&args), output)
+}
+
 /// `paint` applies a script to the studio and writes a project whose log holds the
 /// strokes that changed something, with the positive stroke's lights brighter; the
 /// original project is untouched.
@@ -211,26 +229,11 @@ fn paint_applies_scripted_strokes_and_saves_them_in_the_project_log() {
     let studio = common::repo_path("projects/studio/studio.lightpaint");
     let original = std::fs::read(&studio).expect("studio project");
     let dir = tempfile::tempdir().expect("temp dir");
-    let script = dir.path().join("strokes.json");
-    std::fs::write(
-        &script,
-        r#"{"seed": 3, "strokes": [
+    let script = r#"{"seed": 3, "strokes": [
             {"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 1.0, 0.3]]},
             {"brush": {"kind": "constraint", "radius_px": 30}, "world": [[1.0, 0.0, 1.0]]}
-        ]}"#,
-    )
-    .expect("script");
-    let output = dir.path().join("painted.lightpaint");
-    let out = common::run_lightpaint(&[
-        OsStr::new("paint"),
-        studio.as_os_str(),
-        OsStr::new("--strokes"),
-        script.as_os_str(),
-        OsStr::new("-o"),
-        output.as_os_str(),
-        OsStr::new("--bounces"),
-        OsStr::new("0"),
-    ]);
+        ]}"#;
+    let (out, output) = run_paint(&studio, script, dir.path(), &["--bounces", "0"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(
         out.status.code(),
@@ -307,22 +310,8 @@ fn paint_rejects_a_bad_script_naming_the_file_and_the_field() {
 fn paint_without_a_bake_uses_the_direct_estimate() {
     let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
     let dir = tempfile::tempdir().expect("temp dir");
-    let script = dir.path().join("strokes.json");
-    std::fs::write(
-        &script,
-        r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 80}, "screen_px": [[640, 500]]}]}"#,
-    )
-    .expect("script");
-    let output = dir.path().join("painted.lightpaint");
-    let out = common::run_lightpaint(&[
-        OsStr::new("paint"),
-        sample.as_os_str(),
-        OsStr::new("--strokes"),
-        script.as_os_str(),
-        OsStr::new("-o"),
-        output.as_os_str(),
-        OsStr::new("--no-bake"),
-    ]);
+    let script = r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 80}, "screen_px": [[640, 500]]}]}"#;
+    let (out, _) = run_paint(&sample, script, dir.path(), &["--no-bake"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(
         out.status.code(),

@@ -8,6 +8,19 @@ use egui_kittest::kittest::Queryable;
 use lightpaint::project::Document;
 use lightpaint::ui::{EditorApp, EditorOptions};
 
+/// The editor on `project`, in a 1280 × 800 window on the real wgpu adapter.
+fn editor_on(project: std::path::PathBuf) -> Harness<'static, EditorApp> {
+    let options = EditorOptions {
+        file: project,
+        close_when_file_exists: None,
+        hide_frame_timings: true,
+    };
+    Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, options))
+}
+
 fn editor_on_sample_copy() -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
     if common::no_gpu_wanted() {
         eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
@@ -16,15 +29,7 @@ fn editor_on_sample_copy() -> Option<(tempfile::TempDir, std::path::PathBuf, Har
     let dir = tempfile::tempdir().unwrap();
     lightpaint::samples::write_sample_project(dir.path()).unwrap();
     let project = dir.path().join("sample.lightpaint");
-    let options = EditorOptions {
-        file: project.clone(),
-        close_when_file_exists: None,
-        hide_frame_timings: true,
-    };
-    let harness = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, options));
+    let harness = editor_on(project.clone());
     Some((dir, project, harness))
 }
 
@@ -139,15 +144,7 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
 
     // The bake went to the cache beside the project: reopening reads it, no re-bake.
     assert!(lightpaint::project::bake_cache::cache_path(&project).exists());
-    let options = EditorOptions {
-        file: project,
-        close_when_file_exists: None,
-        hide_frame_timings: true,
-    };
-    let mut reopened = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, options));
+    let mut reopened = editor_on(project);
     let started = std::time::Instant::now();
     while reopened.query_by_label_contains("Transfer: baked maps").is_none() {
         assert!(started.elapsed().as_secs() < 60, "the cache is read");
@@ -169,15 +166,7 @@ fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
     }
     let dir = tempfile::tempdir().unwrap();
     let project = lightpaint::samples::Sample::Studio.write(dir.path()).unwrap();
-    let options = EditorOptions {
-        file: project,
-        close_when_file_exists: None,
-        hide_frame_timings: true,
-    };
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, options));
+    let mut harness = editor_on(project);
     harness.run();
     let before_lights = harness.state().light_intensities();
     let before = harness.render().expect("render");
@@ -277,15 +266,7 @@ fn a_painted_project_reopens_exactly_as_saved() {
     let image = harness.render().expect("render");
     drop(harness);
 
-    let options = EditorOptions {
-        file: project,
-        close_when_file_exists: None,
-        hide_frame_timings: true,
-    };
-    let mut reopened = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, options));
+    let mut reopened = editor_on(project);
     reopened.hover_at(egui::pos2(5.0, 790.0));
     reopened.run();
     assert_eq!(reopened.state().light_intensities(), painted);
