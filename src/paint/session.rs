@@ -113,11 +113,14 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
     let listed: Vec<(VertexRef, f32)> = hits.weights.iter().map(|(v, w)| (*v, *w)).collect();
     let vertices: Vec<PaintedVertex> = listed
         .par_iter()
-        .map(|&(vertex, w)| PaintedVertex {
-            vertex,
-            weight: w as f64,
-            fixed: transfer.fixed_luminance(vertex, eye),
-            transfer: transfer.vertex_transfer(vertex, eye),
+        .map(|&(vertex, w)| {
+            let (fixed, entries) = transfer.vertex_shading(vertex, eye);
+            PaintedVertex {
+                vertex,
+                weight: w as f64,
+                fixed,
+                transfer: entries,
+            }
         })
         .collect();
     let mut mean = vec![0.0; transfer.light_count()];

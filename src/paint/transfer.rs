@@ -29,6 +29,12 @@ pub trait Transfer: Sync {
 
     /// Luminance of `vertex` toward `eye` that no light intensity changes.
     fn fixed_luminance(&self, vertex: VertexRef, eye: Vec3) -> f64;
+
+    /// Both at once ([`Transfer::fixed_luminance`], [`Transfer::vertex_transfer`]), for
+    /// sources that share work between them.
+    fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        (self.fixed_luminance(vertex, eye), self.vertex_transfer(vertex, eye))
+    }
 }
 
 /// What a material reflects, reduced to what the transfer needs.

@@ -127,12 +127,34 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
         } else {
             ln_epsilon * horizon
         };
-        let cap = sh::rotate_zh(&sh::cap_zh_from_ratio(order, ratio), offset / distance);
-        for (fi, ci) in f.iter_mut().zip(cap) {
-            *fi += scale * ci;
-        }
+        // Funk–Hecke: f_lm += scale·√(4π/(2l+1))·z_l·y_lm(d), without building the
+        // rotated vector.
+        with_basis(order, offset / distance, |y| {
+            sh::cap_zh_ratio_each(order, ratio, |l, z| {
+                let weight = scale * (4.0 * PI / (2 * l + 1) as f64).sqrt() * z;
+                for i in l * l..(l + 1) * (l + 1) {
+                    f[i] += weight * y[i];
+                }
+            });
+        });
     }
     f
+}
+
+/// The SH basis at unit `d`: the unrolled polynomials up to order 4 (as the shaders
+/// evaluate it), the general recurrence above.
+fn basis(order: usize, d: DVec3) -> Vec<f64> {
+    with_basis(order, d, <[f64]>::to_vec)
+}
+
+/// Calls `f` with the n² basis values at unit `d`, on the stack up to order 4 (the shading
+/// loops call this per blocker and per light).
+fn with_basis<R>(order: usize, d: DVec3, f: impl FnOnce(&[f64]) -> R) -> R {
+    if order <= 4 {
+        f(&sh::basis16(d.normalize_or(DVec3::Z))[..order * order])
+    } else {
+        f(&sh::basis(order, d))
+    }
 }
 
 /// WGSL's smoothstep: 0 below `low`, 1 above `high`, t²(3 − 2t) between.
@@ -145,9 +167,13 @@ fn smoothstep(low: f64, high: f64, x: f64) -> f64 {
 pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
     let order = sh::order_of(g.len()).unwrap_or(0);
     let s = cap_ratio.clamp(0.0, 1.0);
+    if s == 0.0 {
+        // A point: every band's weight is 1, V̄ = G(d).
+        return with_basis(order, d, |y| g.iter().zip(y).map(|(a, b)| a * b).sum());
+    }
+    let y = basis(order, d);
     let c = (1.0 - s * s).max(0.0).sqrt();
     let dp = sh::legendre_derivative(order, c);
-    let y = sh::basis(order, d);
     (0..order)
         .map(|l| {
             let w = if l == 0 {

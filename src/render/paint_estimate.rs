@@ -70,18 +70,17 @@ fn luminance_of(rgb: DVec3) -> f64 {
     luminance(Vec3::new(rgb.x as f32, rgb.y as f32, rgb.z as f32))
 }
 
-impl Transfer for DirectEstimate<'_> {
-    fn light_count(&self) -> usize {
-        self.unit_lights.len()
-    }
-
-    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
+impl DirectEstimate<'_> {
+    /// Fixed luminance and per-light transfer, from one visibility evaluation.
+    fn shade(&self, vertex: VertexRef, eye: Vec3, with_fixed: bool) -> (f64, Vec<(u32, f64)>) {
         let Some(s) = self.surface(vertex) else {
-            return Vec::new();
+            return (0.0, Vec::new());
         };
-        let mut g: Option<Vec<f64>> = None;
         let eye = eye.as_dvec3();
-        self.unit_lights
+        let needs_environment = with_fixed && self.scene.environment.is_some();
+        let mut g: Option<Vec<f64>> = None;
+        let transfer = self
+            .unit_lights
             .iter()
             .enumerate()
             .filter_map(|(i, light)| {
@@ -95,17 +94,36 @@ impl Transfer for DirectEstimate<'_> {
                 let t = luminance_of(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })
-            .collect()
+            .collect();
+        let mut fixed = 0.0;
+        if with_fixed {
+            let mut radiance = s.emissive;
+            if needs_environment {
+                let g = g.get_or_insert_with(|| self.visibility(&s));
+                let visible = cpu::visibility_cosine(g, s.normal).clamp(0.0, 1.0);
+                radiance += cpu::environment_radiance(&s, &self.environment) * visible;
+            }
+            fixed = luminance_of(radiance);
+        }
+        (fixed, transfer)
+    }
+}
+
+impl Transfer for DirectEstimate<'_> {
+    fn light_count(&self) -> usize {
+        self.unit_lights.len()
     }
 
-    fn fixed_luminance(&self, vertex: VertexRef, _eye: Vec3) -> f64 {
-        let Some(s) = self.surface(vertex) else { return 0.0 };
-        let mut radiance = s.emissive;
-        if self.scene.environment.is_some() {
-            let visible = cpu::visibility_cosine(&self.visibility(&s), s.normal).clamp(0.0, 1.0);
-            radiance += cpu::environment_radiance(&s, &self.environment) * visible;
-        }
-        luminance_of(radiance)
+    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
+        self.shade(vertex, eye, false).1
+    }
+
+    fn fixed_luminance(&self, vertex: VertexRef, eye: Vec3) -> f64 {
+        self.shade(vertex, eye, true).0
+    }
+
+    fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        self.shade(vertex, eye, true)
     }
 }
 

@@ -68,13 +68,18 @@ pub fn basis_generic<T: Float>(order: usize, dir: [T; 3]) -> Vec<T> {
     out
 }
 
-/// Unrolled Cartesian polynomials for order ≤ 4 (16 values, zero-padded above `order`):
-/// the fast path that the WGSL evaluator mirrors. `dir` must be a unit vector.
+/// Unrolled Cartesian polynomials for order ≤ 4 (the first n² of 16 values): the fast
+/// path that the WGSL evaluator mirrors. `dir` must be a unit vector.
 pub fn basis_unrolled4(order: usize, dir: DVec3) -> Vec<f64> {
     assert!(order <= 4, "basis_unrolled4 covers orders 0..=4");
+    basis16(dir)[..coefficient_count(order)].to_vec()
+}
+
+/// The 16 basis values of order 4 at unit `dir`, on the stack (no allocation).
+pub fn basis16(dir: DVec3) -> [f64; 16] {
     let (x, y, z) = (dir.x, dir.y, dir.z);
     let (x2, y2, z2) = (x * x, y * y, z * z);
-    let all = [
+    [
         0.282_094_791_773_878_14,
         -0.488_602_511_902_919_9 * y,
         0.488_602_511_902_919_9 * z,
@@ -91,8 +96,7 @@ pub fn basis_unrolled4(order: usize, dir: DVec3) -> Vec<f64> {
         -0.457_045_799_464_465_8 * x * (5.0 * z2 - 1.0),
         1.445_305_721_320_277 * z * (x2 - y2),
         -0.590_043_589_926_643_5 * x * (x2 - 3.0 * y2),
-    ];
-    all[..coefficient_count(order)].to_vec()
+    ]
 }
 
 #[cfg(test)]

@@ -20,7 +20,7 @@ mod rotation;
 mod window;
 mod zonal;
 
-pub use basis::{basis, basis_generic, basis_unrolled4};
+pub use basis::{basis, basis_generic, basis_unrolled4, basis16};
 pub use exp::{
     ExpMethod, exp, exp_dc_isolated, exp_hyb, exp_ol, exp_ps, exp_reference, hyb_threshold, ol_coefficients,
 };
@@ -31,8 +31,8 @@ pub use quadrature::{SphereQuadrature, gauss_legendre};
 pub use rotation::{rotate, rotate_z, rotation_matrices};
 pub use window::{Window, apply_window, window_factors};
 pub use zonal::{
-    cap_zh, cap_zh_from_ratio, cap_zh_generic, clamped_cosine_zh, log_diffuse_zh, log_phong_zh, log_visibility,
-    rotate_zh, zh_of_function,
+    cap_zh, cap_zh_from_ratio, cap_zh_generic, cap_zh_ratio_each, clamped_cosine_zh, log_diffuse_zh, log_phong_zh,
+    log_visibility, rotate_zh, zh_of_function,
 };
 
 use std::f64::consts::PI;

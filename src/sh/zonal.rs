@@ -41,9 +41,21 @@ fn cap_zh_from_sin_cos(order: usize, s: f64, c: f64) -> Vec<f64> {
 /// The stable cap ZH in any float type, from s = sin θ and c = cos θ: what the f32 shader
 /// computes. P_l′(c) by P_{l+1}′ = P_{l−1}′ + (2l+1)·P_l, with Bonnet's recurrence for P_l.
 pub fn cap_zh_generic<T: Float>(order: usize, s: T, c: T) -> Vec<T> {
+    let mut out = Vec::with_capacity(order);
+    cap_zh_each(order, s, c, |_, value| out.push(value));
+    out
+}
+
+/// The cap ZH of [`cap_zh_from_ratio`] handed to `each(l, z_l)` band by band, without
+/// allocating (the CPU shading calls it per blocker and receiver).
+pub fn cap_zh_ratio_each(order: usize, s: f64, each: impl FnMut(usize, f64)) {
+    let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
+    cap_zh_each(order, s, (1.0 - s * s).sqrt(), each);
+}
+
+fn cap_zh_each<T: Float>(order: usize, s: T, c: T, mut each: impl FnMut(usize, T)) {
     let k = |v: f64| T::from(v).expect("float constant");
     let s2 = s * s;
-    let mut out = Vec::with_capacity(order);
     // P_{l−1}, P_l and P_{l−1}′, P_l′ as l advances.
     let (mut p_prev, mut p) = (T::zero(), T::one());
     let (mut dp_prev, mut dp) = (T::zero(), T::zero());
@@ -59,7 +71,7 @@ pub fn cap_zh_generic<T: Float>(order: usize, s: T, c: T) -> Vec<T> {
         } else {
             k((PI * (2.0 * lf + 1.0)).sqrt() / (lf * (lf + 1.0))) * s2 * dp
         };
-        out.push(value);
+        each(l, value);
         // Advance to l + 1.
         let dp_next = dp_prev + k(2.0 * lf + 1.0) * p;
         let p_next = if l == 0 {
@@ -70,7 +82,6 @@ pub fn cap_zh_generic<T: Float>(order: usize, s: T, c: T) -> Vec<T> {
         (p_prev, p) = (p, p_next);
         (dp_prev, dp) = (dp, dp_next);
     }
-    out
 }
 
 /// Rotates a ZH (axis +z) to axis `dir` by Funk–Hecke: f_l^m = √(4π/(2l+1)) · z_l · y_l^m(dir).
