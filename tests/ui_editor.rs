@@ -301,3 +301,67 @@ fn opening_a_corrupt_file_shows_an_error_and_keeps_the_document() {
     assert!(harness.query_by_label("Error").is_none(), "the error window closes");
     harness.get_by_label("Lights (4)");
 }
+
+/// Closing the window with unsaved changes asks first: Cancel keeps the editor open with
+/// the changes, Discard lets it close; Save writes the project before closing.
+#[test]
+fn closing_with_unsaved_changes_asks_to_save_first() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let request_close = |harness: &mut Harness<'static, EditorApp>| {
+        let root = harness.input_mut().viewports.entry(egui::ViewportId::ROOT).or_default();
+        root.events.push(egui::ViewportEvent::Close);
+        harness.run();
+    };
+    request_close(&mut harness);
+    assert!(harness.state().is_closing(), "nothing unsaved: no question");
+
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label("per vertex").click();
+    harness.run();
+    assert!(harness.state().has_unsaved_changes());
+    request_close(&mut harness);
+    harness.get_by_label("Unsaved changes");
+    harness.get_by_label("Cancel").click();
+    harness.run();
+    assert!(!harness.state().is_closing() && !harness.state().is_asking_to_save());
+    assert!(harness.state().has_unsaved_changes(), "the changes are still there");
+
+    request_close(&mut harness);
+    harness.get_by_label("Save").click();
+    harness.run();
+    assert!(harness.state().is_closing());
+    let saved = lightpaint::project::Document::open(&project).expect("saved project");
+    assert!(
+        saved.settings.shadows.per_vertex,
+        "Save wrote the change before closing"
+    );
+}
+
+/// Opening another file over unsaved changes asks first; Discard opens it.
+#[test]
+fn opening_over_unsaved_changes_asks_first() {
+    let Some((dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label("per vertex").click();
+    harness.run();
+    let studio = lightpaint::samples::Sample::Studio.write(dir.path()).unwrap();
+    harness.state_mut().request_open(&studio, None);
+    harness.run();
+    assert!(harness.state().is_asking_to_save());
+    harness.get_by_label_contains("before opening studio.lightpaint");
+    harness.get_by_label("Discard").click();
+    harness.run();
+    assert_eq!(
+        harness.state().light_intensities().len(),
+        9,
+        "the studio (9 lights) is open"
+    );
+}

@@ -6,6 +6,7 @@ use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::{PaintAction, painting_section, tool_bar};
 use super::painting::{Painting, Tool};
 use super::shadow_panel::shadow_section;
+use super::unsaved_prompt::{self, Answer, Pending};
 use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
 use crate::paint::BrushKind;
 use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
@@ -46,6 +47,10 @@ pub struct EditorApp {
     /// The document's painting state (None without a document).
     painting: Option<Painting>,
     brush_input: BrushInput,
+    /// A close or open waiting for the answer to "save the changes?".
+    pending: Option<Pending>,
+    /// The window may close without asking (answered, or a scripted close).
+    closing: bool,
 }
 
 impl EditorApp {
@@ -70,6 +75,8 @@ impl EditorApp {
             first_frame_reported: false,
             painting: None,
             brush_input: BrushInput::default(),
+            pending: None,
+            closing: false,
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -147,6 +154,60 @@ impl EditorApp {
             .as_ref()
             .map(|d| d.scene.lights.iter().map(|l| l.intensity).collect())
             .unwrap_or_default()
+    }
+
+    /// Opens `path`, first asking to save when the document has unsaved changes.
+    pub fn request_open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
+        if self.has_unsaved_changes() && self.document.is_some() {
+            self.pending = Some(Pending::Open(path.to_path_buf()));
+        } else {
+            self.open(path, render_state);
+        }
+    }
+
+    /// Whether the editor is waiting for the answer to "save the changes?".
+    pub fn is_asking_to_save(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// Whether the window has been cleared to close.
+    pub fn is_closing(&self) -> bool {
+        self.closing
+    }
+
+    /// Intercepts a close of the window with unsaved changes, and acts on the answer.
+    fn guard_unsaved_changes(&mut self, ctx: &egui::Context, render_state: Option<&egui_wgpu::RenderState>) {
+        if ctx.input(|i| i.viewport().close_requested()) && !self.closing {
+            if self.has_unsaved_changes() && self.document.is_some() {
+                ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+                self.pending = Some(Pending::Close);
+            } else {
+                self.closing = true;
+            }
+        }
+        let Some(pending) = self.pending.clone() else { return };
+        let Some(answer) = unsaved_prompt::ask(ctx, &pending) else {
+            return;
+        };
+        self.pending = None;
+        let go_on = match answer {
+            Answer::Cancel => false,
+            Answer::Discard => true,
+            Answer::Save => {
+                self.save();
+                !self.has_unsaved_changes()
+            }
+        };
+        if !go_on {
+            return;
+        }
+        match pending {
+            Pending::Close => {
+                self.closing = true;
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+            Pending::Open(path) => self.open(&path, render_state),
+        }
     }
 
     /// The current tool (what a left drag in the viewport does).
@@ -282,7 +343,7 @@ impl EditorApp {
             .add_filter("lightpaint project or glTF scene", &[PROJECT_EXTENSION, "gltf", "glb"])
             .pick_file();
         if let Some(path) = picked {
-            self.open(&path, render_state);
+            self.request_open(&path, render_state);
         }
     }
 
@@ -590,7 +651,7 @@ impl EditorApp {
             self.save();
         }
         if let Some(path) = dropped {
-            self.open(&path, render_state);
+            self.request_open(&path, render_state);
         }
     }
 
@@ -611,6 +672,7 @@ impl EditorApp {
     fn scripted_close(&mut self, ctx: &egui::Context) {
         if let Some(path) = &self.options.close_when_file_exists {
             if path.exists() {
+                self.closing = true;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
             ctx.request_repaint_after(std::time::Duration::from_millis(100));
@@ -662,6 +724,7 @@ impl eframe::App for EditorApp {
             }
         }
         self.error_window(&ctx);
+        self.guard_unsaved_changes(&ctx, render_state.as_ref());
         if !self.first_frame_reported {
             self.first_frame_reported = true;
             eprintln!("{FIRST_FRAME_LINE}");
