@@ -215,28 +215,37 @@ fn read_project_file_accepts_the_sample() {
     assert_eq!(file.scene.gltf, Path::new("sample.glb"));
 }
 
-/// A project saved by format 1 (lightpaint before shadows) opens with the default shadow
-/// and blocker settings, keeps everything it had, and is saved back as the current format.
-#[test]
-fn a_format_1_project_opens_and_saves_as_the_current_format() {
-    let v1 = common::repo_path("tests/fixtures/format-1.lightpaint");
-    let text = std::fs::read_to_string(&v1).expect("fixture");
-    assert!(text.contains("\"format_version\": 1"), "the fixture is format 1");
-    let document = lightpaint::project::Document::open(&v1).expect("a format 1 project opens");
-    assert_eq!(document.settings.shadows, lightpaint::render::ShadowSettings::default());
-    assert_eq!(
-        document.settings.blockers,
-        lightpaint::blockers::BlockerSettings::default()
+/// Opens the committed fixture of format `version`, checks it keeps the sample's lights
+/// and settings and saves as the current format; returns the opened document.
+fn open_old_fixture(version: u64) -> lightpaint::project::Document {
+    let path = common::repo_path(&format!("tests/fixtures/format-{version}.lightpaint"));
+    let text = std::fs::read_to_string(&path).expect("fixture");
+    assert!(
+        text.contains(&format!("\"format_version\": {version}")),
+        "the fixture is format {version}"
     );
+    let mut document = lightpaint::project::Document::open(&path).expect("an older project opens");
     let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
     assert_eq!(document.scene.lights, current.scene.lights);
     assert_eq!(document.settings, current.settings);
     let dir = tempfile::tempdir().expect("temp dir");
     let saved = dir.path().join("saved.lightpaint");
-    let mut document = document;
     document.save(&saved).expect("save");
     let file = read_project_file(&saved).expect("the saved file reads back");
     assert_eq!(file.format_version, FORMAT_VERSION);
+    document
+}
+
+/// A project saved by format 1 (lightpaint before shadows) opens with the default shadow
+/// and blocker settings, keeps everything it had, and is saved back as the current format.
+#[test]
+fn a_format_1_project_opens_and_saves_as_the_current_format() {
+    let document = open_old_fixture(1);
+    assert_eq!(document.settings.shadows, lightpaint::render::ShadowSettings::default());
+    assert_eq!(
+        document.settings.blockers,
+        lightpaint::blockers::BlockerSettings::default()
+    );
 }
 
 /// A project saved by format 2 (before painting) opens with an empty stroke log and the
@@ -244,21 +253,7 @@ fn a_format_1_project_opens_and_saves_as_the_current_format() {
 /// format.
 #[test]
 fn a_format_2_project_opens_with_an_empty_stroke_log() {
-    let v2 = common::repo_path("tests/fixtures/format-2.lightpaint");
-    let text = std::fs::read_to_string(&v2).expect("fixture");
-    assert!(text.contains("\"format_version\": 2"), "the fixture is format 2");
-    let document = lightpaint::project::Document::open(&v2).expect("a format 2 project opens");
+    let document = open_old_fixture(2);
     assert!(document.painting.strokes.is_empty());
     assert_eq!(document.painting.settings, lightpaint::paint::PaintSettings::default());
-    let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
-    assert_eq!(document.scene.lights, current.scene.lights);
-    assert_eq!(document.settings, current.settings);
-    let dir = tempfile::tempdir().expect("temp dir");
-    let saved = dir.path().join("saved.lightpaint");
-    let mut document = document;
-    document.save(&saved).expect("save");
-    assert_eq!(
-        read_project_file(&saved).expect("reads back").format_version,
-        FORMAT_VERSION
-    );
 }
