@@ -21,9 +21,14 @@ for _ in $(seq 1 1200); do
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.1
 done
-# Let the viewport draw a few frames after the first.
+# Let the viewport draw a few frames after the first; on a loaded machine the window can
+# take longer to show them, so look again (up to 30 s) while the screen is still blank.
 sleep 3
-import -window root "$SHOT"
+for _ in $(seq 1 30); do
+    import -window root "$SHOT"
+    [ "$(identify -format %k "$SHOT" 2>/dev/null || echo 0)" -gt 500 ] && break
+    sleep 1
+done
 touch "$CLOSE"
 wait "$pid"
 "#;
