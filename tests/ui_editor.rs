@@ -365,3 +365,17 @@ fn opening_over_unsaved_changes_asks_first() {
         "the studio (9 lights) is open"
     );
 }
+
+/// Hovering an object in the outliner shows its material and how the renderer maps it.
+#[test]
+fn the_outliner_shows_each_objects_material() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label("Glazed sphere").hover();
+    harness.run();
+    harness.run();
+    harness.get_by_label_contains("vertices; ");
+    harness.get_by_label_contains("-> diffuse");
+}

@@ -56,6 +56,41 @@ impl Material {
     }
 }
 
+impl Material {
+    /// One line for the UI: the glTF values and what the renderer makes of them.
+    pub fn summary(&self) -> String {
+        let c = self.base_color;
+        let (k_d, k_s) = (self.diffuse_albedo(), self.specular_color());
+        let mut text = format!(
+            "{}: base colour ({:.2}, {:.2}, {:.2}){}, metallic {:.2}, roughness {:.2} \
+             -> diffuse ({:.2}, {:.2}, {:.2}), glossy ({:.2}, {:.2}, {:.2}) Phong {:.0}",
+            self.name,
+            c.x,
+            c.y,
+            c.z,
+            if self.base_color_texture.is_some() {
+                " x texture"
+            } else {
+                ""
+            },
+            self.metallic,
+            self.roughness,
+            k_d.x,
+            k_d.y,
+            k_d.z,
+            k_s.x,
+            k_s.y,
+            k_s.z,
+            self.phong_exponent()
+        );
+        if self.emissive != Vec3::ZERO {
+            let e = self.emissive;
+            text.push_str(&format!(", emissive ({:.2}, {:.2}, {:.2})", e.x, e.y, e.z));
+        }
+        text
+    }
+}
+
 /// An 8-bit sRGB-encoded RGBA texture.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TextureImage {
@@ -69,6 +104,30 @@ pub struct TextureImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_summary_names_the_values_and_their_mapping() {
+        let m = Material {
+            name: "brass".into(),
+            base_color: Vec4::new(0.9, 0.6, 0.2, 1.0),
+            metallic: 1.0,
+            roughness: 0.3,
+            emissive: Vec3::new(0.0, 2.0, 0.0),
+            ..Material::default()
+        };
+        let text = m.summary();
+        assert!(text.starts_with("brass: base colour (0.90, 0.60, 0.20)"), "{text}");
+        assert!(
+            text.contains("metallic 1.00") && text.contains("roughness 0.30"),
+            "{text}"
+        );
+        assert!(
+            text.contains("diffuse (0.00, 0.00, 0.00)"),
+            "metals do not diffuse: {text}"
+        );
+        assert!(text.contains("emissive (0.00, 2.00, 0.00)"), "{text}");
+        assert!(!Material::default().summary().contains("emissive"));
+    }
 
     #[test]
     fn white_rough_dielectric_without_specular_is_pure_lambert() {

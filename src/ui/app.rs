@@ -412,7 +412,10 @@ impl EditorApp {
                     .default_open(true)
                     .show(ui, |ui| {
                         for object in &document.scene.objects {
-                            ui.label(&object.name);
+                            let material = document.scene.materials.get(object.material);
+                            let summary = material.map_or_else(|| "default material".to_string(), |m| m.summary());
+                            ui.label(&object.name)
+                                .on_hover_text(format!("{} vertices; {summary}", object.positions.len()));
                         }
                     });
                 egui::CollapsingHeader::new(format!("Lights ({})", document.scene.lights.len()))

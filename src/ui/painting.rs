@@ -41,6 +41,8 @@ pub struct Painting {
     /// Strokes the document's log held when it was opened (applied, not undoable here).
     earlier: Vec<StrokeRecord>,
     bvh: Option<Arc<SceneBvh>>,
+    /// The picking BVH being built in the background since the document opened.
+    bvh_job: Option<std::thread::JoinHandle<SceneBvh>>,
     maps: Option<ImportanceMaps>,
     pub bake: Option<BakeJob>,
     pub bake_settings: BakeSettings,
@@ -64,6 +66,11 @@ impl Painting {
             painter: Painter::new(),
             earlier: state.strokes.clone(),
             bvh: None,
+            bvh_job: {
+                // Built before the first stroke needs it: a large scene takes seconds.
+                let scene = document.scene.clone();
+                Some(std::thread::spawn(move || SceneBvh::build(&scene)))
+            },
             maps: None,
             bake: None,
             bake_settings: BakeSettings::default(),
@@ -202,7 +209,11 @@ impl Painting {
             seed: self.next_seed,
         };
         self.next_seed += 1;
-        let bvh = self.bvh.get_or_insert_with(|| Arc::new(SceneBvh::build(scene))).clone();
+        if self.bvh.is_none() {
+            let built = self.bvh_job.take().and_then(|job| job.join().ok());
+            self.bvh = Some(Arc::new(built.unwrap_or_else(|| SceneBvh::build(scene))));
+        }
+        let bvh = self.bvh.clone()?;
         let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
         let report = {
             let scene: &Scene = scene;
