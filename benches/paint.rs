@@ -61,7 +61,7 @@ fn dab(c: &mut Criterion) {
     );
     let bvh = SceneBvh::build(&scene);
     let record = stroke(&scene);
-    let start: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+    let start = scene.light_intensities();
     let mut run = |name: &str, transfer: &dyn Transfer| {
         let mut intensities = start.clone();
         let report = Painter::new().paint(&scene, &bvh, transfer, &mut intensities, record.clone());

@@ -522,7 +522,7 @@ fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> 
         scene.lights.len(),
         started.elapsed().as_secs_f64() * 1000.0
     );
-    let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+    let mut intensities = scene.light_intensities();
     let mut painter = Painter::new();
     {
         let transfer = transfer.as_ref();
@@ -541,9 +541,7 @@ fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> 
         }
     }
     drop(transfer);
-    for (light, intensity) in document.scene.lights.iter_mut().zip(&intensities) {
-        light.intensity = *intensity;
-    }
+    document.scene.set_light_intensities(&intensities);
     document.painting.strokes.extend(painter.log().cloned());
     document.save(output)?;
     say!(

@@ -120,10 +120,6 @@ fn record(kind: BrushKind, at: Vec3, settings: PaintSettings, seed: u64) -> Stro
     }
 }
 
-fn intensities(scene: &Scene) -> Vec<f32> {
-    scene.lights.iter().map(|l| l.intensity).collect()
-}
-
 /// The stroke's hit vertices, picked again, and their weighted mean luminance under `p`,
 /// computed here from the transfer rather than taken from the engine's report.
 fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
@@ -217,7 +213,7 @@ fn direct_reaches_its_target_within_one_percent() {
     for (kind, target) in [(BrushKind::Positive, 2.0), (BrushKind::Negative, 0.05)] {
         let mut stroke = record(kind, Vec3::new(-1.5, 0.0, 1.0), settings, 1);
         stroke.brush.target_luminance_nits = target;
-        let mut p = intensities(&fixture().scene);
+        let mut p = fixture().scene.light_intensities();
         let report = paint(&mut Painter::new(), &mut p, stroke.clone());
         assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
         let mean = painted_mean(&stroke, &p);
@@ -243,7 +239,7 @@ fn painting_where_no_light_reaches_says_so_and_changes_nothing() {
     stroke.view.up = right.cross(stroke.view.forward);
     let centre = stroke.view.view().project(Vec3::new(30.0, 0.0, 0.0)).unwrap();
     stroke.dabs_px = vec![centre];
-    let mut p = intensities(&fixture().scene);
+    let mut p = fixture().scene.light_intensities();
     let before = p.clone();
     let mut painter = Painter::new();
     let report = paint(&mut painter, &mut p, stroke);
@@ -280,7 +276,7 @@ fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
             record(kind, at, settings[k % 3], 1000 + k as u64)
         })
         .collect();
-    let start = intensities(&fixture().scene);
+    let start = fixture().scene.light_intensities();
     let mut p = start.clone();
     let mut painter = Painter::new();
     let mut states = vec![p.clone()];
@@ -320,7 +316,7 @@ fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
 
 #[test]
 fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
-    let mut p = intensities(&fixture().scene);
+    let mut p = fixture().scene.light_intensities();
     let mut painter = Painter::new();
     let keep = record(
         BrushKind::Constraint,
@@ -372,7 +368,7 @@ fn the_global_solve_honours_two_strokes_that_the_additive_model_lets_fight() {
         first.brush.target_luminance_nits = A;
         let mut second = record(BrushKind::Positive, Vec3::new(0.8, 0.0, 0.5), direct(solve), 1);
         second.brush.target_luminance_nits = B;
-        let mut p = intensities(&fixture().scene);
+        let mut p = fixture().scene.light_intensities();
         let mut painter = Painter::new();
         paint(&mut painter, &mut p, first.clone());
         paint(&mut painter, &mut p, second.clone());

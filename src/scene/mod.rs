@@ -67,6 +67,18 @@ impl Scene {
         self.objects.iter().map(|o| o.indices.len() / 3).sum()
     }
 
+    /// Every light's intensity, in light order: the state painting changes.
+    pub fn light_intensities(&self) -> Vec<f32> {
+        self.lights.iter().map(|l| l.intensity).collect()
+    }
+
+    /// Sets the lights' intensities from `intensities` (in light order).
+    pub fn set_light_intensities(&mut self, intensities: &[f32]) {
+        for (light, &p) in self.lights.iter_mut().zip(intensities) {
+            light.intensity = p;
+        }
+    }
+
     /// The camera to open the scene with: the glTF camera, or one framing the bounds.
     pub fn initial_camera(&self) -> Camera {
         self.camera.clone().unwrap_or_else(|| Camera::framing(&self.bounds()))

@@ -152,7 +152,7 @@ impl EditorApp {
     pub fn light_intensities(&self) -> Vec<f32> {
         self.document
             .as_ref()
-            .map(|d| d.scene.lights.iter().map(|l| l.intensity).collect())
+            .map(|d| d.scene.light_intensities())
             .unwrap_or_default()
     }
 

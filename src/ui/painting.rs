@@ -214,7 +214,7 @@ impl Painting {
             self.bvh = Some(Arc::new(built.unwrap_or_else(|| SceneBvh::build(scene))));
         }
         let bvh = self.bvh.clone()?;
-        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
             let transfer: Box<dyn Transfer> = match &self.maps {
@@ -224,29 +224,23 @@ impl Painting {
             self.painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
         };
-        write_intensities(scene, &intensities);
+        scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());
         Some(report)
     }
 
     /// Undoes the last stroke of this session; false if there is none.
     pub fn undo(&mut self, scene: &mut Scene) -> bool {
-        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let mut intensities = scene.light_intensities();
         let undone = self.painter.undo(&mut intensities);
-        write_intensities(scene, &intensities);
+        scene.set_light_intensities(&intensities);
         undone
     }
 
     pub fn redo(&mut self, scene: &mut Scene) -> bool {
-        let mut intensities: Vec<f32> = scene.lights.iter().map(|l| l.intensity).collect();
+        let mut intensities = scene.light_intensities();
         let redone = self.painter.redo(&mut intensities);
-        write_intensities(scene, &intensities);
+        scene.set_light_intensities(&intensities);
         redone
-    }
-}
-
-fn write_intensities(scene: &mut Scene, intensities: &[f32]) {
-    for (light, &p) in scene.lights.iter_mut().zip(intensities) {
-        light.intensity = p;
     }
 }
