@@ -23,8 +23,7 @@ const GOLDEN_ANGLE: f32 = 2.399_963_2;
 
 /// Diffuse albedo of a material as one number: the Rec. 709 luminance of its k_d.
 pub fn diffuse_luminance(material: &Material) -> f32 {
-    let k_d = material.diffuse_albedo();
-    (0.2126 * k_d.x + 0.7152 * k_d.y + 0.0722 * k_d.z).clamp(0.0, 1.0)
+    (crate::scene::luminance(material.diffuse_albedo().as_dvec3()) as f32).clamp(0.0, 1.0)
 }
 
 /// `count` directions evenly spread over the hemisphere around unit `n`, turned by `turn_rad`.

@@ -21,4 +21,4 @@ pub use pick::{Hits, VertexRef, View, pick_dab};
 pub use record::{PaintSettings, Ranking, SolveMode, StrokeRecord, ViewRecord, dabs_along};
 pub use select::SelectionStrategy;
 pub use session::{Edit, LightChange, Outcome, Painter, StrokeReport};
-pub use transfer::{BakedTransfer, Transfer, luminance};
+pub use transfer::{BakedTransfer, Transfer};

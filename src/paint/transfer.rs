@@ -11,13 +11,8 @@ use glam::Vec3;
 
 use super::pick::VertexRef;
 use crate::bake::ImportanceMaps;
-use crate::scene::{Material, Scene};
+use crate::scene::{Material, Scene, luminance};
 use crate::sh;
-
-/// Rec. 709 luminance of a linear RGB colour.
-pub fn luminance(rgb: Vec3) -> f64 {
-    0.2126 * rgb.x as f64 + 0.7152 * rgb.y as f64 + 0.0722 * rgb.z as f64
-}
 
 /// Per-vertex, per-light transfer toward an eye.
 pub trait Transfer: Sync {
@@ -57,10 +52,10 @@ impl Reflectance {
             }
         };
         Reflectance {
-            diffuse: luminance(material.diffuse_albedo()),
-            specular: luminance(material.specular_color()),
+            diffuse: luminance(material.diffuse_albedo().as_dvec3()),
+            specular: luminance(material.specular_color().as_dvec3()),
             lobe_zh: sh::zh_of_function(order, lobe, &[0.0]),
-            emitted: luminance(material.emissive),
+            emitted: luminance(material.emissive.as_dvec3()),
         }
     }
 }
@@ -87,7 +82,7 @@ impl<'a> BakedTransfer<'a> {
             maps,
             reflectance,
             cosine_zh: sh::clamped_cosine_zh(order),
-            light_luminance: scene.lights.iter().map(|l| luminance(l.color)).collect(),
+            light_luminance: scene.lights.iter().map(|l| luminance(l.color.as_dvec3())).collect(),
         }
     }
 

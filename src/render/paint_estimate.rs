@@ -10,8 +10,8 @@ use super::ShadowSettings;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, environment_irradiance};
 use crate::blockers::Sphere;
-use crate::paint::{Transfer, VertexRef, luminance};
-use crate::scene::{Light, Material, Scene};
+use crate::paint::{Transfer, VertexRef};
+use crate::scene::{Light, Material, Scene, luminance};
 use crate::sh;
 
 /// [`Transfer`] from the log-SH shading of the scene's lights, each at unit intensity.
@@ -66,10 +66,6 @@ impl<'a> DirectEstimate<'a> {
     }
 }
 
-fn luminance_of(rgb: DVec3) -> f64 {
-    luminance(Vec3::new(rgb.x as f32, rgb.y as f32, rgb.z as f32))
-}
-
 impl DirectEstimate<'_> {
     /// Fixed luminance and per-light transfer, from one visibility evaluation.
     fn shade(&self, vertex: VertexRef, eye: Vec3, with_fixed: bool) -> (f64, Vec<(u32, f64)>) {
@@ -91,7 +87,7 @@ impl DirectEstimate<'_> {
                 }
                 let g = g.get_or_insert_with(|| self.visibility(&s));
                 let visible = cpu::visibility_toward(g, incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0);
-                let t = luminance_of(unshadowed) * visible;
+                let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })
             .collect();
@@ -103,7 +99,7 @@ impl DirectEstimate<'_> {
                 let visible = cpu::visibility_cosine(g, s.normal).clamp(0.0, 1.0);
                 radiance += cpu::environment_radiance(&s, &self.environment) * visible;
             }
-            fixed = luminance_of(radiance);
+            fixed = luminance(radiance);
         }
         (fixed, transfer)
     }

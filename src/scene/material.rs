@@ -32,6 +32,12 @@ impl Default for Material {
     }
 }
 
+/// Rec. 709 luminance of a linear RGB colour: how the bake, the painting and the UI reduce
+/// a colour to one number.
+pub fn luminance(rgb: glam::DVec3) -> f64 {
+    0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z
+}
+
 /// Reflectance of a dielectric at normal incidence (glTF's fixed 4 %).
 pub const DIELECTRIC_F0: f32 = 0.04;
 

@@ -21,7 +21,7 @@ pub use environment::Environment;
 pub use error::SceneError;
 pub use gltf_import::{load_gltf, parse_gltf};
 pub use light::{Light, LightKind};
-pub use material::{Material, TextureImage};
+pub use material::{Material, TextureImage, luminance};
 pub use mesh::MeshObject;
 
 use std::path::{Path, PathBuf};
