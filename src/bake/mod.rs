@@ -78,6 +78,17 @@ impl ImportanceMaps {
         if all == 0 { 1.0 } else { kept as f64 / all as f64 }
     }
 
+    /// Whether the maps were baked for this geometry: the same objects with the same
+    /// vertex counts.
+    pub fn fits(&self, scene: &Scene) -> bool {
+        self.objects.len() == scene.objects.len()
+            && self
+                .objects
+                .iter()
+                .zip(&scene.objects)
+                .all(|(m, o)| m.vertex_count() == o.positions.len())
+    }
+
     /// Bytes the maps take in memory.
     pub fn memory_bytes(&self) -> usize {
         self.objects.iter().map(ObjectMaps::memory_bytes).sum()
@@ -152,14 +163,7 @@ pub fn rebake_lights(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Option<ImportanceMaps> {
-    let same_shape = previous.order == settings.order
-        && previous.objects.len() == scene.objects.len()
-        && previous
-            .objects
-            .iter()
-            .zip(&scene.objects)
-            .all(|(m, o)| m.vertex_count() == o.positions.len());
-    if !same_shape {
+    if previous.order != settings.order || !previous.fits(scene) {
         return bake_maps_with(scene, settings, progress, cancel);
     }
     let (fresh, _) = bake_lights(scene, settings, lights, progress, cancel)?;

@@ -173,16 +173,6 @@ impl Painting {
         }
     }
 
-    /// Whether `maps` were baked for this geometry (same objects and vertex counts).
-    fn maps_fit(maps: &ImportanceMaps, scene: &Scene) -> bool {
-        maps.objects.len() == scene.objects.len()
-            && maps
-                .objects
-                .iter()
-                .zip(&scene.objects)
-                .all(|(m, o)| m.vertex_count() == o.positions.len())
-    }
-
     /// Paints a stroke finished in the viewport, seen by `camera`, and writes the new
     /// intensities into `scene`'s lights.
     pub fn paint(
@@ -218,7 +208,7 @@ impl Painting {
         let report = {
             let scene: &Scene = scene;
             let transfer: Box<dyn Transfer> = match &self.maps {
-                Some(maps) if Self::maps_fit(maps, scene) => Box::new(BakedTransfer::new(scene, maps)),
+                Some(maps) if maps.fits(scene) => Box::new(BakedTransfer::new(scene, maps)),
                 _ => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
             };
             self.painter
