@@ -80,32 +80,26 @@ pub struct MapEntry<'a> {
     pub sh: Coefficients<'a>,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-enum Store {
-    F32(Vec<f32>),
-    /// Values divided by `scales[light]`.
-    F16 {
-        values: Vec<f16>,
-        scales: Vec<f32>,
-    },
-}
-
 /// The maps of one object's vertices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectMaps {
     coefficients_per_entry: usize,
     first: Vec<u32>,
     lights: Vec<u32>,
-    store: Store,
+    store: RawCoefficients,
 }
 
 /// The raw arrays of an object's maps, for the cache file.
 pub struct RawMaps<'a> {
     pub first: &'a [u32],
     pub lights: &'a [u32],
-    /// f32 coefficients, or f16 bits with per-light scales.
-    pub f32_coefficients: Option<&'a [f32]>,
-    pub f16_coefficients: Option<(&'a [f16], &'a [f32])>,
+    pub coefficients: CoefficientArrays<'a>,
+}
+
+/// The coefficient array of an object: f32, or f16 relative to per-light scales.
+pub enum CoefficientArrays<'a> {
+    F32(&'a [f32]),
+    F16 { values: &'a [f16], scales: &'a [f32] },
 }
 
 impl ObjectMaps {
@@ -122,7 +116,7 @@ impl ObjectMaps {
         }
         let coefficient = |e: &LightContribution, k: usize| e.sh.get(k).copied().unwrap_or(0.0);
         let store = match precision {
-            Precision::F32 => Store::F32(
+            Precision::F32 => RawCoefficients::F32(
                 vertices
                     .iter()
                     .flatten()
@@ -147,7 +141,7 @@ impl ObjectMaps {
                         (0..per_entry).map(move |k| f16::from_f32(coefficient(e, k) / scale))
                     })
                     .collect();
-                Store::F16 { values, scales }
+                RawCoefficients::F16 { values, scales }
             }
         };
         ObjectMaps {
@@ -160,8 +154,8 @@ impl ObjectMaps {
 
     pub fn precision(&self) -> Precision {
         match self.store {
-            Store::F32(_) => Precision::F32,
-            Store::F16 { .. } => Precision::F16,
+            RawCoefficients::F32(_) => Precision::F32,
+            RawCoefficients::F16 { .. } => Precision::F16,
         }
     }
 
@@ -177,8 +171,8 @@ impl ObjectMaps {
         let n = self.coefficients_per_entry;
         let light = self.lights[k];
         let sh = match &self.store {
-            Store::F32(values) => Coefficients::F32(&values[k * n..(k + 1) * n]),
-            Store::F16 { values, scales } => Coefficients::F16 {
+            RawCoefficients::F32(values) => Coefficients::F32(&values[k * n..(k + 1) * n]),
+            RawCoefficients::F16 { values, scales } => Coefficients::F16 {
                 values: &values[k * n..(k + 1) * n],
                 scale: scales.get(light as usize).copied().unwrap_or(1.0),
             },
@@ -234,12 +228,12 @@ impl ObjectMaps {
             first.push(lights.len() as u32);
         }
         let store = match &self.store {
-            Store::F32(values) => Store::F32(
+            RawCoefficients::F32(values) => RawCoefficients::F32(
                 kept.iter()
                     .flat_map(|&k| values[k * n..(k + 1) * n].iter().copied())
                     .collect(),
             ),
-            Store::F16 { values, scales } => Store::F16 {
+            RawCoefficients::F16 { values, scales } => RawCoefficients::F16 {
                 values: kept
                     .iter()
                     .flat_map(|&k| values[k * n..(k + 1) * n].iter().copied())
@@ -258,15 +252,14 @@ impl ObjectMaps {
     }
 
     pub fn raw(&self) -> RawMaps<'_> {
-        let (f32_coefficients, f16_coefficients) = match &self.store {
-            Store::F32(values) => (Some(values.as_slice()), None),
-            Store::F16 { values, scales } => (None, Some((values.as_slice(), scales.as_slice()))),
+        let coefficients = match &self.store {
+            RawCoefficients::F32(values) => CoefficientArrays::F32(values),
+            RawCoefficients::F16 { values, scales } => CoefficientArrays::F16 { values, scales },
         };
         RawMaps {
             first: &self.first,
             lights: &self.lights,
-            f32_coefficients,
-            f16_coefficients,
+            coefficients,
         }
     }
 
@@ -301,29 +294,26 @@ impl ObjectMaps {
         if let Some(light) = lights.iter().find(|&&l| l as usize >= light_count) {
             return Err(format!("an entry names light {light} of {light_count}"));
         }
-        let store = match coefficients {
-            RawCoefficients::F32(v) => Store::F32(v),
-            RawCoefficients::F16 { values, scales } => Store::F16 { values, scales },
-        };
         Ok(ObjectMaps {
             coefficients_per_entry: per_entry,
             first,
             lights,
-            store,
+            store: coefficients,
         })
     }
 
     /// Bytes the maps take in memory.
     pub fn memory_bytes(&self) -> usize {
         let coefficients = match &self.store {
-            Store::F32(v) => 4 * v.len(),
-            Store::F16 { values, scales } => 2 * values.len() + 4 * scales.len(),
+            RawCoefficients::F32(v) => 4 * v.len(),
+            RawCoefficients::F16 { values, scales } => 2 * values.len() + 4 * scales.len(),
         };
         4 * (self.first.len() + self.lights.len()) + coefficients
     }
 }
 
-/// Owned coefficient arrays read from a cache.
+/// An object's owned coefficient array: f32, or f16 values divided by `scales[light]`.
+#[derive(Debug, Clone, PartialEq)]
 pub enum RawCoefficients {
     F32(Vec<f32>),
     F16 { values: Vec<f16>, scales: Vec<f32> },

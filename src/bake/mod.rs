@@ -9,7 +9,9 @@ pub mod indirect;
 mod maps;
 pub mod scene_bvh;
 
-pub use maps::{Coefficients, LightContribution, MapEntry, ObjectMaps, Precision, RawCoefficients, RawMaps};
+pub use maps::{
+    CoefficientArrays, Coefficients, LightContribution, MapEntry, ObjectMaps, Precision, RawCoefficients, RawMaps,
+};
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 

@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 
 use std::sync::atomic::AtomicBool;
 
-use crate::bake::{BakeSettings, ImportanceMaps, ObjectMaps, RawCoefficients, bake_maps_counting, rebake_lights};
+use crate::bake::{
+    BakeSettings, CoefficientArrays, ImportanceMaps, ObjectMaps, RawCoefficients, bake_maps_counting, rebake_lights,
+};
 use crate::scene::Scene;
 
 const MAGIC: &[u8; 6] = b"LPBAKE";
@@ -95,18 +97,17 @@ pub fn save(path: &Path, key: &BakeKey, maps: &ImportanceMaps) -> std::io::Resul
         put_u32(&mut bytes, raw.lights.len());
         bytes.extend_from_slice(bytemuck::cast_slice(raw.first));
         bytes.extend_from_slice(bytemuck::cast_slice(raw.lights));
-        match (raw.f32_coefficients, raw.f16_coefficients) {
-            (Some(values), _) => {
+        match raw.coefficients {
+            CoefficientArrays::F32(values) => {
                 bytes.push(0);
                 bytes.extend_from_slice(bytemuck::cast_slice(values));
             }
-            (None, Some((values, scales))) => {
+            CoefficientArrays::F16 { values, scales } => {
                 bytes.push(1);
                 put_u32(&mut bytes, scales.len());
                 bytes.extend_from_slice(bytemuck::cast_slice(scales));
                 bytes.extend_from_slice(bytemuck::cast_slice(values));
             }
-            (None, None) => bytes.push(0),
         }
     }
     let checksum = blake3::hash(&bytes);
