@@ -720,11 +720,10 @@ impl eframe::App for EditorApp {
             self.paint_stroke(&stroke, render_state.as_ref());
         }
         if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
-            // Brush and strategy edits are part of the project (restored on reopening).
-            let state = painting.state();
-            if document.painting != state {
-                document.painting = state;
-            }
+            // Brush and strategy edits are part of the project (restored on reopening); the
+            // strokes are copied only when they change (`lights_changed`), not every frame.
+            document.painting.brush = painting.brush_for_file();
+            document.painting.settings = painting.settings;
         }
         self.error_window(&ctx);
         self.guard_unsaved_changes(&ctx, render_state.as_ref());

@@ -86,13 +86,18 @@ impl Painting {
     pub fn state(&self) -> PaintingState {
         let mut strokes = self.earlier.clone();
         strokes.extend(self.painter.log().cloned());
-        // An untouched default brush stays unnamed, so opening a project is not a change.
-        let untouched = self.opened_brush.is_none() && self.brush == Brush::new(BrushKind::Positive);
         PaintingState {
             strokes,
-            brush: (!untouched).then_some(self.brush),
+            brush: self.brush_for_file(),
             settings: self.settings,
         }
+    }
+
+    /// The brush as the project file names it: an untouched default brush stays unnamed,
+    /// so opening a project is not a change.
+    pub fn brush_for_file(&self) -> Option<Brush> {
+        let untouched = self.opened_brush.is_none() && self.brush == Brush::new(BrushKind::Positive);
+        (!untouched).then_some(self.brush)
     }
 
     pub fn can_undo(&self) -> bool {
