@@ -66,42 +66,55 @@ impl<'a> DirectEstimate<'a> {
     }
 }
 
-impl DirectEstimate<'_> {
-    /// Fixed luminance and per-light transfer, from one visibility evaluation.
-    fn shade(&self, vertex: VertexRef, eye: Vec3, with_fixed: bool) -> (f64, Vec<(u32, f64)>) {
-        let Some(s) = self.surface(vertex) else {
-            return (0.0, Vec::new());
-        };
+/// The exponentiated visibility at a surface point, evaluated on first use and shared by
+/// the transfer and the fixed light of the same vertex.
+struct LazyVisibility<'e, 'a> {
+    estimate: &'e DirectEstimate<'a>,
+    g: Option<Vec<f64>>,
+}
+
+impl LazyVisibility<'_, '_> {
+    fn at(&mut self, s: &SurfacePoint) -> &[f64] {
+        let estimate = self.estimate;
+        self.g.get_or_insert_with(|| estimate.visibility(s))
+    }
+}
+
+impl<'a> DirectEstimate<'a> {
+    fn lazy(&self) -> LazyVisibility<'_, 'a> {
+        LazyVisibility {
+            estimate: self,
+            g: None,
+        }
+    }
+
+    /// Per-light transfer at `s` toward `eye`.
+    fn transfer_at(&self, s: &SurfacePoint, eye: Vec3, g: &mut LazyVisibility) -> Vec<(u32, f64)> {
         let eye = eye.as_dvec3();
-        let needs_environment = with_fixed && self.scene.environment.is_some();
-        let mut g: Option<Vec<f64>> = None;
-        let transfer = self
-            .unit_lights
+        self.unit_lights
             .iter()
             .enumerate()
             .filter_map(|(i, light)| {
                 let incidence = cpu::incidence(light, s.position);
-                let unshadowed = cpu::direct_radiance(&s, &incidence, eye);
+                let unshadowed = cpu::direct_radiance(s, &incidence, eye);
                 if unshadowed == DVec3::ZERO {
                     return None;
                 }
-                let g = g.get_or_insert_with(|| self.visibility(&s));
-                let visible = cpu::visibility_toward(g, incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0);
+                let visible = cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0);
                 let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })
-            .collect();
-        let mut fixed = 0.0;
-        if with_fixed {
-            let mut radiance = s.emissive;
-            if needs_environment {
-                let g = g.get_or_insert_with(|| self.visibility(&s));
-                let visible = cpu::visibility_cosine(g, s.normal).clamp(0.0, 1.0);
-                radiance += cpu::environment_radiance(&s, &self.environment) * visible;
-            }
-            fixed = luminance(radiance);
+            .collect()
+    }
+
+    /// Luminance at `s` that no light changes: emission and the shadowed environment.
+    fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
+        let mut radiance = s.emissive;
+        if self.scene.environment.is_some() {
+            let visible = cpu::visibility_cosine(g.at(s), s.normal).clamp(0.0, 1.0);
+            radiance += cpu::environment_radiance(s, &self.environment) * visible;
         }
-        (fixed, transfer)
+        luminance(radiance)
     }
 }
 
@@ -111,15 +124,24 @@ impl Transfer for DirectEstimate<'_> {
     }
 
     fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
-        self.shade(vertex, eye, false).1
+        let Some(s) = self.surface(vertex) else {
+            return Vec::new();
+        };
+        self.transfer_at(&s, eye, &mut self.lazy())
     }
 
-    fn fixed_luminance(&self, vertex: VertexRef, eye: Vec3) -> f64 {
-        self.shade(vertex, eye, true).0
+    fn fixed_luminance(&self, vertex: VertexRef, _eye: Vec3) -> f64 {
+        let Some(s) = self.surface(vertex) else { return 0.0 };
+        self.fixed_at(&s, &mut self.lazy())
     }
 
     fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
-        self.shade(vertex, eye, true)
+        let Some(s) = self.surface(vertex) else {
+            return (0.0, Vec::new());
+        };
+        let mut g = self.lazy();
+        let transfer = self.transfer_at(&s, eye, &mut g);
+        (self.fixed_at(&s, &mut g), transfer)
     }
 }
 
