@@ -140,7 +140,6 @@ mod tests {
 
     use super::*;
     use crate::bake::{BakeSettings, bake_maps};
-    use crate::scene::{Light, LightKind, shapes};
 
     /// A white Lambertian floor 2 m under a point light. The map holds E·y(d) (E = cos θ/d²
     /// is not applied: E_facing = 1/d²), so ⟨I, cos⁺/π⟩ is, by Funk–Hecke, the order-4
@@ -148,26 +147,7 @@ mod tests {
     /// cosine ZH [0.282095, 0.325735, 0.157696, 0] of design.md §4.
     #[test]
     fn a_lambertian_floor_under_a_point_light_has_the_closed_form_transfer() {
-        let mut floor = shapes::plane(2.0, 4, 1.0).into_object("floor");
-        floor.material = 0;
-        let scene = Scene {
-            objects: vec![floor],
-            materials: vec![Material {
-                metallic: 0.0,
-                specular: 0.0,
-                ..Material::default()
-            }],
-            lights: vec![Light {
-                name: "bulb".into(),
-                kind: LightKind::Point,
-                color: Vec3::ONE,
-                intensity: 1.0,
-                position: Vec3::new(0.0, 2.0, 0.0),
-                direction: Vec3::NEG_Y,
-                range: None,
-            }],
-            ..Default::default()
-        };
+        let scene = Scene::lambert_floor_under_point_light(4, Vec3::new(0.0, 2.0, 0.0), 1.0);
         let settings = BakeSettings {
             order: 4,
             bounces: 0,

@@ -150,30 +150,12 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
-    use crate::scene::{LightKind, shapes};
 
     /// Without blockers, a white Lambertian floor under a unit point light shows
     /// L = (1/π)·cos θ/d² (closed form).
     #[test]
     fn an_unoccluded_lambertian_floor_matches_the_closed_form() {
-        let scene = Scene {
-            objects: vec![shapes::plane(2.0, 2, 1.0).into_object("floor")],
-            materials: vec![Material {
-                metallic: 0.0,
-                specular: 0.0,
-                ..Material::default()
-            }],
-            lights: vec![Light {
-                name: "bulb".into(),
-                kind: LightKind::Point,
-                color: Vec3::ONE,
-                intensity: 30.0,
-                position: Vec3::new(0.5, 2.0, 0.0),
-                direction: Vec3::NEG_Y,
-                range: None,
-            }],
-            ..Default::default()
-        };
+        let scene = Scene::lambert_floor_under_point_light(2, Vec3::new(0.5, 2.0, 0.0), 30.0);
         let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
         for v in 0..scene.objects[0].positions.len() {
             let p = scene.objects[0].positions[v].as_dvec3();

@@ -79,6 +79,30 @@ impl Scene {
         }
     }
 
+    /// A test scene with a closed-form answer: a 2 m white Lambertian floor of
+    /// `segments`² quads facing +y under one white point light of `intensity_cd`.
+    #[cfg(test)]
+    pub(crate) fn lambert_floor_under_point_light(segments: u32, position: glam::Vec3, intensity_cd: f32) -> Scene {
+        Scene {
+            objects: vec![shapes::plane(2.0, segments, 1.0).into_object("floor")],
+            materials: vec![Material {
+                metallic: 0.0,
+                specular: 0.0,
+                ..Material::default()
+            }],
+            lights: vec![Light {
+                name: "bulb".into(),
+                kind: LightKind::Point,
+                color: glam::Vec3::ONE,
+                intensity: intensity_cd,
+                position,
+                direction: glam::Vec3::NEG_Y,
+                range: None,
+            }],
+            ..Default::default()
+        }
+    }
+
     /// The camera to open the scene with: the glTF camera, or one framing the bounds.
     pub fn initial_camera(&self) -> Camera {
         self.camera.clone().unwrap_or_else(|| Camera::framing(&self.bounds()))
