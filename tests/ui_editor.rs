@@ -21,6 +21,23 @@ fn editor_on(project: std::path::PathBuf) -> Harness<'static, EditorApp> {
         .build_eframe(|cc| EditorApp::new(cc, options))
 }
 
+/// Presses the left button at `path[0]`, moves along the polyline in `steps` moves per
+/// segment (a frame each) and releases at its end: a stroke as a hand paints it.
+fn drag_through(harness: &mut Harness<'static, EditorApp>, path: &[egui::Pos2], steps: usize) {
+    harness.hover_at(path[0]);
+    harness.run();
+    harness.drag_at(path[0]);
+    harness.run();
+    for pair in path.windows(2) {
+        for k in 1..=steps {
+            harness.hover_at(pair[0] + (pair[1] - pair[0]) * (k as f32 / steps as f32));
+            harness.run();
+        }
+    }
+    harness.drop_at(path[path.len() - 1]);
+    harness.run();
+}
+
 fn editor_on_sample_copy() -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
     if common::no_gpu_wanted() {
         eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
@@ -133,12 +150,7 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
     let centre = harness.state().viewport_rect().center();
     harness.key_press(egui::Key::B);
     harness.run();
-    harness.hover_at(centre);
-    harness.run();
-    harness.drag_at(centre);
-    harness.run();
-    harness.drop_at(centre);
-    harness.run();
+    drag_through(&mut harness, &[centre], 1);
     assert!(harness.state().has_unsaved_changes());
     drop(harness);
 
@@ -185,18 +197,7 @@ fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
                 .expect("the floor in front of the figure is in view")
         })
         .collect();
-    harness.hover_at(path[0]);
-    harness.run();
-    harness.drag_at(path[0]);
-    harness.run();
-    for pair in path.windows(2) {
-        for k in 1..=6 {
-            harness.hover_at(pair[0] + (pair[1] - pair[0]) * (k as f32 / 6.0));
-            harness.run();
-        }
-    }
-    harness.drop_at(path[3]);
-    harness.run();
+    drag_through(&mut harness, &path, 6);
     let after_lights = harness.state().light_intensities();
     assert!(
         after_lights.iter().zip(&before_lights).any(|(a, b)| a > b),
@@ -246,14 +247,7 @@ fn a_painted_project_reopens_exactly_as_saved() {
     harness.key_press(egui::Key::B);
     harness.run();
     let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
-    harness.hover_at(centre);
-    harness.run();
-    harness.drag_at(centre);
-    harness.run();
-    harness.hover_at(centre + egui::vec2(40.0, 0.0));
-    harness.run();
-    harness.drop_at(centre + egui::vec2(40.0, 0.0));
-    harness.run();
+    drag_through(&mut harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
     let painted = harness.state().light_intensities();
     let strokes = harness.state().document().expect("open").painting.strokes.clone();
     assert_eq!(strokes.len(), 1, "one stroke in the history");
