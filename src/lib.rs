@@ -13,6 +13,7 @@ pub mod paint;
 pub mod panic_guard;
 pub mod project;
 pub(crate) mod random;
+pub mod reference;
 pub mod render;
 pub mod samples;
 pub mod scene;

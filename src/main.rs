@@ -28,7 +28,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a project or scene offscreen with wgpu and write a PNG.
+    /// Render a project or scene offscreen with wgpu (or the reference path tracer) and
+    /// write a PNG.
     Render(RenderArgs),
     /// Validate a project or scene file; print every problem found, exit 2 if there is one.
     Check {
@@ -129,6 +130,18 @@ struct RenderArgs {
     /// Render without shadows (the plain raster pass).
     #[arg(long)]
     no_shadows: bool,
+    /// Render the ground truth with the path tracer (real geometry, no sphere proxies).
+    #[arg(long, conflicts_with_all = ["cpu", "no_shadows", "per_vertex", "time_frames"])]
+    reference: bool,
+    /// Reference samples (paths) per pixel.
+    #[arg(long, default_value_t = 64, requires = "reference", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: u32,
+    /// Reference indirect bounces: 0 = direct light only.
+    #[arg(long, default_value_t = 4, requires = "reference", value_parser = clap::value_parser!(u32).range(0..=lightpaint::reference::MAX_BOUNCES as i64))]
+    bounces: u32,
+    /// Seed of the reference's random numbers (the same seed gives the same image).
+    #[arg(long, default_value_t = 1, requires = "reference")]
+    seed: u64,
 }
 
 fn parse_msaa(text: &str) -> Result<u32, String> {
@@ -275,7 +288,6 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     for warning in &document.warnings {
         eprintln!("warning: {}: {warning}", args.file.display());
     }
-    let gpu = GpuContext::headless()?;
     let mut settings = document.settings;
     if let Some(exposure) = args.exposure {
         settings.exposure_ev = exposure;
@@ -287,6 +299,15 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         Some(orbit) => orbit.camera(),
         None => document.scene.initial_camera(),
     };
+    if args.reference {
+        let reference = lightpaint::reference::ReferenceSettings {
+            samples_per_pixel: args.spp,
+            bounces: args.bounces,
+            seed: args.seed,
+        };
+        return render_reference_png(&args.file, &document, &camera, &settings, &reference, args);
+    }
+    let gpu = GpuContext::headless()?;
     let mut shadows = settings.shadows;
     shadows.order = args.order.unwrap_or(shadows.order);
     shadows.exp = args.exp.unwrap_or(shadows.exp);
@@ -359,6 +380,75 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         args.height,
         gpu.adapter_summary(),
         elapsed.as_secs_f64() * 1000.0,
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// `render --reference`: the path tracer, with a progress bar over its passes.
+fn render_reference_png(
+    file: &Path,
+    document: &Document,
+    camera: &lightpaint::scene::Camera,
+    settings: &lightpaint::render::RenderSettings,
+    reference: &lightpaint::reference::ReferenceSettings,
+    args: &RenderArgs,
+) -> Result<(), CliError> {
+    use lightpaint::reference::ProgressiveRender;
+    if args.width == 0 || args.height == 0 || args.width > 16_384 || args.height > 16_384 {
+        return Err(CliError::Usage(format!(
+            "a reference image must be 1–16384 pixels on each side, not {}×{}",
+            args.width, args.height
+        )));
+    }
+    let started = std::time::Instant::now();
+    let mut render = ProgressiveRender::new(
+        &document.scene,
+        camera,
+        args.width,
+        args.height,
+        reference.bounces,
+        reference.seed,
+    );
+    let bar = indicatif::ProgressBar::new(reference.samples_per_pixel as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} samples per pixel, {eta} left")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    for _ in 0..reference.samples_per_pixel {
+        render.run_pass();
+        bar.set_position(render.passes_done() as u64);
+    }
+    bar.finish_and_clear();
+    let image = render.image();
+    let elapsed = started.elapsed().as_secs_f64();
+    image
+        .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
+        .save(&args.output)
+        .map_err(|source| CliError::WriteImage {
+            path: args.output.clone(),
+            source,
+        })?;
+    if image.discarded_samples > 0 {
+        eprintln!(
+            "warning: {}: {} samples were not finite and were left out",
+            file.display(),
+            image.discarded_samples
+        );
+    }
+    let mode = if reference.bounces == 0 {
+        "direct light".to_string()
+    } else {
+        format!("{} bounces", reference.bounces)
+    };
+    say!(
+        "rendered {} ({}×{}, reference path tracer, {} spp, {mode}, seed {}) in {elapsed:.1} s, {:.2} M rays/s → {}",
+        file.display(),
+        args.width,
+        args.height,
+        reference.samples_per_pixel,
+        reference.seed,
+        render.rays_cast() as f64 / elapsed.max(1e-9) / 1e6,
         args.output.display()
     );
     Ok(())

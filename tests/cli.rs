@@ -126,6 +126,53 @@ fn render_writes_a_png_of_the_requested_size() {
 }
 
 #[test]
+fn render_reference_path_traces_without_a_gpu_and_is_repeatable() {
+    let dir = tempfile::tempdir().unwrap();
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
+    let render = |name: &str, seed: &str| {
+        let png = dir.path().join(name);
+        let out = common::run_lightpaint(&[
+            OsStr::new("render"),
+            sample.as_os_str(),
+            OsStr::new("-o"),
+            png.as_os_str(),
+            OsStr::new("--reference"),
+            OsStr::new("--spp"),
+            OsStr::new("2"),
+            OsStr::new("--bounces"),
+            OsStr::new("1"),
+            OsStr::new("--seed"),
+            OsStr::new(seed),
+            OsStr::new("--width"),
+            OsStr::new("64"),
+            OsStr::new("--height"),
+            OsStr::new("36"),
+        ]);
+        let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+        assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            stdout.contains("reference path tracer, 2 spp, 1 bounces, seed"),
+            "{stdout}"
+        );
+        image::open(&png).expect("a PNG was written").to_rgba8()
+    };
+    let (first, again, other) = (render("a.png", "7"), render("b.png", "7"), render("c.png", "8"));
+    assert_eq!((first.width(), first.height()), (64, 36));
+    assert_eq!(first, again, "the same seed renders the same image");
+    assert_ne!(first, other, "another seed draws other paths");
+    let usage = common::run_lightpaint(&[
+        OsStr::new("render"),
+        sample.as_os_str(),
+        OsStr::new("-o"),
+        dir.path().join("d.png").as_os_str(),
+        OsStr::new("--reference"),
+        OsStr::new("--spp"),
+        OsStr::new("0"),
+    ]);
+    assert_eq!(usage.status.code(), Some(2), "0 samples per pixel is a usage error");
+}
+
+#[test]
 fn a_file_that_crashes_the_gltf_validator_is_reported_not_panicked() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("dangling.glb");

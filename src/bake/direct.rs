@@ -10,7 +10,7 @@
 use glam::Vec3;
 
 use super::scene_bvh::SceneBvh;
-use crate::scene::{Light, LightKind};
+use crate::scene::{Light, LightKind, UnitIncidence};
 use crate::sh;
 
 /// Golden angle in radians, for Fibonacci spreads.
@@ -87,33 +87,6 @@ fn emitter_samples(light: &Light, p: Vec3, samples: usize) -> Vec<EmitterSample>
         .collect()
 }
 
-/// Irradiance per unit intensity on a plane facing a point source of `light` at `source`,
-/// from `p`: the falloff of `incidence` in shaders/scene.wgsl (inverse square, glTF range
-/// window, spot cone, an area light's cos θ at the emitter).
-fn unit_irradiance(light: &Light, source: Vec3, p: Vec3) -> (f32, Vec3, f32) {
-    if light.kind == LightKind::Directional {
-        return (1.0, -light.direction, f32::INFINITY);
-    }
-    let offset = source - p;
-    let distance2 = offset.length_squared().max(1e-8);
-    let distance = distance2.sqrt();
-    let to_light = offset / distance;
-    let mut falloff = 1.0 / distance2;
-    if let Some(range) = light.range {
-        let ratio2 = distance2 / (range * range);
-        let window = (1.0 - ratio2 * ratio2).clamp(0.0, 1.0);
-        falloff *= window * window;
-    }
-    if let Some((cos_outer, inverse_transition)) = light.kind.spot_cone() {
-        let t = (((-to_light).dot(light.direction) - cos_outer) * inverse_transition).clamp(0.0, 1.0);
-        falloff *= t * t;
-    }
-    if let Some(area_m2) = light.kind.emitting_area_m2() {
-        falloff *= (-to_light).dot(light.direction).max(0.0) * area_m2;
-    }
-    (falloff, to_light, distance)
-}
-
 /// The visible emitter samples of `light` from `p` (normal `n`) above its horizon: each
 /// with the irradiance it gives a plane facing it per unit intensity, and its direction.
 /// Rays start `offset_m` off the surface.
@@ -129,7 +102,11 @@ pub fn visible_samples(
     emitter_samples(light, p, samples)
         .into_iter()
         .filter_map(|sample| {
-            let (irradiance, to_light, distance) = unit_irradiance(light, sample.position, p);
+            let UnitIncidence {
+                irradiance,
+                to_light,
+                distance_m: distance,
+            } = light.unit_incidence(sample.position, p);
             let above = irradiance > 0.0 && n.dot(to_light) > 0.0;
             (above && !bvh.occluded(origin, to_light, 0.0, distance - offset_m * 2.0))
                 .then_some((sample.share * irradiance, to_light))

@@ -14,7 +14,7 @@ use glam::Vec3;
 
 use super::direct::direct_irradiance;
 use super::scene_bvh::SceneBvh;
-use crate::random::SplitMix64;
+use crate::random::{SplitMix64, cosine_direction};
 use crate::scene::{Material, Scene};
 use crate::sh;
 
@@ -55,11 +55,7 @@ fn next_surface(bvh: &SceneBvh, scene: &Scene, albedo: &[f32], origin: Vec3, dir
     if rho <= 0.0 {
         return None;
     }
-    let corners = [0, 1, 2].map(|k| object.indices[3 * hit.triangle + k] as usize);
-    let mut normal = (object.normals[corners[0]] * hit.barycentric.x
-        + object.normals[corners[1]] * hit.barycentric.y
-        + object.normals[corners[2]] * hit.barycentric.z)
-        .normalize_or_zero();
+    let mut normal = object.interpolated_normal(hit.triangle, hit.barycentric);
     if normal.dot(direction) > 0.0 {
         normal = -normal; // two-sided: the side the ray arrives on
     }
@@ -68,15 +64,6 @@ fn next_surface(bvh: &SceneBvh, scene: &Scene, albedo: &[f32], origin: Vec3, dir
         normal,
         albedo: rho,
     })
-}
-
-/// A cosine-distributed direction about unit `n` from two uniform numbers.
-fn cosine_direction(n: Vec3, u1: f64, u2: f64) -> Vec3 {
-    let t = n.any_orthonormal_vector();
-    let b = n.cross(t);
-    let r = u1.sqrt() as f32;
-    let phi = (u2 * std::f64::consts::TAU) as f32;
-    (t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - u1 as f32).max(0.0).sqrt()).normalize_or(n)
 }
 
 /// Per light of `lights` (index, SH at the settings' order) of the reflected radiance

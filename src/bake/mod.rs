@@ -1,8 +1,8 @@
 //! Source-importance maps (Rozon 2009, with SH instead of wavelets): for every vertex and
 //! light, the SH vector of the radiance arriving at the vertex from the light at unit
 //! intensity: direct light with exact visibility (obvhs rays over every triangle of the
-//! scene, `direct`) plus one diffuse bounce (`indirect`). More bounces with Russian
-//! roulette, glossy bounces and the cache come next (issue #7).
+//! scene, `direct`) plus up to eight diffuse bounces with next-event estimation and
+//! Russian roulette (`indirect`), stored sparse (`maps`). Glossy bounces are not baked.
 
 pub mod direct;
 pub mod indirect;

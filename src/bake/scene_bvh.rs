@@ -65,8 +65,6 @@ impl SceneBvh {
         }
     }
 
-    /// The first surface the ray from `origin` along the unit `direction` meets between
-    /// `t_min` and `t_max` metres, if any.
     /// Rays traced through this BVH so far.
     pub fn rays_cast(&self) -> u64 {
         self.rays.load(std::sync::atomic::Ordering::Relaxed)
@@ -76,6 +74,8 @@ impl SceneBvh {
         self.rays.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     }
 
+    /// The first surface the ray from `origin` along the unit `direction` meets between
+    /// `t_min` and `t_max` metres, if any.
     pub fn closest_hit(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> Option<Hit> {
         self.count_ray();
         let bvh = self.bvh.as_ref()?;

@@ -1,5 +1,5 @@
-//! Colour transforms shared by the CPU side (documentation, tests, the future CPU
-//! reference). The GPU versions live in `shaders/common.wgsl`.
+//! Colour transforms of the CPU side (the f64 shading reference, the path tracer, tests).
+//! The GPU versions live in `shaders/common.wgsl`.
 
 /// sRGB electro-optical transfer: encoded [0, 1] → linear (IEC 61966-2-1).
 pub fn srgb_to_linear(encoded: f64) -> f64 {
@@ -23,6 +23,15 @@ pub fn linear_to_srgb(linear: f64) -> f64 {
 pub fn tonemap_aces_fit(x: f64) -> f64 {
     let x = x.max(0.0);
     (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0)
+}
+
+/// Exposure, tone curve and sRGB encoding of a linear radiance, to 8 bits per channel.
+pub fn display_srgb8(radiance: glam::DVec3, exposure_ev: f64) -> [u8; 3] {
+    let scaled = radiance * exposure_ev.exp2();
+    [scaled.x, scaled.y, scaled.z].map(|c| {
+        let encoded = linear_to_srgb(tonemap_aces_fit(c));
+        (encoded * 255.0).round().clamp(0.0, 255.0) as u8
+    })
 }
 
 #[cfg(test)]

@@ -257,12 +257,3 @@ fn exp_for_shading(method: ExpMethod, f: &[f64]) -> Vec<f64> {
         g
     }
 }
-
-/// Exposure, tone curve and sRGB encoding of a linear radiance, to 8 bits per channel.
-pub fn display_srgb8(radiance: DVec3, exposure_ev: f64) -> [u8; 3] {
-    let scaled = radiance * exposure_ev.exp2();
-    [scaled.x, scaled.y, scaled.z].map(|c| {
-        let encoded = super::linear_to_srgb(super::tonemap_aces_fit(c));
-        (encoded * 255.0).round().clamp(0.0, 255.0) as u8
-    })
-}

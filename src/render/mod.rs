@@ -18,7 +18,7 @@ pub mod shaders;
 mod shadow_settings;
 pub mod wgsl_sh;
 
-pub use color::{linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
+pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;

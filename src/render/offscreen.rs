@@ -251,7 +251,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         .par_iter()
         .flat_map_iter(|surface| {
             let rgb = match surface {
-                Some(s) => cpu::display_srgb8(cpu::shadowed_radiance(s, &inputs), exposure),
+                Some(s) => super::display_srgb8(cpu::shadowed_radiance(s, &inputs), exposure),
                 None => background,
             };
             [rgb[0], rgb[1], rgb[2], 255]

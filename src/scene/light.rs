@@ -96,7 +96,60 @@ impl LightKind {
     }
 }
 
+/// What a point source of a light delivers at a receiver, per unit intensity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnitIncidence {
+    /// Irradiance on a plane facing the source, per unit of [`Light::intensity`] (lux per
+    /// candela, per lux, or per nit).
+    pub irradiance: f32,
+    /// Unit direction from the receiver to the source.
+    pub to_light: Vec3,
+    /// Distance to the source in metres (∞ for directional lights).
+    pub distance_m: f32,
+}
+
 impl Light {
+    /// The incidence at `p` of a point source of this light at `source` (a point of its
+    /// emitter): inverse square falloff, the glTF range window, the spot cone and, for
+    /// area lights, the emitter's cos θ times its whole area, so a single source at the
+    /// centre stands for the whole emitter (the renderer's `incidence` in scene.wgsl) and
+    /// an area sample drawn with density 1/A is an unbiased estimate.
+    pub fn unit_incidence(&self, source: Vec3, p: Vec3) -> UnitIncidence {
+        if self.kind == LightKind::Directional {
+            return UnitIncidence {
+                irradiance: 1.0,
+                to_light: -self.direction,
+                distance_m: f32::INFINITY,
+            };
+        }
+        let offset = source - p;
+        let distance2 = offset.length_squared().max(1e-8);
+        let distance = distance2.sqrt();
+        let to_light = offset / distance;
+        let mut falloff = self.range_window(distance) / distance2;
+        if let Some((cos_outer, inverse_transition)) = self.kind.spot_cone() {
+            let t = (((-to_light).dot(self.direction) - cos_outer) * inverse_transition).clamp(0.0, 1.0);
+            falloff *= t * t;
+        }
+        if let Some(area_m2) = self.kind.emitting_area_m2() {
+            falloff *= (-to_light).dot(self.direction).max(0.0) * area_m2;
+        }
+        UnitIncidence {
+            irradiance: falloff,
+            to_light,
+            distance_m: distance,
+        }
+    }
+
+    /// glTF's smooth range window at `distance_m`: (clamp(1 − (d/range)⁴, 0, 1))², 1
+    /// without a range (KHR_lights_punctual's recommended falloff).
+    pub fn range_window(&self, distance_m: f32) -> f32 {
+        let Some(range) = self.range else { return 1.0 };
+        let ratio2 = (distance_m / range).powi(2);
+        let window = (1.0 - ratio2 * ratio2).clamp(0.0, 1.0);
+        window * window
+    }
+
     /// The width axis of a rect light: perpendicular to its normal and to world +y (world +z
     /// when the light faces straight up or down).
     pub fn area_width_axis(&self) -> Vec3 {

@@ -22,6 +22,36 @@ impl MeshObject {
         Aabb::from_points(&self.positions)
     }
 
+    /// The three vertex indices of triangle `triangle`.
+    pub fn triangle_corners(&self, triangle: usize) -> [usize; 3] {
+        [0, 1, 2].map(|k| self.indices[3 * triangle + k] as usize)
+    }
+
+    /// The unit shading normal at `barycentric` on triangle `triangle` (vertex normals
+    /// interpolated and renormalised, as the rasteriser does; zero if they cancel).
+    pub fn interpolated_normal(&self, triangle: usize, barycentric: Vec3) -> Vec3 {
+        let [a, b, c] = self.triangle_corners(triangle);
+        (self.normals[a] * barycentric.x + self.normals[b] * barycentric.y + self.normals[c] * barycentric.z)
+            .normalize_or_zero()
+    }
+
+    /// Texture coordinates at `barycentric` on triangle `triangle` (zero where a file gave
+    /// fewer coordinates than vertices).
+    pub fn interpolated_uv(&self, triangle: usize, barycentric: Vec3) -> Vec2 {
+        let uv = |v: usize| self.uvs.get(v).copied().unwrap_or_default();
+        let [a, b, c] = self.triangle_corners(triangle);
+        uv(a) * barycentric.x + uv(b) * barycentric.y + uv(c) * barycentric.z
+    }
+
+    /// The unit geometric normal of triangle `triangle` (counter-clockwise front; zero if
+    /// degenerate).
+    pub fn face_normal(&self, triangle: usize) -> Vec3 {
+        let [a, b, c] = self.triangle_corners(triangle);
+        (self.positions[b] - self.positions[a])
+            .cross(self.positions[c] - self.positions[a])
+            .normalize_or_zero()
+    }
+
     /// Area-weighted vertex normals from the triangles (used when a file has none).
     /// Vertices that touch only degenerate triangles get +y, so the result is always unit.
     pub fn generate_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {

@@ -20,7 +20,7 @@ pub use camera::{Camera, OrbitCamera};
 pub use environment::Environment;
 pub use error::SceneError;
 pub use gltf_import::{load_gltf, parse_gltf};
-pub use light::{Light, LightKind};
+pub use light::{Light, LightKind, UnitIncidence};
 pub use material::{Material, TextureImage, luminance};
 pub use mesh::MeshObject;
 
