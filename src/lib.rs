@@ -18,4 +18,5 @@ pub mod render;
 pub mod samples;
 pub mod scene;
 pub mod sh;
+pub mod study;
 pub mod ui;

@@ -31,13 +31,23 @@ enum Command {
     /// Render a project or scene offscreen with wgpu (or the reference path tracer) and
     /// write a PNG.
     Render(RenderArgs),
+    /// Measure the real-time renderer's knobs against the reference path tracer: CSV,
+    /// markdown table, Pareto plot and side-by-side images in the output directory.
+    Study {
+        /// A small grid on one scene at 160×90 (about two minutes).
+        #[arg(long)]
+        quick: bool,
+        /// Directory for study.csv, study.md, pareto.png and images/.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Validate a project or scene file; print every problem found, exit 2 if there is one.
     Check {
         /// The project (.lightpaint) or .gltf/.glb file to check.
         file: PathBuf,
     },
-    /// Bake the source-importance maps (direct light and one diffuse bounce of every light
-    /// at every vertex, as SH) and report their size and the time taken.
+    /// Bake the source-importance maps (direct light and diffuse bounces of every light at
+    /// every vertex, as SH) and report their size and the time taken.
     Bake {
         /// The project (.lightpaint) or .gltf/.glb scene.
         file: PathBuf,
@@ -204,6 +214,8 @@ enum CliError {
     },
     #[error(transparent)]
     Script(#[from] lightpaint::paint::script::ScriptError),
+    #[error(transparent)]
+    Study(#[from] lightpaint::study::StudyError),
     #[error("{0}")]
     Usage(String),
     #[error("the editor failed: {0}")]
@@ -241,6 +253,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Check { file }) => check(&file),
+        Some(Command::Study { quick, output }) => study(quick, output),
         Some(Command::Bake {
             file,
             order,
@@ -381,6 +394,21 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         gpu.adapter_summary(),
         elapsed.as_secs_f64() * 1000.0,
         args.output.display()
+    );
+    Ok(())
+}
+
+fn study(quick: bool, output_dir: PathBuf) -> Result<(), CliError> {
+    let gpu = GpuContext::headless()?;
+    let options = lightpaint::study::StudyOptions { quick, output_dir };
+    let started = std::time::Instant::now();
+    let results = lightpaint::study::run_study(&gpu, &options, |line| say!("{line}"))?;
+    say!(
+        "study of {} settings on {} scene(s) in {:.0} s → {}",
+        results.rows.len(),
+        results.references.len(),
+        started.elapsed().as_secs_f64(),
+        options.output_dir.display()
     );
     Ok(())
 }

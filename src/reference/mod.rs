@@ -21,6 +21,7 @@ mod surface;
 pub use camera_rays::{CameraRay, CameraRays};
 pub use emitters::{EmitterSample, sample_light};
 pub use path::PathTracer;
+pub use surface::SurfaceHit;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -87,11 +88,23 @@ impl ReferenceImage {
     }
 }
 
+/// Where each pixel's paths start.
+enum Primary {
+    /// Rays from the camera through jittered points of each pixel (box filter).
+    Camera(CameraRays),
+    /// Given visible surfaces (e.g. the rasteriser's, so that a comparison sees the same
+    /// points, texture filtering and edges) seen from an eye point; None shows background.
+    Surfaces {
+        surfaces: Vec<Option<SurfaceHit>>,
+        eye: glam::Vec3,
+    },
+}
+
 /// A reference render in progress: call [`ProgressiveRender::run_pass`] until enough
 /// samples are in, looking at [`ProgressiveRender::image`] whenever wanted.
 pub struct ProgressiveRender<'a> {
     tracer: PathTracer<'a>,
-    rays: CameraRays,
+    primary: Primary,
     width: u32,
     height: u32,
     seed: u64,
@@ -106,9 +119,33 @@ impl<'a> ProgressiveRender<'a> {
         let pixels = width as usize * height as usize;
         ProgressiveRender {
             tracer: PathTracer::new(scene, bounces.min(MAX_BOUNCES)),
-            rays: CameraRays::new(camera, width, height),
+            primary: Primary::Camera(CameraRays::new(camera, width, height)),
             width,
             height,
+            seed,
+            sums: vec![DVec3::ZERO; pixels],
+            hits: vec![0; pixels],
+            passes: 0,
+            discarded: 0,
+        }
+    }
+
+    /// A render whose paths start at given visible surfaces (row-major, `width` wide),
+    /// seen from `eye`: the light is path traced, the first hit is not.
+    pub fn from_surfaces(
+        scene: &'a Scene,
+        surfaces: Vec<Option<SurfaceHit>>,
+        eye: glam::Vec3,
+        width: u32,
+        bounces: u32,
+        seed: u64,
+    ) -> Self {
+        let pixels = surfaces.len();
+        ProgressiveRender {
+            tracer: PathTracer::new(scene, bounces.min(MAX_BOUNCES)),
+            primary: Primary::Surfaces { surfaces, eye },
+            width,
+            height: (pixels / width.max(1) as usize) as u32,
             seed,
             sums: vec![DVec3::ZERO; pixels],
             hits: vec![0; pixels],
@@ -120,7 +157,7 @@ impl<'a> ProgressiveRender<'a> {
     /// Adds one sample to every pixel (a jittered point of the pixel, one path).
     pub fn run_pass(&mut self) {
         let (width, pass, seed) = (self.width as usize, self.passes as u64, self.seed);
-        let (tracer, rays) = (&self.tracer, &self.rays);
+        let (tracer, primary) = (&self.tracer, &self.primary);
         let discarded: u64 = self
             .sums
             .par_chunks_mut(width.max(1))
@@ -131,10 +168,19 @@ impl<'a> ProgressiveRender<'a> {
                 for (column, (sum, hit)) in sums.iter_mut().zip(hits.iter_mut()).enumerate() {
                     let pixel = (row * width + column) as u64;
                     let mut random = SplitMix64(mix_seed(&[seed, pixel, pass]));
-                    let x = column as f64 + random.next_f64();
-                    let y = row as f64 + random.next_f64();
-                    let ray = rays.through(x, y);
-                    match tracer.radiance(ray.origin, ray.direction, ray.t_min, ray.t_max, &mut random) {
+                    let radiance = match primary {
+                        Primary::Camera(rays) => {
+                            let x = column as f64 + random.next_f64();
+                            let y = row as f64 + random.next_f64();
+                            let ray = rays.through(x, y);
+                            tracer.radiance(ray.origin, ray.direction, ray.t_min, ray.t_max, &mut random)
+                        }
+                        Primary::Surfaces { surfaces, eye } => surfaces[pixel as usize].map(|surface| {
+                            let to_eye = (*eye - surface.position).normalize_or(surface.normal);
+                            tracer.radiance_leaving(surface, to_eye, &mut random)
+                        }),
+                    };
+                    match radiance {
                         Some(radiance) if radiance.is_finite() => {
                             *sum += radiance;
                             *hit += 1;

@@ -65,8 +65,12 @@ impl<'a> PathTracer<'a> {
         t_max: f32,
         random: &mut SplitMix64,
     ) -> Option<DVec3> {
-        let mut surface = self.next_surface(origin, direction, t_min, t_max)?;
-        let mut to_eye = -direction;
+        let surface = self.next_surface(origin, direction, t_min, t_max)?;
+        Some(self.radiance_leaving(surface, -direction, random))
+    }
+
+    /// Radiance leaving `surface` toward unit `to_eye` (emission plus reflected light).
+    pub fn radiance_leaving(&self, mut surface: SurfaceHit, mut to_eye: Vec3, random: &mut SplitMix64) -> DVec3 {
         let mut radiance = surface.emissive;
         let mut throughput = DVec3::ONE;
         for reflection in 1..=self.bounces + 1 {
@@ -94,7 +98,7 @@ impl<'a> PathTracer<'a> {
                 }
             }
         }
-        Some(radiance)
+        radiance
     }
 
     fn next_surface(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> Option<SurfaceHit> {

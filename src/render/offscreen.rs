@@ -34,15 +34,65 @@ pub fn render_image(
     width: u32,
     height: u32,
 ) -> Result<image::RgbaImage, RenderError> {
-    check_size(gpu, width, height)?;
-    let pipeline = ScenePipeline::new(&gpu.device);
-    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
-    let target = RenderTarget::new(&gpu.device, width, height);
-    gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, settings.exposure_ev);
+    RasterRenderer::new(gpu, scene, camera, settings, width, height)?.read_image()
+}
 
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    pipeline.draw(&mut encoder, &target, &gpu_scene, settings.background_linear());
-    read_color(gpu, encoder, &target)
+/// The plain raster pass (no shadows), uploaded once so frames can be drawn repeatedly.
+pub struct RasterRenderer<'a> {
+    gpu: &'a GpuContext,
+    pipeline: ScenePipeline,
+    gpu_scene: GpuScene,
+    target: RenderTarget,
+    background: [f64; 3],
+}
+
+impl<'a> RasterRenderer<'a> {
+    pub fn new(
+        gpu: &'a GpuContext,
+        scene: &Scene,
+        camera: &Camera,
+        settings: &RenderSettings,
+        width: u32,
+        height: u32,
+    ) -> Result<RasterRenderer<'a>, RenderError> {
+        check_size(gpu, width, height)?;
+        let pipeline = ScenePipeline::new(&gpu.device);
+        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
+        let target = RenderTarget::new(&gpu.device, width, height);
+        gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, settings.exposure_ev);
+        Ok(RasterRenderer {
+            gpu,
+            pipeline,
+            gpu_scene,
+            target,
+            background: settings.background_linear(),
+        })
+    }
+
+    fn encode_frame(&self) -> wgpu::CommandEncoder {
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        self.pipeline
+            .draw(&mut encoder, &self.target, &self.gpu_scene, self.background);
+        encoder
+    }
+
+    /// Draws one frame and reads it back.
+    pub fn read_image(&self) -> Result<image::RgbaImage, RenderError> {
+        read_color(self.gpu, self.encode_frame(), &self.target)
+    }
+
+    /// Draws one frame and waits until the GPU has finished it.
+    pub fn draw_and_wait(&self) -> Result<(), RenderError> {
+        submit_and_wait(self.gpu, self.encode_frame())
+    }
+}
+
+fn submit_and_wait(gpu: &GpuContext, encoder: wgpu::CommandEncoder) -> Result<(), RenderError> {
+    gpu.queue.submit([encoder.finish()]);
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map(|_| ())
+        .map_err(|e| RenderError::Readback(e.to_string()))
 }
 
 /// A log-SH frame request: what to render and how.
@@ -78,9 +128,7 @@ pub fn render_logsh_image(
     frame: &ShadowFrame,
     samples: u32,
 ) -> Result<image::RgbaImage, RenderError> {
-    let renderer = ShadowRenderer::new(gpu, frame, samples)?;
-    let encoder = renderer.encode_frame();
-    read_color(gpu, encoder, &renderer.target)
+    ShadowRenderer::new(gpu, frame, samples)?.read_image()
 }
 
 /// Everything a log-SH frame needs, uploaded once, so frames can be drawn repeatedly
@@ -139,14 +187,14 @@ impl<'a> ShadowRenderer<'a> {
         encoder
     }
 
+    /// Draws one frame and reads it back.
+    pub fn read_image(&self) -> Result<image::RgbaImage, RenderError> {
+        read_color(self.gpu, self.encode_frame(), &self.target)
+    }
+
     /// Draws one frame and waits until the GPU has finished it.
     pub fn draw_and_wait(&self) -> Result<(), RenderError> {
-        self.gpu.queue.submit([self.encode_frame().finish()]);
-        self.gpu
-            .device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RenderError::Readback(e.to_string()))
+        submit_and_wait(self.gpu, self.encode_frame())
     }
 }
 

@@ -1,0 +1,140 @@
+//! The knob settings a study measures: every order and exponentiation method crossed,
+//! then one knob at a time around the defaults (ε, ratio attenuation, blocker count,
+//! per-vertex shading), plus no shadows at all as the baseline.
+
+use crate::blockers::SphereBudget;
+use crate::render::ShadowSettings;
+use crate::sh::ExpMethod;
+
+/// One point of the grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Knobs {
+    /// None: the plain raster pass, no shadows.
+    pub shadows: Option<ShadowSettings>,
+    pub blockers: SphereBudget,
+}
+
+impl Knobs {
+    /// A short label for tables and file names, e.g. `o4-hyb-e0.1`.
+    pub fn label(&self) -> String {
+        let Some(s) = &self.shadows else {
+            return "no-shadows".into();
+        };
+        let mut label = format!("o{}-{}-e{}", s.order, method_label(s.exp), s.epsilon);
+        if s.ratio_attenuation {
+            label.push_str("-ratio");
+        }
+        if s.per_vertex {
+            label.push_str("-vertex");
+        }
+        if let SphereBudget::Total(n) = self.blockers {
+            label.push_str(&format!("-s{n}"));
+        }
+        label
+    }
+
+    /// Whether the CPU shades it (the reference exponential exists only there).
+    pub fn on_cpu(&self) -> bool {
+        self.shadows.is_some_and(|s| s.exp == ExpMethod::Reference)
+    }
+}
+
+pub fn method_label(method: ExpMethod) -> String {
+    match method {
+        ExpMethod::Dc => "dc".into(),
+        ExpMethod::Ol => "ol".into(),
+        ExpMethod::Hyb => "hyb".into(),
+        ExpMethod::Ps(k) => format!("ps{k}"),
+        ExpMethod::Reference => "ref".into(),
+    }
+}
+
+/// The grid: `quick` keeps it to what runs in well under two minutes.
+pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
+    let defaults = ShadowSettings::default();
+    let (orders, methods, epsilons, budgets): (Vec<usize>, Vec<ExpMethod>, Vec<f32>, Vec<usize>) = if quick {
+        (
+            vec![2, 4, 6],
+            vec![ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb],
+            vec![0.05, 0.3],
+            vec![8, 48],
+        )
+    } else {
+        (
+            (2..=8).collect(),
+            vec![
+                ExpMethod::Dc,
+                ExpMethod::Ol,
+                ExpMethod::Hyb,
+                ExpMethod::Ps(8),
+                ExpMethod::Reference,
+            ],
+            vec![0.02, 0.05, 0.2, 0.3, 0.5],
+            vec![4, 8, 16, 32, 64, 128],
+        )
+    };
+    let with = |change: &dyn Fn(&mut ShadowSettings)| {
+        let mut s = defaults;
+        change(&mut s);
+        Knobs {
+            shadows: Some(s),
+            blockers: default_blockers,
+        }
+    };
+    let mut grid = vec![Knobs {
+        shadows: None,
+        blockers: default_blockers,
+    }];
+    for &order in &orders {
+        for &exp in &methods {
+            grid.push(with(&|s| {
+                s.order = order;
+                s.exp = exp;
+            }));
+        }
+    }
+    if quick {
+        grid.push(with(&|s| s.exp = ExpMethod::Reference));
+    }
+    for &epsilon in &epsilons {
+        grid.push(with(&|s| s.epsilon = epsilon));
+    }
+    grid.push(with(&|s| s.ratio_attenuation = true));
+    let per_vertex_orders: Vec<usize> = if quick { vec![4] } else { (2..=7).collect() };
+    for order in per_vertex_orders {
+        grid.push(with(&|s| {
+            s.order = order;
+            s.per_vertex = true;
+        }));
+    }
+    for count in budgets {
+        grid.push(Knobs {
+            shadows: Some(defaults),
+            blockers: SphereBudget::Total(count),
+        });
+    }
+    grid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_grid_point_is_valid_and_labelled_once() {
+        for quick in [true, false] {
+            let grid = knob_grid(quick, SphereBudget::FitError(0.35));
+            let mut labels: Vec<String> = grid.iter().map(Knobs::label).collect();
+            for knobs in &grid {
+                if let Some(s) = knobs.shadows {
+                    let problems = if knobs.on_cpu() { s.problems() } else { s.gpu_problems() };
+                    assert!(problems.is_empty(), "{}: {problems:?}", knobs.label());
+                }
+            }
+            labels.sort();
+            let before = labels.len();
+            labels.dedup();
+            assert_eq!(before, labels.len(), "labels are unique");
+        }
+    }
+}

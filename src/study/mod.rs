@@ -1,0 +1,380 @@
+//! The speed/accuracy study: each sample scene rendered by the real-time renderer over a
+//! grid of knobs ([`grid`]), each frame timed and compared with the converged reference
+//! path tracer in direct-light mode (the real-time renderer draws direct light), on the
+//! displayed image ([`metrics`]). Results go to a CSV, a markdown table, a Pareto plot and
+//! side-by-side images ([`report`]); docs/speed-accuracy.md presents them.
+//!
+//! So that the errors are those of the shading, not of texture filtering or edges, the
+//! reference starts its paths at the rasteriser's visible surface points (one sample at
+//! each pixel centre, as [`capture_surfaces`] gives them) and the real-time frames are
+//! drawn with one sample per pixel. The reference is rendered as two independent halves
+//! (two seeds): their difference measures its own noise, reported beside the errors so
+//! that no error below the noise is read as meaningful.
+
+pub mod grid;
+pub mod metrics;
+pub mod report;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use crate::blockers::{BlockerSettings, fit_scene};
+use crate::project::{Document, ProjectError};
+use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
+use crate::render::cpu::SurfacePoint;
+use crate::render::{
+    GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer, capture_surfaces,
+    shade_surfaces,
+};
+use crate::samples::Sample;
+use crate::scene::{Camera, Scene};
+use grid::{Knobs, knob_grid};
+use metrics::{DisplayImage, ImageErrors, image_errors};
+
+/// How big a study to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyOptions {
+    /// A small grid on one scene at low resolution (a couple of minutes on two cores).
+    pub quick: bool,
+    pub output_dir: PathBuf,
+}
+
+impl StudyOptions {
+    fn scenes(&self) -> Vec<Sample> {
+        if self.quick {
+            vec![Sample::Sample]
+        } else {
+            vec![Sample::Sample, Sample::Studio, Sample::Interior]
+        }
+    }
+
+    fn size(&self) -> (u32, u32) {
+        if self.quick { (160, 90) } else { (480, 270) }
+    }
+
+    fn reference_spp(&self) -> u32 {
+        if self.quick { 128 } else { 1024 }
+    }
+
+    fn timed_frames(&self) -> u32 {
+        if self.quick { 3 } else { 10 }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    #[error(transparent)]
+    Project(#[from] ProjectError),
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: cannot write image: {source}")]
+    Image {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+}
+
+/// One measured point: a scene, the knobs, the time and the errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyRow {
+    pub scene: String,
+    pub knobs: Knobs,
+    pub blocker_count: usize,
+    /// Mean time per frame in milliseconds (GPU frames, or CPU shading for the reference
+    /// exponential).
+    pub ms_per_frame: f64,
+    pub errors: ImageErrors,
+    /// Pixels with a channel at 0 or 255 where the reference has neither: NaN and inf
+    /// show up so, as do shadows too dark to display (counted, not hidden).
+    pub extreme_pixels: usize,
+}
+
+/// The reference of one scene and what it says about its own noise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneReference {
+    pub scene: String,
+    pub samples_per_pixel: u32,
+    pub seconds: f64,
+    /// RMSE of the full reference's noise, estimated from its two halves.
+    pub noise_rmse: f64,
+}
+
+/// Everything a study measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyResults {
+    pub width: u32,
+    pub height: u32,
+    pub adapter: String,
+    pub references: Vec<SceneReference>,
+    pub rows: Vec<StudyRow>,
+}
+
+/// Runs the study, writing its outputs into `options.output_dir`; `say` receives one line
+/// per step.
+pub fn run_study(
+    gpu: &GpuContext,
+    options: &StudyOptions,
+    mut say: impl FnMut(&str),
+) -> Result<StudyResults, StudyError> {
+    let (width, height) = options.size();
+    std::fs::create_dir_all(options.output_dir.join("images")).map_err(|source| StudyError::Write {
+        path: options.output_dir.clone(),
+        source,
+    })?;
+    let scratch = tempfile::tempdir().map_err(|source| StudyError::Write {
+        path: std::env::temp_dir(),
+        source,
+    })?;
+    let mut results = StudyResults {
+        width,
+        height,
+        adapter: gpu.adapter_summary(),
+        references: Vec::new(),
+        rows: Vec::new(),
+    };
+    for sample in options.scenes() {
+        let document = Document::open(&sample.write(scratch.path())?)?;
+        let camera = document
+            .camera
+            .map(|c| c.camera())
+            .unwrap_or_else(|| document.scene.initial_camera());
+        let scene_study = SceneStudy {
+            gpu,
+            name: sample.name(),
+            scene: &document.scene,
+            camera: &camera,
+            settings: &document.settings,
+            width,
+            height,
+            frames: options.timed_frames(),
+            surfaces: capture_surfaces(gpu, &document.scene, &camera, width, height)?,
+        };
+        let started = Instant::now();
+        let (reference, noise_rmse) = scene_study.converged_reference(options.reference_spp());
+        let reference_entry = SceneReference {
+            scene: sample.name().into(),
+            samples_per_pixel: options.reference_spp(),
+            seconds: started.elapsed().as_secs_f64(),
+            noise_rmse,
+        };
+        say(&format!(
+            "{}: reference {} spp in {:.1} s, noise RMSE {:.4}",
+            reference_entry.scene, reference_entry.samples_per_pixel, reference_entry.seconds, noise_rmse
+        ));
+        results.references.push(reference_entry);
+        let grid = knob_grid(options.quick, document.settings.blockers.budget);
+        results
+            .rows
+            .extend(scene_study.measure_grid(&reference, &grid, &options.output_dir, &mut say)?);
+    }
+    report::write_all(&results, &options.output_dir)?;
+    Ok(results)
+}
+
+/// One scene's share of the study.
+struct SceneStudy<'a> {
+    gpu: &'a GpuContext,
+    name: &'static str,
+    scene: &'a Scene,
+    camera: &'a Camera,
+    settings: &'a RenderSettings,
+    width: u32,
+    height: u32,
+    frames: u32,
+    /// The rasteriser's visible surface of each pixel (one sample at its centre).
+    surfaces: Vec<Option<SurfacePoint>>,
+}
+
+impl SceneStudy<'_> {
+    /// The reference at `spp` as the mean of two independent halves, and the RMSE of its
+    /// noise: for halves a and b, var(a − b) = 2σ²_half and σ_full = σ_half/√2, so
+    /// σ_full = rms(a − b)/2 (on the displayed image).
+    fn converged_reference(&self, spp: u32) -> (image::RgbaImage, f64) {
+        let hits: Vec<Option<SurfaceHit>> = self.surfaces.iter().map(|s| s.as_ref().map(surface_hit)).collect();
+        let half = |seed: u64| {
+            let mut render =
+                ProgressiveRender::from_surfaces(self.scene, hits.clone(), self.camera.position, self.width, 0, seed);
+            for _ in 0..(spp / 2).max(1) {
+                render.run_pass();
+            }
+            render.image()
+        };
+        let (a, b) = (half(1), half(2));
+        let display = |r: &ReferenceImage| r.to_srgb8(self.settings.exposure_ev as f64, self.settings.background_srgb8);
+        let noise = image_errors(
+            &DisplayImage::from_rgba8(&display(&a)),
+            &DisplayImage::from_rgba8(&display(&b)),
+            &[],
+        )
+        .rmse
+            / 2.0;
+        // Both halves see the same surfaces, so their coverage is the same.
+        let mean = ReferenceImage {
+            radiance: a
+                .radiance
+                .iter()
+                .zip(&b.radiance)
+                .map(|(x, y)| (*x + *y) / 2.0)
+                .collect(),
+            samples_per_pixel: a.samples_per_pixel + b.samples_per_pixel,
+            discarded_samples: a.discarded_samples + b.discarded_samples,
+            ..a
+        };
+        (display(&mean), noise)
+    }
+
+    fn measure_grid(
+        &self,
+        reference: &image::RgbaImage,
+        grid: &[Knobs],
+        output_dir: &std::path::Path,
+        say: &mut impl FnMut(&str),
+    ) -> Result<Vec<StudyRow>, StudyError> {
+        let reference_display = DisplayImage::from_rgba8(reference);
+        let unshadowed = self.unshadowed()?;
+        let shadowed = shadow_mask(&reference_display, &DisplayImage::from_rgba8(&unshadowed));
+        let mut rows = Vec::new();
+        for knobs in grid {
+            let (image, ms_per_frame, blocker_count) = self.render(knobs, &unshadowed)?;
+            let display = DisplayImage::from_rgba8(&image);
+            let row = StudyRow {
+                scene: self.name.into(),
+                knobs: *knobs,
+                blocker_count,
+                ms_per_frame,
+                errors: image_errors(&display, &reference_display, &shadowed),
+                extreme_pixels: extreme_pixels(&image, reference),
+            };
+            say(&format!(
+                "{} {}: {:.1} ms, RMSE {:.4}, SSIM {:.4}",
+                self.name,
+                knobs.label(),
+                ms_per_frame,
+                row.errors.rmse,
+                row.errors.ssim
+            ));
+            if report::wants_side_by_side(knobs) {
+                let path = output_dir
+                    .join("images")
+                    .join(format!("{}-{}.png", self.name, knobs.label()));
+                report::side_by_side(reference, &image, &reference_display, &display)
+                    .save(&path)
+                    .map_err(|source| StudyError::Image { path, source })?;
+            }
+            rows.push(row);
+        }
+        Ok(rows)
+    }
+
+    /// The frame without shadows, pixel for pixel as the rasteriser sees it: the CPU
+    /// shading of the captured surfaces with no blockers (G = 1, the raster pass's
+    /// shading exactly).
+    fn unshadowed(&self) -> Result<image::RgbaImage, StudyError> {
+        let shadows = crate::render::ShadowSettings::default();
+        let frame = ShadowFrame {
+            scene: self.scene,
+            camera: self.camera,
+            settings: self.settings,
+            shadows: &shadows,
+            blockers: &[],
+            width: self.width,
+            height: self.height,
+        };
+        Ok(shade_surfaces(&self.surfaces, &frame)?)
+    }
+
+    /// The image of `knobs`, its mean time per frame and its blocker count.
+    fn render(
+        &self,
+        knobs: &Knobs,
+        unshadowed: &image::RgbaImage,
+    ) -> Result<(image::RgbaImage, f64, usize), StudyError> {
+        let Some(shadows) = &knobs.shadows else {
+            let raster = RasterRenderer::new(
+                self.gpu,
+                self.scene,
+                self.camera,
+                self.settings,
+                self.width,
+                self.height,
+            )?;
+            raster.draw_and_wait()?;
+            let ms = self.mean_ms(|| raster.draw_and_wait())?;
+            return Ok((unshadowed.clone(), ms, 0));
+        };
+        let blocker_settings = BlockerSettings {
+            budget: knobs.blockers,
+            ..self.settings.blockers
+        };
+        let blockers = fit_scene(self.scene, &blocker_settings).spheres();
+        let frame = ShadowFrame {
+            scene: self.scene,
+            camera: self.camera,
+            settings: self.settings,
+            shadows,
+            blockers: &blockers,
+            width: self.width,
+            height: self.height,
+        };
+        if knobs.on_cpu() {
+            let started = Instant::now();
+            let image = shade_surfaces(&self.surfaces, &frame)?;
+            return Ok((image, started.elapsed().as_secs_f64() * 1000.0, blockers.len()));
+        }
+        let renderer = ShadowRenderer::new(self.gpu, &frame, 1)?;
+        let image = renderer.read_image()?;
+        let ms = self.mean_ms(|| renderer.draw_and_wait())?;
+        Ok((image, ms, blockers.len()))
+    }
+
+    /// Mean milliseconds of `self.frames` calls of `draw`.
+    fn mean_ms(&self, draw: impl Fn() -> Result<(), RenderError>) -> Result<f64, StudyError> {
+        let started = Instant::now();
+        for _ in 0..self.frames.max(1) {
+            draw()?;
+        }
+        Ok(started.elapsed().as_secs_f64() * 1000.0 / self.frames.max(1) as f64)
+    }
+}
+
+/// The path tracer's view of a rasterised surface point (its shading normal stands for
+/// the face normal, which the capture does not keep).
+fn surface_hit(point: &SurfacePoint) -> SurfaceHit {
+    let normal = point.normal.as_vec3();
+    SurfaceHit {
+        position: point.position.as_vec3(),
+        geometric_normal: normal,
+        normal,
+        k_d: point.k_d,
+        k_s: point.k_s,
+        phong_exponent: point.phong_exponent,
+        emissive: point.emissive,
+    }
+}
+
+/// Pixels the reference shows at under 80 % of the unshadowed render's luminance (and
+/// that are lit at all): where shadows are.
+fn shadow_mask(reference: &DisplayImage, unshadowed: &DisplayImage) -> Vec<bool> {
+    reference
+        .luminance()
+        .into_iter()
+        .zip(unshadowed.luminance())
+        .map(|(r, u)| u > 0.01 && r < 0.8 * u)
+        .collect()
+}
+
+fn extreme_pixels(image: &image::RgbaImage, reference: &image::RgbaImage) -> usize {
+    let extreme = |p: &image::Rgba<u8>| (0..3).any(|c| p[c] == 0 || p[c] == 255);
+    image
+        .pixels()
+        .zip(reference.pixels())
+        .filter(|(p, r)| extreme(p) && !extreme(r))
+        .count()
+}

@@ -1,0 +1,74 @@
+//! `lightpaint study --quick`: the whole pipeline (reference, grid, metrics, report) runs
+//! on the GPU in CI and its outputs are complete and sane.
+
+mod common;
+
+use std::ffi::OsStr;
+
+/// The CSV's rows as maps from column name to value.
+fn read_csv(text: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().expect("a header").split(',').map(String::from).collect();
+    lines
+        .map(|line| header.iter().cloned().zip(line.split(',').map(String::from)).collect())
+        .collect()
+}
+
+#[test]
+fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::run_lightpaint(&[
+        OsStr::new("study"),
+        OsStr::new("--quick"),
+        OsStr::new("-o"),
+        dir.path().as_os_str(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    for file in ["study.csv", "study.md", "pareto.png", "images/sample-o4-hyb-e0.1.png"] {
+        assert!(dir.path().join(file).is_file(), "{file} was written");
+    }
+    let plot = image::open(dir.path().join("pareto.png")).expect("the plot is a PNG");
+    assert!(plot.width() >= 640, "the plot is readable");
+    let rows = read_csv(&std::fs::read_to_string(dir.path().join("study.csv")).unwrap());
+    assert!(rows.len() >= 15, "{} rows", rows.len());
+    let number = |row: &std::collections::HashMap<String, String>, column: &str| -> f64 {
+        row[column]
+            .parse()
+            .unwrap_or_else(|_| panic!("{column} = {:?} is a number", row[column]))
+    };
+    for row in &rows {
+        let (ms, rmse, ssim) = (number(row, "ms_per_frame"), number(row, "rmse"), number(row, "ssim"));
+        assert!(ms.is_finite() && ms > 0.0, "{row:?}");
+        assert!((0.0..0.5).contains(&rmse), "{row:?}");
+        assert!((0.0..=1.0).contains(&ssim), "{row:?}");
+    }
+    let find = |knobs: &str| {
+        rows.iter()
+            .find(|r| r["knobs"] == knobs)
+            .unwrap_or_else(|| panic!("a {knobs} row"))
+    };
+    let (none, default) = (find("no-shadows"), find("o4-hyb-e0.1"));
+    // Where the reference is in shadow, the log-SH shadows must bring the image closer to it
+    // than no shadows at all.
+    assert!(
+        number(default, "shadow_rmse") < number(none, "shadow_rmse"),
+        "shadowed pixels: default {} vs no shadows {}",
+        default["shadow_rmse"],
+        none["shadow_rmse"]
+    );
+    // The CPU's exact exponential bounds what the GPU's approximations can reach at the
+    // same order (up to f32 and the reference's noise).
+    let exact = number(find("o4-ref-e0.1"), "rmse");
+    for method in ["dc", "ol", "hyb"] {
+        let rmse = number(find(&format!("o4-{method}-e0.1")), "rmse");
+        assert!(
+            rmse >= exact - 0.003,
+            "{method}: {rmse} vs the exact exponential's {exact}"
+        );
+    }
+    assert!(stdout.contains("study of"), "{stdout}");
+}
