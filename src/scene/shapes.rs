@@ -34,9 +34,17 @@ impl ShapeMesh {
                 let b = a + cols + 1;
                 for tri in [[a, b, a + 1], [a + 1, b, b + 1]] {
                     // Rows that collapse to a point (poles, cap centres) make zero-area
-                    // triangles: leave them out.
+                    // triangles: leave them out. The test is relative to the edge
+                    // lengths, so shapes of any size keep their real triangles (an
+                    // absolute area cut emptied a 0.4 mm plane): a sliver is a triangle whose
+                    // area is tiny next to its longest edge squared.
                     let [p, q, r] = tri.map(|i| self.positions[i as usize]);
-                    if (q - p).cross(r - p).length_squared() > 1e-14 {
+                    let (e1, e2) = (q - p, r - p);
+                    let longest2 = e1
+                        .length_squared()
+                        .max(e2.length_squared())
+                        .max((r - q).length_squared());
+                    if e1.cross(e2).length_squared() > 1e-12 * longest2 * longest2 {
                         self.indices.extend(tri);
                     }
                 }
