@@ -125,7 +125,7 @@ struct RenderArgs {
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     ratio_attenuation: bool,
-    /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 7).
+    /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 6).
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
     /// Samples per pixel on the GPU: 4 (multisampled edges) or 1.

@@ -271,3 +271,42 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
     eprintln!("{:.2} % of pixels within 4/255", 100.0 * share);
     assert!(share > 0.97, "{share}");
 }
+
+/// Every order the settings accept for per-vertex shading builds its pipelines on the
+/// device (wgpu counts the `front_facing` built-in against the 16 inter-stage variables,
+/// which order 7 exceeded) and draws a frame; the first order beyond is refused.
+#[test]
+fn per_vertex_shading_builds_at_every_order_the_settings_accept() {
+    let Some(gpu) = common::gpu() else { return };
+    let (scene, camera, settings) = open("projects/sample/sample.lightpaint");
+    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let accepted: Vec<usize> = (2..=8)
+        .filter(|&order| {
+            ShadowSettings {
+                order,
+                per_vertex: true,
+                ..ShadowSettings::default()
+            }
+            .gpu_problems()
+            .is_empty()
+        })
+        .collect();
+    assert_eq!(accepted, (2..=6).collect::<Vec<_>>());
+    for order in accepted {
+        let shadows = ShadowSettings {
+            order,
+            per_vertex: true,
+            ..ShadowSettings::default()
+        };
+        let frame = ShadowFrame {
+            scene: &scene,
+            camera: &camera,
+            settings: &settings,
+            shadows: &shadows,
+            blockers: &blockers,
+            width: 64,
+            height: 36,
+        };
+        render_logsh_image(&gpu, &frame, 1).unwrap_or_else(|e| panic!("order {order}: {e}"));
+    }
+}

@@ -20,7 +20,7 @@ pub struct ShadowSettings {
     /// under 0.1 % of the hemisphere.
     pub min_cap_ratio: f32,
     /// Exponentiate at the vertices and interpolate the visibility SH across triangles
-    /// (cost follows the vertex count, not the pixel count; orders up to 7).
+    /// (cost follows the vertex count, not the pixel count; orders up to 6).
     pub per_vertex: bool,
 }
 
@@ -64,7 +64,7 @@ impl ShadowSettings {
         }
         if self.per_vertex && !super::wgsl_sh::supports_per_vertex(self.order) {
             problems.push(format!(
-                "per-vertex shading supports orders up to 7, not {}",
+                "per-vertex shading supports orders up to 6, not {}",
                 self.order
             ));
         }

@@ -78,9 +78,11 @@ pub fn sh_module(order: usize, method: ExpMethod) -> String {
 }
 
 /// Whether per-vertex shading fits `order`: the visibility SH travels from the vertex to
-/// the fragment stage as vec4 varyings after the 3 of scene.wgsl, within WebGPU's 16.
+/// the fragment stage as vec4 varyings after the 3 of scene.wgsl, within WebGPU's 16
+/// inter-stage variables, of which the fragment stage's `front_facing` built-in takes one
+/// (wgpu counts it): orders up to 6.
 pub fn supports_per_vertex(order: usize) -> bool {
-    3 + vec4_count(order) <= 16
+    3 + vec4_count(order) + 1 <= 16
 }
 
 /// The visibility SH as vertex attributes / varyings at locations 3…, and the vertex

@@ -106,7 +106,7 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
         grid.push(with(&|s| s.epsilon = epsilon));
     }
     grid.push(with(&|s| s.ratio_attenuation = true));
-    let per_vertex_orders: Vec<usize> = if quick { vec![4] } else { (2..=7).collect() };
+    let per_vertex_orders: Vec<usize> = if quick { vec![4] } else { (2..=6).collect() };
     for order in per_vertex_orders {
         grid.push(with(&|s| {
             s.order = order;

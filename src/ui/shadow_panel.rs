@@ -29,7 +29,7 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             let per_vertex_fits = crate::render::wgsl_sh::supports_per_vertex(settings.order);
             ui.add_enabled_ui(per_vertex_fits, |ui| {
                 ui.checkbox(&mut settings.per_vertex, "per vertex").on_hover_text(
-                    "Exponentiate at the vertices and interpolate: faster on dense meshes (orders ≤ 7).",
+                    "Exponentiate at the vertices and interpolate: faster on dense meshes (orders ≤ 6).",
                 );
             });
             if !per_vertex_fits {
