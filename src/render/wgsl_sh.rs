@@ -82,7 +82,10 @@ pub fn sh_module(order: usize, method: ExpMethod) -> String {
 /// inter-stage variables, of which the fragment stage's `front_facing` built-in takes one
 /// (wgpu counts it): orders up to 6.
 pub fn supports_per_vertex(order: usize) -> bool {
-    3 + vec4_count(order) + 1 <= 16
+    const SCENE_VARYINGS: usize = 3;
+    const FRONT_FACING: usize = 1;
+    const MAX_INTER_STAGE_VARIABLES: usize = 16;
+    SCENE_VARYINGS + vec4_count(order) + FRONT_FACING <= MAX_INTER_STAGE_VARIABLES
 }
 
 /// The visibility SH as vertex attributes / varyings at locations 3…, and the vertex
