@@ -144,25 +144,40 @@ const K_LADDER: [usize; 14] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128
 pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
     use rayon::prelude::*;
     let grids: Vec<Arc<Solid>> = scene.objects.par_iter().map(|o| solid(o, settings)).collect();
-    let per_object_k: Vec<Option<usize>> = match settings.budget {
-        SphereBudget::FitError(_) => vec![None; grids.len()],
+    let per_object = match settings.budget {
+        SphereBudget::FitError(_) => grids.par_iter().map(|solid| fit_solid(solid, settings, None)).collect(),
         SphereBudget::Total(total) => {
+            // The total goes only to the meshes the automatic fit finds sphere-like: a
+            // large wall or cyclorama would otherwise take most of it by volume and then
+            // be refused, leaving the figures that do cast shadows with none.
+            let automatic = BlockerSettings {
+                budget: BlockerSettings::default().budget,
+                ..*settings
+            };
+            let casters: Vec<bool> = grids
+                .par_iter()
+                .map(|solid| fit_solid(solid, &automatic, None).skipped.is_none())
+                .collect();
             let volume_m3 = |g: &Solid| g.inside.len() as f64 * g.grid.cell_volume_m3() as f64;
-            let total_volume_m3: f64 = grids.iter().map(|g| volume_m3(g)).sum();
-            grids
+            let caster_volume_m3: f64 = grids
                 .iter()
-                .map(|g| {
-                    let share = total as f64 * volume_m3(g) / total_volume_m3.max(f64::MIN_POSITIVE);
-                    Some((share.round() as usize).max(1))
+                .zip(&casters)
+                .filter(|(_, c)| **c)
+                .map(|(g, _)| volume_m3(g))
+                .sum();
+            grids
+                .par_iter()
+                .zip(casters)
+                .map(|(solid, caster)| {
+                    if !caster {
+                        return fit_solid(solid, &automatic, None);
+                    }
+                    let share = total as f64 * volume_m3(solid) / caster_volume_m3.max(f64::MIN_POSITIVE);
+                    fit_solid(solid, settings, Some((share.round() as usize).max(1)))
                 })
                 .collect()
         }
     };
-    let per_object = grids
-        .par_iter()
-        .zip(per_object_k)
-        .map(|(solid, k)| fit_solid(solid, settings, k))
-        .collect();
     SceneBlockers { per_object }
 }
 
@@ -236,7 +251,9 @@ fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> 
         }
         (None, SphereBudget::Total(total)) => fit::fit_k(&solid.grid, &solid.inside, total),
     };
-    if spheres.is_empty() || error > settings.max_error {
+    // An explicit count is honoured however well it fits: the mesh has already been
+    // found sphere-like by the automatic fit.
+    if spheres.is_empty() || (k.is_none() && error > settings.max_error) {
         return SphereSet {
             fit_error: error,
             ..none(&format!("not sphere-like: best fit error {:.0} %", 100.0 * error))
@@ -262,6 +279,32 @@ mod tests {
         Scene {
             objects,
             ..Default::default()
+        }
+    }
+
+    #[test]
+    fn a_total_budget_goes_to_the_meshes_that_cast_shadows() {
+        // A thin 8 m slab has 40× the ball's volume but is no sphere set: under a total of
+        // 12 the ball must not be starved by it.
+        let ball = shapes::uv_sphere(0.5, 32, 16).transformed(glam::Affine3A::from_translation(Vec3::Y));
+        let slab = shapes::cuboid(Vec3::new(4.0, 0.1, 4.0));
+        let scene = scene(vec![object("ball", ball), object("slab", slab)]);
+        let automatic = fit_scene(&scene, &BlockerSettings::default());
+        assert!(
+            automatic.per_object[1].spheres.is_empty() && !automatic.per_object[0].spheres.is_empty(),
+            "the slab is not sphere-like: {:?}",
+            automatic.per_object[1]
+        );
+        for total in [4, 12] {
+            let fitted = fit_scene(
+                &scene,
+                &BlockerSettings {
+                    budget: SphereBudget::Total(total),
+                    ..BlockerSettings::default()
+                },
+            );
+            assert_eq!(fitted.per_object[0].spheres.len(), total, "{:?}", fitted.per_object[0]);
+            assert!(fitted.per_object[1].spheres.is_empty());
         }
     }
 

@@ -175,12 +175,13 @@ pub fn side_by_side(
     out
 }
 
-/// Error (RMSE) against milliseconds per frame, one colour per exponentiation method, the
-/// Pareto front of each scene joined by a line.
+/// Error (RMSE) against milliseconds per frame on a log axis, one panel per scene, one
+/// colour per exponentiation method, the Pareto front joined by a line.
 fn pareto_plot(results: &StudyResults, path: &Path) -> Result<(), StudyError> {
-    let (width, height) = (960u32, 600u32);
+    let scenes = scene_names(results);
+    let (width, height) = (520 * scenes.len().max(1) as u32, 560u32);
     let mut pixels = vec![255u8; (width * height * 3) as usize];
-    draw_pareto(results, &mut pixels, (width, height)).map_err(|e| StudyError::Write {
+    draw_pareto(results, &scenes, &mut pixels, (width, height)).map_err(|e| StudyError::Write {
         path: path.to_path_buf(),
         source: std::io::Error::other(e),
     })?;
@@ -202,35 +203,42 @@ fn method_colour(knobs: &Knobs) -> RGBColor {
     }
 }
 
-fn draw_pareto(results: &StudyResults, pixels: &mut [u8], size: (u32, u32)) -> Result<(), String> {
+const LEGEND: [(&str, Option<ExpMethod>); 6] = [
+    ("no shadows", None),
+    ("DC", Some(ExpMethod::Dc)),
+    ("OL", Some(ExpMethod::Ol)),
+    ("HYB", Some(ExpMethod::Hyb)),
+    ("PS", Some(ExpMethod::Ps(8))),
+    ("exact exp (CPU)", Some(ExpMethod::Reference)),
+];
+
+fn draw_pareto(results: &StudyResults, scenes: &[String], pixels: &mut [u8], size: (u32, u32)) -> Result<(), String> {
     let root = BitMapBackend::with_buffer(pixels, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let max_ms = results.rows.iter().map(|r| r.ms_per_frame).fold(1.0, f64::max) * 1.1;
-    let max_error = results.rows.iter().map(|r| r.errors.rmse).fold(0.01, f64::max) * 1.1;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("log-SH shadows: error against time per frame", ("sans-serif", 24))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(64)
-        .build_cartesian_2d(0.0..max_ms, 0.0..max_error)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc("ms per frame")
-        .y_desc("RMSE against the reference (display values)")
-        .draw()
-        .map_err(|e| e.to_string())?;
-    for scene in scene_names(results) {
-        let rows: Vec<&StudyRow> = results.rows.iter().filter(|r| r.scene == scene).collect();
-        for row in &rows {
-            chart
-                .draw_series(std::iter::once(Circle::new(
-                    (row.ms_per_frame, row.errors.rmse),
-                    4,
-                    method_colour(&row.knobs).filled(),
-                )))
-                .map_err(|e| e.to_string())?;
-        }
+    let panels = root.split_evenly((1, scenes.len().max(1)));
+    for (scene, panel) in scenes.iter().zip(&panels) {
+        let rows: Vec<&StudyRow> = results.rows.iter().filter(|r| &r.scene == scene).collect();
+        let min_ms = rows
+            .iter()
+            .map(|r| r.ms_per_frame)
+            .fold(f64::INFINITY, f64::min)
+            .max(1e-3)
+            * 0.8;
+        let max_ms = rows.iter().map(|r| r.ms_per_frame).fold(1.0, f64::max) * 1.25;
+        let max_error = rows.iter().map(|r| r.errors.rmse).fold(0.01, f64::max) * 1.1;
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("{scene}: error against time per frame"), ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(60)
+            .build_cartesian_2d((min_ms..max_ms).log_scale(), 0.0..max_error)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("ms per frame (log scale)")
+            .y_desc("RMSE of the displayed image")
+            .draw()
+            .map_err(|e| e.to_string())?;
         let front: Vec<(f64, f64)> = pareto_front(&rows)
             .into_iter()
             .map(|i| (rows[i].ms_per_frame, rows[i].errors.rmse))
@@ -238,38 +246,40 @@ fn draw_pareto(results: &StudyResults, pixels: &mut [u8], size: (u32, u32)) -> R
         chart
             .draw_series(LineSeries::new(front, BLACK.stroke_width(1)))
             .map_err(|e| e.to_string())?
-            .label(format!("{scene}: Pareto front"))
+            .label("Pareto front")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], BLACK));
-    }
-    for (name, exp) in [
-        ("no shadows", None),
-        ("DC", Some(ExpMethod::Dc)),
-        ("OL", Some(ExpMethod::Ol)),
-        ("HYB", Some(ExpMethod::Hyb)),
-        ("PS", Some(ExpMethod::Ps(8))),
-        ("reference exp (CPU)", Some(ExpMethod::Reference)),
-    ] {
-        let knobs = Knobs {
-            shadows: exp.map(|exp| crate::render::ShadowSettings {
-                exp,
-                ..Default::default()
-            }),
-            blockers: crate::blockers::SphereBudget::Total(0),
-        };
-        let colour = method_colour(&knobs);
         chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(|e| e.to_string())?
-            .label(name)
-            .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+            .draw_series(rows.iter().map(|row| {
+                Circle::new(
+                    (row.ms_per_frame, row.errors.rmse),
+                    4,
+                    method_colour(&row.knobs).filled(),
+                )
+            }))
+            .map_err(|e| e.to_string())?;
+        for (name, exp) in LEGEND {
+            let knobs = Knobs {
+                shadows: exp.map(|exp| crate::render::ShadowSettings {
+                    exp,
+                    ..Default::default()
+                }),
+                blockers: crate::blockers::SphereBudget::Total(0),
+            };
+            let colour = method_colour(&knobs);
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(|e| e.to_string())?
+                .label(name)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::LowerRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(|e| e.to_string())?;
     root.present().map_err(|e| e.to_string())
 }
 
