@@ -8,7 +8,7 @@ use super::cpu::{self, ShadingInputs, SurfacePoint};
 use super::gpu_types::{GpuLight, environment_irradiance};
 use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, shadow_layout, surface_pipelines};
 use super::per_vertex::VertexVisibility;
-use super::pipeline::{COLOR_FORMAT, RenderTarget, SceneLayouts, ScenePipeline};
+use super::pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
 use super::{GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
@@ -34,10 +34,11 @@ pub fn render_image(
     width: u32,
     height: u32,
 ) -> Result<image::RgbaImage, RenderError> {
-    RasterRenderer::new(gpu, scene, camera, settings, width, height)?.read_image()
+    RasterRenderer::new(gpu, scene, camera, settings, width, height, SAMPLE_COUNT)?.read_image()
 }
 
-/// The plain raster pass (no shadows), uploaded once so frames can be drawn repeatedly.
+/// The plain raster pass (no shadows) with `samples` (1 or 4) per pixel, uploaded once so
+/// frames can be drawn repeatedly.
 pub struct RasterRenderer<'a> {
     gpu: &'a GpuContext,
     pipeline: ScenePipeline,
@@ -54,11 +55,12 @@ impl<'a> RasterRenderer<'a> {
         settings: &RenderSettings,
         width: u32,
         height: u32,
+        samples: u32,
     ) -> Result<RasterRenderer<'a>, RenderError> {
         check_size(gpu, width, height)?;
-        let pipeline = ScenePipeline::new(&gpu.device);
+        let pipeline = ScenePipeline::with_samples(&gpu.device, samples);
         let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
-        let target = RenderTarget::new(&gpu.device, width, height);
+        let target = RenderTarget::with_samples(&gpu.device, width, height, samples);
         gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, settings.exposure_ev);
         Ok(RasterRenderer {
             gpu,

@@ -89,7 +89,13 @@ pub struct ScenePipeline {
 }
 
 impl ScenePipeline {
+    /// The raster pipeline with [`SAMPLE_COUNT`] samples per pixel.
     pub fn new(device: &wgpu::Device) -> ScenePipeline {
+        ScenePipeline::with_samples(device, SAMPLE_COUNT)
+    }
+
+    /// The raster pipeline with `samples` (1 or [`SAMPLE_COUNT`]) samples per pixel.
+    pub fn with_samples(device: &wgpu::Device, samples: u32) -> ScenePipeline {
         let layouts = SceneLayouts::new(device);
         let module = shaders::create_module(device, "raster", &shaders::raster_source());
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -121,7 +127,7 @@ impl ScenePipeline {
                 bias: Default::default(),
             }),
             multisample: wgpu::MultisampleState {
-                count: SAMPLE_COUNT,
+                count: samples,
                 ..Default::default()
             },
             fragment: Some(wgpu::FragmentState {

@@ -304,6 +304,7 @@ impl SceneStudy<'_> {
                 self.settings,
                 self.width,
                 self.height,
+                1,
             )?;
             raster.draw_and_wait()?;
             let ms = self.mean_ms(|| raster.draw_and_wait())?;
