@@ -34,7 +34,7 @@ enum Command {
     /// Measure the real-time renderer's knobs against the reference path tracer: CSV,
     /// markdown table, Pareto plot and side-by-side images in the output directory.
     Study {
-        /// A small grid on one scene at 160×90 (about two minutes).
+        /// A small grid (17 settings) on the sample at 160×90: seconds, not minutes.
         #[arg(long)]
         quick: bool,
         /// Directory for study.csv, study.md, pareto.png and images/.
