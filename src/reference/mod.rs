@@ -116,18 +116,8 @@ pub struct ProgressiveRender<'a> {
 
 impl<'a> ProgressiveRender<'a> {
     pub fn new(scene: &'a Scene, camera: &Camera, width: u32, height: u32, bounces: u32, seed: u64) -> Self {
-        let pixels = width as usize * height as usize;
-        ProgressiveRender {
-            tracer: PathTracer::new(scene, bounces.min(MAX_BOUNCES)),
-            primary: Primary::Camera(CameraRays::new(camera, width, height)),
-            width,
-            height,
-            seed,
-            sums: vec![DVec3::ZERO; pixels],
-            hits: vec![0; pixels],
-            passes: 0,
-            discarded: 0,
-        }
+        let primary = Primary::Camera(CameraRays::new(camera, width, height));
+        ProgressiveRender::start(scene, primary, width, height, bounces, seed)
     }
 
     /// A render whose paths start at given visible surfaces (row-major, `width` wide),
@@ -140,12 +130,17 @@ impl<'a> ProgressiveRender<'a> {
         bounces: u32,
         seed: u64,
     ) -> Self {
-        let pixels = surfaces.len();
+        let height = (surfaces.len() / width.max(1) as usize) as u32;
+        ProgressiveRender::start(scene, Primary::Surfaces { surfaces, eye }, width, height, bounces, seed)
+    }
+
+    fn start(scene: &'a Scene, primary: Primary, width: u32, height: u32, bounces: u32, seed: u64) -> Self {
+        let pixels = width as usize * height as usize;
         ProgressiveRender {
             tracer: PathTracer::new(scene, bounces.min(MAX_BOUNCES)),
-            primary: Primary::Surfaces { surfaces, eye },
+            primary,
             width,
-            height: (pixels / width.max(1) as usize) as u32,
+            height,
             seed,
             sums: vec![DVec3::ZERO; pixels],
             hits: vec![0; pixels],
@@ -175,10 +170,12 @@ impl<'a> ProgressiveRender<'a> {
                             let ray = rays.through(x, y);
                             tracer.radiance(ray.origin, ray.direction, ray.t_min, ray.t_max, &mut random)
                         }
-                        Primary::Surfaces { surfaces, eye } => surfaces[pixel as usize].map(|surface| {
-                            let to_eye = (*eye - surface.position).normalize_or(surface.normal);
-                            tracer.radiance_leaving(surface, to_eye, &mut random)
-                        }),
+                        Primary::Surfaces { surfaces, eye } => {
+                            surfaces.get(pixel as usize).copied().flatten().map(|surface| {
+                                let to_eye = (*eye - surface.position).normalize_or(surface.normal);
+                                tracer.radiance_leaving(surface, to_eye, &mut random)
+                            })
+                        }
                     };
                     match radiance {
                         Some(radiance) if radiance.is_finite() => {
