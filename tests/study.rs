@@ -32,7 +32,8 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
         assert!(dir.path().join(file).is_file(), "{file} was written");
     }
     let plot = image::open(dir.path().join("pareto.png")).expect("the plot is a PNG");
-    assert!(plot.width() >= 640, "the plot is readable");
+    // One panel of at least 500 × 500 pixels per scene.
+    assert!(plot.width() >= 500 && plot.height() >= 500, "the plot is readable");
     let rows = read_csv(&std::fs::read_to_string(dir.path().join("study.csv")).unwrap());
     assert!(rows.len() >= 15, "{} rows", rows.len());
     let number = |row: &std::collections::HashMap<String, String>, column: &str| -> f64 {
