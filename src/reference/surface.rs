@@ -7,7 +7,7 @@ use glam::{DVec3, Vec2, Vec3};
 
 use crate::bake::scene_bvh::Hit;
 use crate::render::srgb_to_linear;
-use crate::scene::{Scene, TextureImage};
+use crate::scene::{Material, Scene, TextureImage};
 
 /// A point where a ray met a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,7 +37,12 @@ pub fn surface_at(scene: &Scene, hit: &Hit, origin: Vec3, direction: Vec3) -> Su
         geometric_normal = -geometric_normal;
         normal = -normal;
     }
-    let material = scene.materials.get(object.material).cloned().unwrap_or_default();
+    // A missing material shades as glTF's default (validated scenes always have one).
+    static DEFAULT: std::sync::OnceLock<Material> = std::sync::OnceLock::new();
+    let material = scene
+        .materials
+        .get(object.material)
+        .unwrap_or_else(|| DEFAULT.get_or_init(Material::default));
     let mut base = material.base_color.truncate().as_dvec3();
     if let Some(texture) = material.base_color_texture.and_then(|t| scene.textures.get(t)) {
         base *= sample_bilinear(texture, object.interpolated_uv(hit.triangle, hit.barycentric));
