@@ -422,7 +422,6 @@ fn render_reference_png(
     reference: &lightpaint::reference::ReferenceSettings,
     args: &RenderArgs,
 ) -> Result<(), CliError> {
-    use lightpaint::reference::ProgressiveRender;
     if args.width == 0 || args.height == 0 || args.width > 16_384 || args.height > 16_384 {
         return Err(CliError::Usage(format!(
             "a reference image must be 1–16384 pixels on each side, not {}×{}",
@@ -430,25 +429,20 @@ fn render_reference_png(
         )));
     }
     let started = std::time::Instant::now();
-    let mut render = ProgressiveRender::new(
-        &document.scene,
-        camera,
-        args.width,
-        args.height,
-        reference.bounces,
-        reference.seed,
-    );
     let bar = indicatif::ProgressBar::new(reference.samples_per_pixel as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} samples per pixel, {eta} left")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    for _ in 0..reference.samples_per_pixel {
-        render.run_pass();
-        bar.set_position(render.passes_done() as u64);
-    }
+    let image = lightpaint::reference::render_reference(
+        &document.scene,
+        camera,
+        args.width,
+        args.height,
+        reference,
+        |passes| bar.set_position(passes as u64),
+    );
     bar.finish_and_clear();
-    let image = render.image();
     let elapsed = started.elapsed().as_secs_f64();
     image
         .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
@@ -476,7 +470,7 @@ fn render_reference_png(
         args.height,
         reference.samples_per_pixel,
         reference.seed,
-        render.rays_cast() as f64 / elapsed.max(1e-9) / 1e6,
+        image.rays_cast as f64 / elapsed.max(1e-9) / 1e6,
         args.output.display()
     );
     Ok(())

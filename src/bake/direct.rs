@@ -53,8 +53,7 @@ fn emitter_samples(light: &Light, p: Vec3, samples: usize) -> Vec<EmitterSample>
                 .collect();
         }
         LightKind::Rect { width_m, height_m } => {
-            let u = light.area_width_axis();
-            let v = light.direction.cross(u).normalize_or_zero();
+            let (u, v) = light.area_axes();
             let side = (n as f32).sqrt().ceil() as usize;
             (0..side * side)
                 .map(|k| {
@@ -66,8 +65,7 @@ fn emitter_samples(light: &Light, p: Vec3, samples: usize) -> Vec<EmitterSample>
                 .collect()
         }
         LightKind::Disk { radius_m } => {
-            let u = light.area_width_axis();
-            let v = light.direction.cross(u).normalize_or_zero();
+            let (u, v) = light.area_axes();
             (0..n)
                 .map(|k| {
                     let r = radius_m * ((k as f32 + 0.5) / n as f32).sqrt();

@@ -43,16 +43,14 @@ pub fn sample_light(light: &Light, p: Vec3, random: &mut SplitMix64) -> Option<E
         }
         LightKind::Sphere { radius_m } => sample_sphere(light, radius_m, p, random)?,
         LightKind::Rect { width_m, height_m } => {
-            let u = light.area_width_axis();
-            let v = light.direction.cross(u).normalize_or_zero();
+            let (u, v) = light.area_axes();
             let a = (random.next_f64() as f32 - 0.5) * width_m;
             let b = (random.next_f64() as f32 - 0.5) * height_m;
             let incidence = light.unit_incidence(light.position + u * a + v * b, p);
             (incidence.to_light, incidence.distance_m, incidence.irradiance as f64)
         }
         LightKind::Disk { radius_m } => {
-            let u = light.area_width_axis();
-            let v = light.direction.cross(u).normalize_or_zero();
+            let (u, v) = light.area_axes();
             let r = radius_m * (random.next_f64() as f32).sqrt();
             let phi = random.next_f64() as f32 * TAU;
             let incidence = light.unit_incidence(light.position + (u * phi.cos() + v * phi.sin()) * r, p);

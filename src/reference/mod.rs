@@ -66,6 +66,8 @@ pub struct ReferenceImage {
     pub samples_per_pixel: u32,
     /// Samples dropped because they were not finite (should stay 0; counted, not hidden).
     pub discarded_samples: u64,
+    /// Rays traced to make it (camera, continuation and shadow rays).
+    pub rays_cast: u64,
 }
 
 impl ReferenceImage {
@@ -197,11 +199,6 @@ impl<'a> ProgressiveRender<'a> {
         self.passes
     }
 
-    /// Rays traced so far.
-    pub fn rays_cast(&self) -> u64 {
-        self.tracer.rays_cast()
-    }
-
     /// The mean of the passes so far.
     pub fn image(&self) -> ReferenceImage {
         let passes = self.passes.max(1) as f64;
@@ -217,6 +214,7 @@ impl<'a> ProgressiveRender<'a> {
             coverage: self.hits.iter().map(|&h| h as f64 / passes).collect(),
             samples_per_pixel: self.passes,
             discarded_samples: self.discarded,
+            rays_cast: self.tracer.rays_cast(),
         }
     }
 }

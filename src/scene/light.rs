@@ -161,6 +161,13 @@ impl Light {
         reference.cross(self.direction).normalize_or_zero()
     }
 
+    /// The emitting plane's (width, height) unit axes of an area light: the width axis and
+    /// direction × width, so (width, height, direction) is right-handed.
+    pub fn area_axes(&self) -> (Vec3, Vec3) {
+        let width = self.area_width_axis();
+        (width, self.direction.cross(width).normalize_or_zero())
+    }
+
     /// Every problem with this light's values, as (field, message) pairs: non-finite or
     /// negative colour and intensity, non-finite position, a direction that is not a unit
     /// vector, spot cones outside 0 ≤ inner < outer ≤ π/2, a non-positive range.

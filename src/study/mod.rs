@@ -225,6 +225,7 @@ impl SceneStudy<'_> {
                 .collect(),
             samples_per_pixel: a.samples_per_pixel + b.samples_per_pixel,
             discarded_samples: a.discarded_samples + b.discarded_samples,
+            rays_cast: a.rays_cast + b.rays_cast,
             ..a
         };
         (display(&mean), noise)
