@@ -12,7 +12,7 @@ pub mod blockers;
 pub mod paint;
 pub mod panic_guard;
 pub mod project;
-pub(crate) mod random;
+pub mod random;
 pub mod reference;
 pub mod render;
 pub mod samples;

@@ -154,3 +154,42 @@ fn degenerate_triangles_are_dropped_with_a_warning() {
         scene.warnings
     );
 }
+
+#[test]
+fn a_file_with_several_scenes_opens_its_default_and_shows_another_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.glb");
+    std::fs::write(&path, common::scenes::day_and_night()).unwrap();
+
+    let default = Scene::load(&path).expect("loads");
+    assert_eq!(default.gltf_scenes, ["Day", "Night"]);
+    assert_eq!(default.gltf_scene, Some(1));
+    assert_eq!(default.bounds().min.x, 5.0, "the default scene is Night");
+    assert!(default.lights.is_empty());
+    assert!(
+        default
+            .warnings
+            .iter()
+            .any(|w| w.contains("2 scenes") && w.contains("Night")),
+        "{:?}",
+        default.warnings
+    );
+    assert_eq!(default.gltf_scene_label(0), "0 'Day'");
+
+    let day = Scene::load_choosing(&path, Some(0)).expect("scene 0 loads");
+    assert_eq!(day.gltf_scene, Some(0));
+    assert_eq!(day.bounds().min.x, 0.0);
+    assert_eq!(day.lights.len(), 1);
+    assert!(
+        !day.warnings.iter().any(|w| w.contains("scenes")),
+        "a chosen scene needs no warning: {:?}",
+        day.warnings
+    );
+
+    let message = Scene::load_choosing(&path, Some(2)).unwrap_err().to_string();
+    assert!(message.contains("scene.glb"), "{message}");
+    assert!(
+        message.contains("scene 2") && message.contains("2 scene(s)"),
+        "{message}"
+    );
+}

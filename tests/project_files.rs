@@ -257,3 +257,41 @@ fn a_format_2_project_opens_with_an_empty_stroke_log() {
     assert!(document.painting.strokes.is_empty());
     assert_eq!(document.painting.settings, lightpaint::paint::PaintSettings::default());
 }
+
+/// A project saved by format 3 (before a glTF scene could be chosen) opens on the file's
+/// default scene with its strokes and settings, and saves as the current format.
+#[test]
+fn a_format_3_project_opens_on_the_default_scene() {
+    let document = open_old_fixture(3);
+    assert_eq!(document.scene.gltf_scene, Some(0));
+    assert_eq!(document.scene.gltf_scenes.len(), 1);
+}
+
+/// A project on a glTF with several scenes remembers the one chosen: it reopens on it,
+/// saves it byte-identically, and a single-scene file's project does not mention it.
+#[test]
+fn a_chosen_gltf_scene_is_saved_and_reopened() {
+    let dir = tempfile::tempdir().unwrap();
+    let gltf = dir.path().join("day-night.glb");
+    std::fs::write(&gltf, common::scenes::day_and_night()).unwrap();
+    let opened = Document::open(&gltf).expect("opens on its default scene");
+    assert_eq!(opened.scene.gltf_scene, Some(1));
+
+    let mut day = opened.with_gltf_scene(0).expect("scene 0");
+    assert_eq!(day.scene.lights.len(), 1, "the Day scene's sun");
+    assert!(day.painting.strokes.is_empty());
+    let project = dir.path().join("day.lightpaint");
+    day.save(&project).unwrap();
+    assert_eq!(read_project_file(&project).unwrap().scene.gltf_scene, Some(0));
+    let reopened = Document::open(&project).expect("reopens");
+    assert_eq!(reopened.scene.gltf_scene, Some(0));
+    assert_eq!(reopened.scene.bounds().min.x, 0.0);
+    let again = dir.path().join("again.lightpaint");
+    Document::open(&project).unwrap().save(&again).unwrap();
+    assert_eq!(std::fs::read(&project).unwrap(), std::fs::read(&again).unwrap());
+
+    assert!(opened.with_gltf_scene(7).is_err());
+    let (_sample_dir, sample) = sample_copy();
+    let text = std::fs::read_to_string(&sample).unwrap();
+    assert!(!text.contains("gltf_scene"), "one scene, nothing to choose");
+}

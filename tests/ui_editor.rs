@@ -373,3 +373,32 @@ fn the_outliner_shows_each_objects_material() {
     harness.get_by_label_contains("vertices; ");
     harness.get_by_label_contains("-> diffuse");
 }
+
+/// A glTF file with several scenes shows a scene picker in the outliner; picking another
+/// scene asks about unsaved changes first (a bare glTF is unsaved), then shows that
+/// scene's objects and lights.
+#[test]
+fn the_outliner_picks_another_scene_of_the_gltf_file() {
+    if common::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("day-night.glb");
+    std::fs::write(&path, common::scenes::day_and_night()).unwrap();
+    let mut harness = editor_on(path);
+    harness.run();
+    harness.get_by_label("Lights (0)");
+    harness
+        .get_by_role_and_label(egui::accesskit::Role::ComboBox, "glTF scene")
+        .click();
+    harness.run();
+    harness.get_by_label("0 'Day'").click();
+    harness.run();
+    harness.get_by_label_contains("before showing glTF scene 0");
+    harness.get_by_label("Discard").click();
+    harness.run();
+    harness.get_by_label("Lights (1)");
+    let document = harness.state().document().expect("a document");
+    assert_eq!(document.scene.gltf_scene, Some(0));
+}

@@ -1,29 +1,30 @@
-//! Diffuse bounces of every light at every vertex: rays leave the vertex in evenly
-//! spread directions ω_k of its upper hemisphere (a Fibonacci spiral, equal solid angle
-//! 2π/M each, turned per vertex so neighbours do not share directions); where a ray meets
-//! a surface q, that surface reflects light i diffusely with radiance ρ(q)/π·E_i(q), E_i
-//! the direct irradiance at q from light i at unit intensity (exact visibility rays, next
-//! event estimation), and further bounces follow the path on from q ([`indirect_sh`]).
-//! The SH of the incident radiance is then (2π/M)·Σ_k L_k·y(ω_k).
-//! ρ is the luminance of the hit material's diffuse colour (base colour factor × (1 −
-//! metallic) × (1 − 0.04·specular), as the renderer maps it; textures are not sampled).
+//! Bounces of every light at every vertex: rays leave the vertex in evenly spread
+//! directions ω_k of its upper hemisphere (a Fibonacci spiral, equal solid angle 2π/M each,
+//! turned per vertex so neighbours do not share directions); where a ray meets a surface q,
+//! that surface reflects light i toward the vertex with radiance Σ_s E_s·f(l_s, v)·(n·l_s)
+//! over the light's visible emitter samples s (exact visibility rays, next event
+//! estimation), f the shared diffuse + Phong model ([`Reflectance`]), so glossy surfaces
+//! bounce light in their mirror direction; further bounces follow the path on from q
+//! ([`indirect_sh`]). The SH of the incident radiance is then (2π/M)·Σ_k L_k·y(ω_k).
+//! Colours are reduced to their Rec. 709 luminance, and a material's reflectance comes
+//! from its factors (base colour, metallic, roughness, specular; textures are not sampled).
 
 use std::f32::consts::{PI, TAU};
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
-use super::direct::direct_irradiance;
+use super::direct::visible_samples;
 use super::scene_bvh::SceneBvh;
-use crate::random::{SplitMix64, cosine_direction};
-use crate::scene::{Material, Scene};
+use crate::random::SplitMix64;
+use crate::scene::{Material, Reflectance, Scene, luminance};
 use crate::sh;
 
 /// Golden angle in radians.
 const GOLDEN_ANGLE: f32 = 2.399_963_2;
 
-/// Diffuse albedo of a material as one number: the Rec. 709 luminance of its k_d.
-pub fn diffuse_luminance(material: &Material) -> f32 {
-    (crate::scene::luminance(material.diffuse_albedo().as_dvec3()) as f32).clamp(0.0, 1.0)
+/// What a path bounces off, per material: its reflectance from the material's factors.
+pub fn bounce_reflectance(material: &Material) -> Reflectance {
+    Reflectance::of_material(material, DVec3::ONE)
 }
 
 /// `count` directions evenly spread over the hemisphere around unit `n`, turned by `turn_rad`.
@@ -39,47 +40,78 @@ fn hemisphere_directions(n: Vec3, count: usize, turn_rad: f32) -> impl Iterator<
     })
 }
 
-/// Where a path meets a surface: the point, the normal facing the arriving ray, and the
-/// surface's albedo.
+/// Where a path meets a surface: the point, the normals facing the arriving ray, the way
+/// back along it, and the surface's reflectance.
 struct PathVertex {
     point: Vec3,
     normal: Vec3,
-    albedo: f32,
+    geometric_normal: Vec3,
+    to_eye: Vec3,
+    reflectance: Reflectance,
 }
 
 /// The first surface along `direction` from `origin`, if it reflects anything.
-fn next_surface(bvh: &SceneBvh, scene: &Scene, albedo: &[f32], origin: Vec3, direction: Vec3) -> Option<PathVertex> {
+fn next_surface(
+    bvh: &SceneBvh,
+    scene: &Scene,
+    reflectances: &[Reflectance],
+    origin: Vec3,
+    direction: Vec3,
+) -> Option<PathVertex> {
     let hit = bvh.closest_hit(origin, direction, 0.0, f32::INFINITY)?;
     let object = &scene.objects[hit.object];
-    let rho = albedo.get(object.material).copied().unwrap_or(0.0);
-    if rho <= 0.0 {
+    let reflectance = *reflectances.get(object.material)?;
+    if reflectance.is_black() {
         return None;
     }
+    let mut geometric_normal = object.face_normal(hit.triangle);
     let mut normal = object.interpolated_normal(hit.triangle, hit.barycentric);
-    if normal.dot(direction) > 0.0 {
-        normal = -normal; // two-sided: the side the ray arrives on
+    if normal == Vec3::ZERO {
+        normal = geometric_normal;
+    }
+    if geometric_normal.dot(direction) > 0.0 {
+        // Two-sided: the side the ray arrives on.
+        geometric_normal = -geometric_normal;
+        normal = -normal;
     }
     Some(PathVertex {
         point: origin + direction * hit.distance_m,
         normal,
-        albedo: rho,
+        geometric_normal,
+        to_eye: -direction,
+        reflectance,
     })
 }
 
+impl PathVertex {
+    /// Luminance of the radiance `light` (unit intensity) sends back along the path from
+    /// here: Σ_s E_s·f(l_s, v)·(n·l_s) over its visible emitter samples.
+    fn reflected(&self, bvh: &SceneBvh, light: &crate::scene::Light, samples: usize, offset_m: f32) -> f64 {
+        visible_samples(bvh, light, self.point, self.geometric_normal, samples, offset_m)
+            .into_iter()
+            .map(|(irradiance, to_light)| {
+                irradiance as f64 * luminance(self.reflectance.per_irradiance(self.normal, self.to_eye, to_light))
+            })
+            .sum()
+    }
+}
+
 /// Per light of `lights` (index, SH at the settings' order) of the reflected radiance
-/// arriving at `p` (normal `n`) after 1 to `settings.bounces` diffuse bounces; lights that
-/// contribute nothing left out. `albedo` holds [`diffuse_luminance`] of each material.
+/// arriving at `p` (normal `n`) after 1 to `settings.bounces` bounces; lights that
+/// contribute nothing left out. `reflectances` holds [`bounce_reflectance`] of each
+/// material.
 ///
 /// From each of the evenly spread directions ω_k a path is followed: at its j-th surface
-/// q_j, next-event estimation adds T_j·ρ_j/π·E_i(q_j) for every light i (E_i the exact
-/// direct irradiance at unit intensity), then the path goes on in a cosine-distributed
-/// direction with T_{j+1} = T_j·ρ_j (the Lambertian f·cos/pdf); from the third surface on
-/// it survives with probability min(ρ_j, 0.95) and T is divided by it (Russian roulette,
-/// unbiased). Paths are seeded by the vertex position, so a bake is deterministic.
+/// q_j, next-event estimation adds T_j·L_i(q_j → q_{j−1}) for every light i (the exact
+/// direct light reflected back along the path, at unit intensity), then the path goes on
+/// in a direction drawn from the reflectance model (cosine or Phong lobe) with
+/// T_{j+1} = T_j·f·cos/pdf; from the third surface on it survives with probability
+/// min(f·cos/pdf, 0.95) and T is divided by it (Russian roulette, unbiased). Paths are
+/// seeded by the vertex position, so a bake is deterministic.
 pub fn indirect_sh(
     bvh: &SceneBvh,
     scene: &Scene,
-    albedo: &[f32],
+    reflectances: &[Reflectance],
     lights: &[usize],
     p: Vec3,
     n: Vec3,
@@ -99,17 +131,17 @@ pub fn indirect_sh(
     let mut random = SplitMix64(seed);
     for omega in hemisphere_directions(n, directions.max(1), turn) {
         let y = sh::basis(order, omega.as_dvec3());
-        let mut surface = next_surface(bvh, scene, albedo, origin, omega);
+        let mut surface = next_surface(bvh, scene, reflectances, origin, omega);
         let mut throughput = 1.0f64;
         let mut bounce = 1;
         while let Some(q) = surface {
             for &i in lights {
                 let Some(light) = scene.lights.get(i) else { continue };
-                let e = direct_irradiance(bvh, light, q.point, q.normal, settings.light_samples, offset);
-                if e <= 0.0 {
+                let radiance = q.reflected(bvh, light, settings.light_samples, offset);
+                if radiance <= 0.0 {
                     continue;
                 }
-                let weight = solid_angle * throughput * q.albedo as f64 / PI as f64 * e as f64;
+                let weight = solid_angle * throughput * radiance;
                 let sum = sums[i].get_or_insert_with(|| vec![0.0; order * order]);
                 for (s, yk) in sum.iter_mut().zip(&y) {
                     *s += weight * yk;
@@ -118,16 +150,22 @@ pub fn indirect_sh(
             if bounce >= settings.bounces {
                 break;
             }
-            throughput *= q.albedo as f64;
+            let Some((next, weight)) = q
+                .reflectance
+                .sample(q.normal, q.geometric_normal, q.to_eye, &mut random)
+            else {
+                break;
+            };
+            let weight = luminance(weight);
+            throughput *= weight;
             if bounce >= 2 {
-                let survival = (q.albedo as f64).min(0.95);
+                let survival = weight.min(0.95);
                 if random.next_f64() >= survival {
                     break;
                 }
                 throughput /= survival;
             }
-            let next = cosine_direction(q.normal, random.next_f64(), random.next_f64());
-            surface = next_surface(bvh, scene, albedo, q.point + q.normal * offset, next);
+            surface = next_surface(bvh, scene, reflectances, q.point + q.geometric_normal * offset, next);
             bounce += 1;
         }
     }

@@ -1,8 +1,8 @@
 //! Source-importance maps (Rozon 2009, with SH instead of wavelets): for every vertex and
 //! light, the SH vector of the radiance arriving at the vertex from the light at unit
 //! intensity: direct light with exact visibility (obvhs rays over every triangle of the
-//! scene, `direct`) plus up to eight diffuse bounces with next-event estimation and
-//! Russian roulette (`indirect`), stored sparse (`maps`). Glossy bounces are not baked.
+//! scene, `direct`) plus up to eight diffuse and glossy bounces with next-event estimation
+//! and Russian roulette (`indirect`), stored sparse (`maps`).
 
 pub mod direct;
 pub mod indirect;
@@ -29,7 +29,8 @@ pub struct BakeSettings {
     pub light_samples: usize,
     /// Rays start this far off the surface, along the normal (self-intersection guard).
     pub ray_offset_m: f32,
-    /// Diffuse bounces of indirect light (0: direct only), Russian roulette from the third.
+    /// Bounces of indirect light, diffuse and glossy (0: direct only), Russian roulette
+    /// from the third.
     pub bounces: usize,
     /// Hemisphere directions per vertex for the indirect bounce.
     pub indirect_directions: usize,
@@ -208,7 +209,7 @@ fn bake_lights(
     cancel: &AtomicBool,
 ) -> Option<(ImportanceMaps, u64)> {
     let bvh = SceneBvh::build(scene);
-    let albedo: Vec<f32> = scene.materials.iter().map(indirect::diffuse_luminance).collect();
+    let reflectances: Vec<_> = scene.materials.iter().map(indirect::bounce_reflectance).collect();
     let total = scene.vertex_count();
     let done = AtomicUsize::new(0);
     let mut objects = Vec::with_capacity(scene.objects.len());
@@ -237,7 +238,7 @@ fn bake_lights(
                     })
                     .collect();
                 if settings.bounces > 0 {
-                    let bounced = indirect::indirect_sh(&bvh, scene, &albedo, lights, p, n, settings);
+                    let bounced = indirect::indirect_sh(&bvh, scene, &reflectances, lights, p, n, settings);
                     merge(&mut entries, bounced);
                 }
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
@@ -438,6 +439,82 @@ mod tests {
         assert!(maps.objects[1].to_vertices().iter().all(|e| e.len() <= 1));
         let lit = maps.objects[1].to_vertices().iter().filter(|e| e.len() == 1).count();
         assert_eq!(lit, maps.objects[1].vertex_count() - 1);
+    }
+
+    /// A glossy metal ceiling (k_d = 0, k_s = 1, Phong exponent 30: glTF roughness 0.5)
+    /// 1 m above a tiny floor patch, and a 1 cd point light 0.5 m up and 1 m aside: the
+    /// patch's one-bounce light is the ceiling's glossy reflection of the light, whose DC
+    /// is y₀·∫ L(q → p) dω_p with L = I/|ℓ − q|²·(r + 1)/(2π)·max(m·l, 0)^r, integrated here
+    /// over the ceiling by a midpoint rule (dω_p = dA·cos θ_q/|p − q|²). A diffuse-only
+    /// bounce would give nothing.
+    #[test]
+    fn a_glossy_ceiling_bounces_the_light_in_its_mirror_direction() {
+        let patch = shapes::plane(0.02, 1, 1.0);
+        let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
+            glam::Quat::from_rotation_x(std::f32::consts::PI),
+            Vec3::Y,
+        ));
+        let mut ceiling_object = object("ceiling", ceiling);
+        ceiling_object.material = 1;
+        let light_position = Vec3::new(1.0, 0.5, 0.0);
+        let scene = Scene {
+            objects: vec![object("patch", patch), ceiling_object],
+            materials: vec![
+                crate::scene::Material::default(),
+                crate::scene::Material {
+                    base_color: glam::Vec4::ONE,
+                    metallic: 1.0,
+                    roughness: 0.5,
+                    ..Default::default()
+                },
+            ],
+            lights: vec![point_light(light_position)],
+            ..Default::default()
+        };
+        let dc_of = |bounces: usize| -> Vec<f64> {
+            let settings = BakeSettings {
+                bounces,
+                indirect_directions: 4096,
+                ..BakeSettings::default()
+            };
+            let maps = bake_maps(&scene, &settings);
+            maps.objects[0]
+                .to_vertices()
+                .iter()
+                .map(|e| e.first().map_or(0.0, |c| c.sh[0] as f64))
+                .collect()
+        };
+        let (direct, bounced) = (dc_of(0), dc_of(1));
+
+        let exponent = 30.0f64;
+        let light = light_position.as_dvec3();
+        let normal = glam::DVec3::NEG_Y;
+        let expected_dc = |p: glam::DVec3| -> f64 {
+            let (cells, x0, z0, side) = (1200, -4.0, -6.0, 12.0);
+            let step = side / cells as f64;
+            let mut integral = 0.0;
+            for i in 0..cells {
+                for j in 0..cells {
+                    let q = glam::DVec3::new(x0 + (i as f64 + 0.5) * step, 1.0, z0 + (j as f64 + 0.5) * step);
+                    let (to_light, to_patch) = (light - q, p - q);
+                    let (l, v) = (to_light.normalize(), to_patch.normalize());
+                    let mirror = 2.0 * normal.dot(v) * normal - v;
+                    let lobe = (exponent + 1.0) / (2.0 * PI) * mirror.dot(l).max(0.0).powf(exponent);
+                    let radiance = lobe / to_light.length_squared();
+                    integral += radiance * step * step * normal.dot(v) / to_patch.length_squared();
+                }
+            }
+            integral / (2.0 * PI.sqrt())
+        };
+        let vertices = &scene.objects[0].positions;
+        for (v, (with, without)) in bounced.iter().zip(&direct).enumerate() {
+            let expected = expected_dc(vertices[v].as_dvec3());
+            let indirect = with - without;
+            assert!(
+                (indirect / expected - 1.0).abs() < 0.05,
+                "vertex {v}: baked {indirect} vs {expected}"
+            );
+        }
     }
 
     /// Inside a closed 2 m box of albedo ρ = 0.5 with a unit point light at its centre:

@@ -33,7 +33,7 @@ pub trait Transfer: Sync {
 }
 
 /// What a material reflects, reduced to what the transfer needs.
-struct Reflectance {
+struct ProjectedReflectance {
     diffuse: f64,
     specular: f64,
     /// ZH of the normalised Phong lobe ((r + 1)/2π)·cos^r on its upper hemisphere.
@@ -41,8 +41,8 @@ struct Reflectance {
     emitted: f64,
 }
 
-impl Reflectance {
-    fn new(material: &Material, order: usize) -> Reflectance {
+impl ProjectedReflectance {
+    fn new(material: &Material, order: usize) -> ProjectedReflectance {
         let exponent = material.phong_exponent() as f64;
         let lobe = |t: f64| {
             if t > 0.0 {
@@ -51,7 +51,7 @@ impl Reflectance {
                 0.0
             }
         };
-        Reflectance {
+        ProjectedReflectance {
             diffuse: luminance(material.diffuse_albedo().as_dvec3()),
             specular: luminance(material.specular_color().as_dvec3()),
             lobe_zh: sh::zh_of_function(order, lobe, &[0.0]),
@@ -67,7 +67,7 @@ impl Reflectance {
 pub struct BakedTransfer<'a> {
     scene: &'a Scene,
     maps: &'a ImportanceMaps,
-    reflectance: Vec<Reflectance>,
+    reflectance: Vec<ProjectedReflectance>,
     cosine_zh: Vec<f64>,
     light_luminance: Vec<f64>,
 }
@@ -75,8 +75,12 @@ pub struct BakedTransfer<'a> {
 impl<'a> BakedTransfer<'a> {
     pub fn new(scene: &'a Scene, maps: &'a ImportanceMaps) -> BakedTransfer<'a> {
         let order = maps.order;
-        let mut reflectance: Vec<Reflectance> = scene.materials.iter().map(|m| Reflectance::new(m, order)).collect();
-        reflectance.push(Reflectance::new(&Material::default(), order));
+        let mut reflectance: Vec<ProjectedReflectance> = scene
+            .materials
+            .iter()
+            .map(|m| ProjectedReflectance::new(m, order))
+            .collect();
+        reflectance.push(ProjectedReflectance::new(&Material::default(), order));
         BakedTransfer {
             scene,
             maps,
@@ -86,7 +90,7 @@ impl<'a> BakedTransfer<'a> {
         }
     }
 
-    fn reflectance_of(&self, object: usize) -> &Reflectance {
+    fn reflectance_of(&self, object: usize) -> &ProjectedReflectance {
         let material = self.scene.objects[object].material;
         self.reflectance
             .get(material)

@@ -1,7 +1,7 @@
 //! The bake cache beside a project (`NAME.lightpaint.bake`): the importance maps with the
 //! key of the inputs they were baked from, so a reopened project with unchanged geometry,
 //! lights and settings uses them without a re-bake. The key is a BLAKE3 hash of the
-//! geometry, the materials' diffuse albedo (the bounce reads it) and the bake settings,
+//! geometry, the materials' reflectance (diffuse and glossy: the bounces read it) and the bake settings,
 //! plus one hash per light of what shapes its maps (kind, position, direction, range; not
 //! its intensity or colour, which the maps leave out). A cache whose scene key differs is
 //! stale; one whose light hashes differ names the lights to re-bake; a file that is
@@ -42,12 +42,13 @@ impl BakeKey {
             hasher.update(bytemuck::cast_slice(&object.positions));
             hasher.update(bytemuck::cast_slice(&object.normals));
             hasher.update(bytemuck::cast_slice(&object.indices));
-            let albedo = scene
-                .materials
-                .get(object.material)
-                .map(|m| m.diffuse_albedo())
-                .unwrap_or(glam::Vec3::ONE);
-            hasher.update(bytemuck::bytes_of(&albedo));
+            // The bounces read the material's reflectance (diffuse and glossy).
+            if let Some(material) = scene.materials.get(object.material) {
+                let r = crate::bake::indirect::bounce_reflectance(material);
+                for value in [r.k_d.to_array(), r.k_s.to_array(), [r.phong_exponent; 3]].as_flattened() {
+                    hasher.update(&value.to_le_bytes());
+                }
+            }
         }
         let lights = scene
             .lights

@@ -72,10 +72,11 @@ impl Document {
                 scene: scene_path,
             });
         }
-        let mut scene = Scene::load(&scene_path).map_err(|error| ProjectError::Scene {
-            project: path.to_path_buf(),
-            error,
-        })?;
+        let mut scene =
+            Scene::load_choosing(&scene_path, file.scene.gltf_scene).map_err(|error| ProjectError::Scene {
+                project: path.to_path_buf(),
+                error,
+            })?;
         let mut warnings = scene.warnings.clone();
         if scene.source_hash.as_deref() != Some(file.scene.blake3.as_str()) {
             warnings.push(format!(
@@ -127,6 +128,7 @@ impl Document {
             scene: SceneReference {
                 gltf,
                 blake3: self.scene.source_hash.clone().unwrap_or_default(),
+                gltf_scene: self.scene.gltf_scene.filter(|_| self.scene.gltf_scenes.len() > 1),
             },
             lights: self.scene.lights.clone(),
             render: self.settings,
@@ -134,6 +136,27 @@ impl Document {
             environment,
             painting: self.painting.clone(),
         }
+    }
+
+    /// This document on scene `index` of the same glTF file: that scene's objects, lights
+    /// and camera, with the document's render settings, environment, brush and painting
+    /// strategies. The stroke log starts empty (its strokes named the other scene's
+    /// lights), and the project file stays the same until it is saved.
+    pub fn with_gltf_scene(&self, index: usize) -> Result<Document, ProjectError> {
+        let mut scene = Scene::load_choosing(&self.scene_path, Some(index))?;
+        scene.environment = self.scene.environment.clone();
+        Ok(Document {
+            warnings: scene.warnings.clone(),
+            scene,
+            scene_path: self.scene_path.clone(),
+            settings: self.settings,
+            camera: None,
+            project_path: self.project_path.clone(),
+            painting: PaintingState {
+                strokes: Vec::new(),
+                ..self.painting.clone()
+            },
+        })
     }
 
     /// Saves atomically to `project_path` (keeping a `.bak` of the previous file) and

@@ -13,12 +13,12 @@ use crate::render::RenderSettings;
 use crate::scene::{Light, OrbitCamera};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 3;
+pub const FORMAT_VERSION: u64 = 4;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
 
-/// Everything a project file holds (format version 3).
+/// Everything a project file holds (format version 4).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProjectFile {
@@ -66,6 +66,11 @@ pub struct SceneReference {
     pub gltf: PathBuf,
     /// BLAKE3 hash (hex) of the glTF file when the project was saved.
     pub blake3: String,
+    /// Which scene of a glTF file that has several (numbered from 0); absent: the file's
+    /// default scene. Written whenever the file has more than one, so a later change of
+    /// the file's default does not change what the project shows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gltf_scene: Option<usize>,
 }
 
 impl ProjectFile {

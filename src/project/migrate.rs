@@ -10,6 +10,8 @@
 //!   setting because it had no shadows: they open with shadows on).
 //! - 3: `painting` (the stroke log, the brush and the painting strategies); files of
 //!   format 2 had no painting, so they get an empty log and the default strategies.
+//! - 4: `scene.gltf_scene` (which scene of a glTF file with several); files of format 3
+//!   showed the file's default scene, which is what an absent `gltf_scene` means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -25,6 +27,16 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 3 {
         value = v2_to_v3(value);
+    }
+    if version < 4 {
+        value = v3_to_v4(value);
+    }
+    value
+}
+
+fn v3_to_v4(mut value: Value) -> Value {
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(4));
     }
     value
 }

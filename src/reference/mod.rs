@@ -12,7 +12,6 @@
 //! lights are sampled over their emitters, the environment is reflected by the glossy
 //! lobe too, and light reaches surfaces only past the real triangles.
 
-mod brdf;
 mod camera_rays;
 mod emitters;
 mod path;

@@ -10,7 +10,6 @@
 
 use glam::{DVec3, Vec3};
 
-use super::brdf::{reflected_per_irradiance, sample_direction};
 use super::emitters::sample_light;
 use super::surface::{SurfaceHit, surface_at};
 use crate::bake::scene_bvh::SceneBvh;
@@ -75,7 +74,10 @@ impl<'a> PathTracer<'a> {
         let mut throughput = DVec3::ONE;
         for reflection in 1..=self.bounces + 1 {
             radiance += throughput * self.next_event(&surface, to_eye, random);
-            let Some((next, weight)) = sample_direction(&surface, to_eye, random) else {
+            let sampled = surface
+                .reflectance
+                .sample(surface.normal, surface.geometric_normal, to_eye, random);
+            let Some((next, weight)) = sampled else {
                 break;
             };
             throughput *= weight;
@@ -119,7 +121,7 @@ impl<'a> PathTracer<'a> {
     /// Light reflected toward `to_eye` from one sample of every light, each with an exact
     /// visibility ray.
     fn next_event(&self, surface: &SurfaceHit, to_eye: Vec3, random: &mut SplitMix64) -> DVec3 {
-        if surface.k_d == DVec3::ZERO && surface.k_s == DVec3::ZERO {
+        if surface.reflectance.is_black() {
             return DVec3::ZERO;
         }
         let mut sum = DVec3::ZERO;
@@ -130,7 +132,9 @@ impl<'a> PathTracer<'a> {
             if surface.geometric_normal.dot(sample.to_light) <= 0.0 {
                 continue; // behind the surface itself
             }
-            let reflected = reflected_per_irradiance(surface, to_eye, sample.to_light);
+            let reflected = surface
+                .reflectance
+                .per_irradiance(surface.normal, to_eye, sample.to_light);
             if reflected == DVec3::ZERO {
                 continue;
             }

@@ -7,7 +7,7 @@ use glam::{DVec3, Vec2, Vec3};
 
 use crate::bake::scene_bvh::Hit;
 use crate::render::srgb_to_linear;
-use crate::scene::{Material, Scene, TextureImage};
+use crate::scene::{Material, Reflectance, Scene, TextureImage};
 
 /// A point where a ray met a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,9 +18,7 @@ pub struct SurfaceHit {
     /// Unit interpolated normal, turned with the face toward the ray (as the rasteriser
     /// turns back faces); the face normal where the vertex normals cancel.
     pub normal: Vec3,
-    pub k_d: DVec3,
-    pub k_s: DVec3,
-    pub phong_exponent: f64,
+    pub reflectance: Reflectance,
     /// Emitted radiance (both sides, as the renderer draws it).
     pub emissive: DVec3,
 }
@@ -43,19 +41,17 @@ pub fn surface_at(scene: &Scene, hit: &Hit, origin: Vec3, direction: Vec3) -> Su
         .materials
         .get(object.material)
         .unwrap_or_else(|| DEFAULT.get_or_init(Material::default));
-    let mut base = material.base_color.truncate().as_dvec3();
-    if let Some(texture) = material.base_color_texture.and_then(|t| scene.textures.get(t)) {
-        base *= sample_bilinear(texture, object.interpolated_uv(hit.triangle, hit.barycentric));
-    }
-    let metallic = material.metallic as f64;
-    let dielectric_specular = 0.04 * material.specular as f64;
+    let texture = material
+        .base_color_texture
+        .and_then(|t| scene.textures.get(t))
+        .map_or(DVec3::ONE, |texture| {
+            sample_bilinear(texture, object.interpolated_uv(hit.triangle, hit.barycentric))
+        });
     SurfaceHit {
         position: origin + direction * hit.distance_m,
         geometric_normal,
         normal,
-        k_d: base * (1.0 - metallic) * (1.0 - dielectric_specular),
-        k_s: DVec3::splat(dielectric_specular).lerp(base, metallic),
-        phong_exponent: material.phong_exponent() as f64,
+        reflectance: Reflectance::of_material(material, texture),
         emissive: material.emissive.as_dvec3(),
     }
 }

@@ -18,16 +18,27 @@ use super::{Camera, Light, LightKind, Material, MeshObject, Scene, SceneError, T
 /// 3.4e38 limit, and 1e7 m is already larger than the Earth.
 pub const MAX_COORDINATE_M: f32 = 1.0e7;
 
-/// Loads a `.gltf` or `.glb` file.
+/// Loads a `.gltf` or `.glb` file, showing its default scene.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = read_file(path)?;
-    parse_gltf(path, &bytes)
+    load_gltf_scene(path, None)
 }
 
-/// Parses the bytes of a `.gltf` or `.glb` file; `path` names it in messages and locates
-/// external buffers and images (relative to its directory).
+/// Loads a `.gltf` or `.glb` file, showing its scene number `choice` (None: the file's
+/// default scene, or its first when it names none).
+pub fn load_gltf_scene(path: &Path, choice: Option<usize>) -> Result<Scene, SceneError> {
+    let bytes = read_file(path)?;
+    parse_gltf_scene(path, &bytes, choice)
+}
+
+/// Parses the bytes of a `.gltf` or `.glb` file, showing its default scene; `path` names it
+/// in messages and locates external buffers and images (relative to its directory).
 pub fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
-    crate::panic_guard::catch_panic(|| parse_gltf_unguarded(path, bytes)).unwrap_or_else(|message| {
+    parse_gltf_scene(path, bytes, None)
+}
+
+/// [`parse_gltf`] showing scene number `choice` of the file (None: its default scene).
+pub fn parse_gltf_scene(path: &Path, bytes: &[u8], choice: Option<usize>) -> Result<Scene, SceneError> {
+    crate::panic_guard::catch_panic(|| parse_gltf_unguarded(path, bytes, choice)).unwrap_or_else(|message| {
         Err(SceneError::Malformed {
             path: path.to_path_buf(),
             reason: format!("its structure is inconsistent (the glTF reader failed: {message})"),
@@ -35,7 +46,7 @@ pub fn parse_gltf(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
     })
 }
 
-fn parse_gltf_unguarded(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+fn parse_gltf_unguarded(path: &Path, bytes: &[u8], choice: Option<usize>) -> Result<Scene, SceneError> {
     if bytes.is_empty() {
         return Err(SceneError::Malformed {
             path: path.to_path_buf(),
@@ -61,7 +72,7 @@ fn parse_gltf_unguarded(path: &Path, bytes: &[u8]) -> Result<Scene, SceneError> 
             ..Scene::default()
         },
     };
-    importer.run()
+    importer.run(choice)
 }
 
 fn read_file(path: &Path) -> Result<Vec<u8>, SceneError> {
@@ -104,21 +115,30 @@ struct Importer<'a> {
 }
 
 impl Importer<'_> {
-    fn run(mut self) -> Result<Scene, SceneError> {
+    fn run(mut self, choice: Option<usize>) -> Result<Scene, SceneError> {
         self.check_buffer_views()?;
+        let document = self.document;
+        let count = document.scenes().len();
+        let gltf_scene = match choice {
+            Some(index) => Some(document.scenes().nth(index).ok_or_else(|| {
+                self.invalid(format!(
+                    "scene {index} was asked for, but the file has {count} scene(s) (numbered from 0)"
+                ))
+            })?),
+            None => document.default_scene().or_else(|| document.scenes().next()),
+        };
+        self.scene.gltf_scenes = document.scenes().map(|s| s.name().unwrap_or("").to_string()).collect();
+        self.scene.gltf_scene = gltf_scene.as_ref().map(gltf::Scene::index);
         self.import_materials();
         let default_material = self.scene.materials.len();
         self.scene.materials.push(Material::default());
 
-        let document = self.document;
-        let gltf_scene = document.default_scene().or_else(|| document.scenes().next());
         match gltf_scene {
             Some(gltf_scene) => {
-                if document.scenes().len() > 1 {
+                if count > 1 && choice.is_none() {
                     let name = gltf_scene.name().unwrap_or("unnamed");
                     self.warn(format!(
-                        "the file has {} scenes; showing scene {} ('{name}')",
-                        document.scenes().len(),
+                        "the file has {count} scenes; showing scene {} ('{name}'; another can be chosen)",
                         gltf_scene.index()
                     ));
                 }

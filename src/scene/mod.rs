@@ -13,16 +13,18 @@ pub mod gltf_write;
 mod light;
 mod material;
 mod mesh;
+mod reflectance;
 pub mod shapes;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
 pub use environment::Environment;
 pub use error::SceneError;
-pub use gltf_import::{load_gltf, parse_gltf};
+pub use gltf_import::{load_gltf, load_gltf_scene, parse_gltf, parse_gltf_scene};
 pub use light::{Light, LightKind, UnitIncidence};
 pub use material::{Material, TextureImage, luminance};
 pub use mesh::MeshObject;
+pub use reflectance::Reflectance;
 
 use std::path::{Path, PathBuf};
 
@@ -44,12 +46,29 @@ pub struct Scene {
     pub source_hash: Option<String>,
     /// Non-fatal problems found while loading (unsupported features, missing textures).
     pub warnings: Vec<String>,
+    /// The names of every scene in the glTF file, in the file's order ("" when unnamed).
+    pub gltf_scenes: Vec<String>,
+    /// Which of [`Self::gltf_scenes`] this scene shows (None: the file has none).
+    pub gltf_scene: Option<usize>,
 }
 
 impl Scene {
-    /// Loads a scene from a `.gltf` or `.glb` file.
+    /// Loads a scene from a `.gltf` or `.glb` file (the file's default scene).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         load_gltf(path)
+    }
+
+    /// Loads scene number `choice` of a `.gltf` or `.glb` file (None: its default scene).
+    pub fn load_choosing(path: &Path, choice: Option<usize>) -> Result<Scene, SceneError> {
+        load_gltf_scene(path, choice)
+    }
+
+    /// How to name glTF scene `index` to a user: "1 'Night'", or "1" when unnamed.
+    pub fn gltf_scene_label(&self, index: usize) -> String {
+        match self.gltf_scenes.get(index).map(String::as_str) {
+            Some(name) if !name.is_empty() => format!("{index} '{name}'"),
+            _ => index.to_string(),
+        }
     }
 
     /// World-space bounds of all geometry (empty if the scene has no geometry).

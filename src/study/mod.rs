@@ -354,9 +354,11 @@ fn surface_hit(point: &SurfacePoint) -> SurfaceHit {
         position: point.position.as_vec3(),
         geometric_normal: normal,
         normal,
-        k_d: point.k_d,
-        k_s: point.k_s,
-        phong_exponent: point.phong_exponent,
+        reflectance: crate::scene::Reflectance {
+            k_d: point.k_d,
+            k_s: point.k_s,
+            phong_exponent: point.phong_exponent,
+        },
         emissive: point.emissive,
     }
 }

@@ -87,46 +87,75 @@ impl EditorApp {
     pub fn open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
         match Document::open(path) {
             Ok(document) => {
-                let scene = &document.scene;
                 let name = path
                     .file_name()
                     .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
-                self.message = format!(
-                    "opened {name} — {} objects, {} vertices, {} lights{}",
-                    scene.objects.len(),
-                    scene.vertex_count(),
-                    scene.lights.len(),
-                    if document.warnings.is_empty() {
-                        String::new()
-                    } else {
-                        format!(
-                            ", {} warning(s): {}",
-                            document.warnings.len(),
-                            document.warnings.join("; ")
-                        )
-                    }
-                );
-                self.blockers = fit_scene(scene, &document.settings.blockers);
-                self.fitted_with = document.settings.blockers;
-                let spheres = self.blockers.spheres();
-                self.viewport = render_state
-                    .map(|rs| Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows));
-                self.saved = document.project_path.as_ref().map(|p| {
-                    let mut saved = document.to_project_file(p);
+                self.install(document, &format!("opened {name}"), render_state);
+                self.saved = self.document.as_ref().and_then(|document| {
+                    let mut saved = document.to_project_file(document.project_path.as_ref()?);
                     // A project without a camera opens on the scene's view: that view is
                     // what was saved, not a change.
                     if let Some(viewport) = &self.viewport {
                         saved.camera = Some(viewport.orbit);
                     }
-                    saved
+                    Some(saved)
                 });
-                let mut painting = Painting::for_document(&document);
-                painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
-                self.painting = Some(painting);
-                self.document = Some(document);
             }
             Err(e) => self.report_error(e.to_string()),
         }
+    }
+
+    /// Shows scene `index` of the document's glTF file (a file can hold several): its
+    /// objects and lights, with the document's settings; the stroke log starts afresh. The
+    /// project file is untouched until the next save. On failure nothing changes.
+    pub fn show_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
+        let Some(current) = &self.document else { return };
+        match current.with_gltf_scene(index) {
+            Ok(document) => {
+                let label = document.scene.gltf_scene_label(index);
+                self.install(document, &format!("showing glTF scene {label}"), render_state);
+            }
+            Err(e) => self.report_error(e.to_string()),
+        }
+    }
+
+    /// Shows glTF scene `index`, first asking to save when there are unsaved changes.
+    pub fn request_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
+        if self.has_unsaved_changes() && self.document.is_some() {
+            self.pending = Some(Pending::ShowGltfScene(index));
+        } else {
+            self.show_gltf_scene(index, render_state);
+        }
+    }
+
+    /// Makes `document` the open one: fits its blockers, builds the viewport and the
+    /// painting state, and reports `what` happened in the status bar.
+    fn install(&mut self, document: Document, what: &str, render_state: Option<&egui_wgpu::RenderState>) {
+        let scene = &document.scene;
+        self.message = format!(
+            "{what} — {} objects, {} vertices, {} lights{}",
+            scene.objects.len(),
+            scene.vertex_count(),
+            scene.lights.len(),
+            if document.warnings.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", {} warning(s): {}",
+                    document.warnings.len(),
+                    document.warnings.join("; ")
+                )
+            }
+        );
+        self.blockers = fit_scene(scene, &document.settings.blockers);
+        self.fitted_with = document.settings.blockers;
+        let spheres = self.blockers.spheres();
+        self.viewport =
+            render_state.map(|rs| Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows));
+        let mut painting = Painting::for_document(&document);
+        painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
+        self.painting = Some(painting);
+        self.document = Some(document);
     }
 
     /// Where world point `p` appears on screen (points), if the viewport shows it.
@@ -207,6 +236,7 @@ impl EditorApp {
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
             Pending::Open(path) => self.open(&path, render_state),
+            Pending::ShowGltfScene(index) => self.show_gltf_scene(index, render_state),
         }
     }
 
@@ -403,9 +433,12 @@ impl EditorApp {
         }
     }
 
-    fn outliner(&mut self, ui: &mut egui::Ui) {
+    fn outliner(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
         egui::Panel::left("outliner").default_size(220.0).show(ui, |ui| {
             ui.heading("Scene");
+            if let Some(index) = self.document.as_ref().and_then(|d| gltf_scene_picker(ui, &d.scene)) {
+                self.request_gltf_scene(index, render_state);
+            }
             let Some(document) = &self.document else { return };
             egui::ScrollArea::vertical().show(ui, |ui| {
                 egui::CollapsingHeader::new(format!("Objects ({})", document.scene.objects.len()))
@@ -692,7 +725,7 @@ impl eframe::App for EditorApp {
         self.menu_bar(ui, render_state.as_ref());
         self.tool_bar(ui);
         self.status_bar(ui);
-        self.outliner(ui);
+        self.outliner(ui, render_state.as_ref());
         self.inspector(ui, render_state.as_ref());
         if let Some(message) = self.painting.as_mut().and_then(Painting::poll_bake) {
             self.message = message;
@@ -733,4 +766,24 @@ impl eframe::App for EditorApp {
         }
         self.scripted_close(&ctx);
     }
+}
+
+/// A choice of the glTF file's scenes, when it has several; the index picked, if the user
+/// picked another.
+fn gltf_scene_picker(ui: &mut egui::Ui, scene: &crate::scene::Scene) -> Option<usize> {
+    if scene.gltf_scenes.len() < 2 {
+        return None;
+    }
+    let shown = scene.gltf_scene.unwrap_or(0);
+    let mut picked = shown;
+    egui::ComboBox::from_label("glTF scene")
+        .selected_text(scene.gltf_scene_label(shown))
+        .show_ui(ui, |ui| {
+            for index in 0..scene.gltf_scenes.len() {
+                ui.selectable_value(&mut picked, index, scene.gltf_scene_label(index));
+            }
+        })
+        .response
+        .on_hover_text("The file holds several scenes; the project remembers which one it shows");
+    (picked != shown).then_some(picked)
 }

@@ -107,7 +107,7 @@ pub fn painting_section(ui: &mut egui::Ui, painting: &mut Painting) -> Option<Pa
                     .on_hover_text("emitter samples per extended light and vertex");
                 ui.label("bounces");
                 ui.add(egui::DragValue::new(&mut painting.bake_settings.bounces).range(0..=8))
-                    .on_hover_text("diffuse bounces of indirect light");
+                    .on_hover_text("bounces of indirect light (diffuse and glossy)");
             });
             let mut half = painting.bake_settings.precision == crate::bake::Precision::F16;
             if ui

@@ -8,6 +8,8 @@ use std::path::PathBuf;
 pub enum Pending {
     Close,
     Open(PathBuf),
+    /// Showing another scene of the document's glTF file (its index).
+    ShowGltfScene(usize),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,6 +27,9 @@ pub fn ask(ctx: &egui::Context, pending: &Pending) -> Option<Answer> {
             "Save the changes before opening {}?",
             path.file_name()
                 .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+        ),
+        Pending::ShowGltfScene(index) => format!(
+            "Save the changes before showing glTF scene {index}? (Its lights replace these, and the stroke log starts afresh.)"
         ),
     };
     let mut answer = None;

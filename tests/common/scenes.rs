@@ -57,3 +57,29 @@ pub fn dangling_position_accessor() -> Vec<u8> {
     b.add_node(serde_json::json!({"name": "dangling", "mesh": mesh}));
     b.to_glb()
 }
+
+/// A .glb with two scenes, "Day" (a triangle at the origin and a sun) and "Night" (the
+/// triangle 5 m along +x, no light), whose default is "Night".
+pub fn day_and_night() -> Vec<u8> {
+    let mut b = GltfBuilder::new();
+    let positions = [Vec3::ZERO, Vec3::X, Vec3::NEG_Z];
+    let mesh = b.add_mesh("triangle", &positions, None, None, &[0, 1, 2], None);
+    let day = b.add_mesh_node("day", mesh, Vec3::ZERO, glam::Quat::IDENTITY, Vec3::ONE);
+    let night = b.add_mesh_node("night", mesh, Vec3::new(5.0, 0.0, 0.0), glam::Quat::IDENTITY, Vec3::ONE);
+    let sun = b.add_light_node(
+        "sun",
+        &LightSpec::Directional {
+            color: [1.0, 1.0, 1.0],
+            illuminance_lux: 2.0,
+        },
+        Vec3::ONE,
+        Vec3::NEG_Y,
+    );
+    let mut document = b.document(None);
+    document["scenes"] = serde_json::json!([
+        {"name": "Day", "nodes": [day, sun]},
+        {"name": "Night", "nodes": [night]},
+    ]);
+    document["scene"] = serde_json::json!(1);
+    lightpaint::scene::gltf_write::glb_bytes(&document, &b.bin())
+}
