@@ -85,6 +85,7 @@ fn frames(c: &mut Criterion) {
             .collect();
         for (label, blockers) in &sets {
             let frame = ShadowFrame {
+                baked_indirect: None,
                 scene: &scene,
                 camera: &camera,
                 settings: &settings,
@@ -106,6 +107,7 @@ fn frames(c: &mut Criterion) {
         for exp in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
             let shadows = ShadowSettings { order, exp, ..defaults };
             let frame = ShadowFrame {
+                baked_indirect: None,
                 scene: &scene,
                 camera: &camera,
                 settings: &settings,
@@ -121,8 +123,9 @@ fn frames(c: &mut Criterion) {
 
     let mut group = c.benchmark_group("cpu-reference");
     group.sample_size(10).measurement_time(Duration::from_secs(10));
-    let surfaces = capture_surfaces(&gpu, &scene, &camera, WIDTH, HEIGHT).expect("surfaces");
+    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, WIDTH, HEIGHT).expect("surfaces");
     let frame = ShadowFrame {
+        baked_indirect: None,
         scene: &scene,
         camera: &camera,
         settings: &settings,

@@ -7,6 +7,10 @@
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;
+// Baked indirect irradiance (linear RGB, 3 floats per vertex) of every object's vertices,
+// one object after another; zeros when there is none. A draw's first instance is its
+// object's first vertex here (render::gpu_scene).
+@group(0) @binding(2) var<storage, read> baked_indirect: array<f32>;
 
 @group(1) @binding(0) var<uniform> material: Material;
 @group(1) @binding(1) var base_color_texture: texture_2d<f32>;
@@ -16,6 +20,9 @@ struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @builtin(vertex_index) index: u32,
+    // The object's first vertex in `baked_indirect`.
+    @builtin(instance_index) first_vertex: u32,
 };
 
 struct VertexOut {
@@ -24,6 +31,8 @@ struct VertexOut {
     @location(0) world_position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    // Baked indirect irradiance at the vertex (linear RGB, lux), interpolated.
+    @location(3) indirect_irradiance: vec3<f32>,
 };
 
 @vertex
@@ -37,6 +46,8 @@ fn transform_vertex(v: VertexIn) -> VertexOut {
     out.world_position = v.position;
     out.normal = v.normal;
     out.uv = v.uv;
+    let b = 3u * (v.first_vertex + v.index);
+    out.indirect_irradiance = vec3<f32>(baked_indirect[b], baked_indirect[b + 1u], baked_indirect[b + 2u]);
     return out;
 }
 
@@ -95,6 +106,8 @@ struct Surface {
     k_d: vec3<f32>,
     k_s: vec3<f32>,
     phong_exponent: f32,
+    // Light leaving the surface that no shadow or light sample changes: emission plus the
+    // baked indirect light reflected diffusely, k_d/π · E_indirect.
     emissive: vec3<f32>,
 };
 
@@ -114,7 +127,7 @@ fn surface(in: VertexOut, front_facing: bool) -> Surface {
     s.k_d = base.rgb * (1.0 - metallic) * (1.0 - dielectric_specular);
     s.k_s = mix(vec3<f32>(dielectric_specular), base.rgb, metallic);
     s.phong_exponent = material.params.z;
-    s.emissive = material.emissive.rgb;
+    s.emissive = material.emissive.rgb + s.k_d / PI * max(in.indirect_irradiance, vec3<f32>(0.0));
     return s;
 }
 

@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 use lightpaint::blockers::{SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
-    GpuContext, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method, render_cpu_image,
-    render_image, render_logsh_image,
+    BakedIndirect, GpuContext, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method,
+    render_cpu_image, render_image, render_logsh_image,
 };
 use lightpaint::scene::SceneError;
 use lightpaint::sh::ExpMethod;
@@ -140,6 +140,10 @@ struct RenderArgs {
     /// Render without shadows (the plain raster pass).
     #[arg(long)]
     no_shadows: bool,
+    /// Leave out the baked indirect light (by default a project whose setting is on adds
+    /// it from its bake cache, when there is one: see `lightpaint bake`).
+    #[arg(long)]
+    no_baked_indirect: bool,
     /// Render the ground truth with the path tracer (real geometry, no sphere proxies).
     #[arg(long, conflicts_with_all = ["cpu", "no_shadows", "per_vertex", "time_frames"])]
     reference: bool,
@@ -352,7 +356,13 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         fit.spheres()
     };
     let fit_ms = fitted.elapsed().as_secs_f64() * 1000.0;
+    let indirect = if settings.baked_indirect && !args.no_baked_indirect {
+        baked_indirect(&document)
+    } else {
+        None
+    };
     let frame = ShadowFrame {
+        baked_indirect: indirect.as_ref(),
         scene: &document.scene,
         camera: &camera,
         settings: &settings,
@@ -370,12 +380,20 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     } else if args.cpu {
         (
             render_cpu_image(&gpu, &frame)?,
-            format!("CPU f64 reference, {}", describe(&shadows, blockers.len())),
+            format!(
+                "CPU f64 reference, {}{}",
+                describe(&shadows, blockers.len()),
+                describe_indirect(&indirect)
+            ),
         )
     } else {
         (
             render_logsh_image(&gpu, &frame, args.msaa)?,
-            format!("log-SH, {}", describe(&shadows, blockers.len())),
+            format!(
+                "log-SH, {}{}",
+                describe(&shadows, blockers.len()),
+                describe_indirect(&indirect)
+            ),
         )
     };
     let elapsed = started.elapsed();
@@ -406,7 +424,7 @@ fn study(quick: bool, output_dir: PathBuf) -> Result<(), CliError> {
     say!(
         "study of {} settings on {} scene(s) in {:.0} s → {}",
         results.rows.len(),
-        results.references.len(),
+        results.references.iter().filter(|r| r.bounces == 0).count(),
         started.elapsed().as_secs_f64(),
         options.output_dir.display()
     );
@@ -493,6 +511,38 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, samples: u32) 
         1000.0 / mean
     );
     Ok(())
+}
+
+/// The baked indirect light of a project from its bake cache, if it has a usable one
+/// (a stale or unreadable cache is reported and left out; `lightpaint bake` rebuilds it).
+fn baked_indirect(document: &Document) -> Option<BakedIndirect> {
+    use lightpaint::project::bake_cache::{self, CacheLookup};
+    let project = document.project_path.as_ref()?;
+    let path = bake_cache::cache_path(project);
+    match bake_cache::load_for_scene(&path, &document.scene) {
+        CacheLookup::Fresh(maps) => Some(BakedIndirect::from_maps(&document.scene, &maps)),
+        CacheLookup::LightsChanged { maps, lights } => {
+            eprintln!(
+                "warning: {}: {} light(s) moved since the bake; their indirect light is left out (run `lightpaint bake`)",
+                path.display(),
+                lights.len()
+            );
+            Some(BakedIndirect::from_maps(&document.scene, &maps))
+        }
+        CacheLookup::Missing => None,
+        CacheLookup::Unusable(reason) => {
+            eprintln!("warning: no baked indirect light: {reason} (run `lightpaint bake`)");
+            None
+        }
+    }
+}
+
+fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
+    if indirect.is_some() {
+        ", baked indirect light"
+    } else {
+        ""
+    }
 }
 
 fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {

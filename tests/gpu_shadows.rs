@@ -73,6 +73,7 @@ fn gpu_matches_the_cpu_reference_on_the_samples() {
         assert!(!blockers.is_empty(), "{name}: the sample has sphere-like objects");
         let shadows = ShadowSettings::default();
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene: &scene,
             camera: &camera,
             settings: &settings,
@@ -98,6 +99,7 @@ fn every_method_and_order_matches_the_cpu_reference() {
                 ..ShadowSettings::default()
             };
             let frame = ShadowFrame {
+                baked_indirect: None,
                 scene: &scene,
                 camera: &camera,
                 settings: &settings,
@@ -134,6 +136,7 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     let (width, height) = (101, 101);
     let render = |blockers: &[Sphere]| {
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene: &scene,
             camera: &camera,
             settings: &settings,
@@ -146,7 +149,7 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     };
     let lit = render(&[]);
     let shadowed = render(&[ball]);
-    let surfaces = capture_surfaces(&gpu, &scene, &camera, width, height).expect("surfaces");
+    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
     // The pixel whose surface point is nearest the plane's centre, and one near a corner.
     let nearest = |target: glam::DVec3| {
         (0..surfaces.len())
@@ -250,6 +253,7 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
             ..ShadowSettings::default()
         };
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene: &scene,
             camera: &camera,
             settings: &settings,
@@ -299,6 +303,7 @@ fn per_vertex_shading_builds_at_every_order_the_settings_accept() {
             ..ShadowSettings::default()
         };
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene: &scene,
             camera: &camera,
             settings: &settings,

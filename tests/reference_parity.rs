@@ -91,6 +91,7 @@ fn assert_direct_parity(name: &str, scene: &Scene, camera: &Camera, orders: &[us
             ..ShadowSettings::default()
         };
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene,
             camera,
             settings: &settings,

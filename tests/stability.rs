@@ -97,6 +97,7 @@ fn checks(gpu: &GpuContext, case: &Case) {
     let settings = RenderSettings::default();
     let (width, height) = SIZE;
     let frame = ShadowFrame {
+        baked_indirect: None,
         scene: &case.scene,
         camera: &case.camera,
         settings: &settings,
@@ -105,7 +106,7 @@ fn checks(gpu: &GpuContext, case: &Case) {
         width,
         height,
     };
-    let surfaces = capture_surfaces(gpu, &case.scene, &case.camera, width, height).expect("surfaces");
+    let surfaces = capture_surfaces(gpu, &case.scene, &case.camera, None, width, height).expect("surfaces");
     let lights: Vec<GpuLight> = case.scene.lights.iter().map(GpuLight::new).collect();
     let no_environment = [[0.0f32; 4]; 9];
     let inputs = ShadingInputs {

@@ -71,5 +71,15 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
             "{method}: {rmse} vs the exact exponential's {exact}"
         );
     }
+    // Against the reference with one bounce, the baked maps' indirect light must bring the
+    // frame closer than the direct light alone.
+    let (gi, baked) = (find("o4-hyb-e0.1-gi"), find("o4-hyb-e0.1-gi-baked"));
+    assert!(
+        number(baked, "rmse") < number(gi, "rmse"),
+        "against the one-bounce reference: baked indirect {} vs none {}",
+        baked["rmse"],
+        gi["rmse"]
+    );
+    assert_eq!(baked["reference_bounces"], "1");
     assert!(stdout.contains("study of"), "{stdout}");
 }

@@ -165,6 +165,29 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
     }
     reopened.run();
     reopened.get_by_label_contains("read the bake cache");
+
+    // The baked maps add their indirect light to the viewport; the checkbox takes it away.
+    let rect = reopened.state().viewport_rect();
+    let pixels_per_point = reopened.ctx.pixels_per_point();
+    let radius = rect.height() / 2.0;
+    let with_indirect = mean_luma_near(
+        &reopened.render().expect("render"),
+        rect.center(),
+        radius,
+        pixels_per_point,
+    );
+    reopened.get_by_label("baked indirect light").click();
+    reopened.run();
+    let without = mean_luma_near(
+        &reopened.render().expect("render"),
+        rect.center(),
+        radius,
+        pixels_per_point,
+    );
+    assert!(
+        with_indirect > without + 1.0,
+        "baked indirect light brightens the view: {with_indirect:.1} vs {without:.1}"
+    );
 }
 
 /// The studio sample: pick the brighten brush, drag across the floor in front of the

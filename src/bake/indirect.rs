@@ -13,6 +13,7 @@ use std::f32::consts::{PI, TAU};
 
 use glam::{DVec3, Vec3};
 
+use super::LightContribution;
 use super::direct::visible_samples;
 use super::scene_bvh::SceneBvh;
 use crate::random::SplitMix64;
@@ -96,10 +97,10 @@ impl PathVertex {
     }
 }
 
-/// Per light of `lights` (index, SH at the settings' order) of the reflected radiance
-/// arriving at `p` (normal `n`) after 1 to `settings.bounces` bounces; lights that
-/// contribute nothing left out. `reflectances` holds [`bounce_reflectance`] of each
-/// material.
+/// Per light of `lights`, the SH (the settings' order) of the reflected radiance arriving
+/// at `p` (normal `n`) after 1 to `settings.bounces` bounces, and the irradiance it gives
+/// the surface, (2π/M)·Σ_k L_k·(n·ω_k); lights that contribute nothing left out.
+/// `reflectances` holds [`bounce_reflectance`] of each material.
 ///
 /// From each of the evenly spread directions ω_k a path is followed: at its j-th surface
 /// q_j, next-event estimation adds T_j·L_i(q_j → q_{j−1}) for every light i (the exact
@@ -116,12 +117,13 @@ pub fn indirect_sh(
     p: Vec3,
     n: Vec3,
     settings: &super::BakeSettings,
-) -> Vec<(u32, Vec<f32>)> {
+) -> Vec<LightContribution> {
     let (order, directions) = (settings.order, settings.indirect_directions);
     let offset = settings.ray_offset_m;
     let origin = p + n * offset;
     // A per-vertex turn from its position, so the spiral differs between neighbours.
     let turn = (p.dot(Vec3::new(12.9898, 78.233, 37.719)).sin() * 43_758.547).fract() * TAU;
+    // Per light: the SH sum, then the irradiance in the last slot.
     let mut sums: Vec<Option<Vec<f64>>> = vec![None; scene.lights.len()];
     let solid_angle = 2.0 * PI as f64 / directions.max(1) as f64;
     let seed = p
@@ -130,7 +132,8 @@ pub fn indirect_sh(
         .fold(0x5eed_u64, |h, c| h.rotate_left(21) ^ c.to_bits() as u64);
     let mut random = SplitMix64(seed);
     for omega in hemisphere_directions(n, directions.max(1), turn) {
-        let y = sh::basis(order, omega.as_dvec3());
+        let mut y = sh::basis(order, omega.as_dvec3());
+        y.push(n.dot(omega) as f64);
         let mut surface = next_surface(bvh, scene, reflectances, origin, omega);
         let mut throughput = 1.0f64;
         let mut bounce = 1;
@@ -142,7 +145,7 @@ pub fn indirect_sh(
                     continue;
                 }
                 let weight = solid_angle * throughput * radiance;
-                let sum = sums[i].get_or_insert_with(|| vec![0.0; order * order]);
+                let sum = sums[i].get_or_insert_with(|| vec![0.0; order * order + 1]);
                 for (s, yk) in sum.iter_mut().zip(&y) {
                     *s += weight * yk;
                 }
@@ -171,6 +174,14 @@ pub fn indirect_sh(
     }
     sums.into_iter()
         .enumerate()
-        .filter_map(|(i, sum)| sum.map(|s| (i as u32, s.into_iter().map(|v| v as f32).collect())))
+        .filter_map(|(i, sum)| {
+            let mut sh: Vec<f32> = sum?.into_iter().map(|v| v as f32).collect();
+            let indirect_irradiance = sh.pop().unwrap_or(0.0);
+            Some(LightContribution {
+                light: i as u32,
+                sh,
+                indirect_irradiance,
+            })
+        })
         .collect()
 }

@@ -1,18 +1,24 @@
 //! Storage of the importance maps: per object, compressed sparse rows — the entries of
-//! vertex v are `first[v]..first[v + 1]`, each a light index and n² coefficients in one
-//! flat array — so an entry costs 4 + 4n² bytes (4 + 2n² with f16 coefficients) and no
-//! per-vertex or per-entry allocation (the nested lists this replaces cost about twice
-//! that on the heap). f16 coefficients are stored relative to the largest magnitude of
-//! their light on their object, so a weak light keeps its relative precision (2⁻¹¹).
+//! vertex v are `first[v]..first[v + 1]`, each a light index and n² + 1 values in one
+//! flat array (the n² SH coefficients, then the indirect irradiance) — so an entry costs
+//! 4 + 4(n² + 1) bytes (4 + 2(n² + 1) with f16 values) and no per-vertex or per-entry
+//! allocation (the nested lists this replaces cost about twice that on the heap). f16
+//! values are stored relative to the largest magnitude of their light on their object, so
+//! a weak light keeps its relative precision (2⁻¹¹).
 
 use half::f16;
 
-/// What one light contributes at one vertex while maps are being built: the light's index
-/// and the SH (order of the maps) of its unit-intensity radiance there.
+/// What one light contributes at one vertex while maps are being built: the light's index,
+/// the SH (order of the maps) of its unit-intensity radiance there (direct and indirect),
+/// and the irradiance its indirect light alone gives the vertex's surface.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LightContribution {
     pub light: u32,
     pub sh: Vec<f32>,
+    /// ∫ L_indirect(ω)·max(n·ω, 0) dω at unit intensity (luminance, lux per candela of the
+    /// light): what the real-time renderer adds as baked indirect light, estimated from
+    /// the bounce rays themselves (no SH truncation).
+    pub indirect_irradiance: f32,
 }
 
 /// How coefficients are stored.
@@ -78,12 +84,15 @@ impl Coefficients<'_> {
 pub struct MapEntry<'a> {
     pub light: u32,
     pub sh: Coefficients<'a>,
+    /// See [`LightContribution::indirect_irradiance`].
+    pub indirect_irradiance: f32,
 }
 
 /// The maps of one object's vertices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectMaps {
-    coefficients_per_entry: usize,
+    /// n² SH coefficients and the indirect irradiance.
+    values_per_entry: usize,
     first: Vec<u32>,
     lights: Vec<u32>,
     store: RawCoefficients,
@@ -105,7 +114,7 @@ pub enum CoefficientArrays<'a> {
 impl ObjectMaps {
     /// Packs per-vertex lists (each sorted by light) of order-`order` contributions.
     pub fn from_vertices(order: usize, vertices: &[Vec<LightContribution>], precision: Precision) -> ObjectMaps {
-        let per_entry = order * order;
+        let per_entry = order * order + 1;
         let entries: usize = vertices.iter().map(Vec::len).sum();
         let mut first = Vec::with_capacity(vertices.len() + 1);
         let mut lights = Vec::with_capacity(entries);
@@ -114,7 +123,13 @@ impl ObjectMaps {
             lights.extend(vertex.iter().map(|e| e.light));
             first.push(lights.len() as u32);
         }
-        let coefficient = |e: &LightContribution, k: usize| e.sh.get(k).copied().unwrap_or(0.0);
+        let coefficient = |e: &LightContribution, k: usize| {
+            if k + 1 == per_entry {
+                e.indirect_irradiance
+            } else {
+                e.sh.get(k).copied().unwrap_or(0.0)
+            }
+        };
         let store = match precision {
             Precision::F32 => RawCoefficients::F32(
                 vertices
@@ -145,7 +160,7 @@ impl ObjectMaps {
             }
         };
         ObjectMaps {
-            coefficients_per_entry: per_entry,
+            values_per_entry: per_entry,
             first,
             lights,
             store,
@@ -168,16 +183,25 @@ impl ObjectMaps {
     }
 
     fn entry(&self, k: usize) -> MapEntry<'_> {
-        let n = self.coefficients_per_entry;
+        let n = self.values_per_entry;
         let light = self.lights[k];
-        let sh = match &self.store {
-            RawCoefficients::F32(values) => Coefficients::F32(&values[k * n..(k + 1) * n]),
-            RawCoefficients::F16 { values, scales } => Coefficients::F16 {
-                values: &values[k * n..(k + 1) * n],
-                scale: scales.get(light as usize).copied().unwrap_or(1.0),
-            },
+        let (sh, indirect) = (k * n..(k + 1) * n - 1, (k + 1) * n - 1);
+        let (sh, indirect_irradiance) = match &self.store {
+            RawCoefficients::F32(values) => (Coefficients::F32(&values[sh]), values[indirect]),
+            RawCoefficients::F16 { values, scales } => {
+                let scale = scales.get(light as usize).copied().unwrap_or(1.0);
+                let coefficients = Coefficients::F16 {
+                    values: &values[sh],
+                    scale,
+                };
+                (coefficients, values[indirect].to_f32() * scale)
+            }
         };
-        MapEntry { light, sh }
+        MapEntry {
+            light,
+            sh,
+            indirect_irradiance,
+        }
     }
 
     /// The entries of vertex `v` (none past the end), by light.
@@ -195,6 +219,7 @@ impl ObjectMaps {
             .map(|e| LightContribution {
                 light: e.light,
                 sh: e.sh.to_vec(),
+                indirect_irradiance: e.indirect_irradiance,
             })
             .collect()
     }
@@ -212,7 +237,7 @@ impl ObjectMaps {
     /// The maps with only the entries `keep` accepts (same precision and scales); also
     /// how many it dropped.
     pub fn filtered(&self, keep: impl Fn(&MapEntry) -> bool) -> (ObjectMaps, usize) {
-        let n = self.coefficients_per_entry;
+        let n = self.values_per_entry;
         let mut first = Vec::with_capacity(self.first.len());
         let mut lights = Vec::with_capacity(self.lights.len());
         let mut kept = Vec::with_capacity(self.lights.len());
@@ -243,7 +268,7 @@ impl ObjectMaps {
         };
         let dropped = self.entry_count() - lights.len();
         let maps = ObjectMaps {
-            coefficients_per_entry: n,
+            values_per_entry: n,
             first,
             lights,
             store,
@@ -264,7 +289,7 @@ impl ObjectMaps {
     }
 
     /// Maps from raw arrays, checked: offsets rising from 0 to the entry count, lights
-    /// below `light_count`, n² coefficients per entry, a finite positive scale per light.
+    /// below `light_count`, n² + 1 values per entry, a finite positive scale per light.
     pub fn from_raw(
         order: usize,
         light_count: usize,
@@ -272,7 +297,7 @@ impl ObjectMaps {
         lights: Vec<u32>,
         coefficients: RawCoefficients,
     ) -> Result<ObjectMaps, String> {
-        let per_entry = order * order;
+        let per_entry = order * order + 1;
         if first.first() != Some(&0) || first.windows(2).any(|w| w[0] > w[1]) {
             return Err("vertex offsets do not rise from 0".into());
         }
@@ -295,7 +320,7 @@ impl ObjectMaps {
             return Err(format!("an entry names light {light} of {light_count}"));
         }
         Ok(ObjectMaps {
-            coefficients_per_entry: per_entry,
+            values_per_entry: per_entry,
             first,
             lights,
             store: coefficients,
@@ -327,6 +352,7 @@ mod tests {
         LightContribution {
             light,
             sh: vec![dc, 0.5, -0.25, 0.125],
+            indirect_irradiance: dc / 4.0,
         }
     }
 
@@ -342,7 +368,7 @@ mod tests {
         assert_eq!(dropped, 1);
         assert_eq!(kept.contributions(0), vec![c(2, 3.0)]);
         assert_eq!(kept.contributions(2), vec![c(1, 2.0)]);
-        assert_eq!(maps.memory_bytes(), 4 * (4 + 3 + 12));
+        assert_eq!(maps.memory_bytes(), 4 * (4 + 3 + 15));
     }
 
     #[test]
@@ -352,6 +378,7 @@ mod tests {
         let weak = |sh: [f32; 4]| LightContribution {
             light: 0,
             sh: sh.to_vec(),
+            indirect_irradiance: sh[0] / 2.0,
         };
         let vertices = vec![
             vec![weak([1e-6, 5e-7, -2.5e-7, 1.25e-7]), c(1, 1.0)],
@@ -363,6 +390,8 @@ mod tests {
             for (a, b) in stored.sh.iter().zip(&exact.sh) {
                 assert!((a - b).abs() <= largest / 2048.0, "{a} vs {b}");
             }
+            let (a, b) = (stored.indirect_irradiance, exact.indirect_irradiance);
+            assert!((a - b).abs() <= largest / 2048.0, "{a} vs {b}");
         }
         assert!(maps.memory_bytes() < ObjectMaps::from_vertices(2, &vertices, Precision::F32).memory_bytes());
         let (kept, _) = maps.filtered(|e| e.light == 0);

@@ -234,7 +234,11 @@ fn bake_lights(
                             settings.light_samples,
                             settings.ray_offset_m,
                         )
-                        .map(|sh| LightContribution { light: i as u32, sh })
+                        .map(|sh| LightContribution {
+                            light: i as u32,
+                            sh,
+                            indirect_irradiance: 0.0,
+                        })
                     })
                     .collect();
                 if settings.bounces > 0 {
@@ -263,12 +267,15 @@ fn bake_lights(
     Some((maps, bvh.rays_cast()))
 }
 
-/// Adds each (light, SH) of `more` into `entries` (which stay sorted by light).
-fn merge(entries: &mut Vec<LightContribution>, more: Vec<(u32, Vec<f32>)>) {
-    for (light, sh) in more {
-        match entries.iter_mut().find(|e| e.light == light) {
-            Some(entry) => entry.sh.iter_mut().zip(&sh).for_each(|(a, b)| *a += b),
-            None => entries.push(LightContribution { light, sh }),
+/// Adds each indirect contribution of `more` into `entries` (which stay sorted by light).
+fn merge(entries: &mut Vec<LightContribution>, more: Vec<LightContribution>) {
+    for indirect in more {
+        match entries.iter_mut().find(|e| e.light == indirect.light) {
+            Some(entry) => {
+                entry.sh.iter_mut().zip(&indirect.sh).for_each(|(a, b)| *a += b);
+                entry.indirect_irradiance += indirect.indirect_irradiance;
+            }
+            None => entries.push(indirect),
         }
     }
     entries.sort_by_key(|e| e.light);

@@ -8,11 +8,14 @@
 //! truncated, corrupt or of another version fails its checksum or header and is never
 //! trusted. Writes are atomic, and only finished bakes are written.
 //!
-//! Layout (little-endian): magic `LPBAKE`, u16 version, the 32-byte scene key, u32 light
+//! Layout (little-endian): magic `LPBAKE`, u16 version, u32 length and the bake settings
+//! as JSON, the 32-byte scene key, u32 light
 //! count and 32 bytes per light, u32 order, u64 dropped entries, u32 object count, per
 //! object the u32 lengths of its offset and light arrays, the u32 offsets and lights, a
-//! storage byte (0: f32 coefficients follow; 1: a u32 count of per-light f32 scales, the
-//! scales, then f16 coefficients), and last the BLAKE3 hash of everything before it.
+//! storage byte (0: f32 values follow; 1: a u32 count of per-light f32 scales, the
+//! scales, then f16 values), n² + 1 values per entry (the SH coefficients, then the
+//! indirect irradiance; version 5, earlier versions had no irradiance and are rebuilt),
+//! and last the BLAKE3 hash of everything before it.
 
 use std::path::{Path, PathBuf};
 
@@ -24,13 +27,16 @@ use crate::bake::{
 use crate::scene::Scene;
 
 const MAGIC: &[u8; 6] = b"LPBAKE";
-const VERSION: u16 = 4;
+const VERSION: u16 = 5;
 
 /// What the maps were baked from.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct BakeKey {
     pub scene: [u8; 32],
     pub lights: Vec<[u8; 32]>,
+    /// The settings the scene hash covers (also written into the cache, so a reader that
+    /// does not choose settings, like `render`, can check a cache for its scene).
+    pub settings: BakeSettings,
 }
 
 impl BakeKey {
@@ -42,8 +48,11 @@ impl BakeKey {
             hasher.update(bytemuck::cast_slice(&object.positions));
             hasher.update(bytemuck::cast_slice(&object.normals));
             hasher.update(bytemuck::cast_slice(&object.indices));
-            // The bounces read the material's reflectance (diffuse and glossy).
-            if let Some(material) = scene.materials.get(object.material) {
+            // The bounces read the material's reflectance (diffuse and glossy); direct
+            // light does not, so a bake without bounces survives a colour change.
+            if settings.bounces > 0
+                && let Some(material) = scene.materials.get(object.material)
+            {
                 let r = crate::bake::indirect::bounce_reflectance(material);
                 for value in [r.k_d.to_array(), r.k_s.to_array(), [r.phong_exponent; 3]].as_flattened() {
                     hasher.update(&value.to_le_bytes());
@@ -58,6 +67,7 @@ impl BakeKey {
         BakeKey {
             scene: *hasher.finalize().as_bytes(),
             lights,
+            settings: *settings,
         }
     }
 }
@@ -86,6 +96,9 @@ pub fn save(path: &Path, key: &BakeKey, maps: &ImportanceMaps) -> std::io::Resul
     let mut bytes = Vec::with_capacity(64 + maps.entry_count() * (4 + 4 * maps.order * maps.order));
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&VERSION.to_le_bytes());
+    let settings = serde_json::to_vec(&key.settings).unwrap_or_default();
+    put_u32(&mut bytes, settings.len());
+    bytes.extend_from_slice(&settings);
     bytes.extend_from_slice(&key.scene);
     put_u32(&mut bytes, key.lights.len());
     key.lights.iter().for_each(|h| bytes.extend_from_slice(h));
@@ -133,7 +146,21 @@ pub fn load(path: &Path, key: &BakeKey) -> CacheLookup {
     }
 }
 
-fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
+/// The maps in the cache at `path` for `scene`, with whatever settings they were baked
+/// (for readers that do not choose bake settings, such as `render`).
+pub fn load_for_scene(path: &Path, scene: &Scene) -> CacheLookup {
+    let bytes = match std::fs::read(path) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return CacheLookup::Missing,
+        Err(e) => return CacheLookup::Unusable(format!("{}: cannot read: {e}", path.display())),
+    };
+    let parsed = header(&bytes).and_then(|(_, settings)| parse(&bytes, &BakeKey::of(scene, &settings)));
+    parsed.unwrap_or_else(|reason| CacheLookup::Unusable(format!("{}: {reason}", path.display())))
+}
+
+/// Checks the magic, checksum and version; returns a reader after the header and the
+/// settings the maps were baked with.
+fn header(bytes: &[u8]) -> Result<(Reader<'_>, BakeSettings), String> {
     if bytes.len() < MAGIC.len() + 2 + 32 || &bytes[..MAGIC.len()] != MAGIC {
         return Err("not a lightpaint bake cache".into());
     }
@@ -149,6 +176,15 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
     if version != VERSION {
         return Err(format!("cache version {version}, this build reads {VERSION}"));
     }
+    let length = reader.u32()?;
+    let settings =
+        serde_json::from_slice(reader.take(length)?).map_err(|e| format!("unreadable bake settings: {e}"))?;
+    Ok((reader, settings))
+}
+
+fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
+    let (mut reader, _) = header(bytes)?;
+    let body = reader.bytes;
     let scene: [u8; 32] = reader.take(32)?.try_into().map_err(|_| "short scene key")?;
     if scene != key.scene {
         return Err("baked for other geometry, materials or settings".into());
@@ -173,7 +209,7 @@ fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
         let entries = reader.u32()?;
         let first: Vec<u32> = bytemuck::pod_collect_to_vec(reader.take(4 * offsets)?);
         let lights: Vec<u32> = bytemuck::pod_collect_to_vec(reader.take(4 * entries)?);
-        let count = entries * order * order;
+        let count = entries * (order * order + 1);
         let coefficients = match reader.take(1)?[0] {
             0 => RawCoefficients::F32(bytemuck::pod_collect_to_vec(reader.take(4 * count)?)),
             1 => {
@@ -344,6 +380,47 @@ mod tests {
             load(&path, &BakeKey::of(&scene, &other_settings)),
             CacheLookup::Unusable(_)
         ));
+    }
+
+    /// Direct light does not depend on the materials, so a bake without bounces stays
+    /// fresh when a colour changes; a bake with bounces does not.
+    #[test]
+    fn materials_key_the_cache_only_when_light_bounces() {
+        let mut scene = scene();
+        scene.materials.push(crate::scene::Material::default());
+        let key = |scene: &Scene, bounces| {
+            BakeKey::of(
+                scene,
+                &BakeSettings {
+                    bounces,
+                    ..BakeSettings::default()
+                },
+            )
+            .scene
+        };
+        let (direct, bounced) = (key(&scene, 0), key(&scene, 1));
+        scene.materials[0].base_color = glam::Vec4::new(0.2, 0.4, 0.6, 1.0);
+        assert_eq!(key(&scene, 0), direct);
+        assert_ne!(key(&scene, 1), bounced);
+    }
+
+    /// `load_for_scene` finds a cache whatever settings it was baked with, and only for
+    /// its own scene.
+    #[test]
+    fn a_cache_is_found_for_its_scene_without_knowing_its_settings() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.lightpaint.bake");
+        let mut scene = scene();
+        let settings = BakeSettings {
+            order: 2,
+            bounces: 0,
+            ..BakeSettings::default()
+        };
+        let maps = bake_maps(&scene, &settings);
+        save(&path, &BakeKey::of(&scene, &settings), &maps).unwrap();
+        assert!(matches!(load_for_scene(&path, &scene), CacheLookup::Fresh(read) if read == maps));
+        scene.objects[0].positions[0].y += 0.5;
+        assert!(matches!(load_for_scene(&path, &scene), CacheLookup::Unusable(_)));
     }
 
     #[test]

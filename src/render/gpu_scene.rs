@@ -1,9 +1,10 @@
 //! A [`Scene`] uploaded to the GPU: vertex and index buffers per object, one bind group
-//! per material (uniform, mipmapped base colour texture, sampler), and the frame uniform
-//! and light storage buffer shared by every draw.
+//! per material (uniform, mipmapped base colour texture, sampler), and the frame uniform,
+//! light storage buffer and baked indirect light shared by every draw.
 
 use wgpu::util::DeviceExt;
 
+use super::BakedIndirect;
 use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance};
 use super::pipeline::SceneLayouts;
 use crate::scene::{Camera, Environment, Light, Scene, TextureImage};
@@ -15,6 +16,10 @@ pub struct GpuObject {
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
     pub material: usize,
+    /// Where this object's vertices start in the baked indirect light buffer.
+    pub first_vertex: u32,
+    /// Index of the object in [`Scene::objects`] (objects without triangles are not uploaded).
+    pub source: usize,
 }
 
 pub struct GpuScene {
@@ -23,6 +28,8 @@ pub struct GpuScene {
     frame_buffer: wgpu::Buffer,
     light_buffer: wgpu::Buffer,
     light_capacity: usize,
+    /// Baked indirect irradiance, linear RGB per vertex of every object (zeros: none).
+    indirect_buffer: wgpu::Buffer,
     pub frame_bind_group: wgpu::BindGroup,
     pub light_count: usize,
     environment_irradiance: [[f32; 4]; 9],
@@ -30,11 +37,13 @@ pub struct GpuScene {
 
 impl GpuScene {
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
-        let objects = scene
+        let mut first_vertex = 0u32;
+        let objects: Vec<GpuObject> = scene
             .objects
             .iter()
-            .filter(|o| !o.indices.is_empty())
-            .map(|object| {
+            .enumerate()
+            .filter(|(_, o)| !o.indices.is_empty())
+            .map(|(source, object)| {
                 let vertices: Vec<GpuVertex> = (0..object.positions.len())
                     .map(|i| GpuVertex {
                         position: object.positions[i].to_array(),
@@ -42,6 +51,8 @@ impl GpuScene {
                         uv: object.uvs[i].to_array(),
                     })
                     .collect();
+                let object_first_vertex = first_vertex;
+                first_vertex += vertices.len() as u32;
                 GpuObject {
                     vertex_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(&object.name),
@@ -56,9 +67,18 @@ impl GpuScene {
                     vertex_count: vertices.len() as u32,
                     index_count: object.indices.len() as u32,
                     material: object.material.min(scene.materials.len().saturating_sub(1)),
+                    first_vertex: object_first_vertex,
+                    source,
                 }
             })
             .collect();
+        let indirect_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("baked indirect light"),
+            // Never empty: a binding needs a buffer of some size.
+            size: 12 * first_vertex.max(1) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
 
         let textures: Vec<wgpu::TextureView> = scene
             .textures
@@ -115,13 +135,14 @@ impl GpuScene {
         });
         let light_capacity = scene.lights.len().max(1);
         let light_buffer = create_light_buffer(device, light_capacity);
-        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &light_buffer);
+        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &light_buffer, &indirect_buffer);
         let mut gpu_scene = GpuScene {
             objects,
             material_bind_groups,
             frame_buffer,
             light_buffer,
             light_capacity,
+            indirect_buffer,
             frame_bind_group,
             light_count: 0,
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
@@ -141,7 +162,13 @@ impl GpuScene {
         if lights.len() > self.light_capacity {
             self.light_capacity = lights.len().next_power_of_two();
             self.light_buffer = create_light_buffer(device, self.light_capacity);
-            self.frame_bind_group = frame_bind_group(device, layouts, &self.frame_buffer, &self.light_buffer);
+            self.frame_bind_group = frame_bind_group(
+                device,
+                layouts,
+                &self.frame_buffer,
+                &self.light_buffer,
+                &self.indirect_buffer,
+            );
         }
         let gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
         if !gpu_lights.is_empty() {
@@ -160,6 +187,26 @@ impl GpuScene {
             self.environment_irradiance,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+    }
+
+    /// Replaces the baked indirect light (None: none): per object of the [`Scene`] it was
+    /// uploaded from, the irradiance of each vertex.
+    pub fn set_baked_indirect(&self, queue: &wgpu::Queue, indirect: Option<&BakedIndirect>) {
+        let vertex_count: u32 = self.objects.iter().map(|o| o.vertex_count).sum();
+        let mut values = vec![0.0f32; 3 * vertex_count as usize];
+        if let Some(indirect) = indirect {
+            for object in &self.objects {
+                let Some(irradiance) = indirect.objects.get(object.source) else {
+                    continue;
+                };
+                let start = 3 * object.first_vertex as usize;
+                let count = irradiance.len().min(object.vertex_count as usize);
+                values[start..start + 3 * count].copy_from_slice(bytemuck::cast_slice(&irradiance[..count]));
+            }
+        }
+        if !values.is_empty() {
+            queue.write_buffer(&self.indirect_buffer, 0, bytemuck::cast_slice(&values));
+        }
     }
 
     /// Replaces the environment light (None: no environment).
@@ -182,6 +229,7 @@ fn frame_bind_group(
     layouts: &SceneLayouts,
     frame: &wgpu::Buffer,
     lights: &wgpu::Buffer,
+    indirect: &wgpu::Buffer,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
@@ -194,6 +242,10 @@ fn frame_bind_group(
             wgpu::BindGroupEntry {
                 binding: 1,
                 resource: lights.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: indirect.as_entire_binding(),
             },
         ],
     })

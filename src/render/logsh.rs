@@ -127,11 +127,13 @@ pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
     }
 }
 
+/// Draws one object; its one instance's index is the object's first vertex in the baked
+/// indirect light (scene.wgsl reads it as `instance_index`).
 fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &GpuObject) {
     pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-    pass.draw_indexed(0..object.index_count, 0, 0..1);
+    pass.draw_indexed(0..object.index_count, 0, object.first_vertex..object.first_vertex + 1);
 }
 
 /// Format of the surface channels read back for the CPU reference.

@@ -2,6 +2,7 @@
 //! pipeline and offscreen targets. Colour pipeline (docs/architecture.md): linear radiance
 //! × 2^EV exposure → per-channel ACES fit tone curve → sRGB encode by the target format.
 
+mod baked_indirect;
 pub mod blocker_groups;
 mod color;
 mod context;
@@ -18,6 +19,7 @@ pub mod shaders;
 mod shadow_settings;
 pub mod wgsl_sh;
 
+pub use baked_indirect::BakedIndirect;
 pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
@@ -44,6 +46,8 @@ pub struct RenderSettings {
     /// Share of the editor viewport's pixels along each side that are shaded (0.25–1):
     /// 0.5 shades a quarter of the pixels, for slow GPUs (project format 2).
     pub viewport_resolution_scale: f32,
+    /// Add the bake's indirect light when baked maps exist (project format 4).
+    pub baked_indirect: bool,
 }
 
 impl Default for RenderSettings {
@@ -54,6 +58,7 @@ impl Default for RenderSettings {
             shadows: ShadowSettings::default(),
             blockers: crate::blockers::BlockerSettings::default(),
             viewport_resolution_scale: 1.0,
+            baked_indirect: true,
         }
     }
 }

@@ -9,7 +9,7 @@ use super::gpu_types::{GpuLight, environment_irradiance};
 use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, shadow_layout, surface_pipelines};
 use super::per_vertex::VertexVisibility;
 use super::pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
-use super::{GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
+use super::{BakedIndirect, GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
 
@@ -105,6 +105,8 @@ pub struct ShadowFrame<'a> {
     pub settings: &'a RenderSettings,
     pub shadows: &'a ShadowSettings,
     pub blockers: &'a [Sphere],
+    /// Baked indirect light to add (None: none).
+    pub baked_indirect: Option<&'a BakedIndirect>,
     pub width: u32,
     pub height: u32,
 }
@@ -151,6 +153,7 @@ impl<'a> ShadowRenderer<'a> {
         let layouts = SceneLayouts::new(&gpu.device);
         let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples);
         let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
+        gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);
         let blockers = GpuBlockers::upload(
             &gpu.device,
             &gpu.queue,
@@ -201,17 +204,20 @@ impl<'a> ShadowRenderer<'a> {
 }
 
 /// The visible surface point of every pixel (row-major; None where no geometry is seen),
-/// rasterised on the GPU with one sample at each pixel centre.
+/// rasterised on the GPU with one sample at each pixel centre; `baked_indirect` light, if
+/// any, is part of each point's emission (it is unshadowed).
 pub fn capture_surfaces(
     gpu: &GpuContext,
     scene: &Scene,
     camera: &Camera,
+    baked_indirect: Option<&BakedIndirect>,
     width: u32,
     height: u32,
 ) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
     check_size(gpu, width, height)?;
     let layouts = SceneLayouts::new(&gpu.device);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
+    gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
     gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, 0.0);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
@@ -279,7 +285,14 @@ pub fn capture_surfaces(
 /// the CPU shades each in f64 ([`cpu::shadowed_radiance`]); background pixels are exact.
 pub fn render_cpu_image(gpu: &GpuContext, frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
     check_size(gpu, frame.width, frame.height)?;
-    let surfaces = capture_surfaces(gpu, frame.scene, frame.camera, frame.width, frame.height)?;
+    let surfaces = capture_surfaces(
+        gpu,
+        frame.scene,
+        frame.camera,
+        frame.baked_indirect,
+        frame.width,
+        frame.height,
+    )?;
     shade_surfaces(&surfaces, frame)
 }
 

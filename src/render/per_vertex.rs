@@ -86,13 +86,13 @@ impl PerVertexCompute {
         }
     }
 
-    /// The vertex buffer layout of the visibility attributes (locations 3…).
+    /// The vertex buffer layout of the visibility attributes (locations 4…).
     pub fn attributes(order: usize) -> Vec<wgpu::VertexAttribute> {
         (0..wgsl_sh::vec4_count(order))
             .map(|v| wgpu::VertexAttribute {
                 format: wgpu::VertexFormat::Float32x4,
                 offset: 16 * v as u64,
-                shader_location: 3 + v as u32,
+                shader_location: 4 + v as u32,
             })
             .collect()
     }

@@ -43,6 +43,11 @@ impl SceneLayouts {
                     fragment,
                     buffer(wgpu::BufferBindingType::Storage { read_only: true }),
                 ),
+                entry(
+                    2,
+                    wgpu::ShaderStages::VERTEX,
+                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
+                ),
             ],
         });
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -164,12 +169,7 @@ impl ScenePipeline {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-        for object in &scene.objects {
-            pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
-            pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
-            pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..object.index_count, 0, 0..1);
-        }
+        super::logsh::draw_objects(&mut pass, scene);
     }
 }
 

@@ -82,18 +82,18 @@ pub fn sh_module(order: usize, method: ExpMethod) -> String {
 /// inter-stage variables, of which the fragment stage's `front_facing` built-in takes one
 /// (wgpu counts it): orders up to 6.
 pub fn supports_per_vertex(order: usize) -> bool {
-    const SCENE_VARYINGS: usize = 3;
+    const SCENE_VARYINGS: usize = 4;
     const FRONT_FACING: usize = 1;
     const MAX_INTER_STAGE_VARIABLES: usize = 16;
     SCENE_VARYINGS + vec4_count(order) + FRONT_FACING <= MAX_INTER_STAGE_VARIABLES
 }
 
-/// The visibility SH as vertex attributes / varyings at locations 3…, and the vertex
+/// The visibility SH as vertex attributes / varyings at locations 4…, and the vertex
 /// output of the per-vertex pass (scene.wgsl's VertexOut plus those).
 fn per_vertex_structs(order: usize) -> String {
     let k = vec4_count(order);
     let fields: Vec<String> = (0..k)
-        .map(|v| format!("    @location({}) g{v}: vec4<f32>,", 3 + v))
+        .map(|v| format!("    @location({}) g{v}: vec4<f32>,", 4 + v))
         .collect();
     let names: Vec<String> = (0..k).map(|v| format!("v.g{v}")).collect();
     format!(
@@ -109,10 +109,11 @@ struct VertexOutWithVisibility {{
     @location(0) world_position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) indirect_irradiance: vec3<f32>,
 {fields}
 }};
 fn with_visibility(o: VertexOut, v: Visibility) -> VertexOutWithVisibility {{
-    return VertexOutWithVisibility(o.clip, o.world_position, o.normal, o.uv, {names});
+    return VertexOutWithVisibility(o.clip, o.world_position, o.normal, o.uv, o.indirect_irradiance, {names});
 }}
 ",
         fields = fields.join("\n"),

@@ -1,7 +1,8 @@
 //! The knob settings a study measures: every order and exponentiation method crossed
 //! (the CPU's exact exponential up to order 6),
 //! then one knob at a time around the defaults (ε, ratio attenuation, blocker count,
-//! per-vertex shading), plus no shadows at all as the baseline.
+//! per-vertex shading), plus no shadows at all as the baseline; and the defaults against
+//! the global-illumination reference, with and without the bake's indirect light.
 
 use crate::blockers::SphereBudget;
 use crate::render::ShadowSettings;
@@ -13,6 +14,17 @@ pub struct Knobs {
     /// None: the plain raster pass, no shadows.
     pub shadows: Option<ShadowSettings>,
     pub blockers: SphereBudget,
+    pub lighting: Lighting,
+}
+
+/// What light the frame is measured against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lighting {
+    /// The direct-light reference (the real-time renderer's direct light alone).
+    Direct,
+    /// The reference with one bounce, the bake's default; `baked_indirect` adds the baked
+    /// maps' indirect light to the frame.
+    Gi { baked_indirect: bool },
 }
 
 impl Knobs {
@@ -30,6 +42,11 @@ impl Knobs {
         }
         if let SphereBudget::Total(n) = self.blockers {
             label.push_str(&format!("-s{n}"));
+        }
+        match self.lighting {
+            Lighting::Direct => {}
+            Lighting::Gi { baked_indirect: false } => label.push_str("-gi"),
+            Lighting::Gi { baked_indirect: true } => label.push_str("-gi-baked"),
         }
         label
     }
@@ -80,11 +97,13 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
         Knobs {
             shadows: Some(s),
             blockers: default_blockers,
+            lighting: Lighting::Direct,
         }
     };
     let mut grid = vec![Knobs {
         shadows: None,
         blockers: default_blockers,
+        lighting: Lighting::Direct,
     }];
     for &order in &orders {
         for &exp in &methods {
@@ -117,6 +136,13 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
         grid.push(Knobs {
             shadows: Some(defaults),
             blockers: SphereBudget::Total(count),
+            lighting: Lighting::Direct,
+        });
+    }
+    for baked_indirect in [false, true] {
+        grid.push(Knobs {
+            lighting: Lighting::Gi { baked_indirect },
+            ..with(&|_| {})
         });
     }
     grid

@@ -1,7 +1,8 @@
 //! The speed/accuracy study: each sample scene rendered by the real-time renderer over a
 //! grid of knobs ([`grid`]), each frame timed and compared with the converged reference
 //! path tracer in direct-light mode (the real-time renderer draws direct light), on the
-//! displayed image ([`metrics`]). Results go to a CSV, a markdown table, a Pareto plot and
+//! displayed image ([`metrics`]); the defaults also against the reference with one bounce,
+//! with and without the bake's indirect light (maps baked at the default settings). Results go to a CSV, a markdown table, a Pareto plot and
 //! side-by-side images ([`report`]); docs/speed-accuracy.md presents them.
 //!
 //! So that the errors are those of the shading, not of texture filtering or edges, the
@@ -23,12 +24,12 @@ use crate::project::{Document, ProjectError};
 use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
 use crate::render::cpu::SurfacePoint;
 use crate::render::{
-    GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer, capture_surfaces,
-    shade_surfaces,
+    BakedIndirect, GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer,
+    capture_surfaces, shade_surfaces,
 };
 use crate::samples::Sample;
 use crate::scene::{Camera, Scene};
-use grid::{Knobs, knob_grid};
+use grid::{Knobs, Lighting, knob_grid};
 use metrics::{DisplayImage, ImageErrors, image_errors};
 
 /// How big a study to run.
@@ -100,6 +101,8 @@ pub struct StudyRow {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneReference {
     pub scene: String,
+    /// 0: direct light only.
+    pub bounces: u32,
     pub samples_per_pixel: u32,
     pub seconds: f64,
     /// RMSE of the full reference's noise, estimated from its two halves.
@@ -154,28 +157,45 @@ pub fn run_study(
             width,
             height,
             frames: options.timed_frames(),
-            surfaces: capture_surfaces(gpu, &document.scene, &camera, width, height)?,
+            surfaces: capture_surfaces(gpu, &document.scene, &camera, None, width, height)?,
         };
-        let started = Instant::now();
-        let (reference, noise_rmse) = scene_study.converged_reference(options.reference_spp());
-        let reference_entry = SceneReference {
-            scene: sample.name().into(),
-            samples_per_pixel: options.reference_spp(),
-            seconds: started.elapsed().as_secs_f64(),
-            noise_rmse,
-        };
-        say(&format!(
-            "{}: reference {} spp in {:.1} s, noise RMSE {:.4}",
-            reference_entry.scene, reference_entry.samples_per_pixel, reference_entry.seconds, noise_rmse
-        ));
-        results.references.push(reference_entry);
         let grid = knob_grid(options.quick, document.settings.blockers.budget);
+        let gi_bounces = crate::bake::BakeSettings::default().bounces as u32;
+        let wants_gi = grid.iter().any(|k| k.lighting != Lighting::Direct);
+        let mut references = Vec::new();
+        for bounces in std::iter::once(0).chain(wants_gi.then_some(gi_bounces)) {
+            let started = Instant::now();
+            let (image, noise_rmse) = scene_study.converged_reference(options.reference_spp(), bounces);
+            let entry = SceneReference {
+                scene: sample.name().into(),
+                bounces,
+                samples_per_pixel: options.reference_spp(),
+                seconds: started.elapsed().as_secs_f64(),
+                noise_rmse,
+            };
+            say(&format!(
+                "{}: reference ({} bounces) {} spp in {:.1} s, noise RMSE {:.4}",
+                entry.scene, bounces, entry.samples_per_pixel, entry.seconds, noise_rmse
+            ));
+            results.references.push(entry);
+            references.push(image);
+        }
+        let references = References {
+            direct: &references[0],
+            gi: references.get(1),
+        };
         results
             .rows
-            .extend(scene_study.measure_grid(&reference, &grid, &options.output_dir, &mut say)?);
+            .extend(scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?);
     }
     report::write_all(&results, &options.output_dir)?;
     Ok(results)
+}
+
+/// A scene's displayed references: direct light, and with one bounce when the grid asks.
+struct References<'a> {
+    direct: &'a image::RgbaImage,
+    gi: Option<&'a image::RgbaImage>,
 }
 
 /// One scene's share of the study.
@@ -193,14 +213,20 @@ struct SceneStudy<'a> {
 }
 
 impl SceneStudy<'_> {
-    /// The reference at `spp` as the mean of two independent halves, and the RMSE of its
-    /// noise: for halves a and b, var(a − b) = 2σ²_half and σ_full = σ_half/√2, so
-    /// σ_full = rms(a − b)/2 (on the displayed image).
-    fn converged_reference(&self, spp: u32) -> (image::RgbaImage, f64) {
+    /// The reference at `spp` with `bounces` as the mean of two independent halves, and
+    /// the RMSE of its noise: for halves a and b, var(a − b) = 2σ²_half and
+    /// σ_full = σ_half/√2, so σ_full = rms(a − b)/2 (on the displayed image).
+    fn converged_reference(&self, spp: u32, bounces: u32) -> (image::RgbaImage, f64) {
         let hits: Vec<Option<SurfaceHit>> = self.surfaces.iter().map(|s| s.as_ref().map(surface_hit)).collect();
         let half = |seed: u64| {
-            let mut render =
-                ProgressiveRender::from_surfaces(self.scene, hits.clone(), self.camera.position, self.width, 0, seed);
+            let mut render = ProgressiveRender::from_surfaces(
+                self.scene,
+                hits.clone(),
+                self.camera.position,
+                self.width,
+                bounces,
+                seed,
+            );
             for _ in 0..(spp / 2).max(1) {
                 render.run_pass();
             }
@@ -233,24 +259,38 @@ impl SceneStudy<'_> {
 
     fn measure_grid(
         &self,
-        reference: &image::RgbaImage,
+        references: &References,
         grid: &[Knobs],
         output_dir: &std::path::Path,
         say: &mut impl FnMut(&str),
     ) -> Result<Vec<StudyRow>, StudyError> {
-        let reference_display = DisplayImage::from_rgba8(reference);
+        let direct_display = DisplayImage::from_rgba8(references.direct);
+        let gi_display = references.gi.map(DisplayImage::from_rgba8);
         let unshadowed = self.unshadowed()?;
-        let shadowed = shadow_mask(&reference_display, &DisplayImage::from_rgba8(&unshadowed));
+        // Shadows are where direct light is blocked, whatever the reference.
+        let shadowed = shadow_mask(&direct_display, &DisplayImage::from_rgba8(&unshadowed));
+        let baked = grid
+            .iter()
+            .any(|k| k.lighting == Lighting::Gi { baked_indirect: true })
+            .then(|| self.baked_indirect());
         let mut rows = Vec::new();
         for knobs in grid {
-            let (image, ms_per_frame, blocker_count) = self.render(knobs, &unshadowed)?;
+            let (reference, reference_display) = match (knobs.lighting, references.gi, &gi_display) {
+                (Lighting::Gi { .. }, Some(gi), Some(gi_display)) => (gi, gi_display),
+                _ => (references.direct, &direct_display),
+            };
+            let indirect = match knobs.lighting {
+                Lighting::Gi { baked_indirect: true } => baked.as_ref(),
+                _ => None,
+            };
+            let (image, ms_per_frame, blocker_count) = self.render(knobs, &unshadowed, indirect)?;
             let display = DisplayImage::from_rgba8(&image);
             let row = StudyRow {
                 scene: self.name.into(),
                 knobs: *knobs,
                 blocker_count,
                 ms_per_frame,
-                errors: image_errors(&display, &reference_display, &shadowed),
+                errors: image_errors(&display, reference_display, &shadowed),
                 extreme_pixels: extreme_pixels(&image, reference),
             };
             say(&format!(
@@ -265,7 +305,7 @@ impl SceneStudy<'_> {
                 let path = output_dir
                     .join("images")
                     .join(format!("{}-{}.png", self.name, knobs.label()));
-                report::side_by_side(reference, &image, &reference_display, &display)
+                report::side_by_side(reference, &image, reference_display, &display)
                     .save(&path)
                     .map_err(|source| StudyError::Image { path, source })?;
             }
@@ -280,6 +320,7 @@ impl SceneStudy<'_> {
     fn unshadowed(&self) -> Result<image::RgbaImage, StudyError> {
         let shadows = crate::render::ShadowSettings::default();
         let frame = ShadowFrame {
+            baked_indirect: None,
             scene: self.scene,
             camera: self.camera,
             settings: self.settings,
@@ -291,11 +332,20 @@ impl SceneStudy<'_> {
         Ok(shade_surfaces(&self.surfaces, &frame)?)
     }
 
-    /// The image of `knobs`, its mean time per frame and its blocker count.
+    /// The indirect light of maps baked at the default settings (the bake's own time is in
+    /// docs/performance.md, not in the frame time).
+    fn baked_indirect(&self) -> BakedIndirect {
+        let maps = crate::bake::bake_maps(self.scene, &crate::bake::BakeSettings::default());
+        BakedIndirect::from_maps(self.scene, &maps)
+    }
+
+    /// The image of `knobs` (with `indirect` light added), its mean time per frame and its
+    /// blocker count.
     fn render(
         &self,
         knobs: &Knobs,
         unshadowed: &image::RgbaImage,
+        indirect: Option<&BakedIndirect>,
     ) -> Result<(image::RgbaImage, f64, usize), StudyError> {
         let Some(shadows) = &knobs.shadows else {
             let raster = RasterRenderer::new(
@@ -317,6 +367,7 @@ impl SceneStudy<'_> {
         };
         let blockers = fit_scene(self.scene, &blocker_settings).spheres();
         let frame = ShadowFrame {
+            baked_indirect: indirect,
             scene: self.scene,
             camera: self.camera,
             settings: self.settings,

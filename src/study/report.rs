@@ -7,7 +7,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::grid::Knobs;
+use super::grid::{Knobs, Lighting};
 use super::metrics::DisplayImage;
 use super::{StudyError, StudyResults, StudyRow};
 use crate::sh::ExpMethod;
@@ -48,13 +48,13 @@ pub fn pareto_front(rows: &[&StudyRow]) -> Vec<usize> {
 
 fn csv(results: &StudyResults) -> String {
     let mut text = String::from(
-        "scene,knobs,order,exp,epsilon,ratio_attenuation,per_vertex,blockers,ms_per_frame,rmse,relative_l1,ssim,shadow_rmse,extreme_pixels\n",
+        "scene,knobs,order,exp,epsilon,ratio_attenuation,per_vertex,blockers,reference_bounces,baked_indirect,ms_per_frame,rmse,relative_l1,ssim,shadow_rmse,extreme_pixels\n",
     );
     for row in &results.rows {
         let s = row.knobs.shadows;
         let _ = writeln!(
             text,
-            "{},{},{},{},{},{},{},{},{:.3},{:.5},{:.5},{:.5},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{:.3},{:.5},{:.5},{:.5},{},{}",
             row.scene,
             row.knobs.label(),
             s.map_or(String::new(), |s| s.order.to_string()),
@@ -63,6 +63,11 @@ fn csv(results: &StudyResults) -> String {
             s.is_some_and(|s| s.ratio_attenuation),
             s.is_some_and(|s| s.per_vertex),
             row.blocker_count,
+            match row.knobs.lighting {
+                Lighting::Direct => 0,
+                Lighting::Gi { .. } => crate::bake::BakeSettings::default().bounces,
+            },
+            row.knobs.lighting == Lighting::Gi { baked_indirect: true },
             row.ms_per_frame,
             row.errors.rmse,
             row.errors.relative_l1,
@@ -77,16 +82,17 @@ fn csv(results: &StudyResults) -> String {
 fn markdown(results: &StudyResults) -> String {
     let mut text = format!(
         "# Study results\n\n{}×{} pixels on {}. Errors are of the displayed image against the \
-         reference path tracer (direct light); ms per frame are GPU frames (CPU shading for \
-         `ref`). ★ marks the Pareto front of each scene (no setting is both faster and more \
-         accurate).\n\n",
+         reference path tracer (direct light; rows ending in `-gi` against the reference with \
+         one bounce, `-gi-baked` adding the baked maps' indirect light); ms per frame are GPU \
+         frames (CPU shading for `ref`). ★ marks the Pareto front of each scene among the \
+         direct-light rows (no setting is both faster and more accurate).\n\n",
         results.width, results.height, results.adapter
     );
     for reference in &results.references {
         let _ = writeln!(
             text,
-            "- {}: reference {} spp in {:.1} s, its own noise RMSE {:.4}",
-            reference.scene, reference.samples_per_pixel, reference.seconds, reference.noise_rmse
+            "- {}: reference ({} bounces) {} spp in {:.1} s, its own noise RMSE {:.4}",
+            reference.scene, reference.bounces, reference.samples_per_pixel, reference.seconds, reference.noise_rmse
         );
     }
     text.push_str(
@@ -94,9 +100,17 @@ fn markdown(results: &StudyResults) -> String {
     );
     text.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|:---:|\n");
     for scene in scene_names(results) {
-        let rows: Vec<&StudyRow> = results.rows.iter().filter(|r| r.scene == scene).collect();
+        let rows: Vec<&StudyRow> = results
+            .rows
+            .iter()
+            .filter(|r| r.scene == scene && r.knobs.lighting == Lighting::Direct)
+            .collect();
         let front = pareto_front(&rows);
-        for (i, row) in rows.iter().enumerate() {
+        let gi_rows = results
+            .rows
+            .iter()
+            .filter(|r| r.scene == scene && r.knobs.lighting != Lighting::Direct);
+        for (i, row) in rows.iter().copied().chain(gi_rows).enumerate() {
             let _ = writeln!(
                 text,
                 "| {} | {} | {} | {:.1} | {:.4} | {:.4} | {:.4} | {} | {} | {} |",
@@ -217,7 +231,12 @@ fn draw_pareto(results: &StudyResults, scenes: &[String], pixels: &mut [u8], siz
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let panels = root.split_evenly((1, scenes.len().max(1)));
     for (scene, panel) in scenes.iter().zip(&panels) {
-        let rows: Vec<&StudyRow> = results.rows.iter().filter(|r| &r.scene == scene).collect();
+        // Errors against one reference: the rows measured against direct light.
+        let rows: Vec<&StudyRow> = results
+            .rows
+            .iter()
+            .filter(|r| &r.scene == scene && r.knobs.lighting == Lighting::Direct)
+            .collect();
         let min_ms = rows
             .iter()
             .map(|r| r.ms_per_frame)
@@ -264,6 +283,7 @@ fn draw_pareto(results: &StudyResults, scenes: &[String], pixels: &mut [u8], siz
                     ..Default::default()
                 }),
                 blockers: crate::blockers::SphereBudget::Total(0),
+                lighting: Lighting::Direct,
             };
             let colour = method_colour(&knobs);
             chart
@@ -294,6 +314,7 @@ mod tests {
             knobs: Knobs {
                 shadows: None,
                 blockers: crate::blockers::SphereBudget::Total(1),
+                lighting: Lighting::Direct,
             },
             blocker_count: 0,
             ms_per_frame: ms,

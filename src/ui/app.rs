@@ -51,6 +51,8 @@ pub struct EditorApp {
     pending: Option<Pending>,
     /// The window may close without asking (answered, or a scripted close).
     closing: bool,
+    /// The viewport's baked indirect light no longer matches the lights, maps or setting.
+    indirect_stale: bool,
 }
 
 impl EditorApp {
@@ -77,6 +79,7 @@ impl EditorApp {
             brush_input: BrushInput::default(),
             pending: None,
             closing: false,
+            indirect_stale: true,
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -156,6 +159,23 @@ impl EditorApp {
         painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
         self.painting = Some(painting);
         self.document = Some(document);
+        self.indirect_stale = true;
+    }
+
+    /// Gives the viewport the baked indirect light of the current lights, when the
+    /// setting is on and maps baked for this geometry exist (none otherwise).
+    fn refresh_baked_indirect(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let (Some(document), Some(viewport), Some(rs)) = (&self.document, &mut self.viewport, render_state) else {
+            return;
+        };
+        let maps = document
+            .settings
+            .baked_indirect
+            .then(|| self.painting.as_ref()?.maps_for(&document.scene))
+            .flatten();
+        let indirect = maps.map(|maps| crate::render::BakedIndirect::from_maps(&document.scene, maps));
+        viewport.set_baked_indirect(rs, indirect.as_ref());
+        self.indirect_stale = false;
     }
 
     /// Where world point `p` appears on screen (points), if the viewport shows it.
@@ -304,6 +324,7 @@ impl EditorApp {
         if let (Some(viewport), Some(document), Some(rs)) = (&mut self.viewport, &self.document, render_state) {
             viewport.set_lights(rs, &document.scene.lights);
         }
+        self.refresh_baked_indirect(render_state);
     }
 
     /// Saves the document to `path` (a project file), recording the current camera.
@@ -502,6 +523,13 @@ impl EditorApp {
                     }),
             )
             .on_hover_text("Share of the viewport's pixels shaded along each side: lower is faster.");
+            self.indirect_stale |= ui
+                .checkbox(&mut document.settings.baked_indirect, "baked indirect light")
+                .on_hover_text(
+                    "Adds the light of the baked bounces once importance maps are baked \
+                     (Painting ▸ Bake importance maps); it follows every intensity change.",
+                )
+                .changed();
             // The slider clamps typed values, but not NaN: a saved project must reopen.
             let scale = &mut document.settings.viewport_resolution_scale;
             *scale = if scale.is_finite() { scale.clamp(0.25, 1.0) } else { 1.0 };
@@ -565,6 +593,7 @@ impl EditorApp {
             });
             if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
                 viewport.set_lights(rs, &document.scene.lights);
+                self.indirect_stale = true;
             }
             if let Some(environment) = &mut document.scene.environment {
                 ui.separator();
@@ -729,6 +758,10 @@ impl eframe::App for EditorApp {
         self.inspector(ui, render_state.as_ref());
         if let Some(message) = self.painting.as_mut().and_then(Painting::poll_bake) {
             self.message = message;
+            self.indirect_stale = true;
+        }
+        if self.indirect_stale {
+            self.refresh_baked_indirect(render_state.as_ref());
         }
         let brush_radius = match self.painting.as_ref() {
             Some(p) if p.tool != Tool::Navigate => Some(p.brush.radius_px),

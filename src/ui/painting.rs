@@ -116,6 +116,11 @@ impl Painting {
         }
     }
 
+    /// The baked maps, if there are maps baked for `scene`'s geometry.
+    pub fn maps_for(&self, scene: &Scene) -> Option<&ImportanceMaps> {
+        self.maps.as_ref().filter(|maps| maps.fits(scene))
+    }
+
     /// Bakes in the background; a saved project's maps go to (or come from) its cache.
     pub fn start_bake(&mut self, scene: &Scene, project: Option<&std::path::Path>) {
         let cache = project.map(crate::project::bake_cache::cache_path);

@@ -9,7 +9,7 @@
 use crate::blockers::Sphere;
 use crate::render::logsh::{GpuBlockers, LogShPipeline};
 use crate::render::per_vertex::VertexVisibility;
-use crate::render::{GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
+use crate::render::{BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
 /// Log-SH shadow state of a viewport.
@@ -102,6 +102,12 @@ impl Viewport {
             &self.pipeline.layouts,
             lights,
         );
+        self.rendered = None;
+    }
+
+    /// Replaces the baked indirect light (None: none); the next frame shows it.
+    pub fn set_baked_indirect(&mut self, render_state: &egui_wgpu::RenderState, indirect: Option<&BakedIndirect>) {
+        self.gpu_scene.set_baked_indirect(&render_state.queue, indirect);
         self.rendered = None;
     }
 
