@@ -81,5 +81,12 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
         gi["rmse"]
     );
     assert_eq!(baked["reference_bounces"], "1");
+    let table = std::fs::read_to_string(dir.path().join("study.md")).unwrap();
+    assert!(
+        table.contains("## Stability at the extremes"),
+        "the stability table is written"
+    );
+    assert!(table.contains("| 10,000 blockers |"), "{table}");
+    assert!(!table.contains("**no**"), "every stability case holds: {table}");
     assert!(stdout.contains("study of"), "{stdout}");
 }

@@ -15,6 +15,7 @@
 pub mod grid;
 pub mod metrics;
 pub mod report;
+pub mod stability;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -59,6 +60,11 @@ impl StudyOptions {
 
     fn timed_frames(&self) -> u32 {
         if self.quick { 3 } else { 10 }
+    }
+
+    /// Image size of the stability cases.
+    pub fn stability_size(&self) -> (u32, u32) {
+        if self.quick { (64, 48) } else { (256, 192) }
     }
 }
 
@@ -117,6 +123,9 @@ pub struct StudyResults {
     pub adapter: String,
     pub references: Vec<SceneReference>,
     pub rows: Vec<StudyRow>,
+    /// The stability suite's cases, at [`StudyOptions::stability_size`].
+    pub stability: Vec<stability::StabilityResult>,
+    pub stability_size: (u32, u32),
 }
 
 /// Runs the study, writing its outputs into `options.output_dir`; `say` receives one line
@@ -141,6 +150,8 @@ pub fn run_study(
         adapter: gpu.adapter_summary(),
         references: Vec::new(),
         rows: Vec::new(),
+        stability: Vec::new(),
+        stability_size: options.stability_size(),
     };
     for sample in options.scenes() {
         let document = Document::open(&sample.write(scratch.path())?)?;
@@ -187,6 +198,20 @@ pub fn run_study(
         results
             .rows
             .extend(scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?);
+    }
+    let (stability_width, stability_height) = options.stability_size();
+    for case in stability::stability_cases() {
+        let result = stability::measure(gpu, &case, stability_width, stability_height)?;
+        say(&format!(
+            "stability, {}: {} non-finite, {} negative, {} above unshadowed; GPU {:.2} % within 2/255, worst {}/255",
+            result.name,
+            result.non_finite,
+            result.negative,
+            result.above_unshadowed,
+            100.0 * result.gpu_within_2,
+            result.gpu_worst
+        ));
+        results.stability.push(result);
     }
     report::write_all(&results, &options.output_dir)?;
     Ok(results)

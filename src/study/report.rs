@@ -127,6 +127,34 @@ fn markdown(results: &StudyResults) -> String {
             );
         }
     }
+    text.push_str(&stability_markdown(results));
+    text
+}
+
+/// The stability suite's table: what each extreme measured.
+fn stability_markdown(results: &StudyResults) -> String {
+    let (width, height) = results.stability_size;
+    let mut text = format!(
+        "\n## Stability at the extremes\n\nEach case is a matte floor under one light at {width}×{height} \
+         (`src/study/stability.rs`): the f64 shading of every visible point must be finite, \
+         non-negative and no brighter than the unshadowed light, and the f32 GPU frame close \
+         to it.\n\n| case | visible px | non-finite | negative | above unshadowed | GPU within 2/255 | GPU worst | holds |\n\
+         |---|---:|---:|---:|---:|---:|---:|:---:|\n"
+    );
+    for r in &results.stability {
+        let _ = writeln!(
+            text,
+            "| {} | {} | {} | {} | {} | {:.2} % | {}/255 | {} |",
+            r.name,
+            r.visible_pixels,
+            r.non_finite,
+            r.negative,
+            r.above_unshadowed,
+            100.0 * r.gpu_within_2,
+            r.gpu_worst,
+            if r.holds() { "yes" } else { "**no**" }
+        );
+    }
     text
 }
 
