@@ -57,8 +57,11 @@ struct ShadowParams {
     ratio_attenuation: u32,
     // Number of BlockerGroups (src/render/blocker_groups.rs).
     group_count: u32,
-    _pad0: u32,
-    _pad1: u32,
+    // Lights whose sin(angular radius) is below this are shadowed exactly, per light
+    // (exact_light_visibility in logsh.wgsl); 0: none, 2: all.
+    exact_below_cap_ratio: f32,
+    // 1: lights of no size (cap_ratio 0) take the exact path too.
+    exact_point_lights: u32,
     _pad2: u32,
 };
 

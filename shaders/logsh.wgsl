@@ -4,7 +4,8 @@
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
 //   G = exp*(F)                                                     (visibility SH)
 //   L = emissive + environment · ⟨G, cos⟩ + Σ_lights direct · clamp(mean of G over the
-//       light's cap, 0, 1)
+//       light's cap, 0, 1), or, for lights small enough for the exact path,
+//       direct · Π_blockers (1 − share of the light's disc the blocker hides)
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
 // (design.md §4b: never shade through an order-n triple product of light × cosine).
 
@@ -60,6 +61,95 @@ fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
     return sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
 }
 
+// The share (0–1) of a cap of angular radius a hidden by a cap of angular radius b whose
+// centre is g away (src/penumbra/cap_overlap.rs, the f64 twin): the lens of the two caps,
+// 2θ_L(1 − cos a) + 2θ_B(1 − cos b) − 2E, from half-angle formulas and L'Huilier's
+// theorem so that tiny caps keep their digits, over the light's 2π(1 − cos a).
+fn hidden_fraction(a: f32, b: f32, g: f32) -> f32 {
+    if g >= a + b || b <= 0.0 {
+        return 0.0;
+    }
+    if g + a <= b {
+        return 1.0;
+    }
+    let ha = sin(0.5 * a);
+    let light_area = 4.0 * PI * ha * ha;
+    if g + b <= a {
+        let hb = sin(0.5 * b);
+        return min(4.0 * PI * hb * hb / light_area, 1.0);
+    }
+    let s = 0.5 * (a + b + g);
+    let sin_s = sin(s);
+    let sin_sa = sin(s - a);
+    let sin_sb = sin(s - b);
+    let sin_sg = sin(s - g);
+    let theta_light = 2.0 * atan(sqrt(max(sin_sa * sin_sg / (sin_s * sin_sb), 0.0)));
+    let theta_blocker = 2.0 * atan(sqrt(max(sin_sb * sin_sg / (sin_s * sin_sa), 0.0)));
+    let t = tan(0.5 * s) * tan(0.5 * (s - a)) * tan(0.5 * (s - b)) * tan(0.5 * (s - g));
+    let excess = 4.0 * atan(sqrt(max(t, 0.0)));
+    let hb = sin(0.5 * b);
+    let lens = 4.0 * theta_light * ha * ha + 4.0 * theta_blocker * hb * hb - 2.0 * excess;
+    return clamp(lens / light_area, 0.0, 1.0);
+}
+
+// Visibility of a light's disc (sin of its angular radius: inc.cap_ratio) from p with
+// normal n: Π over blockers of (1 − fade · hidden share), skipping what log_visibility
+// skips and blockers wholly beyond the light (src/penumbra/mod.rs, the f64 twin).
+fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
+    let sin_a = clamp(inc.cap_ratio, 0.0, 1.0);
+    let cos_a = sqrt(max(1.0 - sin_a * sin_a, 0.0));
+    let light_angle = asin(sin_a);
+    var log_v = 0.0;
+    for (var g = 0u; g < shadow.group_count; g++) {
+        let group = groups[g];
+        let to_group = group.center_extent.xyz - p;
+        let group_distance2 = dot(to_group, to_group);
+        if group_distance2 > group.influence_m * group.influence_m
+            || dot(to_group, n) + group.center_extent.w <= 0.0 {
+            continue;
+        }
+        // The group's bounding sphere outside the light's cone: none of its spheres can
+        // hide any of the light (cos γ ≤ cos(α + β) with sin β = extent/distance).
+        let group_distance = sqrt(group_distance2);
+        let extent = group.center_extent.w;
+        if group_distance > extent {
+            let sin_g = extent / group_distance;
+            let cos_g = sqrt(max(1.0 - sin_g * sin_g, 0.0));
+            if dot(to_group, inc.to_light) / group_distance <= cos_a * cos_g - sin_a * sin_g {
+                continue;
+            }
+        }
+        for (var i = group.first; i < group.first + group.count; i++) {
+            let b = blockers[i].center_radius;
+            let offset = b.xyz - p;
+            let distance2 = dot(offset, offset);
+            let radius = b.w;
+            if distance2 <= radius * radius {
+                continue;
+            }
+            let distance = sqrt(distance2);
+            let ratio = radius / distance;
+            let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / radius);
+            if ratio < shadow.min_cap_ratio || horizon <= 0.0 || distance - radius >= inc.distance {
+                continue;
+            }
+            let direction = offset / distance;
+            // Disjoint caps (the common case) are rejected before any trigonometry.
+            let cos_separation = dot(direction, inc.to_light);
+            if cos_separation <= cos_a * sqrt(max(1.0 - ratio * ratio, 0.0)) - sin_a * ratio {
+                continue;
+            }
+            let separation = atan2(length(cross(direction, inc.to_light)), cos_separation);
+            let hidden = horizon * hidden_fraction(light_angle, asin(ratio), separation);
+            if hidden >= 1.0 {
+                return 0.0;
+            }
+            log_v += log(1.0 - hidden);
+        }
+    }
+    return exp(log_v);
+}
+
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
     return radiance_through(s, sh_exp(log_visibility(s.position, s.normal)));
 }
@@ -74,7 +164,12 @@ fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
         if all(unshadowed == vec3<f32>(0.0)) {
             continue;
         }
-        let visibility = clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
+        var visibility: f32;
+        if inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u) {
+            visibility = exact_light_visibility(s.position, s.normal, inc);
+        } else {
+            visibility = clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
+        }
         radiance += unshadowed * visibility;
     }
     return radiance;

@@ -57,6 +57,8 @@ struct Incidence {
     irradiance: vec3<f32>,
     to_light: vec3<f32>,
     cap_ratio: f32,
+    // Distance to the light (the largest f32 for directional lights).
+    distance: f32,
 };
 
 fn incidence(light: Light, p: vec3<f32>) -> Incidence {
@@ -65,10 +67,12 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     if light.kind == LIGHT_DIRECTIONAL {
         result.to_light = -light.direction_range.xyz;
         result.irradiance = light.intensity_rgb.rgb;
+        result.distance = 3.4e38;
         return result;
     }
     let offset = light.position.xyz - p;
     let distance2 = max(dot(offset, offset), 1e-8);
+    result.distance = sqrt(distance2);
     result.to_light = offset * inverseSqrt(distance2);
     var falloff = 1.0 / distance2;
     let range = light.direction_range.w;

@@ -11,6 +11,7 @@ pub mod bake;
 pub mod blockers;
 pub mod paint;
 pub mod panic_guard;
+pub mod penumbra;
 pub mod project;
 pub mod random;
 pub mod reference;

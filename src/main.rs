@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use lightpaint::blockers::{SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
-    BakedIndirect, GpuContext, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method,
+    BakedIndirect, GpuContext, LightPaths, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method,
     render_cpu_image, render_image, render_logsh_image,
 };
 use lightpaint::scene::SceneError;
@@ -125,6 +125,11 @@ struct RenderArgs {
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     ratio_attenuation: bool,
+    /// Which lights are shadowed exactly, per light, instead of through the SH: auto
+    /// (extended lights under 40° of angular radius), harmonics (none) or exact (all);
+    /// default: the project's.
+    #[arg(long, value_parser = parse_light_paths)]
+    light_paths: Option<LightPaths>,
     /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 6).
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
@@ -156,6 +161,15 @@ struct RenderArgs {
     /// Seed of the reference's random numbers (the same seed gives the same image).
     #[arg(long, default_value_t = 1, requires = "reference")]
     seed: u64,
+}
+
+fn parse_light_paths(text: &str) -> Result<LightPaths, String> {
+    match text.trim() {
+        "auto" => Ok(LightPaths::Auto),
+        "harmonics" | "sh" => Ok(LightPaths::Harmonics),
+        "exact" => Ok(LightPaths::Exact),
+        other => Err(format!("'{other}' is not one of auto, harmonics, exact")),
+    }
 }
 
 fn parse_msaa(text: &str) -> Result<u32, String> {
@@ -330,6 +344,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.exp = args.exp.unwrap_or(shadows.exp);
     shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
     shadows.ratio_attenuation |= args.ratio_attenuation;
+    shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
     shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
     let no_shadows = args.no_shadows || !shadows.enabled;
@@ -547,11 +562,12 @@ fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
 
 fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{}",
+        "order {}, {:?}, eps {}, {blocker_count} blockers{}, {:?} light paths",
         shadows.order,
         shadows.exp,
         shadows.epsilon,
-        if shadows.per_vertex { ", per vertex" } else { "" }
+        if shadows.per_vertex { ", per vertex" } else { "" },
+        shadows.light_paths
     )
 }
 

@@ -132,7 +132,11 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
         center: Vec3::new(0.0, 0.5, 0.0),
         radius_m: 0.1,
     };
-    let shadows = ShadowSettings::default();
+    // The SH path's law (the exact path for small lights is tested below).
+    let shadows = ShadowSettings {
+        light_paths: lightpaint::render::LightPaths::Harmonics,
+        ..ShadowSettings::default()
+    };
     let (width, height) = (101, 101);
     let render = |blockers: &[Sphere]| {
         let frame = ShadowFrame {

@@ -227,9 +227,14 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     let mut document = lightpaint::project::Document::open(&path).expect("an older project opens");
     let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
     assert_eq!(document.scene.lights, current.scene.lights);
-    // Formats before 4 drew no baked indirect light, so they keep it off.
+    // Formats before 4 drew no baked indirect light and shadowed every light through the
+    // SH, so they keep both.
     let expected = lightpaint::render::RenderSettings {
         baked_indirect: false,
+        shadows: lightpaint::render::ShadowSettings {
+            light_paths: lightpaint::render::LightPaths::Harmonics,
+            ..current.settings.shadows
+        },
         ..current.settings
     };
     assert_eq!(document.settings, expected);
@@ -242,11 +247,16 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
 }
 
 /// A project saved by format 1 (lightpaint before shadows) opens with the default shadow
-/// and blocker settings, keeps everything it had, and is saved back as the current format.
+/// and blocker settings of format 2 (every light through the SH), keeps everything it
+/// had, and is saved back as the current format.
 #[test]
 fn a_format_1_project_opens_and_saves_as_the_current_format() {
     let document = open_old_fixture(1);
-    assert_eq!(document.settings.shadows, lightpaint::render::ShadowSettings::default());
+    let format_2_shadows = lightpaint::render::ShadowSettings {
+        light_paths: lightpaint::render::LightPaths::Harmonics,
+        ..Default::default()
+    };
+    assert_eq!(document.settings.shadows, format_2_shadows);
     assert_eq!(
         document.settings.blockers,
         lightpaint::blockers::BlockerSettings::default()

@@ -7,9 +7,9 @@ use std::f64::consts::PI;
 
 use glam::{DVec3, Vec3};
 use lightpaint::blockers::Sphere;
-use lightpaint::render::ShadowSettings;
 use lightpaint::render::cpu::{self, ShadingInputs, SurfacePoint};
 use lightpaint::render::gpu_types::GpuLight;
+use lightpaint::render::{LightPaths, ShadowSettings};
 use lightpaint::scene::{Light, LightKind};
 use lightpaint::sh::ExpMethod;
 
@@ -34,6 +34,15 @@ fn light(kind: LightKind, position: Vec3, intensity: f32) -> GpuLight {
         direction: Vec3::NEG_Y,
         range: None,
     })
+}
+
+/// The log-SH path for every light (these laws are the SH shading's; the exact path for
+/// small lights has its own tests in `lightpaint::penumbra`).
+fn sh_path() -> ShadowSettings {
+    ShadowSettings {
+        light_paths: LightPaths::Harmonics,
+        ..ShadowSettings::default()
+    }
 }
 
 fn shade(p: &SurfacePoint, lights: &[GpuLight], blockers: &[Sphere], settings: &ShadowSettings) -> DVec3 {
@@ -73,7 +82,7 @@ fn a_blocker_darkens_the_point_below_by_its_cap_exponential() {
         let reference = ShadowSettings {
             order,
             exp: ExpMethod::Reference,
-            ..ShadowSettings::default()
+            ..sh_path()
         };
         let open = shade(&p, &lights, &[], &reference).x;
         assert!((open - 1.0 / PI).abs() < 1e-12, "unshadowed {open}");
@@ -84,10 +93,7 @@ fn a_blocker_darkens_the_point_below_by_its_cap_exponential() {
         );
         assert!(expected < 0.95, "the ball must shadow visibly: {expected}");
         // HYB approximates the exact exponential (0.5–2 points here, see sh::hyb_threshold).
-        let hyb = ShadowSettings {
-            order,
-            ..ShadowSettings::default()
-        };
+        let hyb = ShadowSettings { order, ..sh_path() };
         let visibility = shade(&p, &lights, &[blocker], &hyb).x / open;
         assert!(
             (visibility - expected).abs() < 0.03,
@@ -99,7 +105,7 @@ fn a_blocker_darkens_the_point_below_by_its_cap_exponential() {
 #[test]
 fn blockers_below_the_horizon_or_beyond_influence_leave_points_unshadowed() {
     let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
-    let settings = ShadowSettings::default();
+    let settings = sh_path();
     let p = white_floor_point(DVec3::ZERO);
     let open = shade(&p, &lights, &[], &settings);
     let below = Sphere {
@@ -125,10 +131,7 @@ fn an_unoccluded_plane_under_a_sphere_light_gets_the_exact_irradiance() {
         let offset = centre.as_dvec3() - p.position;
         let expected = 40.0 * (offset.y / offset.length()) / offset.length_squared() / PI;
         for order in [2, 4, 8] {
-            let settings = ShadowSettings {
-                order,
-                ..ShadowSettings::default()
-            };
+            let settings = ShadowSettings { order, ..sh_path() };
             let radiance = shade(&p, &lights, &[], &settings);
             assert!(
                 (radiance.x / expected - 1.0).abs() < 1e-6,
@@ -150,10 +153,7 @@ fn white_furnace_shades_to_one() {
             ..white_floor_point(DVec3::ZERO)
         };
         for order in [2, 3, 4, 8] {
-            let settings = ShadowSettings {
-                order,
-                ..ShadowSettings::default()
-            };
+            let settings = ShadowSettings { order, ..sh_path() };
             let inputs = ShadingInputs {
                 lights: &[],
                 environment_irradiance: &irradiance,
@@ -198,10 +198,16 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
         position: (Vec3::from_slice(&l.position[..3]) + shift).extend(1.0).to_array(),
         ..l
     });
-    let settings = ShadowSettings::default();
     let no_environment = [[0.0f32; 4]; 9];
     let eye = DVec3::new(0.0, 5.0, 0.1);
-    for (x, z) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.6)] {
+    let exact = ShadowSettings {
+        light_paths: LightPaths::Exact,
+        ..sh_path()
+    };
+    for ((x, z), settings) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.6)]
+        .into_iter()
+        .flat_map(|at| [(at, sh_path()), (at, exact)])
+    {
         let p = white_floor_point(DVec3::new(x, 0.0, z));
         let moved_p = SurfacePoint {
             position: p.position + shift.as_dvec3(),
@@ -233,7 +239,7 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
             "{here} vs {there}"
         );
         assert!(
-            here.x < 0.95 * shade(&p, &lights, &[], &settings).x,
+            settings.light_paths == LightPaths::Exact || here.x < 0.95 * shade(&p, &lights, &[], &settings).x,
             "the blockers must shadow here"
         );
     }
@@ -248,7 +254,7 @@ fn permuting_blockers_changes_nothing() {
     for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
         let settings = ShadowSettings {
             exp: method,
-            ..ShadowSettings::default()
+            ..sh_path()
         };
         let p = white_floor_point(DVec3::new(0.2, 0.0, 0.1));
         let a = shade(&p, &lights, &blockers, &settings);

@@ -82,6 +82,29 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
     );
     assert_eq!(baked["reference_bounces"], "1");
     let table = std::fs::read_to_string(dir.path().join("study.md")).unwrap();
+    // Small lights: the exact path's penumbra error is under the SH path's at every size,
+    // and no path lights a pixel beyond its unshadowed light.
+    let penumbra_rows: Vec<Vec<String>> = table
+        .lines()
+        .skip_while(|l| !l.starts_with("## Small lights"))
+        .filter(|l| l.starts_with("| ") && (l.contains("| SH |") || l.contains("| exact |")))
+        .map(|l| l.split('|').map(|c| c.trim().to_string()).collect())
+        .collect();
+    assert_eq!(penumbra_rows.len(), 11, "five light sizes × two paths, and the sky");
+    for pair in penumbra_rows.chunks(2).filter(|p| p.len() == 2) {
+        let (sh, exact) = (&pair[0], &pair[1]);
+        let rms = |row: &Vec<String>| row[4].parse::<f64>().expect("penumbra RMS");
+        assert!(
+            rms(exact) < rms(sh),
+            "{} light: exact {} vs SH {}",
+            exact[1],
+            exact[4],
+            sh[4]
+        );
+        for row in pair {
+            assert!(row[6].parse::<f64>().unwrap() <= 1.001, "overshoot: {row:?}");
+        }
+    }
     assert!(
         table.contains("## Stability at the extremes"),
         "the stability table is written"

@@ -111,6 +111,11 @@ fn shadow_params_match_wgsl() {
             ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
             ("group_count", offset_of!(GpuShadowParams, group_count)),
+            (
+                "exact_below_cap_ratio",
+                offset_of!(GpuShadowParams, exact_below_cap_ratio),
+            ),
+            ("exact_point_lights", offset_of!(GpuShadowParams, exact_point_lights)),
         ],
     );
 }

@@ -13,7 +13,8 @@
 //! - 4: `scene.gltf_scene` (which scene of a glTF file with several) and
 //!   `render.baked_indirect`; files of format 3 showed the file's default scene, which is
 //!   what an absent `gltf_scene` means, and were drawn without baked indirect light, so
-//!   they get `baked_indirect: false`.
+//!   they get `baked_indirect: false`; `render.shadows.light_paths` (exact shadows for
+//!   small lights): format 3 shadowed every light through the SH, so "harmonics".
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -38,8 +39,11 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
 
 fn v3_to_v4(mut value: Value) -> Value {
     if let Some(render) = value.get_mut("render").and_then(Value::as_object_mut) {
-        // Set, not defaulted: v1_to_v2 may have filled in today's default.
+        // Set, not defaulted: v1_to_v2 may have filled in today's defaults.
         render.insert("baked_indirect".into(), Value::Bool(false));
+        if let Some(shadows) = render.get_mut("shadows").and_then(Value::as_object_mut) {
+            shadows.insert("light_paths".into(), Value::from("harmonics"));
+        }
     }
     if let Some(object) = value.as_object_mut() {
         object.insert("format_version".into(), Value::from(4));

@@ -10,7 +10,9 @@
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1), where V̄ is the mean of G over
 //!   the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d) with w_0 = 1 and
 //!   w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap (s = sin of its
-//!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d).
+//!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d). Lights the
+//!   settings' [`super::LightPaths`] send the exact way take `penumbra::light_visibility`
+//!   instead (the share of their disc no blocker hides).
 //!
 //! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
 
@@ -42,6 +44,8 @@ pub struct Incidence {
     pub irradiance: DVec3,
     pub to_light: DVec3,
     pub cap_ratio: f64,
+    /// Distance to the light (infinite for directional lights).
+    pub distance_m: f64,
 }
 
 fn v3(a: [f32; 4]) -> DVec3 {
@@ -56,6 +60,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
             irradiance: intensity,
             to_light: -direction,
             cap_ratio: 0.0,
+            distance_m: f64::INFINITY,
         };
     }
     let offset = v3(light.position) - p;
@@ -88,6 +93,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
         irradiance: intensity * falloff,
         to_light,
         cap_ratio,
+        distance_m: distance2.sqrt(),
     }
 }
 
@@ -236,7 +242,20 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        let visibility = visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0);
+        let settings = inputs.settings;
+        let visibility = if settings.light_paths.is_exact(inc.cap_ratio) {
+            crate::penumbra::light_visibility(
+                s.position,
+                s.normal,
+                inc.to_light,
+                inc.distance_m,
+                inc.cap_ratio,
+                inputs.blockers,
+                settings.min_cap_ratio as f64,
+            )
+        } else {
+            visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0)
+        };
         radiance += unshadowed * visibility;
     }
     radiance

@@ -170,7 +170,9 @@ pub struct GpuShadowParams {
     pub blocker_count: u32,
     pub ratio_attenuation: u32,
     pub group_count: u32,
-    pub _pad: [u32; 3],
+    pub exact_below_cap_ratio: f32,
+    pub exact_point_lights: u32,
+    pub _pad: u32,
 }
 
 /// WGSL `BlockerGroup` (see `blocker_groups`).

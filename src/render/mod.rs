@@ -29,7 +29,7 @@ pub use offscreen::{
     shade_surfaces,
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
-pub use shadow_settings::{ShadowSettings, parse_exp_method};
+pub use shadow_settings::{AUTO_EXACT_BELOW_HALF_ANGLE_DEG, LightPaths, ShadowSettings, parse_exp_method};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]

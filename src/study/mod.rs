@@ -14,6 +14,7 @@
 
 pub mod grid;
 pub mod metrics;
+pub mod penumbra;
 pub mod report;
 pub mod stability;
 
@@ -125,6 +126,11 @@ pub struct StudyResults {
     pub rows: Vec<StudyRow>,
     /// The stability suite's cases, at [`StudyOptions::stability_size`].
     pub stability: Vec<stability::StabilityResult>,
+    /// Small lights: penumbra errors of the SH and exact paths.
+    pub penumbrae: Vec<penumbra::PenumbraRow>,
+    /// ms per frame of 8 small lights and 50 blockers, by path, at `cost_size`² pixels.
+    pub eight_light_cost: Vec<(crate::render::LightPaths, f64)>,
+    pub cost_size: u32,
     pub stability_size: (u32, u32),
 }
 
@@ -152,6 +158,9 @@ pub fn run_study(
         rows: Vec::new(),
         stability: Vec::new(),
         stability_size: options.stability_size(),
+        penumbrae: Vec::new(),
+        eight_light_cost: Vec::new(),
+        cost_size: if options.quick { 128 } else { 540 },
     };
     for sample in options.scenes() {
         let document = Document::open(&sample.write(scratch.path())?)?;
@@ -212,6 +221,24 @@ pub fn run_study(
             result.gpu_worst
         ));
         results.stability.push(result);
+    }
+    for row in penumbra::measure_penumbrae(gpu, options.quick)? {
+        say(&format!(
+            "small lights, {} via {:?}: penumbra RMS {:.4} ({} px), umbra RMS {}, {:.1} ms",
+            row.light,
+            row.path,
+            row.penumbra_rms,
+            row.penumbra_pixels,
+            row.umbra_rms.map_or("–".into(), |e| format!("{e:.4}")),
+            row.ms_per_frame
+        ));
+        results.penumbrae.push(row);
+    }
+    results.eight_light_cost = penumbra::cost_of_eight_lights(gpu, results.cost_size, options.timed_frames())?;
+    for (path, ms) in &results.eight_light_cost {
+        say(&format!(
+            "8 small lights × 50 blockers via {path:?}: {ms:.1} ms per frame"
+        ));
     }
     report::write_all(&results, &options.output_dir)?;
     Ok(results)

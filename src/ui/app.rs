@@ -566,9 +566,16 @@ impl EditorApp {
             ui.separator();
             ui.heading("Lights");
             let mut changed = false;
+            let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
+            let paths: Vec<(bool, f64)> = document
+                .scene
+                .lights
+                .iter()
+                .map(|light| light_path_at(light, pivot, document.settings.shadows.light_paths))
+                .collect();
             egui::ScrollArea::vertical().show(ui, |ui| {
-                egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
-                    for light in &mut document.scene.lights {
+                egui::Grid::new("lights").striped(true).num_columns(4).show(ui, |ui| {
+                    for (light, (exact, angle_deg)) in document.scene.lights.iter_mut().zip(paths) {
                         let unit = format!(" {}", light.kind.intensity_unit());
                         ui.label(&light.name);
                         // Drag speed proportional to the value, so dim and bright lights
@@ -587,6 +594,10 @@ impl EditorApp {
                             light.color = glam::Vec3::from(color);
                             changed = true;
                         }
+                        ui.label(if exact { "exact" } else { "SH" }).on_hover_text(format!(
+                            "Shadow path at the view's pivot, where the light looks {angle_deg:.1}° in radius \
+                             (Shadows ▸ light shadows)"
+                        ));
                         ui.end_row();
                     }
                 });
@@ -819,4 +830,12 @@ fn gltf_scene_picker(ui: &mut egui::Ui, scene: &crate::scene::Scene) -> Option<u
         .response
         .on_hover_text("The file holds several scenes; the project remembers which one it shows");
     (picked != shown).then_some(picked)
+}
+
+/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
+/// radius there in degrees (the shaders decide per receiver; this is the view's pivot).
+fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: crate::render::LightPaths) -> (bool, f64) {
+    let gpu_light = crate::render::gpu_types::GpuLight::new(light);
+    let cap_ratio = crate::render::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
+    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
 }

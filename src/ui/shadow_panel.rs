@@ -2,7 +2,7 @@
 //! sphere blockers fitted to the scene's meshes (count and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
-use crate::render::RenderSettings;
+use crate::render::{LightPaths, RenderSettings};
 use crate::scene::Scene;
 use crate::sh::ExpMethod;
 
@@ -37,6 +37,20 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             }
             ui.end_row();
         });
+        egui::ComboBox::from_label("light shadows")
+            .selected_text(light_paths_label(settings.light_paths))
+            .show_ui(ui, |ui| {
+                for paths in [LightPaths::Auto, LightPaths::Harmonics, LightPaths::Exact] {
+                    ui.selectable_value(&mut settings.light_paths, paths, light_paths_label(paths));
+                }
+            })
+            .response
+            .on_hover_text(
+                "Exact: each light's visible share past every sphere, right for small lights \
+                 (sharp, correct penumbrae; point lights cast hard shadows) at a cost per light. \
+                 SH: one visibility for all lights, soft. Auto: exact for sphere and area lights \
+                 under 40° of angular radius. The Lights list shows each light's path.",
+            );
         egui::ComboBox::from_label("exponentiation")
             .selected_text(method_label(settings.exp))
             .show_ui(ui, |ui| {
@@ -55,6 +69,14 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             }
         });
     });
+}
+
+fn light_paths_label(paths: LightPaths) -> &'static str {
+    match paths {
+        LightPaths::Auto => "auto (default)",
+        LightPaths::Harmonics => "all through the SH",
+        LightPaths::Exact => "all exact",
+    }
 }
 
 fn method_label(method: ExpMethod) -> String {

@@ -1,0 +1,330 @@
+//! Small lights in the study: how well each shadow path draws penumbrae, on a scene whose
+//! blockers are exact spheres (so the sphere fit is not the source of error). Three balls
+//! over a white floor, under one sphere light 4 m up whose angular radius at the floor's
+//! centre is 1°, 5°, 15°, 40° or 60° (same irradiance there), then under a uniform sky
+//! alone. The path tracer sees the balls as fine meshes; the renderer gets the exact
+//! spheres as blockers.
+//!
+//! Per floor pixel, the reference visibility is V = L_reference / L_reference without the
+//! balls (direct light, luminance), and a path's is its shading over its own shading
+//! without blockers, so that only shadows are compared; the penumbra is where
+//! 5 % < V < 95 %, the umbra where V ≤ 5 %. The error of a path is V_path − V_reference
+//! (a share of the unshadowed light), its RMS over each mask reported, with the f64
+//! shading (the GPU agrees with it within 1/255: tests/exact_shadows.rs) and the time that
+//! of GPU frames. The sky has no exact path: its
+//! light comes through the SH in both.
+
+use std::time::Instant;
+
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+use super::StudyError;
+use crate::blockers::Sphere;
+use crate::reference::{ProgressiveRender, SurfaceHit};
+use crate::render::cpu::{self, ShadingInputs, SurfacePoint};
+use crate::render::gpu_types::{GpuLight, environment_irradiance};
+use crate::render::{
+    GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
+};
+use crate::scene::{Camera, Environment, Light, LightKind, Material, Scene, luminance, shapes};
+
+/// Light radii measured (degrees, at the floor's centre).
+pub const LIGHT_HALF_ANGLES_DEG: [f64; 5] = [1.0, 5.0, 15.0, 40.0, 60.0];
+
+/// One light and path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PenumbraRow {
+    /// "5°" or "sky".
+    pub light: String,
+    pub path: LightPaths,
+    pub penumbra_pixels: usize,
+    /// RMS of (L_path − L_reference)/L_unshadowed over the penumbra.
+    pub penumbra_rms: f64,
+    /// The same over the umbra (None: the light is too large to leave one).
+    pub umbra_rms: Option<f64>,
+    /// Largest value over the unshadowed light (above 1 would be an overshoot).
+    pub max_over_unshadowed: f64,
+    pub ms_per_frame: f64,
+    /// RMS of the reference's own noise over the penumbra (from two halves).
+    pub reference_noise: f64,
+}
+
+const HEIGHT_M: f32 = 10.0;
+
+fn balls() -> [Sphere; 3] {
+    [
+        Sphere {
+            center: Vec3::new(0.0, 0.6, 0.0),
+            radius_m: 0.35,
+        },
+        Sphere {
+            center: Vec3::new(1.1, 0.4, 0.5),
+            radius_m: 0.25,
+        },
+        Sphere {
+            center: Vec3::new(-0.9, 0.9, -0.6),
+            radius_m: 0.3,
+        },
+    ]
+}
+
+/// The floor and (`with_balls`) the balls as meshes, lit by `light` or by a uniform sky.
+fn scene(light: Option<Light>, with_balls: bool) -> Scene {
+    let mut objects = vec![shapes::plane(8.0, 8, 1.0).into_object("floor")];
+    for (i, ball) in balls().iter().enumerate().filter(|_| with_balls) {
+        let mesh = shapes::uv_sphere(ball.radius_m, 96, 48)
+            .transformed(glam::Affine3A::from_translation(ball.center))
+            .into_object(&format!("ball {i}"));
+        objects.push(mesh);
+    }
+    Scene {
+        objects,
+        materials: vec![Material {
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        environment: light.is_none().then(|| Environment::uniform([1.0, 1.0, 1.0])),
+        lights: light.into_iter().collect(),
+        ..Scene::default()
+    }
+}
+
+/// A sphere light 10 m above the floor's centre, `half_angle_deg` in radius there, giving
+/// the centre 3 lux.
+fn sphere_light(half_angle_deg: f64) -> Light {
+    let radius = HEIGHT_M * half_angle_deg.to_radians().sin() as f32;
+    Light {
+        name: format!("{half_angle_deg}°"),
+        kind: LightKind::Sphere { radius_m: radius },
+        color: Vec3::ONE,
+        intensity: 3.0 * HEIGHT_M * HEIGHT_M,
+        position: Vec3::new(0.2, HEIGHT_M, 0.1),
+        direction: Vec3::NEG_Y,
+        range: None,
+    }
+}
+
+/// The cost the exact path must stay under: 8 small sphere lights (5°) and 50 blockers,
+/// both paths timed on GPU frames of `size`² pixels.
+pub fn cost_of_eight_lights(gpu: &GpuContext, size: u32, frames: u32) -> Result<Vec<(LightPaths, f64)>, StudyError> {
+    let mut scene = scene(None, false);
+    scene.environment = None;
+    scene.lights = (0..8)
+        .map(|k| {
+            let turn = k as f32 * std::f32::consts::TAU / 8.0;
+            Light {
+                position: Vec3::new(3.0 * turn.cos(), HEIGHT_M, 3.0 * turn.sin()),
+                ..sphere_light(5.0)
+            }
+        })
+        .collect();
+    // 50 balls on a jittered 7 × 7 (+1) grid over the floor.
+    let blockers: Vec<Sphere> = (0..50)
+        .map(|k| {
+            let (i, j) = ((k % 7) as f32, (k / 7) as f32);
+            Sphere {
+                center: Vec3::new(-3.0 + i, 0.5 + 0.1 * (k % 3) as f32, -3.0 + j),
+                radius_m: 0.2 + 0.02 * (k % 5) as f32,
+            }
+        })
+        .collect();
+    let camera = Camera {
+        position: Vec3::new(0.0, 7.0, 0.01),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 60f32.to_radians(),
+        znear: 0.1,
+        zfar: None,
+    };
+    [LightPaths::Harmonics, LightPaths::Exact]
+        .into_iter()
+        .map(|path| {
+            let shadows = ShadowSettings {
+                light_paths: path,
+                ..ShadowSettings::default()
+            };
+            Ok((path, frame_ms(gpu, &scene, &camera, &shadows, &blockers, size, frames)?))
+        })
+        .collect()
+}
+
+/// Measures every light size and the sky with both paths; `quick` uses a small image and
+/// fewer reference samples.
+pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRow>, StudyError> {
+    let (size, spp) = if quick { (64u32, 512u32) } else { (192, 4096) };
+    let camera = Camera {
+        position: Vec3::new(0.0, 7.0, 0.01),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 45f32.to_radians(),
+        znear: 0.1,
+        zfar: None,
+    };
+    let mut rows = Vec::new();
+    let lights: Vec<Option<Light>> = LIGHT_HALF_ANGLES_DEG
+        .iter()
+        .map(|&a| Some(sphere_light(a)))
+        .chain([None])
+        .collect();
+    for light in lights {
+        let (scene, open) = (scene(light.clone(), true), scene(light.clone(), false));
+        let label = light.as_ref().map_or("sky".to_string(), |l| l.name.clone());
+        let surfaces = capture_surfaces(gpu, &scene, &camera, None, size, size)?;
+        let (shadowed, noise) = reference(&scene, &surfaces, camera.position, size, spp);
+        let (unshadowed, _) = reference(&open, &surfaces, camera.position, size, spp);
+        let reference = References {
+            shadowed,
+            unshadowed,
+            noise,
+        };
+        let paths = if light.is_some() {
+            vec![LightPaths::Harmonics, LightPaths::Exact]
+        } else {
+            vec![LightPaths::Harmonics]
+        };
+        for path in paths {
+            let shadows = ShadowSettings {
+                light_paths: path,
+                ..ShadowSettings::default()
+            };
+            let mut row = compare(&scene, &surfaces, &reference, &shadows, camera.position);
+            row.light = label.clone();
+            row.ms_per_frame = frame_ms(
+                gpu,
+                &scene,
+                &camera,
+                &shadows,
+                &balls(),
+                size,
+                if quick { 2 } else { 8 },
+            )?;
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+/// The reference luminance of each pixel with and without the balls, and the noise of
+/// the first.
+struct References {
+    shadowed: Vec<f64>,
+    unshadowed: Vec<f64>,
+    noise: Vec<f64>,
+}
+
+/// The direct-light reference of every pixel (luminance), and its noise per pixel from two
+/// independent halves (|a − b|/2).
+fn reference(scene: &Scene, surfaces: &[Option<SurfacePoint>], eye: Vec3, size: u32, spp: u32) -> (Vec<f64>, Vec<f64>) {
+    let hits: Vec<Option<SurfaceHit>> = surfaces.iter().map(|s| s.as_ref().map(super::surface_hit)).collect();
+    let half = |seed: u64| {
+        let mut render = ProgressiveRender::from_surfaces(scene, hits.clone(), eye, size, 0, seed);
+        for _ in 0..(spp / 2).max(1) {
+            render.run_pass();
+        }
+        render.image().radiance.into_iter().map(luminance).collect::<Vec<f64>>()
+    };
+    let (a, b) = (half(11), half(12));
+    let mean = a.iter().zip(&b).map(|(x, y)| 0.5 * (x + y)).collect();
+    let noise = a.iter().zip(&b).map(|(x, y)| 0.5 * (x - y).abs()).collect();
+    (mean, noise)
+}
+
+/// One lit floor pixel, relative to its unshadowed light.
+struct PixelSample {
+    /// Visibility of the path − the reference's (a share of the unshadowed light).
+    error: f64,
+    /// The reference's noise/unshadowed.
+    noise: f64,
+    reference_visibility: f64,
+    shaded_visibility: f64,
+}
+
+/// Errors of one path against the reference over the floor's penumbra and umbra.
+fn compare(
+    scene: &Scene,
+    surfaces: &[Option<SurfacePoint>],
+    reference: &References,
+    shadows: &ShadowSettings,
+    eye: Vec3,
+) -> PenumbraRow {
+    let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
+    let environment = environment_irradiance(scene.environment.as_ref());
+    let blockers = balls();
+    let inputs = ShadingInputs {
+        lights: &lights,
+        environment_irradiance: &environment,
+        blockers: &blockers,
+        settings: shadows,
+        eye: eye.as_dvec3(),
+    };
+    let open = ShadingInputs {
+        blockers: &[],
+        ..inputs
+    };
+    let samples: Vec<PixelSample> = surfaces
+        .par_iter()
+        .enumerate()
+        .filter_map(|(i, s)| {
+            let s = s.as_ref().filter(|s| s.position.y.abs() < 1e-3)?;
+            let unshadowed = luminance(cpu::shadowed_radiance(s, &open));
+            let reference_open = reference.unshadowed[i];
+            (unshadowed > 1e-6 && reference_open > 1e-6).then(|| {
+                let shaded = luminance(cpu::shadowed_radiance(s, &inputs)) / unshadowed;
+                let reference_visibility = reference.shadowed[i] / reference_open;
+                PixelSample {
+                    error: shaded - reference_visibility,
+                    noise: reference.noise[i] / reference_open,
+                    reference_visibility,
+                    shaded_visibility: shaded,
+                }
+            })
+        })
+        .collect();
+    let in_penumbra = |s: &&PixelSample| s.reference_visibility > 0.05 && s.reference_visibility < 0.95;
+    let in_umbra = |s: &&PixelSample| s.reference_visibility <= 0.05;
+    let rms = |values: Vec<f64>| (values.iter().fold(0.0, |sum, e| sum + e * e) / values.len().max(1) as f64).sqrt();
+    let umbra: Vec<f64> = samples.iter().filter(in_umbra).map(|s| s.error).collect();
+    PenumbraRow {
+        light: String::new(),
+        path: shadows.light_paths,
+        penumbra_pixels: samples.iter().filter(in_penumbra).count(),
+        penumbra_rms: rms(samples.iter().filter(in_penumbra).map(|s| s.error).collect()),
+        umbra_rms: (!umbra.is_empty()).then(|| rms(umbra)),
+        max_over_unshadowed: samples.iter().map(|s| s.shaded_visibility).fold(0.0, f64::max),
+        ms_per_frame: 0.0,
+        reference_noise: rms(samples.iter().filter(in_penumbra).map(|s| s.noise).collect()),
+    }
+}
+
+/// Mean GPU time of `frames` frames (after one), one sample per pixel.
+fn frame_ms(
+    gpu: &GpuContext,
+    scene: &Scene,
+    camera: &Camera,
+    shadows: &ShadowSettings,
+    blockers: &[Sphere],
+    size: u32,
+    frames: u32,
+) -> Result<f64, StudyError> {
+    let settings = RenderSettings::default();
+    let frame = ShadowFrame {
+        scene,
+        camera,
+        settings: &settings,
+        shadows,
+        blockers,
+        baked_indirect: None,
+        width: size,
+        height: size,
+    };
+    let renderer = ShadowRenderer::new(gpu, &frame, 1)?;
+    renderer.draw_and_wait()?;
+    let started = Instant::now();
+    for _ in 0..frames {
+        renderer.draw_and_wait()?;
+    }
+    Ok(started.elapsed().as_secs_f64() * 1000.0 / frames.max(1) as f64)
+}

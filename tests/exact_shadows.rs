@@ -1,0 +1,191 @@
+//! The exact shadow path for small lights (`lightpaint::penumbra`, `exact_light_visibility`
+//! in logsh.wgsl) on the GPU: parity with the f64 CPU reference on the sample scenes with
+//! every light exact, and a ball over a plane under a sphere light whose penumbra, pixel by
+//! pixel, is the visible share of the light computed here by integration over its disc.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use glam::{DVec3, Vec3, Vec4};
+use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
+use lightpaint::project::Document;
+use lightpaint::render::{
+    LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image, render_logsh_image,
+};
+use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
+
+/// Share of the pixels whose channels lie within `tolerance`/255 of the other image, and
+/// the largest difference.
+fn agreement(a: &image::RgbaImage, b: &image::RgbaImage, tolerance: u8) -> (f64, u8) {
+    let differences: Vec<u8> = a
+        .pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap_or(0))
+        .collect();
+    let within = differences.iter().filter(|&&d| d <= tolerance).count();
+    (
+        within as f64 / differences.len() as f64,
+        differences.into_iter().max().unwrap_or(0),
+    )
+}
+
+/// Every light of the samples exact — point and spot lights with hard shadows, and the
+/// same lights as 0.3 m spheres with penumbrae: the f32 GPU agrees with the f64 CPU.
+#[test]
+fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
+    let Some(gpu) = common::gpu() else { return };
+    for path in ["projects/studio/studio.lightpaint", "projects/sample/sample.lightpaint"] {
+        let document = Document::open(&common::repo_path(path)).expect("sample opens");
+        let camera = document
+            .camera
+            .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
+        let blockers = fit_scene(&document.scene, &BlockerSettings::default()).spheres();
+        let mut spheres = document.scene.clone();
+        for light in &mut spheres.lights {
+            if light.kind == LightKind::Point {
+                light.kind = LightKind::Sphere { radius_m: 0.3 };
+            }
+        }
+        let exact = ShadowSettings {
+            light_paths: LightPaths::Exact,
+            ..document.settings.shadows
+        };
+        let auto = ShadowSettings {
+            light_paths: LightPaths::Auto,
+            ..document.settings.shadows
+        };
+        for (scene, shadows, what) in [
+            (&document.scene, &exact, "exact"),
+            (&spheres, &auto, "sphere lights, auto"),
+        ] {
+            let frame = ShadowFrame {
+                scene,
+                camera: &camera,
+                settings: &document.settings,
+                shadows,
+                blockers: &blockers,
+                baked_indirect: None,
+                width: 240,
+                height: 135,
+            };
+            let gpu_image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
+            let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
+            let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
+            eprintln!(
+                "{path}, {what}: {:.3} % within 1/255, worst {worst}/255",
+                100.0 * within
+            );
+            // Hard shadow edges may fall on the other side of a pixel centre in f32.
+            assert!(within >= 0.995, "{path}, {what}: {:.3} % within 1/255", 100.0 * within);
+        }
+    }
+}
+
+/// A white Lambertian floor, a 0.5 m sphere light 3 m above the origin (40 cd) and a ball
+/// of 0.3 m at 1 m: along the floor the radiance is E/π·V with E = I·cos θ/d² (the
+/// renderer's unshadowed sphere light) and V the share of the light's disc whose rays miss
+/// the ball, integrated here over the disc.
+#[test]
+fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
+    let Some(gpu) = common::gpu() else { return };
+    let light_position = DVec3::new(0.0, 3.0, 0.0);
+    let scene = Scene {
+        objects: vec![shapes::plane(6.0, 4, 1.0).into_object("floor")],
+        materials: vec![Material {
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        lights: vec![Light {
+            name: "globe".into(),
+            kind: LightKind::Sphere { radius_m: 0.5 },
+            color: Vec3::ONE,
+            intensity: 40.0,
+            position: light_position.as_vec3(),
+            direction: Vec3::NEG_Y,
+            range: None,
+        }],
+        ..Scene::default()
+    };
+    let ball = Sphere {
+        center: Vec3::new(0.0, 1.0, 0.0),
+        radius_m: 0.3,
+    };
+    let camera = Camera {
+        position: Vec3::new(0.0, 6.0, 0.0),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 40f32.to_radians(),
+        znear: 0.1,
+        zfar: None,
+    };
+    let settings = RenderSettings {
+        exposure_ev: -2.0,
+        ..RenderSettings::default()
+    };
+    let shadows = ShadowSettings::default(); // Auto: a 9.6° light takes the exact path
+    let blockers = [ball];
+    let (width, height) = (160, 160);
+    let frame = ShadowFrame {
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        baked_indirect: None,
+        width,
+        height,
+    };
+    let image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
+    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
+    let row = height / 2;
+    let mut checked = 0;
+    let mut penumbra = 0;
+    for x in width / 2..width {
+        let Some(point) = &surfaces[(row * width + x) as usize] else {
+            continue;
+        };
+        let p = point.position;
+        let offset = light_position - p;
+        let irradiance = 40.0 * offset.normalize().y / offset.length_squared();
+        let visible = 1.0 - hidden_share(p, light_position, 0.5, ball.center.as_dvec3(), 0.3);
+        let expected = common::expected_8bit(irradiance / PI * visible, -2.0);
+        let got = image.get_pixel(x, row)[0] as f64;
+        assert!(
+            (got - expected).abs() <= 1.5,
+            "x = {:.3} m: pixel {got}, expected {expected:.2} (visible share {visible:.4})",
+            p.x
+        );
+        checked += 1;
+        penumbra += usize::from(visible > 0.02 && visible < 0.98);
+    }
+    assert!(
+        checked > 60 && penumbra > 5,
+        "{checked} pixels, {penumbra} in the penumbra"
+    );
+}
+
+/// Share of the light's cap, seen from p, whose rays meet the ball (a fine polar grid of
+/// equal solid-angle cells over the cap).
+fn hidden_share(p: DVec3, light: DVec3, light_radius: f64, centre: DVec3, radius: f64) -> f64 {
+    let axis = (light - p).normalize();
+    let half_angle = (light_radius / (light - p).length()).asin();
+    let (t, b) = axis.any_orthonormal_pair();
+    let (rings, sectors) = (400, 400);
+    let mut hidden = 0usize;
+    for i in 0..rings {
+        let cos_t = 1.0 - (i as f64 + 0.5) / rings as f64 * (1.0 - half_angle.cos());
+        let sin_t = (1.0 - cos_t * cos_t).sqrt();
+        for j in 0..sectors {
+            let phi = (j as f64 + 0.5) / sectors as f64 * std::f64::consts::TAU;
+            let d = axis * cos_t + (t * phi.cos() + b * phi.sin()) * sin_t;
+            let oc = p - centre;
+            let half_b = oc.dot(d);
+            let c = oc.length_squared() - radius * radius;
+            hidden += usize::from(half_b < 0.0 && half_b * half_b >= c);
+        }
+    }
+    hidden as f64 / (rings * sectors) as f64
+}
