@@ -154,7 +154,7 @@ pub fn cost_of_eight_lights(gpu: &GpuContext, size: u32, frames: u32) -> Result<
 /// Measures every light size and the sky with both paths; `quick` uses a small image and
 /// fewer reference samples.
 pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRow>, StudyError> {
-    let (size, spp) = if quick { (64u32, 512u32) } else { (192, 4096) };
+    let (size, spp) = if quick { (64u32, 512u32) } else { (128, 2048) };
     let camera = Camera {
         position: Vec3::new(0.0, 7.0, 0.01),
         forward: Vec3::NEG_Y,
