@@ -242,23 +242,32 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        let settings = inputs.settings;
-        let visibility = if settings.light_paths.is_exact(inc.cap_ratio) {
-            crate::penumbra::light_visibility(
-                s.position,
-                s.normal,
-                inc.to_light,
-                inc.distance_m,
-                inc.cap_ratio,
-                inputs.blockers,
-                settings.min_cap_ratio as f64,
-            )
-        } else {
-            visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0)
-        };
+        let visibility = exact_visibility(s, &inc, inputs.settings, inputs.blockers)
+            .unwrap_or_else(|| visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0));
         radiance += unshadowed * visibility;
     }
     radiance
+}
+
+/// The visibility of the light seen as `inc` from `s` when the settings send it the
+/// exact way (`crate::penumbra`); None when it takes the SH path.
+pub fn exact_visibility(
+    s: &SurfacePoint,
+    inc: &Incidence,
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+) -> Option<f64> {
+    settings.light_paths.is_exact(inc.cap_ratio).then(|| {
+        crate::penumbra::light_visibility(
+            s.position,
+            s.normal,
+            inc.to_light,
+            inc.distance_m,
+            inc.cap_ratio,
+            blockers,
+            settings.min_cap_ratio as f64,
+        )
+    })
 }
 
 /// exp* as the GPU evaluates it: HYB's carried magnitude capped where f32 stops (see

@@ -1,8 +1,9 @@
 //! The direct-only transfer estimate painting uses before (or instead of) a bake: the
 //! real-time renderer's own shading (`cpu.rs`, the f64 twin of logsh.wgsl), evaluated at
 //! the painted vertices, one light at a time at unit intensity. Visibility comes from the
-//! log-SH sphere blockers, so it needs no ray tracing and answers at once; indirect light
-//! is left out (the bake adds it).
+//! sphere blockers (the log-SH, or the exact share for the lights the settings send that
+//! way, as on screen), so it needs no ray tracing and answers at once; indirect light is
+//! left out (the bake adds it).
 
 use glam::{DVec3, Vec3};
 
@@ -100,7 +101,10 @@ impl<'a> DirectEstimate<'a> {
                 if unshadowed == DVec3::ZERO {
                     return None;
                 }
-                let visible = cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0);
+                let visible =
+                    cpu::exact_visibility(s, &incidence, &self.settings, &self.blockers).unwrap_or_else(|| {
+                        cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                    });
                 let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })
