@@ -167,13 +167,37 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
     );
 }
 
+/// The f64 path alone: a ball of 0.3 m at 1 m over the origin under a 0.5 m sphere light
+/// 3 m up; along a line through the penumbra the visibility is the share of the light's
+/// disc whose rays miss the ball, and it rises away from the ball to the whole light.
+#[test]
+fn the_f64_path_draws_the_exact_penumbra_of_a_ball() {
+    let ball = [Sphere {
+        center: Vec3::new(0.0, 1.0, 0.0),
+        radius_m: 0.3,
+    }];
+    let light = DVec3::new(0.0, 3.0, 0.0);
+    let mut last = 0.0;
+    for k in 0..=40 {
+        let p = DVec3::new(k as f64 * 0.05, 0.0, 0.0);
+        let offset = light - p;
+        let d = offset.length();
+        let v = lightpaint::penumbra::light_visibility(p, DVec3::Y, offset / d, d, 0.5 / d, &ball, 0.0);
+        let expected = 1.0 - hidden_share(p, light, 0.5, DVec3::new(0.0, 1.0, 0.0), 0.3);
+        assert!((v - expected).abs() < 3e-3, "x = {:.2}: {v} vs {expected}", p.x);
+        assert!(v >= last - 1e-9, "visibility rises away from the ball");
+        last = v;
+    }
+    assert!(last > 0.999, "far points see the whole light");
+}
+
 /// Share of the light's cap, seen from p, whose rays meet the ball (a fine polar grid of
 /// equal solid-angle cells over the cap).
 fn hidden_share(p: DVec3, light: DVec3, light_radius: f64, centre: DVec3, radius: f64) -> f64 {
     let axis = (light - p).normalize();
     let half_angle = (light_radius / (light - p).length()).asin();
     let (t, b) = axis.any_orthonormal_pair();
-    let (rings, sectors) = (400, 400);
+    let (rings, sectors) = (600, 600);
     let mut hidden = 0usize;
     for i in 0..rings {
         let cos_t = 1.0 - (i as f64 + 0.5) / rings as f64 * (1.0 - half_angle.cos());

@@ -27,6 +27,45 @@ pub struct Sphere {
     pub radius_m: f32,
 }
 
+/// A sphere blocker's cap as a receiver sees it (`Sphere::cap_from`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockerCap {
+    /// Unit direction from the receiver to the sphere's centre.
+    pub direction: glam::DVec3,
+    pub distance_m: f64,
+    /// sin of the cap's angular radius, r/d.
+    pub ratio: f64,
+    /// 1 above the receiver's tangent plane, fading smoothly to 0 as the sphere sinks
+    /// below it: smoothstep(−1, 1, (c − p)·n / r).
+    pub horizon: f64,
+}
+
+impl Sphere {
+    /// The cap this sphere covers in the sky of a receiver at `p` with unit normal `n`,
+    /// or None for the spheres every shadow path skips: one containing p (a sphere-fit
+    /// artefact on its own mesh), one too small in the sky (r/d < `min_cap_ratio`), and
+    /// one wholly below the tangent plane. The fade keeps a fitted sphere straddling its
+    /// own surface from darkening its receivers in blotches (a hard cut leaves them).
+    pub fn cap_from(&self, p: glam::DVec3, n: glam::DVec3, min_cap_ratio: f64) -> Option<BlockerCap> {
+        let offset = self.center.as_dvec3() - p;
+        let radius = self.radius_m as f64;
+        let distance2 = offset.length_squared();
+        if distance2 <= radius * radius {
+            return None;
+        }
+        let distance = distance2.sqrt();
+        let ratio = radius / distance;
+        let t = ((offset.dot(n) / radius + 1.0) / 2.0).clamp(0.0, 1.0);
+        let horizon = t * t * (3.0 - 2.0 * t);
+        (ratio >= min_cap_ratio && horizon > 0.0).then(|| BlockerCap {
+            direction: offset / distance,
+            distance_m: distance,
+            ratio,
+            horizon,
+        })
+    }
+}
+
 /// How many spheres to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]

@@ -115,19 +115,11 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
     let order = settings.order;
     let ln_epsilon = (settings.epsilon as f64).ln();
     let mut f = vec![0.0; order * order];
-    for b in blockers {
-        let offset = b.center.as_dvec3() - p;
-        let radius = b.radius_m as f64;
-        let distance2 = offset.length_squared();
-        if distance2 <= radius * radius {
-            continue;
-        }
-        let distance = distance2.sqrt();
-        let ratio = radius / distance;
-        let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / radius);
-        if ratio < settings.min_cap_ratio as f64 || horizon <= 0.0 {
-            continue;
-        }
+    for cap in blockers
+        .iter()
+        .filter_map(|b| b.cap_from(p, n, settings.min_cap_ratio as f64))
+    {
+        let (ratio, horizon) = (cap.ratio, cap.horizon);
         let scale = if settings.ratio_attenuation {
             ln_epsilon * horizon * ratio
         } else {
@@ -135,7 +127,7 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
         };
         // Funk–Hecke: f_lm += scale·√(4π/(2l+1))·z_l·y_lm(d), without building the
         // rotated vector.
-        with_basis(order, offset / distance, |y| {
+        with_basis(order, cap.direction, |y| {
             sh::cap_zh_ratio_each(order, ratio, |l, z| {
                 let weight = scale * (4.0 * PI / (2 * l + 1) as f64).sqrt() * z;
                 for i in l * l..(l + 1) * (l + 1) {
@@ -164,11 +156,6 @@ fn with_basis<R>(order: usize, d: DVec3, f: impl FnOnce(&[f64]) -> R) -> R {
 }
 
 /// WGSL's smoothstep: 0 below `low`, 1 above `high`, t²(3 − 2t) between.
-fn smoothstep(low: f64, high: f64, x: f64) -> f64 {
-    let t = ((x - low) / (high - low)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
 /// Mean of the visibility SH `g` over a cap of sin(half-angle) `cap_ratio` around `d`.
 pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
     let order = sh::order_of(g.len()).unwrap_or(0);
