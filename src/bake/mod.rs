@@ -8,6 +8,7 @@ pub mod direct;
 pub mod indirect;
 mod maps;
 pub mod scene_bvh;
+mod smooth;
 
 pub use maps::{
     CoefficientArrays, Coefficients, LightContribution, MapEntry, ObjectMaps, Precision, RawCoefficients, RawMaps,
@@ -252,11 +253,11 @@ fn bake_lights(
                 Some(entries)
             })
             .collect();
-        objects.push(ObjectMaps::from_vertices(
-            settings.order,
-            &vertices?,
-            settings.precision,
-        ));
+        let mut vertices = vertices?;
+        if settings.bounces > 0 {
+            smooth::smooth_indirect_irradiance(object, &mut vertices);
+        }
+        objects.push(ObjectMaps::from_vertices(settings.order, &vertices, settings.precision));
     }
     let dropped_entries = sparsify(&mut objects, scene.lights.len(), settings.relative_threshold);
     let maps = ImportanceMaps {
