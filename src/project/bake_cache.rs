@@ -135,27 +135,24 @@ fn put_u32(bytes: &mut Vec<u8>, value: usize) {
 
 /// Reads the cache at `path` and compares it with `key`.
 pub fn load(path: &Path, key: &BakeKey) -> CacheLookup {
-    let bytes = match std::fs::read(path) {
-        Ok(bytes) => bytes,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return CacheLookup::Missing,
-        Err(e) => return CacheLookup::Unusable(format!("{}: cannot read: {e}", path.display())),
-    };
-    match parse(&bytes, key) {
-        Ok(lookup) => lookup,
-        Err(reason) => CacheLookup::Unusable(format!("{}: {reason}", path.display())),
-    }
+    lookup(path, |_| key.clone())
 }
 
 /// The maps in the cache at `path` for `scene`, with whatever settings they were baked
 /// (for readers that do not choose bake settings, such as `render`).
 pub fn load_for_scene(path: &Path, scene: &Scene) -> CacheLookup {
+    lookup(path, |settings| BakeKey::of(scene, settings))
+}
+
+/// Reads the cache at `path` and compares it with the key `key_for` gives for the bake
+/// settings the cache records (the file is read and its checksum computed once).
+fn lookup(path: &Path, key_for: impl FnOnce(&BakeSettings) -> BakeKey) -> CacheLookup {
     let bytes = match std::fs::read(path) {
         Ok(bytes) => bytes,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return CacheLookup::Missing,
         Err(e) => return CacheLookup::Unusable(format!("{}: cannot read: {e}", path.display())),
     };
-    let parsed = header(&bytes).and_then(|(_, settings)| parse(&bytes, &BakeKey::of(scene, &settings)));
-    parsed.unwrap_or_else(|reason| CacheLookup::Unusable(format!("{}: {reason}", path.display())))
+    parse(&bytes, key_for).unwrap_or_else(|reason| CacheLookup::Unusable(format!("{}: {reason}", path.display())))
 }
 
 /// Checks the magic, checksum and version; returns a reader after the header and the
@@ -182,8 +179,9 @@ fn header(bytes: &[u8]) -> Result<(Reader<'_>, BakeSettings), String> {
     Ok((reader, settings))
 }
 
-fn parse(bytes: &[u8], key: &BakeKey) -> Result<CacheLookup, String> {
-    let (mut reader, _) = header(bytes)?;
+fn parse(bytes: &[u8], key_for: impl FnOnce(&BakeSettings) -> BakeKey) -> Result<CacheLookup, String> {
+    let (mut reader, settings) = header(bytes)?;
+    let key = key_for(&settings);
     let body = reader.bytes;
     let scene: [u8; 32] = reader.take(32)?.try_into().map_err(|_| "short scene key")?;
     if scene != key.scene {

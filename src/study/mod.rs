@@ -410,7 +410,7 @@ impl SceneStudy<'_> {
                 1,
             )?;
             raster.draw_and_wait()?;
-            let ms = self.mean_ms(|| raster.draw_and_wait())?;
+            let ms = mean_frame_ms(self.frames, || raster.draw_and_wait())?;
             return Ok((unshadowed.clone(), ms, 0));
         };
         let blocker_settings = BlockerSettings {
@@ -435,18 +435,18 @@ impl SceneStudy<'_> {
         }
         let renderer = ShadowRenderer::new(self.gpu, &frame, 1)?;
         let image = renderer.read_image()?;
-        let ms = self.mean_ms(|| renderer.draw_and_wait())?;
+        let ms = mean_frame_ms(self.frames, || renderer.draw_and_wait())?;
         Ok((image, ms, blockers.len()))
     }
+}
 
-    /// Mean milliseconds of `self.frames` calls of `draw`.
-    fn mean_ms(&self, draw: impl Fn() -> Result<(), RenderError>) -> Result<f64, StudyError> {
-        let started = Instant::now();
-        for _ in 0..self.frames.max(1) {
-            draw()?;
-        }
-        Ok(started.elapsed().as_secs_f64() * 1000.0 / self.frames.max(1) as f64)
+/// Mean milliseconds of `frames` (at least one) calls of `draw`.
+fn mean_frame_ms(frames: u32, draw: impl Fn() -> Result<(), RenderError>) -> Result<f64, StudyError> {
+    let started = Instant::now();
+    for _ in 0..frames.max(1) {
+        draw()?;
     }
+    Ok(started.elapsed().as_secs_f64() * 1000.0 / frames.max(1) as f64)
 }
 
 /// The path tracer's view of a rasterised surface point (its shading normal stands for

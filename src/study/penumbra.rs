@@ -14,8 +14,6 @@
 //! of GPU frames. The sky has no exact path: its
 //! light comes through the SH in both.
 
-use std::time::Instant;
-
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
@@ -322,9 +320,5 @@ fn frame_ms(
     };
     let renderer = ShadowRenderer::new(gpu, &frame, 1)?;
     renderer.draw_and_wait()?;
-    let started = Instant::now();
-    for _ in 0..frames {
-        renderer.draw_and_wait()?;
-    }
-    Ok(started.elapsed().as_secs_f64() * 1000.0 / frames.max(1) as f64)
+    super::mean_frame_ms(frames, || renderer.draw_and_wait())
 }
