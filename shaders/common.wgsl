@@ -65,6 +65,28 @@ struct ShadowParams {
     _pad2: u32,
 };
 
+// A height-field terrain for terrain.wgsl (src/render/gpu_terrain.rs fills it).
+struct TerrainParams {
+    // 0: the scene has no terrain.
+    present: u32,
+    // W: marching directions per receiver.
+    azimuths: u32,
+    // Pyramid levels read while marching.
+    levels: u32,
+    // Samples per azimuth, at t_i = first_step_m · 2^(i/4).
+    sample_count: u32,
+    first_step_m: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+    // Per level: world x and z of sample (0, 0), spacing along x and z (metres).
+    level_frame: array<vec4<f32>, 12>,
+    // Per level: columns, rows, index of sample (0, 0) in terrain_heights, unused.
+    level_size: array<vec4<u32>, 12>,
+    // M_lin, n² rows × 2n columns row-major, four to a vec4 (room for order 8).
+    wedge: array<vec4<f32>, 256>,
+};
+
 // Consecutive blockers first..first + count culled together: every sphere lies within
 // center_extent.w of center_extent.xyz, and a receiver farther than influence_m from the
 // centre is beyond every sphere's influence distance.

@@ -1,11 +1,14 @@
 // Log-SH soft shadows (Ren et al. 2006), per pixel. Included after common.wgsl,
 // scene.wgsl and the generated SH module of the chosen order and exponentiation method
-// (src/render/wgsl_sh.rs). render::cpu is the f64 reference of exactly this shading:
+// (src/render/wgsl_sh.rs), and terrain.wgsl. render::cpu is the f64 reference of exactly
+// this shading:
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
+//       + the terrain's log-visibility (terrain.wgsl)
 //   G = exp*(F)                                                     (visibility SH)
 //   L = emissive + environment · ⟨G, cos⟩ + Σ_lights direct · clamp(mean of G over the
 //       light's cap, 0, 1), or, for lights small enough for the exact path,
-//       direct · Π_blockers (1 − share of the light's disc the blocker hides)
+//       direct · Π_blockers (1 − share of the light's disc the blocker hides) · share of
+//       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
 // (design.md §4b: never shade through an order-n triple product of light × cosine).
 
@@ -16,7 +19,7 @@
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
-// Σ of the blockers' log-visibility seen from p with normal n. Skipped: blockers that
+// Σ of the blockers' and the terrain's log-visibility seen from p with normal n. Skipped: blockers that
 // contain p (a sphere-fit artefact on the blocker's own surface), blockers too small in
 // the sky to matter, and blockers wholly below the tangent plane; blockers straddling it
 // are faded by smoothstep(−1, 1, (c − p)·n / r).
@@ -35,7 +38,7 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
             f = add_blocker(f, blockers[i].center_radius, p, n);
         }
     }
-    return f;
+    return sh_sum(f, terrain_log_visibility(p));
 }
 
 fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
@@ -166,7 +169,8 @@ fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
         }
         var visibility: f32;
         if inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u) {
-            visibility = exact_light_visibility(s.position, s.normal, inc);
+            visibility = exact_light_visibility(s.position, s.normal, inc)
+                * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
         } else {
             visibility = clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
         }

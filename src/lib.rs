@@ -20,4 +20,5 @@ pub mod samples;
 pub mod scene;
 pub mod sh;
 pub mod study;
+pub mod terrain;
 pub mod ui;

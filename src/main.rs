@@ -40,6 +40,10 @@ enum Command {
         /// Directory for study.csv, study.md, pareto.png and images/.
         #[arg(short, long)]
         output: PathBuf,
+        /// Only this sample scene (repeatable: sample, studio, interior, large, terrain),
+        /// without the stability and small-light suites.
+        #[arg(long = "scene", value_parser = parse_sample)]
+        scenes: Vec<lightpaint::samples::Sample>,
     },
     /// Validate a project or scene file; print every problem found, exit 2 if there is one.
     Check {
@@ -130,6 +134,12 @@ struct RenderArgs {
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     light_paths: Option<LightPaths>,
+    /// Terrain: marching directions per receiver (W, 3–64); default: the project's, or 16.
+    #[arg(long)]
+    terrain_azimuths: Option<u32>,
+    /// Terrain: height pyramid levels read while marching (1–12); default: the project's, or 6.
+    #[arg(long)]
+    terrain_levels: Option<u32>,
     /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 6).
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
@@ -271,7 +281,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Check { file }) => check(&file),
-        Some(Command::Study { quick, output }) => study(quick, output),
+        Some(Command::Study { quick, output, scenes }) => study(quick, output, scenes),
         Some(Command::Bake {
             file,
             order,
@@ -345,6 +355,8 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
     shadows.ratio_attenuation |= args.ratio_attenuation;
     shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
+    shadows.terrain.azimuths = args.terrain_azimuths.unwrap_or(shadows.terrain.azimuths);
+    shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
     shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
     let no_shadows = args.no_shadows || !shadows.enabled;
@@ -397,7 +409,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_cpu_image(&gpu, &frame)?,
             format!(
                 "CPU f64 reference, {}{}",
-                describe(&shadows, blockers.len()),
+                describe(&shadows, blockers.len(), &document.scene),
                 describe_indirect(&indirect)
             ),
         )
@@ -406,7 +418,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_logsh_image(&gpu, &frame, args.msaa)?,
             format!(
                 "log-SH, {}{}",
-                describe(&shadows, blockers.len()),
+                describe(&shadows, blockers.len(), &document.scene),
                 describe_indirect(&indirect)
             ),
         )
@@ -431,9 +443,18 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn study(quick: bool, output_dir: PathBuf) -> Result<(), CliError> {
+fn parse_sample(text: &str) -> Result<lightpaint::samples::Sample, String> {
+    lightpaint::samples::Sample::from_name(text)
+        .ok_or_else(|| format!("expected sample, studio, interior, large or terrain, got '{text}'"))
+}
+
+fn study(quick: bool, output_dir: PathBuf, scenes: Vec<lightpaint::samples::Sample>) -> Result<(), CliError> {
     let gpu = GpuContext::headless()?;
-    let options = lightpaint::study::StudyOptions { quick, output_dir };
+    let options = lightpaint::study::StudyOptions {
+        quick,
+        output_dir,
+        only_scenes: (!scenes.is_empty()).then_some(scenes),
+    };
     let started = std::time::Instant::now();
     let results = lightpaint::study::run_study(&gpu, &options, |line| say!("{line}"))?;
     say!(
@@ -560,9 +581,17 @@ fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
     }
 }
 
-fn describe(shadows: &ShadowSettings, blocker_count: usize) -> String {
+fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::scene::Scene) -> String {
+    let terrain = if scene.terrain.is_some() {
+        format!(
+            ", terrain W {} × {} levels",
+            shadows.terrain.azimuths, shadows.terrain.pyramid_levels
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{}, {:?} light paths",
+        "order {}, {:?}, eps {}, {blocker_count} blockers{}{terrain}, {:?} light paths",
         shadows.order,
         shadows.exp,
         shadows.epsilon,

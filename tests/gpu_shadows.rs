@@ -201,7 +201,14 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
     let raster = ScenePipeline::new(&gpu.device);
     let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
-    let gpu_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &pipeline.shadow_layout, &blockers, &shadows);
+    let gpu_blockers = GpuBlockers::upload(
+        &gpu.device,
+        &gpu.queue,
+        &pipeline.shadow_layout,
+        &blockers,
+        None,
+        &shadows,
+    );
     let visibility = pipeline
         .vertex_visibility(&gpu.device, &gpu_scene)
         .expect("order 4 runs per vertex");

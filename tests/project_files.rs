@@ -229,13 +229,17 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     assert_eq!(document.scene.lights, current.scene.lights);
     // Formats before 4 drew no baked indirect light and shadowed every light through the
     // SH, so they keep both.
-    let expected = lightpaint::render::RenderSettings {
-        baked_indirect: false,
-        shadows: lightpaint::render::ShadowSettings {
-            light_paths: lightpaint::render::LightPaths::Harmonics,
-            ..current.settings.shadows
-        },
-        ..current.settings
+    let expected = if version < 4 {
+        lightpaint::render::RenderSettings {
+            baked_indirect: false,
+            shadows: lightpaint::render::ShadowSettings {
+                light_paths: lightpaint::render::LightPaths::Harmonics,
+                ..current.settings.shadows
+            },
+            ..current.settings
+        }
+    } else {
+        current.settings
     };
     assert_eq!(document.settings, expected);
     let dir = tempfile::tempdir().expect("temp dir");
@@ -280,6 +284,17 @@ fn a_format_3_project_opens_on_the_default_scene() {
     let document = open_old_fixture(3);
     assert_eq!(document.scene.gltf_scene, Some(0));
     assert_eq!(document.scene.gltf_scenes.len(), 1);
+}
+
+/// Format 4 had no terrain: it opens without one and with the default terrain sampling.
+#[test]
+fn a_format_4_project_opens_without_terrain() {
+    let document = open_old_fixture(4);
+    assert!(document.scene.terrain.is_none());
+    assert_eq!(
+        document.settings.shadows.terrain,
+        lightpaint::render::TerrainShading::default()
+    );
 }
 
 /// A project on a glTF with several scenes remembers the one chosen: it reopens on it,

@@ -70,6 +70,7 @@ fn every_sample_matches_its_generator_loads_and_renders() {
             Sample::Studio => (9_000, 9),
             Sample::Interior => (150_000, 16),
             Sample::Large => (500_000, 22),
+            Sample::Terrain => (20_000, 2),
         };
         assert!(
             vertices >= min_vertices && lights >= min_lights,

@@ -425,3 +425,33 @@ fn the_outliner_picks_another_scene_of_the_gltf_file() {
     let document = harness.state().document().expect("a document");
     assert_eq!(document.scene.gltf_scene, Some(0));
 }
+
+/// The inspector's Terrain section adds generated hills under the scene (drawn at once,
+/// saved into the project) and removes them again.
+#[test]
+fn terrain_is_added_saved_and_removed_in_the_inspector() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let objects = harness.state().document().expect("document").scene.objects.len();
+    harness.get_by_label("Add hills").scroll_to_me();
+    harness.run();
+    harness.get_by_label("Add hills").click();
+    harness.run();
+    let scene = &harness.state().document().expect("document").scene;
+    assert!(scene.terrain.is_some(), "hills were added");
+    assert_eq!(scene.objects.len(), objects + 1, "as one more mesh");
+    harness.get_by_label_contains("terrain updated");
+    assert!(harness.state().has_unsaved_changes());
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert!(reopened.scene.terrain.is_some(), "the terrain was saved");
+    harness.get_by_label("Remove terrain").scroll_to_me();
+    harness.run();
+    harness.get_by_label("Remove terrain").click();
+    harness.run();
+    let scene = &harness.state().document().expect("document").scene;
+    assert!(scene.terrain.is_none() && scene.objects.len() == objects);
+}

@@ -3,7 +3,9 @@
 
 use std::mem::{offset_of, size_of};
 
-use lightpaint::render::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams};
+use lightpaint::render::gpu_types::{
+    GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams, GpuTerrainParams,
+};
 use lightpaint::render::shaders;
 
 /// (size, [(member name, offset)]) of a WGSL struct, as naga lays it out.
@@ -116,6 +118,24 @@ fn shadow_params_match_wgsl() {
                 offset_of!(GpuShadowParams, exact_below_cap_ratio),
             ),
             ("exact_point_lights", offset_of!(GpuShadowParams, exact_point_lights)),
+        ],
+    );
+}
+
+#[test]
+fn terrain_params_match_wgsl() {
+    assert_twin(
+        "TerrainParams",
+        size_of::<GpuTerrainParams>(),
+        &[
+            ("present", offset_of!(GpuTerrainParams, present)),
+            ("azimuths", offset_of!(GpuTerrainParams, azimuths)),
+            ("levels", offset_of!(GpuTerrainParams, levels)),
+            ("sample_count", offset_of!(GpuTerrainParams, sample_count)),
+            ("first_step_m", offset_of!(GpuTerrainParams, first_step_m)),
+            ("level_frame", offset_of!(GpuTerrainParams, level_frame)),
+            ("level_size", offset_of!(GpuTerrainParams, level_size)),
+            ("wedge", offset_of!(GpuTerrainParams, wedge)),
         ],
     );
 }

@@ -1,6 +1,6 @@
 //! Regenerates sample scenes and projects under projects/NAME/:
-//! `cargo run --bin make-sample [NAME…]`, NAME one of sample, studio, interior, large, all
-//! (default: the committed ones, sample and studio).
+//! `cargo run --bin make-sample [NAME…]`, NAME one of sample, studio, interior, large, terrain,
+//! all (default: the committed ones, sample, studio and terrain).
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -19,7 +19,7 @@ fn main() -> ExitCode {
             match Sample::from_name(name) {
                 Some(sample) => samples.push(sample),
                 None => {
-                    eprintln!("error: unknown sample '{name}' (sample, studio, interior, large, all)");
+                    eprintln!("error: unknown sample '{name}' (sample, studio, interior, large, terrain, all)");
                     return ExitCode::from(2);
                 }
             }

@@ -182,7 +182,12 @@ const K_LADDER: [usize; 14] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128
 /// Fits sphere sets to every object of `scene` (in parallel, cached per mesh).
 pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
     use rayon::prelude::*;
-    let grids: Vec<Arc<Solid>> = scene.objects.par_iter().map(|o| solid(o, settings)).collect();
+    // The terrain (always the last object) shadows through its horizons, not spheres.
+    let casters = match &scene.terrain {
+        Some(terrain) => &scene.objects[..terrain.object.min(scene.objects.len())],
+        None => &scene.objects[..],
+    };
+    let grids: Vec<Arc<Solid>> = casters.par_iter().map(|o| solid(o, settings)).collect();
     let per_object = match settings.budget {
         SphereBudget::FitError(_) => grids.par_iter().map(|solid| fit_solid(solid, settings, None)).collect(),
         SphereBudget::Total(total) => {
@@ -217,6 +222,12 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
                 .collect()
         }
     };
+    let mut per_object: Vec<SphereSet> = per_object;
+    per_object.resize_with(scene.objects.len(), || SphereSet {
+        spheres: Vec::new(),
+        fit_error: 0.0,
+        skipped: Some("terrain: it shadows through its horizons".to_string()),
+    });
     SceneBlockers { per_object }
 }
 

@@ -99,6 +99,14 @@ impl Document {
             ),
             None => None,
         };
+        if let Some(spec) = file.terrain {
+            let spec = spec.with_absolute_image(directory);
+            let field = spec.height_field(directory).map_err(|error| ProjectError::Asset {
+                project: path.to_path_buf(),
+                error,
+            })?;
+            scene.set_terrain(Some((spec, field)));
+        }
         Ok(Document {
             scene,
             scene_path,
@@ -135,6 +143,7 @@ impl Document {
             camera: self.camera,
             environment,
             painting: self.painting.clone(),
+            terrain: self.scene.terrain.as_ref().map(|t| t.spec.with_image_path(relative)),
         }
     }
 
@@ -145,6 +154,7 @@ impl Document {
     pub fn with_gltf_scene(&self, index: usize) -> Result<Document, ProjectError> {
         let mut scene = Scene::load_choosing(&self.scene_path, Some(index))?;
         scene.environment = self.scene.environment.clone();
+        scene.set_terrain(self.scene.terrain.as_ref().map(|t| (t.spec.clone(), t.field.clone())));
         Ok(Document {
             warnings: scene.warnings.clone(),
             scene,

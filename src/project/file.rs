@@ -10,15 +10,15 @@ use serde::{Deserialize, Serialize};
 use super::error::{Problem, ProjectError};
 use crate::paint::{Brush, PaintSettings, StrokeRecord};
 use crate::render::RenderSettings;
-use crate::scene::{Light, OrbitCamera};
+use crate::scene::{Light, OrbitCamera, TerrainSpec};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 4;
+pub const FORMAT_VERSION: u64 = 5;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
 
-/// Everything a project file holds (format version 4).
+/// Everything a project file holds (format version 5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProjectFile {
@@ -34,6 +34,10 @@ pub struct ProjectFile {
     pub environment: Option<EnvironmentReference>,
     /// The strokes painted so far and the brush the next one uses.
     pub painting: PaintingState,
+    /// A height-field terrain under the scene (format 5); image paths relative to the
+    /// project file's directory (or absolute).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terrain: Option<TerrainSpec>,
 }
 
 /// The painting state a project restores: the applied strokes (oldest first, replayable)
@@ -158,6 +162,14 @@ impl ProjectFile {
             for message in brush.problems() {
                 problems.push(Problem {
                     field: "painting.brush".into(),
+                    message,
+                });
+            }
+        }
+        if let Some(terrain) = &self.terrain {
+            for message in terrain.problems() {
+                problems.push(Problem {
+                    field: "terrain".into(),
                     message,
                 });
             }

@@ -15,6 +15,8 @@
 //!   what an absent `gltf_scene` means, and were drawn without baked indirect light, so
 //!   they get `baked_indirect: false`; `render.shadows.light_paths` (exact shadows for
 //!   small lights): format 3 shadowed every light through the SH, so "harmonics".
+//! - 5: `terrain` (a height-field terrain) and `render.shadows.terrain` (its horizon
+//!   sampling); format 4 had no terrain, which is what their absence means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -33,6 +35,16 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 4 {
         value = v3_to_v4(value);
+    }
+    if version < 5 {
+        value = v4_to_v5(value);
+    }
+    value
+}
+
+fn v4_to_v5(mut value: Value) -> Value {
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(5));
     }
     value
 }

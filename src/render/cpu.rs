@@ -12,7 +12,9 @@
 //!   w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap (s = sin of its
 //!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d). Lights the
 //!   settings' [`super::LightPaths`] send the exact way take `penumbra::light_visibility`
-//!   instead (the share of their disc no blocker hides).
+//!   instead (the share of their disc no blocker hides);
+//! - with a terrain, F gains its log-visibility (`TerrainShadow::log_visibility`, the twin
+//!   of terrain.wgsl) and exact-path lights the share of their disc above its horizon.
 //!
 //! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
 
@@ -24,6 +26,7 @@ use super::ShadowSettings;
 use super::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
+use crate::terrain::TerrainShadow;
 
 /// A visible surface point with its material, as `Surface` in scene.wgsl.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -139,6 +142,25 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
     f
 }
 
+/// The blockers' log-visibility plus, with a terrain, the terrain's (`log_visibility` in
+/// logsh.wgsl, which adds `terrain_log_visibility`).
+pub fn scene_log_visibility(
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    terrain: Option<&TerrainShadow>,
+    p: DVec3,
+    n: DVec3,
+) -> Vec<f64> {
+    let mut f = log_visibility(settings, blockers, p, n);
+    if let Some(terrain) = terrain {
+        let ln_epsilon = (settings.epsilon as f64).ln();
+        for (a, b) in f.iter_mut().zip(terrain.log_visibility(p, ln_epsilon)) {
+            *a += b;
+        }
+    }
+    f
+}
+
 /// The SH basis at unit `d`: the unrolled polynomials up to order 4 (as the shaders
 /// evaluate it), the general recurrence above.
 fn basis(order: usize, d: DVec3) -> Vec<f64> {
@@ -203,6 +225,8 @@ pub struct ShadingInputs<'a> {
     /// Order-3 SH of the environment's irradiance, as `Frame::environment_irradiance`.
     pub environment_irradiance: &'a [[f32; 4]; 9],
     pub blockers: &'a [Sphere],
+    /// The terrain's shadow model, if the scene has a terrain.
+    pub terrain: Option<&'a TerrainShadow>,
     pub settings: &'a ShadowSettings,
     pub eye: DVec3,
 }
@@ -219,7 +243,7 @@ pub fn environment_radiance(s: &SurfacePoint, irradiance_sh: &[[f32; 4]; 9]) -> 
 
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
 pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
-    let f = log_visibility(inputs.settings, inputs.blockers, s.position, s.normal);
+    let f = scene_log_visibility(inputs.settings, inputs.blockers, inputs.terrain, s.position, s.normal);
     let g = exp_for_shading(inputs.settings.exp, &f);
     let environment_visibility = visibility_cosine(&g, s.normal).clamp(0.0, 1.0);
     let mut radiance = s.emissive + environment_radiance(s, inputs.environment_irradiance) * environment_visibility;
@@ -229,7 +253,7 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        let visibility = exact_visibility(s, &inc, inputs.settings, inputs.blockers)
+        let visibility = exact_visibility(s, &inc, inputs.settings, inputs.blockers, inputs.terrain)
             .unwrap_or_else(|| visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0));
         radiance += unshadowed * visibility;
     }
@@ -237,23 +261,27 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
 }
 
 /// The visibility of the light seen as `inc` from `s` when the settings send it the
-/// exact way (`crate::penumbra`); None when it takes the SH path.
+/// exact way (`crate::penumbra`, times the share of its disc above the terrain's horizon);
+/// None when it takes the SH path.
 pub fn exact_visibility(
     s: &SurfacePoint,
     inc: &Incidence,
     settings: &ShadowSettings,
     blockers: &[Sphere],
+    terrain: Option<&TerrainShadow>,
 ) -> Option<f64> {
     settings.light_paths.is_exact(inc.cap_ratio).then(|| {
-        crate::penumbra::light_visibility(
-            s.position,
-            s.normal,
-            inc.to_light,
-            inc.distance_m,
-            inc.cap_ratio,
-            blockers,
-            settings.min_cap_ratio as f64,
-        )
+        let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
+        above_terrain
+            * crate::penumbra::light_visibility(
+                s.position,
+                s.normal,
+                inc.to_light,
+                inc.distance_m,
+                inc.cap_ratio,
+                blockers,
+                settings.min_cap_ratio as f64,
+            )
     })
 }
 

@@ -1,13 +1,16 @@
-//! Blockers, their culling groups and the shadow parameters on the GPU: bind group 2 of
-//! logsh.wgsl, shared by the shading pass and the per-vertex compute pass.
+//! Blockers, their culling groups, the shadow parameters and the terrain on the GPU: bind
+//! group 2 of logsh.wgsl and terrain.wgsl, shared by the shading pass and the per-vertex
+//! compute pass.
 
 use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
 use super::ShadowSettings;
 use super::blocker_groups::group_blockers;
+use super::gpu_terrain::GpuTerrain;
 use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams};
 use crate::blockers::Sphere;
+use crate::terrain::HeightField;
 
 /// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
 /// logsh.wgsl). Groups depend on the influence cut-off, so they are rebuilt with it.
@@ -18,6 +21,8 @@ pub struct GpuBlockers {
     groups: Vec<GpuBlockerGroup>,
     /// The influence cut-off the groups were built for.
     grouped_for_min_cap_ratio: f32,
+    terrain_field: Option<HeightField>,
+    terrain: GpuTerrain,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -27,6 +32,7 @@ impl GpuBlockers {
         queue: &wgpu::Queue,
         layout: &wgpu::BindGroupLayout,
         spheres: &[Sphere],
+        terrain: Option<&HeightField>,
         settings: &ShadowSettings,
     ) -> GpuBlockers {
         let params = device.create_buffer(&wgpu::BufferDescriptor {
@@ -36,20 +42,23 @@ impl GpuBlockers {
             mapped_at_creation: false,
         });
         let (ordered, groups) = gpu_groups(spheres, settings);
-        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups);
+        let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
+        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups, &gpu_terrain);
         let blockers = GpuBlockers {
             params,
             bind_group_layout: layout.clone(),
             spheres: spheres.to_vec(),
             groups,
             grouped_for_min_cap_ratio: settings.min_cap_ratio,
+            terrain_field: terrain.cloned(),
+            terrain: gpu_terrain,
             bind_group,
         };
         blockers.write_params(queue, settings);
         blockers
     }
 
-    /// Replaces the blockers and writes the parameters.
+    /// Replaces the blockers (keeping the terrain) and writes the parameters.
     pub fn update(
         &mut self,
         device: &wgpu::Device,
@@ -57,12 +66,34 @@ impl GpuBlockers {
         spheres: &[Sphere],
         settings: &ShadowSettings,
     ) {
-        *self = GpuBlockers::upload(device, queue, &self.bind_group_layout, spheres, settings);
+        let terrain = self.terrain_field.take();
+        *self = GpuBlockers::upload(
+            device,
+            queue,
+            &self.bind_group_layout,
+            spheres,
+            terrain.as_ref(),
+            settings,
+        );
     }
 
-    /// Applies new settings; a new influence cut-off regroups the blockers.
+    /// Replaces the terrain (None: removes it), keeping the blockers.
+    pub fn set_terrain(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        terrain: Option<&HeightField>,
+        settings: &ShadowSettings,
+    ) {
+        let spheres = std::mem::take(&mut self.spheres);
+        *self = GpuBlockers::upload(device, queue, &self.bind_group_layout, &spheres, terrain, settings);
+    }
+
+    /// Applies new settings; a new influence cut-off regroups the blockers, and a new
+    /// order or terrain sampling rebuilds the terrain's model.
     pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
-        if settings.min_cap_ratio == self.grouped_for_min_cap_ratio {
+        let terrain_stale = self.terrain_field.is_some() && self.terrain.is_stale_for(settings);
+        if settings.min_cap_ratio == self.grouped_for_min_cap_ratio && !terrain_stale {
             self.write_params(queue, settings);
         } else {
             let spheres = std::mem::take(&mut self.spheres);
@@ -99,6 +130,7 @@ fn storage_bind_group(
     params: &wgpu::Buffer,
     spheres: &[GpuBlocker],
     groups: &[GpuBlockerGroup],
+    terrain: &GpuTerrain,
 ) -> wgpu::BindGroup {
     // Storage bindings may not be empty: pad with a zero-radius sphere / empty group.
     let storage = |label, bytes: &[u8]| {
@@ -134,6 +166,14 @@ fn storage_bind_group(
                 binding: 2,
                 resource: group_buffer.as_entire_binding(),
             },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: terrain.params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: terrain.heights.as_entire_binding(),
+            },
         ],
     })
 }
@@ -156,6 +196,8 @@ pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             entry(0, wgpu::BufferBindingType::Uniform),
             entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
             entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(3, wgpu::BufferBindingType::Uniform),
+            entry(4, wgpu::BufferBindingType::Storage { read_only: true }),
         ],
     })
 }

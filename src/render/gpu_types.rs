@@ -175,6 +175,24 @@ pub struct GpuShadowParams {
     pub _pad: u32,
 }
 
+/// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).
+pub const GPU_TERRAIN_LEVELS: usize = 12;
+
+/// WGSL `TerrainParams` (see `gpu_terrain`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuTerrainParams {
+    pub present: u32,
+    pub azimuths: u32,
+    pub levels: u32,
+    pub sample_count: u32,
+    pub first_step_m: f32,
+    pub _pad: [f32; 3],
+    pub level_frame: [[f32; 4]; GPU_TERRAIN_LEVELS],
+    pub level_size: [[u32; 4]; GPU_TERRAIN_LEVELS],
+    pub wedge: [[f32; 4]; 256],
+}
+
 /// WGSL `BlockerGroup` (see `blocker_groups`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

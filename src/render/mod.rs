@@ -9,6 +9,7 @@ mod context;
 pub mod cpu;
 mod gpu_blockers;
 mod gpu_scene;
+mod gpu_terrain;
 pub mod gpu_types;
 pub mod logsh;
 mod offscreen;
@@ -18,6 +19,7 @@ mod pipeline;
 pub mod shaders;
 mod shadow_settings;
 pub mod wgsl_sh;
+pub mod wgsl_terrain;
 
 pub use baked_indirect::BakedIndirect;
 pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
@@ -29,7 +31,10 @@ pub use offscreen::{
     shade_surfaces,
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
-pub use shadow_settings::{AUTO_EXACT_BELOW_HALF_ANGLE_DEG, LightPaths, ShadowSettings, parse_exp_method};
+pub use shadow_settings::{
+    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, LightPaths, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, ShadowSettings,
+    TerrainShading, parse_exp_method,
+};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]

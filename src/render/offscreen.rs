@@ -159,6 +159,7 @@ impl<'a> ShadowRenderer<'a> {
             &gpu.queue,
             &pipeline.shadow_layout,
             frame.blockers,
+            frame.scene.terrain.as_ref().map(|t| &t.field),
             frame.shadows,
         );
         let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
@@ -221,7 +222,7 @@ pub fn capture_surfaces(
     gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, 0.0);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
-    let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], &ShadowSettings::default());
+    let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], None, &ShadowSettings::default());
     let mut channels: Vec<Vec<[f32; 4]>> = Vec::with_capacity(5);
     for pipeline in surface_pipelines(&gpu.device, &layouts, &shadows) {
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -301,10 +302,16 @@ pub fn render_cpu_image(gpu: &GpuContext, frame: &ShadowFrame) -> Result<image::
 pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
     let lights: Vec<GpuLight> = frame.scene.lights.iter().map(GpuLight::new).collect();
     let environment = environment_irradiance(frame.scene.environment.as_ref());
+    let terrain = frame
+        .scene
+        .terrain
+        .as_ref()
+        .map(|t| super::gpu_terrain::terrain_shadow(&t.field, frame.shadows));
     let inputs = ShadingInputs {
         lights: &lights,
         environment_irradiance: &environment,
         blockers: frame.blockers,
+        terrain: terrain.as_ref(),
         settings: frame.shadows,
         eye: frame.camera.position.as_dvec3(),
     };

@@ -1,7 +1,7 @@
 //! The direct-only transfer estimate painting uses before (or instead of) a bake: the
 //! real-time renderer's own shading (`cpu.rs`, the f64 twin of logsh.wgsl), evaluated at
 //! the painted vertices, one light at a time at unit intensity. Visibility comes from the
-//! sphere blockers (the log-SH, or the exact share for the lights the settings send that
+//! sphere blockers and the terrain (the log-SH, or the exact share for the lights the settings send that
 //! way, as on screen), so it needs no ray tracing and answers at once; indirect light is
 //! left out (the bake adds it).
 
@@ -14,11 +14,13 @@ use crate::blockers::Sphere;
 use crate::paint::{Transfer, VertexRef};
 use crate::scene::{Light, Material, Scene, luminance};
 use crate::sh;
+use crate::terrain::TerrainShadow;
 
 /// [`Transfer`] from the log-SH shading of the scene's lights, each at unit intensity.
 pub struct DirectEstimate<'a> {
     scene: &'a Scene,
     blockers: Vec<Sphere>,
+    terrain: Option<TerrainShadow>,
     settings: ShadowSettings,
     unit_lights: Vec<GpuLight>,
     environment: [[f32; 4]; 9],
@@ -39,6 +41,10 @@ impl<'a> DirectEstimate<'a> {
         DirectEstimate {
             scene,
             blockers,
+            terrain: scene
+                .terrain
+                .as_ref()
+                .map(|t| super::gpu_terrain::terrain_shadow(&t.field, &settings)),
             settings,
             unit_lights,
             environment: environment_irradiance(scene.environment.as_ref()),
@@ -62,7 +68,13 @@ impl<'a> DirectEstimate<'a> {
 
     /// Exponentiated visibility SH at the surface point.
     fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
-        let f = cpu::log_visibility(&self.settings, &self.blockers, s.position, s.normal);
+        let f = cpu::scene_log_visibility(
+            &self.settings,
+            &self.blockers,
+            self.terrain.as_ref(),
+            s.position,
+            s.normal,
+        );
         sh::exp(self.settings.exp, &f)
     }
 }
@@ -102,9 +114,10 @@ impl<'a> DirectEstimate<'a> {
                     return None;
                 }
                 let visible =
-                    cpu::exact_visibility(s, &incidence, &self.settings, &self.blockers).unwrap_or_else(|| {
-                        cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
-                    });
+                    cpu::exact_visibility(s, &incidence, &self.settings, &self.blockers, self.terrain.as_ref())
+                        .unwrap_or_else(|| {
+                            cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                        });
                 let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })

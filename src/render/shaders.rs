@@ -1,7 +1,8 @@
 //! WGSL sources. WGSL has no `#include`: a module is assembled from `common.wgsl` (shared
 //! structs and colour functions), `scene.wgsl` (bindings, vertex stage, lights, surfaces)
 //! and its own file, so shared code lives in exactly one place. The log-SH module also
-//! takes the SH code generated for its order and method (`wgsl_sh`).
+//! takes the SH code generated for its order and method (`wgsl_sh`) and the terrain's
+//! (`wgsl_terrain`, then `terrain.wgsl`).
 
 use crate::sh::ExpMethod;
 
@@ -9,6 +10,7 @@ pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
 pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
+pub const TERRAIN: &str = include_str!("../../shaders/terrain.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
 
 /// The shared prelude, then `body`.
@@ -30,7 +32,8 @@ pub fn logsh_source(order: usize, method: ExpMethod) -> String {
     } else {
         ""
     };
-    format!("{COMMON}\n{SCENE}\n{generated}\n{LOGSH}\n{per_vertex}")
+    let terrain = super::wgsl_terrain::terrain_module(order);
+    format!("{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{per_vertex}")
 }
 
 pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {

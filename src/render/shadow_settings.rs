@@ -1,5 +1,6 @@
 //! The knobs of the log-SH shadow renderer: SH order, exponentiation method, ε, ratio
-//! attenuation and the influence cut-off. Users trade speed for accuracy with them.
+//! attenuation, the influence cut-off, which lights go the exact way and the terrain's
+//! horizon sampling. Users trade speed for accuracy with them.
 
 use crate::sh::{ExpMethod, MAX_REALTIME_ORDER};
 
@@ -26,6 +27,33 @@ pub struct ShadowSettings {
     /// through the visibility SH (project format 4).
     #[serde(default)]
     pub light_paths: LightPaths,
+    /// How finely a height-field terrain's horizons are sampled (project format 5).
+    #[serde(default)]
+    pub terrain: TerrainShading,
+}
+
+/// The knobs of terrain shadows (`crate::terrain`): more azimuths remove the banding of
+/// discrete horizon directions, more pyramid levels read far terrain prefiltered rather
+/// than point-sampled; both cost per pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TerrainShading {
+    /// W: marching directions per receiver, 3..=MAX_TERRAIN_AZIMUTHS.
+    pub azimuths: u32,
+    /// Height pyramid levels read while marching (1: the finest only), 1..=MAX_TERRAIN_LEVELS.
+    pub pyramid_levels: u32,
+}
+
+pub const MAX_TERRAIN_AZIMUTHS: u32 = 64;
+pub const MAX_TERRAIN_LEVELS: u32 = 12;
+
+impl Default for TerrainShading {
+    fn default() -> Self {
+        TerrainShading {
+            azimuths: 16,
+            pyramid_levels: 6,
+        }
+    }
 }
 
 /// How each light's shadow is computed.
@@ -83,6 +111,7 @@ impl Default for ShadowSettings {
             min_cap_ratio: 0.03,
             per_vertex: false,
             light_paths: LightPaths::Auto,
+            terrain: TerrainShading::default(),
         }
     }
 }
@@ -121,6 +150,18 @@ impl ShadowSettings {
             && !(1..=32).contains(&terms)
         {
             problems.push(format!("power series with {terms} terms: use 1..=32"));
+        }
+        if !(3..=MAX_TERRAIN_AZIMUTHS).contains(&self.terrain.azimuths) {
+            problems.push(format!(
+                "terrain azimuths {} must be 3..={MAX_TERRAIN_AZIMUTHS}",
+                self.terrain.azimuths
+            ));
+        }
+        if !(1..=MAX_TERRAIN_LEVELS).contains(&self.terrain.pyramid_levels) {
+            problems.push(format!(
+                "terrain pyramid levels {} must be 1..={MAX_TERRAIN_LEVELS}",
+                self.terrain.pyramid_levels
+            ));
         }
         problems
     }

@@ -30,12 +30,12 @@ pub fn vec4_count(order: usize) -> usize {
     sh::coefficient_count(order).div_ceil(4)
 }
 
-fn slot(i: usize) -> String {
+pub(super) fn slot(i: usize) -> String {
     format!("[{}].{}", i / 4, COMPONENTS[i % 4])
 }
 
 /// A WGSL float literal that round-trips the f32 value.
-fn lit(v: f64) -> String {
+pub(super) fn lit(v: f64) -> String {
     let v = v as f32;
     if v == v.trunc() && v.abs() < 1e7 {
         format!("{v:.1}")
@@ -206,7 +206,7 @@ fn cap_zh_fn(order: usize) -> String {
 
 /// `let` statements for P_l(c) as `p{l}` and P_l′(c) as `dp{l}`, l < `order`: Bonnet's
 /// recurrence and P_{l+1}′ = P_{l−1}′ + (2l+1)·P_l, as `sh::legendre_derivative`.
-fn legendre_lets(order: usize) -> String {
+pub(super) fn legendre_lets(order: usize) -> String {
     let mut s = String::from("    let p0 = 1.0;\n    let dp0 = 0.0;\n");
     if order > 1 {
         s += "    let p1 = c;\n    let dp1 = 1.0;\n";

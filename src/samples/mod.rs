@@ -7,6 +7,7 @@ pub mod figure;
 mod interior;
 mod large;
 mod studio_set;
+mod terrain;
 
 use std::path::{Path, PathBuf};
 
@@ -32,10 +33,18 @@ pub enum Sample {
     Interior,
     /// A field of 144 objects, 500k+ vertices, 24 lights, for scale tests.
     Large,
+    /// Generated hills with a figure, standing stones and boulders, a low sun and a lantern.
+    Terrain,
 }
 
 impl Sample {
-    pub const ALL: [Sample; 4] = [Sample::Sample, Sample::Studio, Sample::Interior, Sample::Large];
+    pub const ALL: [Sample; 5] = [
+        Sample::Sample,
+        Sample::Studio,
+        Sample::Interior,
+        Sample::Large,
+        Sample::Terrain,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -43,6 +52,7 @@ impl Sample {
             Sample::Studio => "studio",
             Sample::Interior => "interior",
             Sample::Large => "large",
+            Sample::Terrain => "terrain",
         }
     }
 
@@ -52,7 +62,7 @@ impl Sample {
 
     /// Whether the generated files are committed under projects/ (small enough for git).
     pub fn is_committed(self) -> bool {
-        matches!(self, Sample::Sample | Sample::Studio)
+        matches!(self, Sample::Sample | Sample::Studio | Sample::Terrain)
     }
 
     pub fn glb(self) -> Vec<u8> {
@@ -61,6 +71,7 @@ impl Sample {
             Sample::Studio => figure::studio_glb(),
             Sample::Interior => interior::interior_glb(),
             Sample::Large => large::large_glb(),
+            Sample::Terrain => terrain::terrain_glb(&terrain_field()),
         }
     }
 
@@ -80,10 +91,23 @@ impl Sample {
         let mut document = Document::from_gltf(&scene_path)?;
         document.scene.environment =
             Some(Environment::load(&sky_path, SKY_INTENSITY, 0.0).map_err(ProjectError::SceneOnly)?);
+        if self == Sample::Terrain {
+            document.scene.lights.insert(0, terrain::sun());
+            document
+                .scene
+                .set_terrain(Some((terrain::terrain_spec(), terrain_field())));
+        }
         let project_path = directory.join(format!("{}.lightpaint", self.name()));
         document.save(&project_path)?;
         Ok(project_path)
     }
+}
+
+/// The terrain sample's heights (generated: no file is read).
+fn terrain_field() -> crate::terrain::HeightField {
+    terrain::terrain_spec()
+        .height_field(Path::new("."))
+        .expect("the sample's generated terrain is valid")
 }
 
 /// Writes the default sample scene and project into `directory`.

@@ -15,6 +15,7 @@ mod material;
 mod mesh;
 mod reflectance;
 pub mod shapes;
+pub mod terrain;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
@@ -25,6 +26,7 @@ pub use light::{Light, LightKind, UnitIncidence};
 pub use material::{Material, TextureImage, luminance};
 pub use mesh::MeshObject;
 pub use reflectance::Reflectance;
+pub use terrain::{Terrain, TerrainSource, TerrainSpec};
 
 use std::path::{Path, PathBuf};
 
@@ -50,6 +52,8 @@ pub struct Scene {
     pub gltf_scenes: Vec<String>,
     /// Which of [`Self::gltf_scenes`] this scene shows (None: the file has none).
     pub gltf_scene: Option<usize>,
+    /// The height-field terrain, if the project has one (its mesh is in `objects`).
+    pub terrain: Option<Terrain>,
 }
 
 impl Scene {

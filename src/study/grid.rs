@@ -1,7 +1,7 @@
 //! The knob settings a study measures: every order and exponentiation method crossed
 //! (the CPU's exact exponential up to order 6),
 //! then one knob at a time around the defaults (ε, ratio attenuation, blocker count,
-//! per-vertex shading), plus no shadows at all as the baseline; and the defaults against
+//! per-vertex shading, and on terrain the azimuth count and pyramid levels), plus no shadows at all as the baseline; and the defaults against
 //! the global-illumination reference, with and without the bake's indirect light.
 
 use crate::blockers::SphereBudget;
@@ -43,6 +43,9 @@ impl Knobs {
         if let SphereBudget::Total(n) = self.blockers {
             label.push_str(&format!("-s{n}"));
         }
+        if s.terrain != crate::render::TerrainShading::default() {
+            label.push_str(&format!("-w{}-l{}", s.terrain.azimuths, s.terrain.pyramid_levels));
+        }
         match self.lighting {
             Lighting::Direct => {}
             Lighting::Gi { baked_indirect: false } => label.push_str("-gi"),
@@ -67,8 +70,10 @@ pub fn method_label(method: ExpMethod) -> String {
     }
 }
 
-/// The grid: `quick` keeps it to what runs in well under two minutes.
-pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
+/// The grid: `quick` keeps it to what runs in well under two minutes; a scene with a
+/// `terrain` adds its azimuth counts W (at the default levels) and pyramid levels (at the
+/// default W).
+pub fn knob_grid(quick: bool, default_blockers: SphereBudget, terrain: bool) -> Vec<Knobs> {
     let defaults = ShadowSettings::default();
     let (orders, methods, epsilons, budgets): (Vec<usize>, Vec<ExpMethod>, Vec<f32>, Vec<usize>) = if quick {
         (
@@ -139,6 +144,14 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget) -> Vec<Knobs> {
             lighting: Lighting::Direct,
         });
     }
+    if terrain {
+        for azimuths in [4, 8, 32] {
+            grid.push(with(&|s| s.terrain.azimuths = azimuths));
+        }
+        for pyramid_levels in [1, 3] {
+            grid.push(with(&|s| s.terrain.pyramid_levels = pyramid_levels));
+        }
+    }
     for baked_indirect in [false, true] {
         grid.push(Knobs {
             lighting: Lighting::Gi { baked_indirect },
@@ -154,8 +167,8 @@ mod tests {
 
     #[test]
     fn every_grid_point_is_valid_and_labelled_once() {
-        for quick in [true, false] {
-            let grid = knob_grid(quick, SphereBudget::FitError(0.35));
+        for (quick, terrain) in [(true, false), (false, false), (false, true)] {
+            let grid = knob_grid(quick, SphereBudget::FitError(0.35), terrain);
             let mut labels: Vec<String> = grid.iter().map(Knobs::label).collect();
             for knobs in &grid {
                 if let Some(s) = knobs.shadows {

@@ -40,14 +40,17 @@ pub struct StudyOptions {
     /// A small grid on one scene at 160×90 (seconds on two cores; CI runs it).
     pub quick: bool,
     pub output_dir: PathBuf,
+    /// Only these sample scenes, and without the scene-independent suites (stability,
+    /// small lights); None: the scenes of `quick` or the full study, and every suite.
+    pub only_scenes: Option<Vec<Sample>>,
 }
 
 impl StudyOptions {
     fn scenes(&self) -> Vec<Sample> {
-        if self.quick {
-            vec![Sample::Sample]
-        } else {
-            vec![Sample::Sample, Sample::Studio, Sample::Interior]
+        match &self.only_scenes {
+            Some(scenes) => scenes.clone(),
+            None if self.quick => vec![Sample::Sample],
+            None => vec![Sample::Sample, Sample::Studio, Sample::Interior, Sample::Terrain],
         }
     }
 
@@ -179,7 +182,11 @@ pub fn run_study(
             frames: options.timed_frames(),
             surfaces: capture_surfaces(gpu, &document.scene, &camera, None, width, height)?,
         };
-        let grid = knob_grid(options.quick, document.settings.blockers.budget);
+        let grid = knob_grid(
+            options.quick,
+            document.settings.blockers.budget,
+            document.scene.terrain.is_some(),
+        );
         let gi_bounces = crate::bake::BakeSettings::default().bounces as u32;
         let wants_gi = grid.iter().any(|k| k.lighting != Lighting::Direct);
         let mut references = Vec::new();
@@ -207,6 +214,10 @@ pub fn run_study(
         results
             .rows
             .extend(scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?);
+    }
+    if options.only_scenes.is_some() {
+        report::write_all(&results, &options.output_dir)?;
+        return Ok(results);
     }
     let (stability_width, stability_height) = options.stability_size();
     for case in stability::stability_cases() {

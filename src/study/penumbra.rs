@@ -255,11 +255,13 @@ fn compare(
         lights: &lights,
         environment_irradiance: &environment,
         blockers: &blockers,
+        terrain: None,
         settings: shadows,
         eye: eye.as_dvec3(),
     };
     let open = ShadingInputs {
         blockers: &[],
+        terrain: None,
         ..inputs
     };
     let samples: Vec<PixelSample> = surfaces

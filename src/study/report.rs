@@ -134,6 +134,9 @@ fn markdown(results: &StudyResults) -> String {
 
 /// Small lights: each light size and shadow path (src/study/penumbra.rs).
 fn penumbra_markdown(results: &StudyResults) -> String {
+    if results.penumbrae.is_empty() {
+        return String::new();
+    }
     let mut text = String::from(
         "\n## Small lights: SH path against the exact path\n\nThree exact sphere blockers over a \
          white floor under one sphere light of the given angular radius (then a uniform sky); \
@@ -176,6 +179,9 @@ fn penumbra_markdown(results: &StudyResults) -> String {
 
 /// The stability suite's table: what each extreme measured.
 fn stability_markdown(results: &StudyResults) -> String {
+    if results.stability.is_empty() {
+        return String::new();
+    }
     let (width, height) = results.stability_size;
     let mut text = format!(
         "\n## Stability at the extremes\n\nEach case is a matte floor under one light at {width}×{height} \

@@ -146,11 +146,13 @@ pub fn measure(
         lights: &lights,
         environment_irradiance: &no_environment,
         blockers: &case.blockers,
+        terrain: None,
         settings: &case.shadows,
         eye: case.camera.position.as_dvec3(),
     };
     let unlit = ShadingInputs {
         blockers: &[],
+        terrain: None,
         ..inputs
     };
     let mut result = StabilityResult {

@@ -6,6 +6,7 @@ use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::{PaintAction, painting_section, tool_bar};
 use super::painting::{Painting, Tool};
 use super::shadow_panel::shadow_section;
+use super::terrain_panel::{TerrainEdit, image_terrain, terrain_section};
 use super::unsaved_prompt::{self, Answer, Pending};
 use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
 use crate::paint::BrushKind;
@@ -53,6 +54,8 @@ pub struct EditorApp {
     closing: bool,
     /// The viewport's baked indirect light no longer matches the lights, maps or setting.
     indirect_stale: bool,
+    /// The terrain spec being edited in the inspector (applied when an edit is committed).
+    terrain_editing: Option<crate::scene::TerrainSpec>,
 }
 
 impl EditorApp {
@@ -80,6 +83,7 @@ impl EditorApp {
             pending: None,
             closing: false,
             indirect_stale: true,
+            terrain_editing: None,
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -120,6 +124,50 @@ impl EditorApp {
             }
             Err(e) => self.report_error(e.to_string()),
         }
+    }
+
+    /// Applies a terrain edit: the scene gets the new terrain mesh and is reinstalled (the
+    /// sphere fit and the viewport follow; bake maps of the old geometry no longer apply).
+    /// A height map that cannot be read is reported and changes nothing.
+    pub fn apply_terrain_edit(&mut self, edit: TerrainEdit, render_state: Option<&egui_wgpu::RenderState>) {
+        let Some(current) = &self.document else { return };
+        let spec = match edit {
+            TerrainEdit::Remove => None,
+            TerrainEdit::Set(spec) => Some(spec),
+            TerrainEdit::PickImage => {
+                let picked = rfd::FileDialog::new()
+                    .add_filter("height map", &["png", "jpg", "jpeg", "hdr"])
+                    .pick_file();
+                let Some(path) = picked else { return };
+                let like = current.scene.terrain.as_ref().map(|t| &t.spec);
+                Some(image_terrain(path, like, &current.scene))
+            }
+        };
+        let mut document = current.clone();
+        let what = match spec {
+            Some(spec) => {
+                let directory = document
+                    .project_path
+                    .as_deref()
+                    .and_then(Path::parent)
+                    .unwrap_or(Path::new(""));
+                match spec.height_field(directory) {
+                    Ok(field) => {
+                        document.scene.set_terrain(Some((spec, field)));
+                        "terrain updated"
+                    }
+                    Err(e) => return self.report_error(e.to_string()),
+                }
+            }
+            None => {
+                document.scene.set_terrain(None);
+                "terrain removed"
+            }
+        };
+        if let Some(viewport) = &self.viewport {
+            document.camera = Some(viewport.orbit);
+        }
+        self.install(document, what, render_state);
     }
 
     /// Shows glTF scene `index`, first asking to save when there are unsaved changes.
@@ -630,6 +678,12 @@ impl EditorApp {
                     viewport.set_environment(Some(environment));
                 }
             }
+        }
+        let Some(document) = &self.document else { return };
+        ui.separator();
+        ui.heading("Terrain");
+        if let Some(edit) = terrain_section(ui, &document.scene, &mut self.terrain_editing) {
+            self.apply_terrain_edit(edit, render_state);
         }
     }
 

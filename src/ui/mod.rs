@@ -7,6 +7,7 @@ mod brush_input;
 mod brush_panel;
 mod painting;
 mod shadow_panel;
+mod terrain_panel;
 mod unsaved_prompt;
 mod viewport;
 

@@ -1,5 +1,6 @@
 //! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, and the
-//! sphere blockers fitted to the scene's meshes (count and fit per object).
+//! terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
+//! and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
 use crate::render::{LightPaths, RenderSettings};
@@ -58,6 +59,19 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                     ui.selectable_value(&mut settings.exp, method, method_label(method));
                 }
             });
+        if scene.terrain.is_some() {
+            let terrain = &mut settings.terrain;
+            ui.add(
+                egui::Slider::new(&mut terrain.azimuths, 3..=crate::render::MAX_TERRAIN_AZIMUTHS)
+                    .text("terrain azimuths"),
+            )
+            .on_hover_text("Horizon directions marched per pixel (W): more removes banding, costs linearly.");
+            ui.add(
+                egui::Slider::new(&mut terrain.pyramid_levels, 1..=crate::render::MAX_TERRAIN_LEVELS)
+                    .text("terrain pyramid levels"),
+            )
+            .on_hover_text("Far terrain is read from prefiltered coarser levels; 1 samples the finest only.");
+        }
         if let SphereBudget::FitError(budget) = &mut render.blockers.budget {
             ui.add(egui::Slider::new(budget, 0.1..=0.8).text("sphere fit error budget"))
                 .on_hover_text("Per mesh, the fewest spheres whose volume error is within this share.");

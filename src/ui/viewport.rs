@@ -74,7 +74,14 @@ impl Viewport {
             ShadowSettings::default()
         };
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT);
-        let gpu_blockers = GpuBlockers::upload(device, queue, &logsh.shadow_layout, blockers, &settings);
+        let gpu_blockers = GpuBlockers::upload(
+            device,
+            queue,
+            &logsh.shadow_layout,
+            blockers,
+            scene.terrain.as_ref().map(|t| &t.field),
+            &settings,
+        );
         let visibility = logsh.vertex_visibility(device, &gpu_scene);
         Viewport {
             pipeline,

@@ -1,0 +1,91 @@
+//! The terrain's shadow model on the GPU: `TerrainParams` (the pyramid's layout, the march
+//! and M_lin) and every pyramid level's heights, bindings 3 and 4 of the shadow group
+//! (shaders/terrain.wgsl).
+
+use bytemuck::Zeroable;
+use wgpu::util::DeviceExt;
+
+use super::ShadowSettings;
+use super::gpu_types::{GPU_TERRAIN_LEVELS, GpuTerrainParams};
+use crate::terrain::{HeightField, HeightPyramid, TerrainShadow};
+
+/// The shadow model of `field` for `settings` (its order, azimuths and pyramid levels):
+/// what the CPU reference shades with and what [`GpuTerrain`] uploads.
+pub fn terrain_shadow(field: &HeightField, settings: &ShadowSettings) -> TerrainShadow {
+    let levels = (settings.terrain.pyramid_levels as usize).clamp(1, GPU_TERRAIN_LEVELS);
+    TerrainShadow::new(
+        HeightPyramid::new(field.clone(), levels),
+        settings.order,
+        settings.terrain.azimuths as usize,
+        levels,
+    )
+}
+
+/// The uniform and the concatenated heights of `shadow` (None: no terrain).
+pub fn terrain_params(shadow: Option<&TerrainShadow>) -> (GpuTerrainParams, Vec<f32>) {
+    let mut params = GpuTerrainParams::zeroed();
+    let mut heights = Vec::new();
+    let Some(shadow) = shadow else {
+        return (params, vec![0.0]);
+    };
+    params.present = 1;
+    params.azimuths = shadow.azimuths() as u32;
+    params.levels = shadow.march.levels as u32;
+    params.sample_count = shadow.march.sample_count() as u32;
+    params.first_step_m = shadow.march.first_step_m as f32;
+    for (k, level) in shadow.pyramid.levels.iter().take(GPU_TERRAIN_LEVELS).enumerate() {
+        params.level_frame[k] = [
+            level.min_xz[0] as f32,
+            level.min_xz[1] as f32,
+            level.spacing_m[0] as f32,
+            level.spacing_m[1] as f32,
+        ];
+        params.level_size[k] = [level.columns as u32, level.rows as u32, heights.len() as u32, 0];
+        heights.extend_from_slice(&level.heights_m);
+    }
+    for (e, value) in shadow.operator.matrix.iter().enumerate().take(4 * params.wedge.len()) {
+        params.wedge[e / 4][e % 4] = *value as f32;
+    }
+    (params, heights)
+}
+
+/// The terrain's buffers, and what they were built for.
+pub struct GpuTerrain {
+    pub params: wgpu::Buffer,
+    pub heights: wgpu::Buffer,
+    /// (order, azimuths, pyramid levels) of the uploaded model.
+    built_for: (usize, u32, u32),
+}
+
+impl GpuTerrain {
+    pub fn upload(device: &wgpu::Device, field: Option<&HeightField>, settings: &ShadowSettings) -> GpuTerrain {
+        let shadow = field.map(|f| terrain_shadow(f, settings));
+        let (params, heights) = terrain_params(shadow.as_ref());
+        GpuTerrain {
+            params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("terrain params"),
+                contents: bytemuck::bytes_of(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            }),
+            heights: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("terrain heights"),
+                contents: bytemuck::cast_slice(&heights),
+                usage: wgpu::BufferUsages::STORAGE,
+            }),
+            built_for: Self::key(settings),
+        }
+    }
+
+    fn key(settings: &ShadowSettings) -> (usize, u32, u32) {
+        (
+            settings.order,
+            settings.terrain.azimuths,
+            settings.terrain.pyramid_levels,
+        )
+    }
+
+    /// Whether `settings` need a new upload (a new order changes M_lin's size).
+    pub fn is_stale_for(&self, settings: &ShadowSettings) -> bool {
+        self.built_for != Self::key(settings)
+    }
+}
