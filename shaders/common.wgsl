@@ -76,9 +76,11 @@ struct TerrainParams {
     // Samples per azimuth, at t_i = first_step_m · 2^(i/4).
     sample_count: u32,
     first_step_m: f32,
+    // Index in terrain_heights of the surface cache: n² values per finest sample.
+    surface_first: u32,
+    // Receivers at most this far above the terrain (metres) read the surface cache.
+    surface_tolerance_m: f32,
     _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
     // Per level: world x and z of sample (0, 0), spacing along x and z (metres).
     level_frame: array<vec4<f32>, 12>,
     // Per level: columns, rows, index of sample (0, 0) in terrain_heights, unused.

@@ -133,6 +133,8 @@ fn terrain_params_match_wgsl() {
             ("levels", offset_of!(GpuTerrainParams, levels)),
             ("sample_count", offset_of!(GpuTerrainParams, sample_count)),
             ("first_step_m", offset_of!(GpuTerrainParams, first_step_m)),
+            ("surface_first", offset_of!(GpuTerrainParams, surface_first)),
+            ("surface_tolerance_m", offset_of!(GpuTerrainParams, surface_tolerance_m)),
             ("level_frame", offset_of!(GpuTerrainParams, level_frame)),
             ("level_size", offset_of!(GpuTerrainParams, level_size)),
             ("wedge", offset_of!(GpuTerrainParams, wedge)),

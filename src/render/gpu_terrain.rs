@@ -1,6 +1,6 @@
 //! The terrain's shadow model on the GPU: `TerrainParams` (the pyramid's layout, the march
-//! and M_lin) and every pyramid level's heights, bindings 3 and 4 of the shadow group
-//! (shaders/terrain.wgsl).
+//! and M_lin) and every pyramid level's heights followed by the surface cache, bindings 3
+//! and 4 of the shadow group (shaders/terrain.wgsl).
 
 use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
@@ -46,6 +46,11 @@ pub fn terrain_params(shadow: Option<&TerrainShadow>) -> (GpuTerrainParams, Vec<
     for (e, value) in shadow.operator.matrix.iter().enumerate().take(4 * params.wedge.len()) {
         params.wedge[e / 4][e % 4] = *value as f32;
     }
+    let finest = shadow.pyramid.finest();
+    params.surface_first = heights.len() as u32;
+    params.surface_tolerance_m =
+        (crate::terrain::SURFACE_TOLERANCE * finest.spacing_m[0].min(finest.spacing_m[1])) as f32;
+    heights.extend(shadow.surface.iter().map(|v| *v as f32));
     (params, heights)
 }
 

@@ -7,6 +7,7 @@
 //!   `terrain.wedge` (it depends on W, a setting), its structural zeros skipped.
 //! - `sh_rotate_z(f, cos ϕ, sin ϕ) -> Sh`: f turned by ϕ about the polar axis (`sh::rotate_z`).
 //! - `sh_terrain_to_world(f) -> Sh`: the fixed SH rotation of `TERRAIN_TO_WORLD`.
+//! - `sh_from_terrain_cache(first) -> Sh`: one sample of the surface cache.
 
 use std::fmt::Write;
 
@@ -21,7 +22,27 @@ pub fn terrain_module(order: usize) -> String {
     out += &wedge_fn(order);
     out += &rotate_z_fn(order);
     out += &to_world_fn(order);
+    out += &cache_read_fn(order);
     out
+}
+
+/// `fn sh_from_terrain_cache(first) -> Sh`: n² consecutive floats of `terrain_heights`.
+fn cache_read_fn(order: usize) -> String {
+    let values: Vec<String> = (0..order * order)
+        .map(|i| format!("terrain_heights[first + {i}u]"))
+        .collect();
+    let mut s = String::from(
+        "fn sh_from_terrain_cache(first: u32) -> Sh {
+    var out = sh_zero();
+",
+    );
+    for (i, value) in values.iter().enumerate() {
+        writeln!(s, "    out{} = {value};", slot(i)).unwrap();
+    }
+    s += "    return out;
+}
+";
+    s
 }
 
 /// Which entries of M_lin (row-major, n² × 2n) can be non-zero for some W: P̂_j·P_l^|m| is

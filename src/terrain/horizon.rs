@@ -146,6 +146,24 @@ mod tests {
     }
 
     #[test]
+    fn levels_start_where_the_shaders_start_them() {
+        // terrain.wgsl reads level 0 for samples 0–11 and level l ≥ 1 from 4l + 8 on.
+        let march = March {
+            first_step_m: 1.0,
+            max_distance_m: 1e6,
+            levels: 12,
+        };
+        let start = |l: usize| if l == 0 { 0 } else { 4 * l + 8 };
+        for i in 0..80 {
+            let level = march.level_of_sample(i);
+            assert!(
+                start(level) <= i && (level == 11 || i < start(level + 1)),
+                "sample {i}: level {level}"
+            );
+        }
+    }
+
+    #[test]
     fn flat_ground_is_level_from_the_surface_and_below_level_from_above() {
         let pyramid = terrain(65, 8.0, |_, _| 1.0);
         let march = March::for_pyramid(&pyramid, 6);
@@ -173,6 +191,22 @@ mod tests {
         let march = March::for_pyramid(&pyramid, 1);
         let sampled = horizon_sin(&pyramid, &march, 0.0, 0.0, 0.0, PI / 2.0);
         assert!((sampled - analytic).abs() < 0.06, "{sampled}");
+    }
+
+    #[test]
+    fn a_thin_wall_is_seen_from_both_sides_and_not_along_it() {
+        // A wall 3 m high and 0.5 m thick over x ∈ [2, 2.5]: from x = 0 toward +x the
+        // horizon is atan(3/2), from x = 4 toward −x atan(3/1.5), along it (±z) nothing.
+        let pyramid = terrain(257, 8.0, |x, _| if (2.0..=2.5).contains(&x) { 3.0 } else { 0.0 });
+        let from_front = horizon_sin_dense(&pyramid, 20.0, 0.0, 0.0, 0.0, PI / 2.0);
+        let from_back = horizon_sin_dense(&pyramid, 20.0, 4.0, 0.0, 0.0, -PI / 2.0);
+        assert!((from_front - 3f64.atan2(2.0).sin()).abs() < 0.02, "{from_front}");
+        assert!((from_back - 3f64.atan2(1.5).sin()).abs() < 0.02, "{from_back}");
+        assert_eq!(horizon_sin_dense(&pyramid, 20.0, 0.0, 0.0, 0.0, 0.0), 0.0);
+        // The pyramid marcher at one level finds it too (its samples land on the wall).
+        let march = March::for_pyramid(&pyramid, 1);
+        let sampled = horizon_sin(&pyramid, &march, 0.0, 0.0, 0.0, PI / 2.0);
+        assert!((sampled - from_front).abs() < 0.05, "{sampled}");
     }
 
     #[test]

@@ -5,6 +5,12 @@
 //! horizon along azimuth ϕ_k = 2πk/W from p and R the terrain-to-world SH rotation
 //! (Giraud's thesis §4.4–4.5). It is added to the sphere blockers' log-visibility before
 //! the one exponentiation.
+//!
+//! The terrain does not move while lights and camera do, so the sum (without ln ε) is
+//! marched once at every finest sample ([`TerrainShadow::surface`]); a receiver on the
+//! terrain's surface inside its footprint reads it, interpolated on the mesh triangle it
+//! lies in, instead of marching W directions per pixel. Receivers above the surface
+//! (objects, by more than [`SURFACE_TOLERANCE`] of a spacing) march.
 
 use std::f64::consts::PI;
 
@@ -15,25 +21,47 @@ use super::horizon::{March, horizon_sin};
 use super::slice::slice_vector;
 use super::wedge::{WedgeOperator, terrain_to_world};
 
-/// Everything shading needs of one terrain: its pyramid, the marching schedule and the
-/// wedge operator for one order and azimuth count.
+/// Receivers less than this share of the finest spacing above the terrain read the
+/// surface cache (the rasterised mesh and the height field agree to f32 rounding).
+pub const SURFACE_TOLERANCE: f64 = 0.01;
+
+/// Everything shading needs of one terrain: its pyramid, the marching schedule, the
+/// wedge operator for one order and azimuth count, and the marched sums at every sample.
 #[derive(Debug, Clone)]
 pub struct TerrainShadow {
     pub pyramid: HeightPyramid,
     pub march: March,
     pub operator: WedgeOperator,
+    /// R·Σ_k Rot_z(M_lin·[v̄(σ_k); v̄(σ_{k+1})], ϕ_k) (no ln ε) at every finest sample,
+    /// n² values per sample, samples row-major.
+    pub surface: Vec<f64>,
 }
 
 impl TerrainShadow {
     /// The shadow model of `pyramid` at SH `order` with `azimuths` (W ≥ 3) marching
     /// directions and `levels` pyramid levels.
     pub fn new(pyramid: HeightPyramid, order: usize, azimuths: usize, levels: usize) -> TerrainShadow {
+        use rayon::prelude::*;
         let march = March::for_pyramid(&pyramid, levels);
-        TerrainShadow {
+        let mut shadow = TerrainShadow {
             operator: WedgeOperator::new(order, azimuths.max(3)),
             pyramid,
             march,
-        }
+            surface: Vec::new(),
+        };
+        let field = shadow.pyramid.finest();
+        let samples: Vec<DVec3> = (0..field.rows as i64)
+            .flat_map(|j| (0..field.columns as i64).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                DVec3::new(
+                    field.min_xz[0] + i as f64 * field.spacing_m[0],
+                    field.sample(i, j),
+                    field.min_xz[1] + j as f64 * field.spacing_m[1],
+                )
+            })
+            .collect();
+        shadow.surface = samples.par_iter().flat_map_iter(|p| shadow.marched(*p, 1.0)).collect();
+        shadow
     }
 
     pub fn azimuths(&self) -> usize {
@@ -58,8 +86,50 @@ impl TerrainShadow {
     }
 
     /// The terrain's log-visibility at `p`, world axes, for blocked directions worth
-    /// `ln_epsilon`.
+    /// `ln_epsilon`: from the surface cache on the terrain, marched above it.
     pub fn log_visibility(&self, p: DVec3, ln_epsilon: f64) -> Vec<f64> {
+        match self.on_surface(p) {
+            Some(corners) => {
+                let n2 = self.operator.order * self.operator.order;
+                let mut f = vec![0.0; n2];
+                for (index, weight) in corners {
+                    for (a, b) in f.iter_mut().zip(&self.surface[index * n2..(index + 1) * n2]) {
+                        *a += ln_epsilon * weight * b;
+                    }
+                }
+                f
+            }
+            None => self.marched(p, ln_epsilon),
+        }
+    }
+
+    /// The three samples (index, weight) of the mesh triangle under `p` when `p` lies on
+    /// the terrain's surface inside its footprint; None otherwise (the weights are those
+    /// of `HeightField::height_at`).
+    fn on_surface(&self, p: DVec3) -> Option<[(usize, f64); 3]> {
+        let field = self.pyramid.finest();
+        let u = (p.x - field.min_xz[0]) / field.spacing_m[0];
+        let v = (p.z - field.min_xz[1]) / field.spacing_m[1];
+        let tolerance = SURFACE_TOLERANCE * field.spacing_m[0].min(field.spacing_m[1]);
+        let inside = (0.0..=(field.columns - 1) as f64).contains(&u) && (0.0..=(field.rows - 1) as f64).contains(&v);
+        if !inside || p.y - field.height_at(p.x, p.z) > tolerance {
+            return None;
+        }
+        let (i, j) = (
+            u.floor().min((field.columns - 2) as f64),
+            v.floor().min((field.rows - 2) as f64),
+        );
+        let (fu, fv) = (u - i, v - j);
+        let at = |di: usize, dj: usize| (j as usize + dj) * field.columns + i as usize + di;
+        Some(if fu + fv <= 1.0 {
+            [(at(0, 0), 1.0 - fu - fv), (at(1, 0), fu), (at(0, 1), fv)]
+        } else {
+            [(at(1, 1), fu + fv - 1.0), (at(0, 1), 1.0 - fu), (at(1, 0), 1.0 - fv)]
+        })
+    }
+
+    /// The log-visibility at `p` by marching W azimuths.
+    pub fn marched(&self, p: DVec3, ln_epsilon: f64) -> Vec<f64> {
         let order = self.operator.order;
         let slices: Vec<Vec<f64>> = self
             .horizons(p)
@@ -129,6 +199,43 @@ mod tests {
         // Reconstructed, it is near ln ε straight down and near 0 straight up.
         assert!(sh::evaluate(&f, DVec3::NEG_Y) < 0.8 * ln_e);
         assert!(sh::evaluate(&f, DVec3::Y).abs() < 0.35 * -ln_e);
+    }
+
+    #[test]
+    fn the_surface_cache_is_the_march_at_samples_and_close_between_them() {
+        // Smooth hills, 2 m of relief over 10 m.
+        let mut field = flat(41).finest().clone();
+        for j in 0..41 {
+            for i in 0..41 {
+                let (x, z) = (i as f64 * 0.25 - 5.0, j as f64 * 0.25 - 5.0);
+                field.heights_m[j * 41 + i] = ((0.6 * x).sin() * (0.5 * z).cos() + 1.0) as f32;
+            }
+        }
+        let shadow = TerrainShadow::new(HeightPyramid::new(field.clone(), 3), 4, 12, 3);
+        let ln_e = 0.1f64.ln();
+        let at = |x: f64, z: f64| DVec3::new(x, field.height_at(x, z), z);
+        for p in [at(0.0, 0.0), at(-2.5, 1.75), at(5.0, 5.0)] {
+            let (cached, marched) = (shadow.log_visibility(p, ln_e), shadow.marched(p, ln_e));
+            for (a, b) in cached.iter().zip(&marched) {
+                assert!((a - b).abs() < 1e-9, "{p}: {a} vs {b}");
+            }
+        }
+        for p in [at(0.1, 0.07), at(-2.4, 1.9), at(3.33, -4.1)] {
+            let (cached, marched) = (shadow.log_visibility(p, ln_e), shadow.marched(p, ln_e));
+            let error: f64 = cached
+                .iter()
+                .zip(&marched)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let norm: f64 = marched.iter().map(|v| v * v).sum::<f64>().sqrt();
+            assert!(error < 0.05 * norm, "{p}: {error} of {norm}");
+        }
+        // Above the surface, or outside the footprint, the receiver marches.
+        let above = at(0.1, 0.07) + DVec3::new(0.0, 0.5, 0.0);
+        assert_eq!(shadow.log_visibility(above, ln_e), shadow.marched(above, ln_e));
+        let outside = DVec3::new(7.0, 1.0, 0.0);
+        assert_eq!(shadow.log_visibility(outside, ln_e), shadow.marched(outside, ln_e));
     }
 
     #[test]
