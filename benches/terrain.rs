@@ -2,7 +2,8 @@
 //! `cargo bench --profile dev --bench terrain`. Groups:
 //! - `terrain/frame`: a GPU frame of the terrain sample (480×270, one sample per pixel,
 //!   order 4, HYB, the fitted spheres) for W = 4, 8, 16, 32 and 1, 3, 6 levels;
-//! - `terrain/cpu`: the f64 twin's log-visibility at one receiver on the hills.
+//! - `terrain/cpu`: the f64 twin's log-visibility at one receiver on the hills (read from
+//!   the surface cache) and 1 m above them (marched).
 
 use std::time::Duration;
 
@@ -62,14 +63,17 @@ fn terrain(c: &mut Criterion) {
         .expect("the sample has terrain")
         .field
         .clone();
-    let receiver = DVec3::new(1.0, field.height_at(1.0, 2.0), 2.0);
+    let on_ground = DVec3::new(1.0, field.height_at(1.0, 2.0), 2.0);
+    let above = on_ground + DVec3::new(0.0, 1.0, 0.0);
     let mut group = c.benchmark_group("terrain/cpu");
     for levels in [1, 6] {
         for azimuths in [8, 16, 32] {
             let model = TerrainShadow::new(HeightPyramid::new(field.clone(), levels), 4, azimuths, levels);
-            group.bench_function(BenchmarkId::new(format!("levels-{levels}"), azimuths), |b| {
-                b.iter(|| model.log_visibility(receiver, 0.1f64.ln()))
-            });
+            for (label, receiver) in [("surface", on_ground), ("marched", above)] {
+                group.bench_function(BenchmarkId::new(format!("{label}/levels-{levels}"), azimuths), |b| {
+                    b.iter(|| model.log_visibility(receiver, 0.1f64.ln()))
+                });
+            }
         }
     }
     group.finish();
