@@ -48,8 +48,12 @@ pub fn terrain_params(shadow: Option<&TerrainShadow>) -> (GpuTerrainParams, Vec<
     }
     let finest = shadow.pyramid.finest();
     params.surface_first = heights.len() as u32;
-    params.surface_tolerance_m =
-        (crate::terrain::SURFACE_TOLERANCE * finest.spacing_m[0].min(finest.spacing_m[1])) as f32;
+    // Without a cache (large terrains) no receiver counts as on the surface.
+    params.surface_tolerance_m = if shadow.surface.is_empty() {
+        -f32::MAX
+    } else {
+        (crate::terrain::SURFACE_TOLERANCE * finest.spacing_m[0].min(finest.spacing_m[1])) as f32
+    };
     heights.extend(shadow.surface.iter().map(|v| *v as f32));
     (params, heights)
 }

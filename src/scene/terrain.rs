@@ -27,8 +27,9 @@ pub struct TerrainSpec {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum TerrainSource {
-    /// A grayscale image: 8- or 16-bit PNG, JPEG, or a float Radiance .hdr (its first
-    /// channel), rows along +z and columns along +x. The path is relative to the project.
+    /// A grayscale image: 8- or 16-bit PNG, JPEG, or a float Radiance .hdr (a colour image
+    /// gives its luminance), rows along +z and columns along +x. The path is relative to
+    /// the project.
     Image { path: PathBuf },
     /// Rolling hills, the same for the same seed: a sum of sinusoids of random direction
     /// and phase whose amplitude falls as 1/frequency (spectral synthesis), normalised to
@@ -116,7 +117,7 @@ impl TerrainSpec {
     }
 }
 
-/// An image's first channel as heights 0..1 (8/16-bit scaled to full range, float as is).
+/// An image's luminance as heights (8/16-bit scaled to 0..1, float as is).
 fn read_height_image(path: &Path) -> Result<(usize, usize, Vec<f32>), SceneError> {
     if !path.exists() {
         return Err(SceneError::NotFound {
@@ -351,6 +352,30 @@ mod tests {
         spec.source = TerrainSource::Image { path: "bad.png".into() };
         let error = spec.height_field(dir.path()).unwrap_err().to_string();
         assert!(error.contains("bad.png") && error.contains("height map"), "{error}");
+    }
+
+    #[test]
+    fn eight_bit_and_float_images_give_their_values() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        image::GrayImage::from_fn(4, 3, |x, y| image::Luma([(x * 50 + y) as u8]))
+            .save(dir.path().join("h8.png"))
+            .expect("save");
+        let grey: Vec<image::Rgb<f32>> = (0..12).map(|k| image::Rgb([k as f32 * 0.5; 3])).collect();
+        let mut hdr = Vec::new();
+        image::codecs::hdr::HdrEncoder::new(&mut hdr)
+            .encode(&grey, 4, 3)
+            .expect("hdr");
+        std::fs::write(dir.path().join("h.hdr"), hdr).expect("write");
+        let spec = |path: &str, scale: f32| TerrainSpec {
+            source: TerrainSource::Image { path: path.into() },
+            ..TerrainSpec::hills(1, 8, 3.0, scale)
+        };
+        let eight = spec("h8.png", 255.0).height_field(dir.path()).expect("8-bit map");
+        assert_eq!((eight.columns, eight.rows), (4, 3));
+        assert!((eight.sample(3, 2) - 152.0).abs() < 1e-3, "{}", eight.sample(3, 2));
+        let float = spec("h.hdr", 1.0).height_field(dir.path()).expect("float map");
+        // Radiance HDR keeps about 8 bits of mantissa: 5.5 reads back within 1 %.
+        assert!((float.sample(3, 2) - 5.5).abs() < 0.06, "{}", float.sample(3, 2));
     }
 
     #[test]

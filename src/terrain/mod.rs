@@ -15,5 +15,5 @@ mod wedge;
 pub use height_field::{HeightField, HeightPyramid};
 pub use horizon::{March, STEP_GROWTH, horizon_sin, horizon_sin_dense, slope_to_sin};
 pub use slice::{slice_basis, slice_vector};
-pub use visibility::{SURFACE_TOLERANCE, TerrainShadow, disc_share_above};
+pub use visibility::{MAX_SURFACE_CACHE_SAMPLES, SURFACE_TOLERANCE, TerrainShadow, disc_share_above};
 pub use wedge::{TERRAIN_TO_WORLD, WedgeOperator, azimuth_direction, terrain_to_world};

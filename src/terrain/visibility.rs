@@ -25,6 +25,11 @@ use super::wedge::{WedgeOperator, terrain_to_world};
 /// surface cache (the rasterised mesh and the height field agree to f32 rounding).
 pub const SURFACE_TOLERANCE: f64 = 0.01;
 
+/// Terrains with more samples than this (257²) get no surface cache: marching every
+/// sample would take seconds each time the terrain or a knob changes (about 48 µs per
+/// sample at W 16 on one core), so their receivers all march.
+pub const MAX_SURFACE_CACHE_SAMPLES: usize = 257 * 257;
+
 /// Everything shading needs of one terrain: its pyramid, the marching schedule, the
 /// wedge operator for one order and azimuth count, and the marched sums at every sample.
 #[derive(Debug, Clone)]
@@ -33,7 +38,7 @@ pub struct TerrainShadow {
     pub march: March,
     pub operator: WedgeOperator,
     /// R·Σ_k Rot_z(M_lin·[v̄(σ_k); v̄(σ_{k+1})], ϕ_k) (no ln ε) at every finest sample,
-    /// n² values per sample, samples row-major.
+    /// n² values per sample, samples row-major; empty above [`MAX_SURFACE_CACHE_SAMPLES`].
     pub surface: Vec<f64>,
 }
 
@@ -50,6 +55,9 @@ impl TerrainShadow {
             surface: Vec::new(),
         };
         let field = shadow.pyramid.finest();
+        if field.columns * field.rows > MAX_SURFACE_CACHE_SAMPLES {
+            return shadow;
+        }
         let samples: Vec<DVec3> = (0..field.rows as i64)
             .flat_map(|j| (0..field.columns as i64).map(move |i| (i, j)))
             .map(|(i, j)| {
@@ -112,7 +120,7 @@ impl TerrainShadow {
         let v = (p.z - field.min_xz[1]) / field.spacing_m[1];
         let tolerance = SURFACE_TOLERANCE * field.spacing_m[0].min(field.spacing_m[1]);
         let inside = (0.0..=(field.columns - 1) as f64).contains(&u) && (0.0..=(field.rows - 1) as f64).contains(&v);
-        if !inside || p.y - field.height_at(p.x, p.z) > tolerance {
+        if self.surface.is_empty() || !inside || p.y - field.height_at(p.x, p.z) > tolerance {
             return None;
         }
         let (i, j) = (
@@ -236,6 +244,17 @@ mod tests {
         assert_eq!(shadow.log_visibility(above, ln_e), shadow.marched(above, ln_e));
         let outside = DVec3::new(7.0, 1.0, 0.0);
         assert_eq!(shadow.log_visibility(outside, ln_e), shadow.marched(outside, ln_e));
+    }
+
+    #[test]
+    fn large_terrains_march_every_receiver() {
+        let shadow = TerrainShadow::new(flat(300), 4, 8, 2);
+        assert!(
+            shadow.surface.is_empty(),
+            "no cache above {MAX_SURFACE_CACHE_SAMPLES} samples"
+        );
+        let p = DVec3::new(0.3, 0.0, 0.2);
+        assert_eq!(shadow.log_visibility(p, -2.0), shadow.marched(p, -2.0));
     }
 
     #[test]
