@@ -208,6 +208,8 @@ impl EditorApp {
         self.painting = Some(painting);
         self.document = Some(document);
         self.indirect_stale = true;
+        // An edit in progress belonged to the previous document's terrain.
+        self.terrain_editing = None;
     }
 
     /// Gives the viewport the baked indirect light of the current lights, when the

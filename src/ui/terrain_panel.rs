@@ -17,8 +17,8 @@ pub enum TerrainEdit {
     Remove,
 }
 
-/// Draws the section; `editing_scale` keeps the dragged scale until the drag ends (each
-/// new scale rebuilds the terrain mesh).
+/// Draws the section; `editing` holds the spec being edited, so a dragged height scale is
+/// applied once the drag ends (each applied change rebuilds the terrain mesh).
 pub fn terrain_section(ui: &mut egui::Ui, scene: &Scene, editing: &mut Option<TerrainSpec>) -> Option<TerrainEdit> {
     let Some(terrain) = &scene.terrain else {
         let mut edit = None;
