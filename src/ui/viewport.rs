@@ -176,7 +176,11 @@ impl Viewport {
         settings: &RenderSettings,
         brush_tool: bool,
     ) -> egui::Response {
-        if settings.shadows != self.shadows.settings {
+        // A terrain knob rebuilds the terrain's model (its surface cache is marched anew):
+        // while a slider is dragged the viewport keeps the old one, and takes the new on release.
+        let dragging = ui.input(|i| i.pointer.any_down());
+        let only_terrain_changed = same_but_terrain(&settings.shadows, &self.shadows.settings);
+        if settings.shadows != self.shadows.settings && !(only_terrain_changed && dragging) {
             self.apply_shadow_settings(render_state, settings.shadows);
         }
         let rect = ui.available_rect_before_wrap();
@@ -286,7 +290,7 @@ impl Viewport {
         );
         let mut encoder = device.create_command_encoder(&Default::default());
         let background = settings.background_linear();
-        if settings.shadows.enabled && self.shadows.settings == settings.shadows {
+        if settings.shadows.enabled && same_but_terrain(&self.shadows.settings, &settings.shadows) {
             self.shadows.pipeline.draw(
                 &mut encoder,
                 target,
@@ -304,4 +308,12 @@ impl Viewport {
         render_state.queue.submit([encoder.finish()]);
         self.last_render_ms = started.elapsed().as_secs_f32() * 1000.0;
     }
+}
+
+/// Whether `a` and `b` differ at most in their terrain sampling.
+fn same_but_terrain(a: &ShadowSettings, b: &ShadowSettings) -> bool {
+    ShadowSettings {
+        terrain: b.terrain,
+        ..*a
+    } == *b
 }
