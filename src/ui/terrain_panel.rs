@@ -17,8 +17,8 @@ pub enum TerrainEdit {
     Remove,
 }
 
-/// Draws the section; `editing` holds the spec being edited, so a dragged height scale is
-/// applied once the drag ends (each applied change rebuilds the terrain mesh).
+/// Draws the section; `editing` holds the spec being edited, so a dragged height scale or
+/// colour is applied once the drag ends (each applied change rebuilds the terrain mesh).
 pub fn terrain_section(ui: &mut egui::Ui, scene: &Scene, editing: &mut Option<TerrainSpec>) -> Option<TerrainEdit> {
     let Some(terrain) = &scene.terrain else {
         let mut edit = None;
@@ -54,7 +54,7 @@ pub fn terrain_section(ui: &mut egui::Ui, scene: &Scene, editing: &mut Option<Te
         field.columns, field.rows
     ));
     let spec = editing.get_or_insert_with(|| terrain.spec.clone());
-    let mut commit = false;
+    let mut typing = false;
     ui.horizontal(|ui| {
         ui.label("height scale");
         let response = ui.add(
@@ -63,16 +63,19 @@ pub fn terrain_section(ui: &mut egui::Ui, scene: &Scene, editing: &mut Option<Te
                 .speed(0.05)
                 .suffix(" m"),
         );
-        commit |= response.drag_stopped() || response.lost_focus();
+        typing = response.has_focus();
     })
     .response
     .on_hover_text("World height of a full-scale (white) sample.");
     ui.horizontal(|ui| {
         ui.label("colour");
-        commit |= ui.color_edit_button_rgb(&mut spec.color).changed();
+        ui.color_edit_button_rgb(&mut spec.color);
     });
+    // Applied once the drag or the typing ends: each change rebuilds the mesh and marches
+    // the terrain's surface cache.
+    let settled = !typing && !ui.input(|i| i.pointer.any_down());
     let mut edit = None;
-    if commit && *spec != terrain.spec && spec.problems().is_empty() {
+    if settled && *spec != terrain.spec && spec.problems().is_empty() {
         edit = Some(TerrainEdit::Set(spec.clone()));
     }
     if ui.button("Remove terrain").clicked() {
