@@ -188,7 +188,7 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
         None => &scene.objects[..],
     };
     let grids: Vec<Arc<Solid>> = casters.par_iter().map(|o| solid(o, settings)).collect();
-    let per_object = match settings.budget {
+    let mut per_object: Vec<SphereSet> = match settings.budget {
         SphereBudget::FitError(_) => grids.par_iter().map(|solid| fit_solid(solid, settings, None)).collect(),
         SphereBudget::Total(total) => {
             // The total goes only to the meshes the automatic fit finds sphere-like: a
@@ -222,7 +222,7 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
                 .collect()
         }
     };
-    let mut per_object: Vec<SphereSet> = per_object;
+    // The terrain's entry, after every caster's.
     per_object.resize_with(scene.objects.len(), || SphereSet {
         spheres: Vec::new(),
         fit_error: 0.0,

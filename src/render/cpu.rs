@@ -177,7 +177,6 @@ fn with_basis<R>(order: usize, d: DVec3, f: impl FnOnce(&[f64]) -> R) -> R {
     }
 }
 
-/// WGSL's smoothstep: 0 below `low`, 1 above `high`, t²(3 − 2t) between.
 /// Mean of the visibility SH `g` over a cap of sin(half-angle) `cap_ratio` around `d`.
 pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
     let order = sh::order_of(g.len()).unwrap_or(0);

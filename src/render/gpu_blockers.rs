@@ -77,18 +77,6 @@ impl GpuBlockers {
         );
     }
 
-    /// Replaces the terrain (None: removes it), keeping the blockers.
-    pub fn set_terrain(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        terrain: Option<&HeightField>,
-        settings: &ShadowSettings,
-    ) {
-        let spheres = std::mem::take(&mut self.spheres);
-        *self = GpuBlockers::upload(device, queue, &self.bind_group_layout, &spheres, terrain, settings);
-    }
-
     /// Applies new settings; a new influence cut-off regroups the blockers, and a new
     /// order or terrain sampling rebuilds the terrain's model.
     pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {

@@ -9,16 +9,23 @@ use super::ShadowSettings;
 use super::gpu_types::{GPU_TERRAIN_LEVELS, GpuTerrainParams};
 use crate::terrain::{HeightField, HeightPyramid, TerrainShadow};
 
-/// The shadow model of `field` for `settings` (its order, azimuths and pyramid levels):
-/// what the CPU reference shades with and what [`GpuTerrain`] uploads.
+/// The shadow model of `field` for `settings` (its order, azimuths and pyramid levels),
+/// surface cache filled: what the CPU reference shades frames with and what
+/// [`GpuTerrain`] uploads.
 pub fn terrain_shadow(field: &HeightField, settings: &ShadowSettings) -> TerrainShadow {
+    let (pyramid, levels) = pyramid_for(field, settings);
+    TerrainShadow::new(pyramid, settings.order, settings.terrain.azimuths as usize, levels)
+}
+
+/// [`terrain_shadow`] without the surface cache, for shading a few points.
+pub fn terrain_march(field: &HeightField, settings: &ShadowSettings) -> TerrainShadow {
+    let (pyramid, levels) = pyramid_for(field, settings);
+    TerrainShadow::marching_only(pyramid, settings.order, settings.terrain.azimuths as usize, levels)
+}
+
+fn pyramid_for(field: &HeightField, settings: &ShadowSettings) -> (HeightPyramid, usize) {
     let levels = (settings.terrain.pyramid_levels as usize).clamp(1, GPU_TERRAIN_LEVELS);
-    TerrainShadow::new(
-        HeightPyramid::new(field.clone(), levels),
-        settings.order,
-        settings.terrain.azimuths as usize,
-        levels,
-    )
+    (HeightPyramid::new(field.clone(), levels), levels)
 }
 
 /// The uniform and the concatenated heights of `shadow` (None: no terrain).

@@ -44,7 +44,7 @@ impl<'a> DirectEstimate<'a> {
             terrain: scene
                 .terrain
                 .as_ref()
-                .map(|t| super::gpu_terrain::terrain_shadow(&t.field, &settings)),
+                .map(|t| super::gpu_terrain::terrain_march(&t.field, &settings)),
             settings,
             unit_lights,
             environment: environment_irradiance(scene.environment.as_ref()),

@@ -1,8 +1,9 @@
 //! The knob settings a study measures: every order and exponentiation method crossed
 //! (the CPU's exact exponential up to order 6),
 //! then one knob at a time around the defaults (ε, ratio attenuation, blocker count,
-//! per-vertex shading, and on terrain the azimuth count and pyramid levels), plus no shadows at all as the baseline; and the defaults against
-//! the global-illumination reference, with and without the bake's indirect light.
+//! per-vertex shading, and on terrain the azimuth count and pyramid levels), plus no
+//! shadows at all as the baseline; and the defaults against the global-illumination
+//! reference, with and without the bake's indirect light.
 
 use crate::blockers::SphereBudget;
 use crate::render::ShadowSettings;

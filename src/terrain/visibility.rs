@@ -44,19 +44,34 @@ pub struct TerrainShadow {
 
 impl TerrainShadow {
     /// The shadow model of `pyramid` at SH `order` with `azimuths` (W ≥ 3) marching
-    /// directions and `levels` pyramid levels.
+    /// directions and `levels` pyramid levels, its surface cache filled (a march per
+    /// finest sample, on all cores).
     pub fn new(pyramid: HeightPyramid, order: usize, azimuths: usize, levels: usize) -> TerrainShadow {
-        use rayon::prelude::*;
+        let mut shadow = TerrainShadow::marching_only(pyramid, order, azimuths, levels);
+        shadow.fill_surface_cache();
+        shadow
+    }
+
+    /// [`Self::new`] without the surface cache: every receiver marches. For callers that
+    /// shade a few points (the painting estimate at painted vertices, which sit on the
+    /// samples where cache and march agree), not whole frames.
+    pub fn marching_only(pyramid: HeightPyramid, order: usize, azimuths: usize, levels: usize) -> TerrainShadow {
         let march = March::for_pyramid(&pyramid, levels);
-        let mut shadow = TerrainShadow {
+        TerrainShadow {
             operator: WedgeOperator::new(order, azimuths.max(3)),
             pyramid,
             march,
             surface: Vec::new(),
-        };
-        let field = shadow.pyramid.finest();
+        }
+    }
+
+    /// Marches every finest sample into [`Self::surface`] (not above
+    /// [`MAX_SURFACE_CACHE_SAMPLES`]).
+    fn fill_surface_cache(&mut self) {
+        use rayon::prelude::*;
+        let field = self.pyramid.finest();
         if field.columns * field.rows > MAX_SURFACE_CACHE_SAMPLES {
-            return shadow;
+            return;
         }
         let samples: Vec<DVec3> = (0..field.rows as i64)
             .flat_map(|j| (0..field.columns as i64).map(move |i| (i, j)))
@@ -68,8 +83,8 @@ impl TerrainShadow {
                 )
             })
             .collect();
-        shadow.surface = samples.par_iter().flat_map_iter(|p| shadow.marched(*p, 1.0)).collect();
-        shadow
+        let surface = samples.par_iter().flat_map_iter(|p| self.marched(*p, 1.0)).collect();
+        self.surface = surface;
     }
 
     pub fn azimuths(&self) -> usize {

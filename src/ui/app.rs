@@ -143,27 +143,30 @@ impl EditorApp {
                 Some(image_terrain(path, like, &current.scene))
             }
         };
-        let mut document = current.clone();
-        let what = match spec {
+        // The heights first: a map that cannot be read leaves the document as it is.
+        let terrain = match spec {
             Some(spec) => {
-                let directory = document
+                let directory = current
                     .project_path
                     .as_deref()
                     .and_then(Path::parent)
                     .unwrap_or(Path::new(""));
                 match spec.height_field(directory) {
-                    Ok(field) => {
-                        document.scene.set_terrain(Some((spec, field)));
-                        "terrain updated"
-                    }
+                    Ok(field) => Some((spec, field)),
                     Err(e) => return self.report_error(e.to_string()),
                 }
             }
-            None => {
-                document.scene.set_terrain(None);
-                "terrain removed"
-            }
+            None => None,
         };
+        let what = if terrain.is_some() {
+            "terrain updated"
+        } else {
+            "terrain removed"
+        };
+        let Some(mut document) = self.document.take() else {
+            return;
+        };
+        document.scene.set_terrain(terrain);
         if let Some(viewport) = &self.viewport {
             document.camera = Some(viewport.orbit);
         }
