@@ -6,11 +6,13 @@
 
 mod bounds;
 mod camera;
+pub mod color_temperature;
 pub mod environment;
 mod error;
 mod gltf_import;
 pub mod gltf_write;
 mod light;
+mod light_edit;
 mod material;
 mod mesh;
 mod reflectance;
@@ -23,6 +25,7 @@ pub use environment::Environment;
 pub use error::SceneError;
 pub use gltf_import::{load_gltf, load_gltf_scene, parse_gltf, parse_gltf_scene};
 pub use light::{Light, LightKind, UnitIncidence};
+pub use light_edit::{LIGHT_KINDS, direction_angles_deg, direction_from_angles_deg};
 pub use material::{Material, TextureImage, luminance};
 pub use mesh::MeshObject;
 pub use reflectance::Reflectance;
