@@ -49,6 +49,7 @@ fn stroke(scene: &Scene) -> StrokeRecord {
         },
         settings: PaintSettings::default(),
         seed: 1,
+        hidden_objects: Vec::new(),
     }
 }
 

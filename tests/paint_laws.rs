@@ -117,6 +117,7 @@ fn record(kind: BrushKind, at: Vec3, settings: PaintSettings, seed: u64) -> Stro
         },
         settings,
         seed,
+        hidden_objects: Vec::new(),
     }
 }
 
@@ -127,7 +128,15 @@ fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
     let transfer = BakedTransfer::new(&f.scene, &f.maps);
     let mut hits = Hits::default();
     for &dab in &record.dabs_px {
-        pick_dab(&f.scene, &f.bvh, &record.view.view(), dab, &record.brush, &mut hits);
+        pick_dab(
+            &f.scene,
+            &f.bvh,
+            &record.view.view(),
+            dab,
+            &record.brush,
+            &[],
+            &mut hits,
+        );
     }
     let (mut sum, mut weights) = (0.0, 0.0);
     for (&vertex, &w) in &hits.weights {

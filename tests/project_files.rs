@@ -297,6 +297,42 @@ fn a_format_4_project_opens_without_terrain() {
     );
 }
 
+/// Format 5 had no hidden objects: every object is shown.
+#[test]
+fn a_format_5_project_opens_with_every_object_shown() {
+    let document = open_old_fixture(5);
+    assert!(document.hidden_objects.is_empty());
+    assert!(document.scene.terrain.is_none());
+}
+
+/// Hidden objects are saved by index and reopen hidden; an index the scene does not have
+/// (the glTF changed) is dropped with a warning instead of failing the open.
+#[test]
+fn hidden_objects_are_saved_and_reopened() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut document = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    document.hidden_objects = [0, 2].into_iter().collect();
+    let saved = dir.path().join("hidden.lightpaint");
+    document.save(&saved).expect("save");
+    let reopened = lightpaint::project::Document::open(&saved).expect("reopen");
+    assert_eq!(reopened.hidden_objects, document.hidden_objects);
+    let text = std::fs::read_to_string(&saved).expect("read");
+    let count = reopened.scene.objects.len();
+    let edited = text.replace(
+        "\"hidden_objects\": [\n    0,",
+        &format!("\"hidden_objects\": [\n    {count},"),
+    );
+    assert_ne!(edited, text, "the file lists the hidden objects:\n{text}");
+    std::fs::write(&saved, edited).expect("write");
+    let reopened = lightpaint::project::Document::open(&saved).expect("an unknown object index is not fatal");
+    assert_eq!(reopened.hidden_objects, [2].into_iter().collect());
+    assert!(
+        reopened.warnings.iter().any(|w| w.contains("hidden objects")),
+        "{:?}",
+        reopened.warnings
+    );
+}
+
 /// A project on a glTF with several scenes remembers the one chosen: it reopens on it,
 /// saves it byte-identically, and a single-scene file's project does not mention it.
 #[test]

@@ -98,8 +98,42 @@ impl SceneBvh {
         })
     }
 
+    /// The nearest hit along the ray that is not on one of the objects `ignored` lists.
+    pub fn closest_hit_ignoring(&self, origin: Vec3, direction: Vec3, t_max: f32, ignored: &[u32]) -> Option<Hit> {
+        let mut t_min = 0.0;
+        // Each round steps past one ignored surface; a bounded number keeps a ray grazing
+        // many coplanar ignored triangles from looping for long.
+        for _ in 0..64 {
+            let hit = self.closest_hit(origin, direction, t_min, t_max)?;
+            if !ignored.contains(&(hit.object as u32)) {
+                return Some(hit);
+            }
+            t_min = hit.distance_m + 1e-4 * hit.distance_m.max(1.0);
+        }
+        None
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
+    }
+
+    /// Like [`Self::occluded`], but triangles of the objects `ignored` lists do not block
+    /// (objects hidden in the viewport, which the brush sees through).
+    pub fn occluded_ignoring(&self, origin: Vec3, direction: Vec3, t_min: f32, t_max: f32, ignored: &[u32]) -> bool {
+        if ignored.is_empty() {
+            return self.occluded(origin, direction, t_min, t_max);
+        }
+        self.count_ray();
+        let Some(bvh) = &self.bvh else { return false };
+        let ray = Ray::new(Vec3A::from(origin), positive_zeros(direction), t_min, t_max);
+        !bvh.ray_traverse_miss(ray, |ray, id| {
+            let primitive = bvh.primitive_indices[id] as usize;
+            if ignored.contains(&self.owners[primitive].0) {
+                f32::INFINITY
+            } else {
+                intersect(&self.triangles[primitive], ray)
+            }
+        })
     }
 
     /// Whether anything lies on the segment from `origin` along the unit `direction`

@@ -44,6 +44,21 @@ impl View {
         ))
     }
 
+    /// The eye ray through pixel `pixel` (the inverse of [`Self::project`]): the camera
+    /// position and the unit direction. None for a degenerate camera.
+    pub fn ray_through(&self, pixel: Vec2) -> Option<(Vec3, Vec3)> {
+        let aspect = self.width_px.max(1) as f32 / self.height_px.max(1) as f32;
+        let inverse = self.camera.view_projection(aspect).inverse();
+        let ndc = Vec2::new(
+            2.0 * pixel.x / self.width_px.max(1) as f32 - 1.0,
+            1.0 - 2.0 * pixel.y / self.height_px.max(1) as f32,
+        );
+        // Depth 0.5 in wgpu's 0..1 range lies in front of the eye for any projection here.
+        let point = inverse.project_point3(ndc.extend(0.5));
+        let direction = (point - self.camera.position).normalize_or_zero();
+        (direction != Vec3::ZERO && direction.is_finite()).then_some((self.camera.position, direction))
+    }
+
     /// Whether the screen rectangle of `bounds` can touch the disc (conservative: a box
     /// reaching behind the eye always can).
     fn may_touch(&self, bounds: &Aabb, center_px: Vec2, radius_px: f32) -> bool {
@@ -89,14 +104,23 @@ impl Hits {
     }
 }
 
-/// Adds to `hits` the vertices one dab at `center_px` paints.
-pub fn pick_dab(scene: &Scene, bvh: &SceneBvh, view: &View, center_px: Vec2, brush: &Brush, hits: &mut Hits) {
+/// Adds to `hits` the vertices one dab at `center_px` paints; the objects `hidden` lists
+/// are neither painted nor in the way.
+pub fn pick_dab(
+    scene: &Scene,
+    bvh: &SceneBvh,
+    view: &View,
+    center_px: Vec2,
+    brush: &Brush,
+    hidden: &[u32],
+    hits: &mut Hits,
+) {
     if !center_px.is_finite() {
         return;
     }
     let eye = view.camera.position;
     for (o, object) in scene.objects.iter().enumerate() {
-        if !view.may_touch(&object.bounds(), center_px, brush.radius_px) {
+        if hidden.contains(&(o as u32)) || !view.may_touch(&object.bounds(), center_px, brush.radius_px) {
             continue;
         }
         let found: Vec<(u32, f32)> = object
@@ -114,7 +138,7 @@ pub fn pick_dab(scene: &Scene, bvh: &SceneBvh, view: &View, center_px: Vec2, bru
                 // Anything on the segment from the eye to just short of the vertex hides it.
                 let direction = -to_eye / distance;
                 let margin = 1e-4 * distance + 1e-6;
-                (!bvh.occluded(eye, direction, 0.0, distance - margin)).then_some((v as u32, weight))
+                (!bvh.occluded_ignoring(eye, direction, 0.0, distance - margin, hidden)).then_some((v as u32, weight))
             })
             .collect();
         for (vertex, weight) in found {
@@ -153,6 +177,30 @@ mod tests {
     }
 
     #[test]
+    fn rays_through_pixels_meet_the_points_that_project_there() {
+        let view = View {
+            camera: Camera {
+                position: Vec3::new(1.0, 2.0, 5.0),
+                forward: Vec3::new(-0.2, -0.3, -1.0).normalize(),
+                up: Vec3::Y,
+                yfov_rad: 50f32.to_radians(),
+                znear: 0.01,
+                zfar: None,
+            },
+            width_px: 320,
+            height_px: 200,
+        };
+        for pixel in [Vec2::new(160.0, 100.0), Vec2::new(3.0, 190.0), Vec2::new(300.0, 20.0)] {
+            let (origin, direction) = view.ray_through(pixel).expect("a ray");
+            assert!((direction.length() - 1.0).abs() < 1e-5);
+            for distance in [0.5, 4.0, 30.0] {
+                let back = view.project(origin + distance * direction).expect("in front");
+                assert!(back.distance(pixel) < 0.02, "{pixel} came back as {back}");
+            }
+        }
+    }
+
+    #[test]
     fn the_centre_of_the_screen_projects_from_the_point_ahead() {
         let view = view_down_from(5.0);
         let q = view.project(Vec3::ZERO).unwrap();
@@ -177,7 +225,7 @@ mod tests {
         };
         let view = view_down_from(5.0);
         let mut hits = Hits::default();
-        pick_dab(&scene, &bvh, &view, Vec2::new(100.0, 100.0), &brush, &mut hits);
+        pick_dab(&scene, &bvh, &view, Vec2::new(100.0, 100.0), &brush, &[], &mut hits);
         let floor_hits: Vec<Vec3> = hits
             .weights
             .keys()
@@ -194,7 +242,7 @@ mod tests {
         let mut below = view_down_from(-5.0);
         below.camera.forward = Vec3::Y;
         let mut none = Hits::default();
-        pick_dab(&scene, &bvh, &below, Vec2::new(100.0, 100.0), &brush, &mut none);
+        pick_dab(&scene, &bvh, &below, Vec2::new(100.0, 100.0), &brush, &[], &mut none);
         assert!(none.is_empty());
     }
 }

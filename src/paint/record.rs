@@ -155,6 +155,10 @@ pub struct StrokeRecord {
     pub settings: PaintSettings,
     /// Seed of the stroke's random choices (Russian roulette).
     pub seed: u64,
+    /// Objects hidden in the viewport while the stroke was painted (indices into the
+    /// scene's objects): the brush neither paints them nor is stopped by them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hidden_objects: Vec<u32>,
 }
 
 impl StrokeRecord {

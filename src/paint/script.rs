@@ -175,6 +175,7 @@ impl Script {
                     brush: stroke.brush,
                     settings: stroke.settings.unwrap_or(self.settings),
                     seed: self.seed.wrapping_add(k as u64),
+                    hidden_objects: Vec::new(),
                 };
                 let problems = record.problems();
                 if problems.is_empty() {

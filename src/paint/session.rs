@@ -187,7 +187,7 @@ impl Painter {
         let view = record.view.view();
         let mut hits = Hits::default();
         for &dab in &record.dabs_px {
-            pick_dab(scene, bvh, &view, dab, &record.brush, &mut hits);
+            pick_dab(scene, bvh, &view, dab, &record.brush, &record.hidden_objects, &mut hits);
         }
         let vertices_per_object: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
         self.apply(transfer, &vertices_per_object, intensities, record, &hits)

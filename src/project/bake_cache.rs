@@ -59,17 +59,20 @@ impl BakeKey {
                 }
             }
         }
-        let lights = scene
-            .lights
-            .iter()
-            .map(|l| *blake3::hash(format!("{:?}", (l.kind, l.position, l.direction, l.range)).as_bytes()).as_bytes())
-            .collect();
+        let lights = scene.lights.iter().map(light_hash).collect();
         BakeKey {
             scene: *hasher.finalize().as_bytes(),
             lights,
             settings: *settings,
         }
     }
+}
+
+/// What a light's maps depend on, hashed: its kind and shape, position, direction and
+/// range (not its name, colour or intensity: maps are per unit intensity and white).
+pub fn light_hash(light: &crate::scene::Light) -> [u8; 32] {
+    let l = light;
+    *blake3::hash(format!("{:?}", (l.kind, l.position, l.direction, l.range)).as_bytes()).as_bytes()
 }
 
 /// The cache file of a project.

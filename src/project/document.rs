@@ -26,6 +26,8 @@ pub struct Document {
     pub warnings: Vec<String>,
     /// The stroke log, brush and painting strategies.
     pub painting: PaintingState,
+    /// Indices of the objects hidden in the viewport (see [`ProjectFile::hidden_objects`]).
+    pub hidden_objects: std::collections::BTreeSet<usize>,
 }
 
 /// Whether `path` names a project file (by extension) rather than a glTF scene.
@@ -57,6 +59,7 @@ impl Document {
             project_path: None,
             warnings,
             painting: PaintingState::default(),
+            hidden_objects: Default::default(),
         })
     }
 
@@ -107,6 +110,15 @@ impl Document {
             })?;
             scene.set_terrain(Some((spec, field)));
         }
+        // A hidden object the scene no longer has (the glTF changed) is forgotten.
+        let object_count = scene.objects.len();
+        let (hidden_objects, gone): (Vec<usize>, Vec<usize>) =
+            file.hidden_objects.iter().partition(|&&index| index < object_count);
+        if !gone.is_empty() {
+            warnings.push(format!(
+                "hidden objects {gone:?} are not in the scene ({object_count} objects); they are shown again"
+            ));
+        }
         Ok(Document {
             scene,
             scene_path,
@@ -115,6 +127,7 @@ impl Document {
             project_path: Some(path.to_path_buf()),
             warnings,
             painting: file.painting,
+            hidden_objects: hidden_objects.into_iter().collect(),
         })
     }
 
@@ -144,6 +157,7 @@ impl Document {
             environment,
             painting: self.painting.clone(),
             terrain: self.scene.terrain.as_ref().map(|t| t.spec.with_image_path(relative)),
+            hidden_objects: self.hidden_objects.iter().copied().collect(),
         }
     }
 
@@ -166,6 +180,8 @@ impl Document {
                 strokes: Vec::new(),
                 ..self.painting.clone()
             },
+            // Another scene has other objects.
+            hidden_objects: Default::default(),
         })
     }
 

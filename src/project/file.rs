@@ -13,7 +13,7 @@ use crate::render::RenderSettings;
 use crate::scene::{Light, OrbitCamera, TerrainSpec};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 5;
+pub const FORMAT_VERSION: u64 = 6;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
@@ -38,6 +38,11 @@ pub struct ProjectFile {
     /// project file's directory (or absolute).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terrain: Option<TerrainSpec>,
+    /// Objects hidden in the viewport (format 6), by index in the scene's object list
+    /// (the glTF's flattened primitives, then the terrain): they are not drawn and the
+    /// brush sees through them; they still cast shadows and take part in the bake.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hidden_objects: Vec<usize>,
 }
 
 /// The painting state a project restores: the applied strokes (oldest first, replayable)

@@ -17,6 +17,7 @@
 //!   small lights): format 3 shadowed every light through the SH, so "harmonics".
 //! - 5: `terrain` (a height-field terrain) and `render.shadows.terrain` (its horizon
 //!   sampling); format 4 had no terrain, which is what their absence means.
+//! - 6: `hidden_objects` (objects hidden in the viewport); format 5 showed every object.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -38,6 +39,16 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 5 {
         value = v4_to_v5(value);
+    }
+    if version < 6 {
+        value = v5_to_v6(value);
+    }
+    value
+}
+
+fn v5_to_v6(mut value: Value) -> Value {
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(6));
     }
     value
 }

@@ -20,6 +20,8 @@ pub struct GpuObject {
     pub first_vertex: u32,
     /// Index of the object in [`Scene::objects`] (objects without triangles are not uploaded).
     pub source: usize,
+    /// Hidden in the viewport: not drawn (see [`GpuScene::set_hidden`]).
+    pub hidden: bool,
 }
 
 pub struct GpuScene {
@@ -69,6 +71,7 @@ impl GpuScene {
                     material: object.material.min(scene.materials.len().saturating_sub(1)),
                     first_vertex: object_first_vertex,
                     source,
+                    hidden: false,
                 }
             })
             .collect();
@@ -152,6 +155,13 @@ impl GpuScene {
     }
 
     /// Rewrites the light buffer, growing it when there are more lights than it holds.
+    /// Hides the objects whose [`Scene::objects`] index `hidden` holds (and shows the rest).
+    pub fn set_hidden(&mut self, hidden: &std::collections::BTreeSet<usize>) {
+        for object in &mut self.objects {
+            object.hidden = hidden.contains(&object.source);
+        }
+    }
+
     pub fn update_lights(
         &mut self,
         device: &wgpu::Device,

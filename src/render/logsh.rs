@@ -109,6 +109,9 @@ impl LogShPipeline {
             Some((visibility, (_, shade))) => {
                 pass.set_pipeline(shade);
                 for (object, buffer) in scene.objects.iter().zip(&visibility.buffers) {
+                    if object.hidden {
+                        continue;
+                    }
                     pass.set_vertex_buffer(1, buffer.slice(..));
                     draw_object(&mut pass, scene, object);
                 }
@@ -122,7 +125,7 @@ impl LogShPipeline {
 }
 
 pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
-    for object in &scene.objects {
+    for object in scene.objects.iter().filter(|o| !o.hidden) {
         draw_object(pass, scene, object);
     }
 }
