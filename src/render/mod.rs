@@ -27,8 +27,8 @@ pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
 pub use offscreen::{
-    RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, render_cpu_image, render_image, render_logsh_image,
-    shade_surfaces,
+    RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, read_target_image, render_cpu_image, render_image,
+    render_logsh_image, shade_surfaces,
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{

@@ -264,7 +264,7 @@ pub fn capture_surfaces(
             pass.set_bind_group(2, &no_blockers.bind_group, &[]);
             draw_objects(&mut pass, &gpu_scene);
         }
-        let bytes = read_texture(gpu, encoder, &texture, 16, width, height)?;
+        let bytes = read_texture(&gpu.device, &gpu.queue, encoder, &texture, 16, width, height)?;
         channels.push(bytemuck::pod_collect_to_vec(&bytes));
     }
     let d = |v: [f32; 4]| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
@@ -336,8 +336,19 @@ fn read_color(
     encoder: wgpu::CommandEncoder,
     target: &RenderTarget,
 ) -> Result<image::RgbaImage, RenderError> {
+    read_target_image(&gpu.device, &gpu.queue, encoder, target)
+}
+
+/// Submits `encoder` and reads `target`'s displayed (resolved, sRGB) colour back as an
+/// image — what the editor's viewport shows, for exporting it.
+pub fn read_target_image(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    encoder: wgpu::CommandEncoder,
+    target: &RenderTarget,
+) -> Result<image::RgbaImage, RenderError> {
     debug_assert_eq!(COLOR_FORMAT.block_copy_size(None), Some(4));
-    let pixels = read_texture(gpu, encoder, &target.color, 4, target.width, target.height)?;
+    let pixels = read_texture(device, queue, encoder, &target.color, 4, target.width, target.height)?;
     image::RgbaImage::from_raw(target.width, target.height, pixels)
         .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
 }
@@ -345,7 +356,8 @@ fn read_color(
 /// Submits `encoder` plus a copy of `texture` to the CPU (rows padded to wgpu's 256-byte
 /// alignment on the way, unpadded here) and returns its bytes.
 fn read_texture(
-    gpu: &GpuContext,
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
     mut encoder: wgpu::CommandEncoder,
     texture: &wgpu::Texture,
     bytes_per_pixel: u32,
@@ -354,7 +366,7 @@ fn read_texture(
 ) -> Result<Vec<u8>, RenderError> {
     let row_bytes = bytes_per_pixel * width;
     let padded_row_bytes = row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: (padded_row_bytes * height) as u64,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -376,13 +388,13 @@ fn read_texture(
             depth_or_array_layers: 1,
         },
     );
-    gpu.queue.submit([encoder.finish()]);
+    queue.submit([encoder.finish()]);
 
     let (sender, receiver) = std::sync::mpsc::channel();
     buffer.map_async(wgpu::MapMode::Read, .., move |result| {
         let _ = sender.send(result);
     });
-    gpu.device
+    device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|e| RenderError::Readback(e.to_string()))?;
     receiver

@@ -3,15 +3,18 @@ use std::time::Instant;
 
 use super::Viewport;
 use super::brush_input::{BrushInput, FinishedStroke};
-use super::brush_panel::{PaintAction, painting_section, tool_bar};
+use super::brush_panel::tool_bar;
+use super::light_gizmo::{GizmoOutput, light_gizmo};
+use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
 use super::painting::{Painting, Tool};
-use super::shadow_panel::shadow_section;
-use super::terrain_panel::{TerrainEdit, image_terrain, terrain_section};
+use super::preferences::Preferences;
+use super::terrain_panel::{TerrainEdit, image_terrain};
 use super::unsaved_prompt::{self, Answer, Pending};
 use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
 use crate::paint::BrushKind;
-use crate::project::{Document, PROJECT_EXTENSION, ProjectFile};
+use crate::project::{Document, ProjectFile};
 use crate::render::describe_adapter;
+use crate::scene::Light;
 
 /// How the editor starts.
 #[derive(Debug, Clone, Default)]
@@ -29,33 +32,43 @@ pub struct EditorOptions {
 pub const FIRST_FRAME_LINE: &str = "lightpaint: first frame drawn";
 
 pub struct EditorApp {
-    document: Option<Document>,
+    pub(super) document: Option<Document>,
     /// The project as last opened or saved, to tell whether there are unsaved changes.
-    saved: Option<ProjectFile>,
-    viewport: Option<Viewport>,
+    pub(super) saved: Option<ProjectFile>,
+    pub(super) viewport: Option<Viewport>,
     /// Sphere blockers fitted to the document's meshes, and the settings they were fitted with.
-    blockers: SceneBlockers,
-    fitted_with: BlockerSettings,
-    adapter: String,
+    pub(super) blockers: SceneBlockers,
+    pub(super) fitted_with: BlockerSettings,
+    pub(super) adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
-    message: String,
+    pub(super) message: String,
     /// An error waiting to be acknowledged in a window.
-    error: Option<String>,
-    options: EditorOptions,
-    last_frame: Option<Instant>,
-    frame_ms: f32,
-    first_frame_reported: bool,
+    pub(super) error: Option<String>,
+    pub(super) options: EditorOptions,
+    pub(super) last_frame: Option<Instant>,
+    pub(super) frame_ms: f32,
+    pub(super) first_frame_reported: bool,
     /// The document's painting state (None without a document).
-    painting: Option<Painting>,
-    brush_input: BrushInput,
+    pub(super) painting: Option<Painting>,
+    pub(super) brush_input: BrushInput,
     /// A close or open waiting for the answer to "save the changes?".
-    pending: Option<Pending>,
+    pub(super) pending: Option<Pending>,
     /// The window may close without asking (answered, or a scripted close).
-    closing: bool,
+    pub(super) closing: bool,
     /// The viewport's baked indirect light no longer matches the lights, maps or setting.
-    indirect_stale: bool,
+    pub(super) indirect_stale: bool,
     /// The terrain spec being edited in the inspector (applied when an edit is committed).
-    terrain_editing: Option<crate::scene::TerrainSpec>,
+    pub(super) terrain_editing: Option<crate::scene::TerrainSpec>,
+    /// The light or object the inspector edits.
+    pub(super) selection: Option<Selection>,
+    /// The light shown alone in the viewport (a view setting, not saved).
+    pub(super) solo_light: Option<usize>,
+    /// A light moved or changed shape and its maps wait to be re-baked once the edit ends.
+    pub(super) lights_moved: bool,
+    /// Recent files and view choices, kept between runs.
+    pub(super) preferences: Preferences,
+    /// The window's wgpu device and queue (None without an adapter).
+    pub(super) render_state: Option<egui_wgpu::RenderState>,
 }
 
 impl EditorApp {
@@ -84,6 +97,11 @@ impl EditorApp {
             closing: false,
             indirect_stale: true,
             terrain_editing: None,
+            selection: None,
+            solo_light: None,
+            lights_moved: false,
+            preferences: Preferences::load(cc.storage),
+            render_state: cc.wgpu_render_state.clone(),
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -94,6 +112,7 @@ impl EditorApp {
     pub fn open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
         match Document::open(path) {
             Ok(document) => {
+                self.preferences.remember(path);
                 let name = path
                     .file_name()
                     .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
@@ -204,15 +223,143 @@ impl EditorApp {
         self.blockers = fit_scene(scene, &document.settings.blockers);
         self.fitted_with = document.settings.blockers;
         let spheres = self.blockers.spheres();
-        self.viewport =
-            render_state.map(|rs| Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows));
+        self.viewport = render_state.map(|rs| {
+            let mut viewport = Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows);
+            viewport.set_hidden(&document.hidden_objects);
+            viewport
+        });
         let mut painting = Painting::for_document(&document);
         painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
         self.painting = Some(painting);
         self.document = Some(document);
         self.indirect_stale = true;
-        // An edit in progress belonged to the previous document's terrain.
+        // An edit in progress, the selection and the solo belonged to the previous document.
         self.terrain_editing = None;
+        self.selection = None;
+        self.solo_light = None;
+        self.lights_moved = false;
+    }
+
+    /// The lights as the viewport shows them: all, or only the soloed one.
+    fn displayed_lights(&self) -> Vec<Light> {
+        let Some(document) = &self.document else {
+            return Vec::new();
+        };
+        let mut lights = document.scene.lights.clone();
+        if let Some(solo) = self.solo_light {
+            for (index, light) in lights.iter_mut().enumerate() {
+                if index != solo {
+                    light.intensity = 0.0;
+                }
+            }
+        }
+        lights
+    }
+
+    /// Shows only `light` in the viewport (None: every light). A view setting: painting,
+    /// saving and the bake see every light.
+    pub fn solo(&mut self, light: Option<usize>) {
+        let count = self.document.as_ref().map_or(0, |d| d.scene.lights.len());
+        self.solo_light = light.filter(|&l| l < count);
+        self.message = match self
+            .solo_light
+            .and_then(|l| Some(&self.document.as_ref()?.scene.lights[l]))
+        {
+            Some(light) => format!("showing {} alone", light.name),
+            None => "showing every light".to_string(),
+        };
+        self.upload_lights();
+    }
+
+    /// Selects what the viewport shows at `offset` (points from its top-left corner): the
+    /// nearest shown object under it, or nothing.
+    pub fn select_at(&mut self, offset: glam::Vec2) {
+        let (Some(document), Some(viewport), Some(painting)) = (&self.document, &self.viewport, &mut self.painting)
+        else {
+            return;
+        };
+        let Some((origin, direction)) = viewport.view().ray_through(offset) else {
+            return;
+        };
+        let hidden: Vec<u32> = document.hidden_objects.iter().map(|&o| o as u32).collect();
+        let bvh = painting.picking_bvh(&document.scene);
+        let hit = bvh.closest_hit_ignoring(origin, direction, f32::INFINITY, &hidden);
+        self.selection = hit.map(|hit| Selection::Object(hit.object));
+        if let Some(object) = hit.and_then(|hit| document.scene.objects.get(hit.object)) {
+            self.message = format!("selected {}", object.name);
+        }
+    }
+
+    /// Replaces light `index` (a gizmo drag); values with problems are ignored.
+    pub fn set_light(&mut self, index: usize, light: Light) {
+        let Some(slot) = self.document.as_mut().and_then(|d| d.scene.lights.get_mut(index)) else {
+            return;
+        };
+        if !light.problems().is_empty() || *slot == light {
+            return;
+        }
+        let moved = crate::project::bake_cache::light_hash(slot) != crate::project::bake_cache::light_hash(&light);
+        *slot = light;
+        self.lights_edited(moved);
+    }
+
+    /// The current selection in the outliner, inspector and viewport.
+    pub fn selection(&self) -> Option<Selection> {
+        self.selection
+    }
+
+    pub fn select(&mut self, selection: Option<Selection>) {
+        self.selection = selection;
+    }
+
+    /// Hides object `index` in the viewport if shown, shows it if hidden.
+    pub fn toggle_hidden(&mut self, index: usize) {
+        let Some(document) = &mut self.document else { return };
+        let Some(object) = document.scene.objects.get(index) else {
+            return;
+        };
+        let now_hidden = !document.hidden_objects.remove(&index);
+        if now_hidden {
+            document.hidden_objects.insert(index);
+        }
+        self.message = format!("{} {}", object.name, if now_hidden { "hidden" } else { "shown" });
+        if let Some(viewport) = &mut self.viewport {
+            viewport.set_hidden(&document.hidden_objects);
+        }
+    }
+
+    /// Sends the displayed lights to the viewport.
+    fn upload_lights(&mut self) {
+        let lights = self.displayed_lights();
+        if let (Some(viewport), Some(rs)) = (&mut self.viewport, &self.render_state) {
+            viewport.set_lights(rs, &lights);
+        }
+    }
+
+    /// After an edit of lights in the inspector: the viewport shows them, the baked
+    /// indirect light follows, and `moved` lights get their maps re-baked once the edit ends.
+    pub(super) fn lights_edited(&mut self, moved: bool) {
+        self.upload_lights();
+        self.indirect_stale = true;
+        self.lights_moved |= moved;
+    }
+
+    /// Once a light is let go after a move, re-bakes only its maps (when there are maps).
+    fn rebake_moved_lights(&mut self, ctx: &egui::Context) {
+        if !self.lights_moved || ctx.input(|i| i.pointer.any_down()) {
+            return;
+        }
+        let (Some(document), Some(painting)) = (&self.document, &mut self.painting) else {
+            return;
+        };
+        if painting.bake.is_some() {
+            // After the running bake: its maps are for the lights as they were.
+            return;
+        }
+        self.lights_moved = false;
+        if painting.rebake_moved_lights(&document.scene) {
+            self.message = "re-baking the moved light's importance maps…".to_string();
+        }
     }
 
     /// Gives the viewport the baked indirect light of the current lights, when the
@@ -272,6 +419,21 @@ impl EditorApp {
         self.pending.is_some()
     }
 
+    /// Closes the document without asking (File ▸ New after the unsaved-changes prompt):
+    /// the start page with the recent files is shown.
+    pub fn close_document(&mut self) {
+        self.document = None;
+        self.saved = None;
+        self.viewport = None;
+        self.painting = None;
+        self.blockers = SceneBlockers::default();
+        self.selection = None;
+        self.solo_light = None;
+        self.lights_moved = false;
+        self.terrain_editing = None;
+        self.message = "nothing open".to_string();
+    }
+
     /// Whether the window has been cleared to close.
     pub fn is_closing(&self) -> bool {
         self.closing
@@ -296,7 +458,7 @@ impl EditorApp {
             Answer::Cancel => false,
             Answer::Discard => true,
             Answer::Save => {
-                self.save();
+                self.save_document();
                 !self.has_unsaved_changes()
             }
         };
@@ -308,6 +470,7 @@ impl EditorApp {
                 self.closing = true;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
+            Pending::New => self.close_document(),
             Pending::Open(path) => self.open(&path, render_state),
             Pending::ShowGltfScene(index) => self.show_gltf_scene(index, render_state),
         }
@@ -338,7 +501,8 @@ impl EditorApp {
         let spheres = self.blockers.spheres();
         let camera = viewport.orbit.camera();
         let shadows = document.settings.shadows;
-        if let Some(report) = painting.paint(&mut document.scene, camera, stroke, &spheres, &shadows) {
+        let hidden = &document.hidden_objects;
+        if let Some(report) = painting.paint(&mut document.scene, camera, stroke, &spheres, &shadows, hidden) {
             self.message = report.message;
             self.lights_changed(render_state);
         }
@@ -374,9 +538,7 @@ impl EditorApp {
         if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
             document.painting = painting.state();
         }
-        if let (Some(viewport), Some(document), Some(rs)) = (&mut self.viewport, &self.document, render_state) {
-            viewport.set_lights(rs, &document.scene.lights);
-        }
+        self.upload_lights();
         self.refresh_baked_indirect(render_state);
     }
 
@@ -388,6 +550,7 @@ impl EditorApp {
         }
         match document.save(path) {
             Ok(()) => {
+                self.preferences.remember(path);
                 self.saved = Some(document.to_project_file(path));
                 self.message = format!("saved {}", path.display());
                 if let Some(problem) = self.painting.as_mut().and_then(|p| p.save_cache(&document.scene, path)) {
@@ -398,7 +561,7 @@ impl EditorApp {
         }
     }
 
-    fn report_error(&mut self, message: String) {
+    pub(super) fn report_error(&mut self, message: String) {
         log::error!("{message}");
         self.message = message.clone();
         self.error = Some(message);
@@ -425,270 +588,38 @@ impl EditorApp {
         }
     }
 
-    fn save(&mut self) {
-        match self.document.as_ref().and_then(|d| d.project_path.clone()) {
-            Some(path) => self.save_to(&path),
-            None => self.save_as_dialog(),
-        }
-    }
-
-    fn save_as_dialog(&mut self) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("lightpaint project", &[PROJECT_EXTENSION])
-            .set_file_name(format!("untitled.{PROJECT_EXTENSION}"))
-            .save_file();
-        if let Some(path) = picked {
-            self.save_to(&path);
-        }
-    }
-
-    fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("lightpaint project or glTF scene", &[PROJECT_EXTENSION, "gltf", "glb"])
-            .pick_file();
-        if let Some(path) = picked {
-            self.request_open(&path, render_state);
-        }
-    }
-
-    fn menu_bar(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
-        egui::Panel::top("menu").show(ui, |ui| {
-            egui::MenuBar::new().ui(ui, |ui| {
-                ui.menu_button("File", |ui| {
-                    if ui.button("Open… (Ctrl+O)").clicked() {
-                        self.open_dialog(render_state);
-                    }
-                    if ui.button("Save (Ctrl+S)").clicked() {
-                        self.save();
-                    }
-                    if ui.button("Save As…").clicked() {
-                        self.save_as_dialog();
-                    }
-                    ui.separator();
-                    if ui.button("Quit").clicked() {
-                        ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
-                    }
-                });
-                ui.menu_button("Edit", |ui| {
-                    let (can_undo, can_redo) = self
-                        .painting
-                        .as_ref()
-                        .map_or((false, false), |p| (p.can_undo(), p.can_redo()));
-                    if ui
-                        .add_enabled(can_undo, egui::Button::new("Undo stroke (Ctrl+Z)"))
-                        .clicked()
-                    {
-                        self.undo(render_state);
-                    }
-                    if ui
-                        .add_enabled(can_redo, egui::Button::new("Redo stroke (Ctrl+Shift+Z)"))
-                        .clicked()
-                    {
-                        self.redo(render_state);
-                    }
-                });
-                ui.menu_button("View", |ui| {
-                    if ui.button("Frame all (F)").clicked() {
-                        self.frame_all();
-                    }
-                });
-            });
-        });
-    }
-
     fn tool_bar(&mut self, ui: &mut egui::Ui) {
         let Some(painting) = &mut self.painting else { return };
         egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, &mut painting.tool));
     }
 
-    fn frame_all(&mut self) {
+    pub(super) fn frame_all(&mut self) {
         if let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) {
             viewport.frame_all(&document.scene);
         }
     }
 
     fn outliner(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        let mut action = None;
         egui::Panel::left("outliner").default_size(220.0).show(ui, |ui| {
             ui.heading("Scene");
-            if let Some(index) = self.document.as_ref().and_then(|d| gltf_scene_picker(ui, &d.scene)) {
-                self.request_gltf_scene(index, render_state);
-            }
             let Some(document) = &self.document else { return };
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                egui::CollapsingHeader::new(format!("Objects ({})", document.scene.objects.len()))
-                    .default_open(true)
-                    .show(ui, |ui| {
-                        for object in &document.scene.objects {
-                            let material = document.scene.materials.get(object.material);
-                            let summary = material.map_or_else(|| "default material".to_string(), |m| m.summary());
-                            ui.label(&object.name)
-                                .on_hover_text(format!("{} vertices; {summary}", object.positions.len()));
-                        }
-                    });
-                egui::CollapsingHeader::new(format!("Lights ({})", document.scene.lights.len()))
-                    .default_open(true)
-                    .show(ui, |ui| {
-                        for light in &document.scene.lights {
-                            ui.label(format!("{} — {}", light.name, light.kind.label()));
-                        }
-                    });
-            });
-        });
-    }
-
-    fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
-        let mut pending_history = None;
-        egui::Panel::right("inspector").default_size(280.0).show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| self.inspector_contents(ui, render_state, &mut pending_history));
-        });
-        match pending_history {
-            Some(PaintAction::Undo) => self.undo(render_state),
-            Some(PaintAction::Redo) => self.redo(render_state),
-            _ => {}
-        }
-    }
-
-    fn inspector_contents(
-        &mut self,
-        ui: &mut egui::Ui,
-        render_state: Option<&egui_wgpu::RenderState>,
-        pending_history: &mut Option<PaintAction>,
-    ) {
-        {
-            let Some(document) = &mut self.document else { return };
-            ui.heading("Render");
-            ui.add(egui::Slider::new(&mut document.settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
-            ui.horizontal(|ui| {
-                ui.label("background");
-                ui.color_edit_button_srgb(&mut document.settings.background_srgb8);
-            });
-            ui.add(
-                egui::Slider::new(&mut document.settings.viewport_resolution_scale, 0.25..=1.0)
-                    .text("viewport resolution")
-                    .custom_formatter(|v, _| format!("{:.0} %", 100.0 * v))
-                    .custom_parser(|text| {
-                        text.trim()
-                            .trim_end_matches('%')
-                            .trim()
-                            .parse::<f64>()
-                            .ok()
-                            .map(|p| p / 100.0)
-                    }),
-            )
-            .on_hover_text("Share of the viewport's pixels shaded along each side: lower is faster.");
-            self.indirect_stale |= ui
-                .checkbox(&mut document.settings.baked_indirect, "baked indirect light")
-                .on_hover_text(
-                    "Adds the light of the baked bounces once importance maps are baked \
-                     (Painting ▸ Bake importance maps); it follows every intensity change.",
-                )
-                .changed();
-            // The slider clamps typed values, but not NaN: a saved project must reopen.
-            let scale = &mut document.settings.viewport_resolution_scale;
-            *scale = if scale.is_finite() { scale.clamp(0.25, 1.0) } else { 1.0 };
-            ui.separator();
-            ui.heading("Shadows");
-            shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
-            // Refit once the slider is let go: a fit takes a good part of a second.
-            if document.settings.blockers != self.fitted_with
-                && document.settings.blockers.problems().is_empty()
-                && !ui.input(|i| i.pointer.any_down())
-                && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state)
-            {
-                self.blockers = fit_scene(&document.scene, &document.settings.blockers);
-                self.fitted_with = document.settings.blockers;
-                viewport.set_blockers(rs, &self.blockers.spheres());
-            }
-            ui.separator();
-            let mut action = None;
-            if let Some(painting) = &mut self.painting {
-                egui::CollapsingHeader::new("Painting")
-                    .default_open(true)
-                    .show(ui, |ui| action = painting_section(ui, painting));
-            }
-            match action {
-                Some(PaintAction::StartBake) => {
-                    if let Some(painting) = &mut self.painting {
-                        painting.start_bake(&document.scene, document.project_path.as_deref());
-                    }
-                }
-                Some(PaintAction::Undo) => *pending_history = Some(PaintAction::Undo),
-                Some(PaintAction::Redo) => *pending_history = Some(PaintAction::Redo),
-                None => {}
-            }
-            ui.separator();
-            ui.heading("Lights");
-            let mut changed = false;
-            let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
-            let paths: Vec<(bool, f64)> = document
-                .scene
-                .lights
-                .iter()
-                .map(|light| light_path_at(light, pivot, document.settings.shadows.light_paths))
+            let hidden: Vec<bool> = (0..document.scene.objects.len())
+                .map(|i| document.hidden_objects.contains(&i))
                 .collect();
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                egui::Grid::new("lights").striped(true).num_columns(4).show(ui, |ui| {
-                    for (light, (exact, angle_deg)) in document.scene.lights.iter_mut().zip(paths) {
-                        let unit = format!(" {}", light.kind.intensity_unit());
-                        ui.label(&light.name);
-                        // Drag speed proportional to the value, so dim and bright lights
-                        // both adjust smoothly.
-                        let speed = (light.intensity.abs() * 0.01).max(0.001);
-                        changed |= ui
-                            .add(
-                                egui::DragValue::new(&mut light.intensity)
-                                    .range(0.0..=1.0e7)
-                                    .speed(speed)
-                                    .suffix(unit),
-                            )
-                            .changed();
-                        let mut color = light.color.to_array();
-                        if ui.color_edit_button_rgb(&mut color).changed() {
-                            light.color = glam::Vec3::from(color);
-                            changed = true;
-                        }
-                        ui.label(if exact { "exact" } else { "SH" }).on_hover_text(format!(
-                            "Shadow path at the view's pivot, where the light looks {angle_deg:.1}° in radius \
-                             (Shadows ▸ light shadows)"
-                        ));
-                        ui.end_row();
-                    }
-                });
-            });
-            if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
-                viewport.set_lights(rs, &document.scene.lights);
-                self.indirect_stale = true;
-            }
-            if let Some(environment) = &mut document.scene.environment {
-                ui.separator();
-                ui.heading("Environment");
-                let name = environment
-                    .hdr
-                    .file_name()
-                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-                let mut environment_changed = false;
-                ui.horizontal(|ui| {
-                    ui.label(name);
-                    let intensity = egui::DragValue::new(&mut environment.intensity)
-                        .range(0.0..=1.0e4)
-                        .speed(0.01)
-                        .prefix("×");
-                    environment_changed |= ui.add(intensity).changed();
-                });
-                let half_turn = std::f32::consts::PI;
-                let rotation =
-                    egui::Slider::new(&mut environment.rotation_rad, -half_turn..=half_turn).text("rotation (rad)");
-                environment_changed |= ui.add(rotation).changed();
-                if environment_changed && let Some(viewport) = &mut self.viewport {
-                    viewport.set_environment(Some(environment));
-                }
-            }
-        }
-        let Some(document) = &self.document else { return };
-        ui.separator();
-        ui.heading("Terrain");
-        if let Some(edit) = terrain_section(ui, &document.scene, &mut self.terrain_editing) {
-            self.apply_terrain_edit(edit, render_state);
+            let state = OutlinerState {
+                selection: self.selection,
+                hidden: &hidden,
+                solo: self.solo_light,
+            };
+            action = outliner(ui, &document.scene, &state);
+        });
+        match action {
+            Some(OutlinerAction::Select(selection)) => self.selection = Some(selection),
+            Some(OutlinerAction::ToggleHidden(index)) => self.toggle_hidden(index),
+            Some(OutlinerAction::Solo(light)) => self.solo(light),
+            Some(OutlinerAction::ShowGltfScene(index)) => self.request_gltf_scene(index, render_state),
+            None => {}
         }
     }
 
@@ -738,6 +669,10 @@ impl EditorApp {
 
     fn handle_shortcuts_and_drops(&mut self, ctx: &egui::Context, render_state: Option<&egui_wgpu::RenderState>) {
         let typing = ctx.egui_wants_keyboard_input();
+        let new_key = ctx.input(|i| i.key_pressed(egui::Key::N) && i.modifiers.command);
+        if new_key {
+            self.request_new();
+        }
         let (frame_key, open_key, save_key, dropped) = ctx.input(|i| {
             (
                 i.key_pressed(egui::Key::F) && !i.modifiers.any(),
@@ -783,7 +718,7 @@ impl EditorApp {
             self.open_dialog(render_state);
         }
         if save_key {
-            self.save();
+            self.save_document();
         }
         if let Some(path) = dropped {
             self.request_open(&path, render_state);
@@ -824,12 +759,17 @@ impl eframe::App for EditorApp {
         self.menu_bar(ui, render_state.as_ref());
         self.tool_bar(ui);
         self.status_bar(ui);
-        self.outliner(ui, render_state.as_ref());
-        self.inspector(ui, render_state.as_ref());
+        if self.preferences.show_outliner {
+            self.outliner(ui, render_state.as_ref());
+        }
+        if self.preferences.show_inspector {
+            self.inspector(ui, render_state.as_ref());
+        }
         if let Some(message) = self.painting.as_mut().and_then(Painting::poll_bake) {
             self.message = message;
             self.indirect_stale = true;
         }
+        self.rebake_moved_lights(&ctx);
         if self.indirect_stale {
             self.refresh_baked_indirect(render_state.as_ref());
         }
@@ -838,22 +778,45 @@ impl eframe::App for EditorApp {
             _ => None,
         };
         let mut finished = None;
+        let mut gizmo = GizmoOutput::default();
+        let mut clicked_at = None;
+        let mut recent = None;
         egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
             match (&mut self.viewport, &self.document, &render_state) {
                 (Some(viewport), Some(document), Some(rs)) => {
                     let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
+                    if self.preferences.show_light_markers {
+                        let selected = match self.selection {
+                            Some(Selection::Light(index)) => Some(index),
+                            _ => None,
+                        };
+                        let (pivot, distance) = (viewport.orbit.target, viewport.orbit.distance);
+                        let lights = &document.scene.lights;
+                        gizmo = light_gizmo(ui, response.rect, &viewport.view(), lights, selected, pivot, distance);
+                    }
                     if let Some(radius) = brush_radius {
                         finished = self.brush_input.update(ui, &response);
                         self.brush_input.draw(ui, &response, radius);
+                    } else if response.clicked_by(egui::PointerButton::Primary) {
+                        clicked_at = response.interact_pointer_pos().map(|p| p - response.rect.min);
                     }
                 }
-                _ => {
-                    ui.centered_and_justified(|ui| ui.label("Nothing open. File ▸ Open…"));
-                }
+                _ => recent = start_page(ui, &self.preferences.recent_files),
             }
         });
         if let Some(stroke) = finished {
             self.paint_stroke(&stroke, render_state.as_ref());
+        }
+        if let Some(index) = gizmo.select {
+            self.selection = Some(Selection::Light(index));
+        } else if let Some(offset) = clicked_at {
+            self.select_at(glam::Vec2::new(offset.x, offset.y));
+        }
+        if let Some((index, light)) = gizmo.edited {
+            self.set_light(index, light);
+        }
+        if let Some(path) = recent {
+            self.request_open(&path, render_state.as_ref());
         }
         if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
             // Brush and strategy edits are part of the project (restored on reopening); the
@@ -869,32 +832,32 @@ impl eframe::App for EditorApp {
         }
         self.scripted_close(&ctx);
     }
-}
 
-/// A choice of the glTF file's scenes, when it has several; the index picked, if the user
-/// picked another.
-fn gltf_scene_picker(ui: &mut egui::Ui, scene: &crate::scene::Scene) -> Option<usize> {
-    if scene.gltf_scenes.len() < 2 {
-        return None;
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        self.preferences.store(storage);
     }
-    let shown = scene.gltf_scene.unwrap_or(0);
-    let mut picked = shown;
-    egui::ComboBox::from_label("glTF scene")
-        .selected_text(scene.gltf_scene_label(shown))
-        .show_ui(ui, |ui| {
-            for index in 0..scene.gltf_scenes.len() {
-                ui.selectable_value(&mut picked, index, scene.gltf_scene_label(index));
-            }
-        })
-        .response
-        .on_hover_text("The file holds several scenes; the project remembers which one it shows");
-    (picked != shown).then_some(picked)
 }
 
-/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
-/// radius there in degrees (the shaders decide per receiver; this is the view's pivot).
-fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: crate::render::LightPaths) -> (bool, f64) {
-    let gpu_light = crate::render::gpu_types::GpuLight::new(light);
-    let cap_ratio = crate::render::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
-    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+/// What the central panel shows without a document: how to start, and the recent files;
+/// the one clicked, if any.
+fn start_page(ui: &mut egui::Ui, recent_files: &[PathBuf]) -> Option<PathBuf> {
+    let mut picked = None;
+    ui.vertical_centered(|ui| {
+        ui.add_space(ui.available_height() * 0.3);
+        ui.heading("Nothing open");
+        ui.label("File > Open… a project, or File > Import glTF… a scene (or drop one here).");
+        if !recent_files.is_empty() {
+            ui.add_space(12.0);
+            ui.strong("Recent");
+            for path in recent_files {
+                let name = path
+                    .file_name()
+                    .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+                if ui.link(name).on_hover_text(path.display().to_string()).clicked() {
+                    picked = Some(path.clone());
+                }
+            }
+        }
+    });
+    picked
 }

@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use crate::bake::{BakeSettings, ImportanceMaps, bake_maps_with};
+use crate::bake::{BakeSettings, ImportanceMaps, bake_maps_with, rebake_lights};
 use crate::project::bake_cache::bake_with_cache;
 use crate::scene::Scene;
 
@@ -32,6 +32,34 @@ impl BakeJob {
     /// Starts baking a copy of `scene` on its own thread (which uses rayon's pool); with a
     /// `cache` file, reads it when it is fresh and writes it after a bake.
     pub fn start(scene: &Scene, settings: BakeSettings, cache: Option<PathBuf>) -> BakeJob {
+        BakeJob::spawn(scene, move |scene, progress, cancel| match cache {
+            Some(path) => bake_with_cache(scene, &settings, &path, progress, cancel),
+            None => bake_maps_with(scene, &settings, progress, cancel).map(|m| (m, "baked".to_string())),
+        })
+    }
+
+    /// Re-bakes only `lights` of a copy of `scene` on its own thread, keeping every other
+    /// light's maps from `previous` (see [`rebake_lights`]).
+    pub fn start_rebake(
+        scene: &Scene,
+        settings: BakeSettings,
+        previous: ImportanceMaps,
+        lights: Vec<usize>,
+    ) -> BakeJob {
+        BakeJob::spawn(scene, move |scene, progress, cancel| {
+            let count = lights.len();
+            rebake_lights(scene, &settings, &previous, &lights, progress, cancel)
+                .map(|maps| (maps, format!("re-baked {count} moved light(s)")))
+        })
+    }
+
+    /// Runs `work` on a copy of `scene` on its own thread, with progress and cancellation.
+    fn spawn<F>(scene: &Scene, work: F) -> BakeJob
+    where
+        F: FnOnce(&Scene, &(dyn Fn(usize, usize) + Sync), &AtomicBool) -> Option<(ImportanceMaps, String)>
+            + Send
+            + 'static,
+    {
         let scene = scene.clone();
         let done = Arc::new(AtomicUsize::new(0));
         let cancel = Arc::new(AtomicBool::new(false));
@@ -39,10 +67,7 @@ impl BakeJob {
         let (done_in, cancel_in) = (done.clone(), cancel.clone());
         let handle = std::thread::spawn(move || {
             let progress = |finished, _| done_in.store(finished, Ordering::Relaxed);
-            match cache {
-                Some(path) => bake_with_cache(&scene, &settings, &path, &progress, &cancel_in),
-                None => bake_maps_with(&scene, &settings, &progress, &cancel_in).map(|m| (m, "baked".to_string())),
-            }
+            work(&scene, &progress, &cancel_in)
         });
         BakeJob {
             done,

@@ -23,7 +23,11 @@ pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
     });
 }
 
-pub fn painting_section(ui: &mut egui::Ui, painting: &mut Painting) -> Option<PaintAction> {
+pub fn painting_section(
+    ui: &mut egui::Ui,
+    painting: &mut Painting,
+    scene: &crate::scene::Scene,
+) -> Option<PaintAction> {
     let mut action = None;
     let brush = &mut painting.brush;
     ui.add(egui::Slider::new(&mut brush.radius_px, 2.0..=200.0).text("radius (px)"));
@@ -88,7 +92,7 @@ pub fn painting_section(ui: &mut egui::Ui, painting: &mut Painting) -> Option<Pa
         ui.label(&report.message);
     }
     ui.separator();
-    ui.label(format!("Transfer: {}", painting.transfer_label()));
+    ui.label(format!("Transfer: {}", painting.transfer_label(scene)));
     match &painting.bake {
         Some(job) => {
             let eta = job.eta().map_or_else(String::new, |eta| {

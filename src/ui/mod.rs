@@ -5,13 +5,20 @@ mod app;
 mod bake_job;
 mod brush_input;
 mod brush_panel;
+mod inspector;
+mod light_gizmo;
+mod light_inspector;
+mod menus;
+mod outliner;
 mod painting;
+mod preferences;
 mod shadow_panel;
 mod terrain_panel;
 mod unsaved_prompt;
 mod viewport;
 
 pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE};
+pub use outliner::Selection;
 pub use painting::Tool;
 pub use viewport::Viewport;
 

@@ -17,6 +17,7 @@ use crate::paint::{
     BakedTransfer, Brush, BrushKind, PaintSettings, Painter, StrokeRecord, StrokeReport, Transfer, View, ViewRecord,
     dabs_along,
 };
+use crate::project::bake_cache::light_hash;
 use crate::project::{Document, PaintingState};
 use crate::render::ShadowSettings;
 use crate::render::paint_estimate::DirectEstimate;
@@ -44,6 +45,11 @@ pub struct Painting {
     /// The picking BVH being built in the background since the document opened.
     bvh_job: Option<std::thread::JoinHandle<SceneBvh>>,
     maps: Option<ImportanceMaps>,
+    /// What each light's maps were baked for ([`light_hash`]): a light moved since has
+    /// stale maps until it is re-baked.
+    maps_lights: Vec<[u8; 32]>,
+    /// The same for the running bake's scene.
+    bake_lights: Vec<[u8; 32]>,
     pub bake: Option<BakeJob>,
     pub bake_settings: BakeSettings,
     /// The cache file the maps were last written to or read from, and their key then.
@@ -72,6 +78,8 @@ impl Painting {
                 Some(std::thread::spawn(move || SceneBvh::build(&scene)))
             },
             maps: None,
+            maps_lights: Vec::new(),
+            bake_lights: Vec::new(),
             bake: None,
             bake_settings: BakeSettings::default(),
             cached_at: None,
@@ -109,16 +117,55 @@ impl Painting {
     }
 
     /// Where strokes read the transfer from, for the panel.
-    pub fn transfer_label(&self) -> String {
-        match &self.maps {
-            Some(maps) => format!("baked maps ({} vertex-light pairs)", maps.entry_count()),
-            None => "direct estimate from the log-SH shadows (no bake yet)".to_string(),
+    pub fn transfer_label(&self, scene: &Scene) -> String {
+        match (&self.maps, self.maps_for(scene)) {
+            (_, Some(maps)) => format!("baked maps ({} vertex-light pairs)", maps.entry_count()),
+            (Some(_), None) => "direct estimate from the log-SH shadows (maps out of date: lights moved)".to_string(),
+            (None, None) => "direct estimate from the log-SH shadows (no bake yet)".to_string(),
         }
     }
 
-    /// The baked maps, if there are maps baked for `scene`'s geometry.
+    /// The baked maps, if there are maps baked for `scene`'s geometry and lights as they
+    /// are now.
     pub fn maps_for(&self, scene: &Scene) -> Option<&ImportanceMaps> {
-        self.maps.as_ref().filter(|maps| maps.fits(scene))
+        self.maps
+            .as_ref()
+            .filter(|maps| maps.fits(scene) && self.moved_lights(scene).is_empty())
+    }
+
+    /// The lights of `scene` moved (or reshaped) since their maps were baked; empty
+    /// without maps. Every light when the light count changed.
+    pub fn moved_lights(&self, scene: &Scene) -> Vec<usize> {
+        if self.maps.is_none() {
+            return Vec::new();
+        }
+        if self.maps_lights.len() != scene.lights.len() {
+            return (0..scene.lights.len()).collect();
+        }
+        let now = scene.lights.iter().map(light_hash);
+        now.zip(&self.maps_lights)
+            .enumerate()
+            .filter(|(_, (now, baked))| now != *baked)
+            .map(|(index, _)| index)
+            .collect()
+    }
+
+    /// Re-bakes, in the background, only the lights that moved since the maps were
+    /// baked, keeping the others' maps; false if there is nothing to do (no maps, nothing
+    /// moved, or a bake already running).
+    pub fn rebake_moved_lights(&mut self, scene: &Scene) -> bool {
+        let moved = self.moved_lights(scene);
+        let Some(maps) = self.maps.as_ref().filter(|m| m.fits(scene)) else {
+            return false;
+        };
+        if moved.is_empty() || self.bake.is_some() {
+            return false;
+        }
+        self.bake_lights = scene.lights.iter().map(light_hash).collect();
+        self.bake_cache = None;
+        self.bake_key = None;
+        self.bake = Some(BakeJob::start_rebake(scene, self.bake_settings, maps.clone(), moved));
+        true
     }
 
     /// Bakes in the background; a saved project's maps go to (or come from) its cache.
@@ -126,6 +173,7 @@ impl Painting {
         let cache = project.map(crate::project::bake_cache::cache_path);
         self.bake_cache = cache.clone();
         self.bake_key = Some(crate::project::bake_cache::BakeKey::of(scene, &self.bake_settings));
+        self.bake_lights = scene.lights.iter().map(light_hash).collect();
         self.bake = Some(BakeJob::start(scene, self.bake_settings, cache));
     }
 
@@ -172,6 +220,7 @@ impl Painting {
                     self.cached_at = Some((path, key));
                 }
                 self.maps = Some(maps);
+                self.maps_lights = std::mem::take(&mut self.bake_lights);
                 Some(message)
             }
             BakePoll::Cancelled => {
@@ -192,6 +241,7 @@ impl Painting {
         stroke: &FinishedStroke,
         blockers: &[Sphere],
         shadows: &ShadowSettings,
+        hidden: &std::collections::BTreeSet<usize>,
     ) -> Option<StrokeReport> {
         let Tool::Brush(kind) = self.tool else { return None };
         let view = View {
@@ -207,18 +257,16 @@ impl Painting {
             brush,
             settings: self.settings,
             seed: self.next_seed,
+            hidden_objects: hidden.iter().map(|&o| o as u32).collect(),
         };
         self.next_seed += 1;
-        if self.bvh.is_none() {
-            let built = self.bvh_job.take().and_then(|job| job.join().ok());
-            self.bvh = Some(Arc::new(built.unwrap_or_else(|| SceneBvh::build(scene))));
-        }
-        let bvh = self.bvh.clone()?;
+        let bvh = self.picking_bvh(scene);
         let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
+            let fresh = self.maps_for(scene).is_some();
             let transfer: Box<dyn Transfer> = match &self.maps {
-                Some(maps) if maps.fits(scene) => Box::new(BakedTransfer::new(scene, maps)),
+                Some(maps) if fresh => Box::new(BakedTransfer::new(scene, maps)),
                 _ => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
             };
             self.painter
@@ -227,6 +275,18 @@ impl Painting {
         scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());
         Some(report)
+    }
+
+    /// The BVH of `scene`'s triangles for picking (waits for the background build, or
+    /// builds it if that failed).
+    pub fn picking_bvh(&mut self, scene: &Scene) -> Arc<SceneBvh> {
+        if let Some(bvh) = &self.bvh {
+            return bvh.clone();
+        }
+        let built = self.bvh_job.take().and_then(|job| job.join().ok());
+        let bvh = Arc::new(built.unwrap_or_else(|| SceneBvh::build(scene)));
+        self.bvh = Some(bvh.clone());
+        bvh
     }
 
     /// Undoes the last stroke of this session; false if there is none.

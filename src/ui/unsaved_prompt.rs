@@ -7,6 +7,8 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Pending {
     Close,
+    /// File ▸ New: closing the document.
+    New,
     Open(PathBuf),
     /// Showing another scene of the document's glTF file (its index).
     ShowGltfScene(usize),
@@ -23,6 +25,7 @@ pub enum Answer {
 pub fn ask(ctx: &egui::Context, pending: &Pending) -> Option<Answer> {
     let question = match pending {
         Pending::Close => "Save the changes before closing?".to_string(),
+        Pending::New => "Save the changes before starting anew?".to_string(),
         Pending::Open(path) => format!(
             "Save the changes before opening {}?",
             path.file_name()

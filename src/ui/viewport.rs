@@ -112,6 +112,12 @@ impl Viewport {
         self.rendered = None;
     }
 
+    /// Hides the objects `hidden` lists (indices into the scene's objects); shows the rest.
+    pub fn set_hidden(&mut self, hidden: &std::collections::BTreeSet<usize>) {
+        self.gpu_scene.set_hidden(hidden);
+        self.rendered = None;
+    }
+
     /// Replaces the baked indirect light (None: none); the next frame shows it.
     pub fn set_baked_indirect(&mut self, render_state: &egui_wgpu::RenderState, indirect: Option<&BakedIndirect>) {
         self.gpu_scene.set_baked_indirect(&render_state.queue, indirect);
@@ -158,6 +164,30 @@ impl Viewport {
             &self.shadows.settings,
         );
         self.rendered = None;
+    }
+
+    /// The image the viewport shows, read back from the GPU (None before the first frame).
+    pub fn read_image(
+        &self,
+        render_state: &egui_wgpu::RenderState,
+    ) -> Option<Result<image::RgbaImage, crate::render::RenderError>> {
+        let target = self.target.as_ref()?;
+        let encoder = render_state.device.create_command_encoder(&Default::default());
+        Some(crate::render::read_target_image(
+            &render_state.device,
+            &render_state.queue,
+            encoder,
+            target,
+        ))
+    }
+
+    /// The camera and the viewport's size in points, as the brush and the gizmo see it.
+    pub fn view(&self) -> crate::paint::View {
+        crate::paint::View {
+            camera: self.orbit.camera(),
+            width_px: self.rect.width().round().max(1.0) as u32,
+            height_px: self.rect.height().round().max(1.0) as u32,
+        }
     }
 
     /// Frames the whole scene.

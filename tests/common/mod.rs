@@ -62,6 +62,7 @@ pub fn aces_fit(x: f64) -> f64 {
 pub fn expected_8bit(radiance: f64, ev: f64) -> f64 {
     255.0 * srgb_encode(aces_fit(radiance * ev.exp2()))
 }
+pub mod editor;
 pub mod scenes;
 
 /// exp(M_f)·1 of a zonal log-visibility (ln ε inside a cap of cos half-angle `c` about

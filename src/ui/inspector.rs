@@ -1,0 +1,256 @@
+//! The inspector (right panel): the selection (a light's editor or an object's summary),
+//! painting, every light's intensity and colour, render settings, shadows, the
+//! environment and the terrain. Each section edits the open document; the app applies
+//! the consequences (uploads, refits, re-bakes).
+
+use super::EditorApp;
+use super::brush_panel::{PaintAction, painting_section};
+use super::light_inspector::{LightEdit, light_inspector};
+use super::outliner::Selection;
+use super::shadow_panel::shadow_section;
+use super::terrain_panel::terrain_section;
+use crate::blockers::fit_scene;
+use crate::project::Document;
+
+impl EditorApp {
+    pub(super) fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        let mut action = None;
+        let mut light_edit = LightEdit::default();
+        egui::Panel::right("inspector").default_size(300.0).show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                light_edit = self.selection_section(ui);
+                action = self.painting_and_lights(ui, &mut light_edit);
+                self.render_sections(ui, render_state);
+                self.terrain_section(ui, render_state);
+            });
+        });
+        if light_edit.changed {
+            self.lights_edited(light_edit.moved);
+        }
+        match action {
+            Some(PaintAction::Undo) => self.undo(render_state),
+            Some(PaintAction::Redo) => self.redo(render_state),
+            Some(PaintAction::StartBake) => {
+                if let (Some(document), Some(painting)) = (&self.document, &mut self.painting) {
+                    painting.start_bake(&document.scene, document.project_path.as_deref());
+                }
+            }
+            None => {}
+        }
+    }
+
+    /// The selected light's editor or the selected object's summary.
+    fn selection_section(&mut self, ui: &mut egui::Ui) -> LightEdit {
+        let Some(document) = &mut self.document else {
+            return LightEdit::default();
+        };
+        let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
+        match self.selection {
+            Some(Selection::Light(index)) if index < document.scene.lights.len() => {
+                let light = &mut document.scene.lights[index];
+                ui.heading(format!("Light: {}", light.name));
+                let distance = light.position.distance(pivot).max(0.1);
+                let edit = light_inspector(ui, light, distance);
+                let (exact, angle_deg) = light_path_at(light, pivot, document.settings.shadows.light_paths);
+                ui.weak(format!(
+                    "shadow path at the view's pivot: {} ({angle_deg:.1}° in radius)",
+                    if exact { "exact" } else { "SH" }
+                ));
+                ui.separator();
+                edit
+            }
+            Some(Selection::Object(index)) if index < document.scene.objects.len() => {
+                object_summary(ui, document, &self.blockers, index);
+                ui.separator();
+                LightEdit::default()
+            }
+            _ => {
+                ui.weak("Click a light or an object (outliner or viewport) to inspect it.");
+                ui.separator();
+                LightEdit::default()
+            }
+        }
+    }
+
+    /// The Painting section and the table of every light's intensity and colour.
+    fn painting_and_lights(&mut self, ui: &mut egui::Ui, light_edit: &mut LightEdit) -> Option<PaintAction> {
+        let document = self.document.as_mut()?;
+        let mut action = None;
+        if let Some(painting) = &mut self.painting {
+            egui::CollapsingHeader::new("Painting")
+                .default_open(true)
+                .show(ui, |ui| action = painting_section(ui, painting, &document.scene));
+        }
+        egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
+            egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
+                for (index, light) in document.scene.lights.iter_mut().enumerate() {
+                    let selected = self.selection == Some(Selection::Light(index));
+                    let name = ui.selectable_label(selected, &light.name);
+                    if name.clicked() {
+                        self.selection = Some(Selection::Light(index));
+                    }
+                    // Drag speed proportional to the value, so dim and bright lights
+                    // both adjust smoothly.
+                    let speed = (light.intensity.abs() * 0.01).max(0.001);
+                    let intensity = egui::DragValue::new(&mut light.intensity)
+                        .range(0.0..=1.0e7)
+                        .speed(speed)
+                        .suffix(format!(" {}", light.kind.intensity_unit()));
+                    light_edit.changed |= ui.add(intensity).labelled_by(name.id).changed();
+                    let mut color = light.color.to_array();
+                    if ui.color_edit_button_rgb(&mut color).labelled_by(name.id).changed() {
+                        light.color = glam::Vec3::from(color);
+                        light_edit.changed = true;
+                    }
+                    ui.end_row();
+                }
+            });
+        });
+        action
+    }
+
+    /// Render settings, shadows and the environment.
+    fn render_sections(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        let Some(document) = &mut self.document else { return };
+        egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
+            self.indirect_stale |= render_settings(ui, &mut document.settings);
+        });
+        egui::CollapsingHeader::new("Shadows")
+            .default_open(true)
+            .show(ui, |ui| {
+                shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
+            });
+        // Refit once the slider is let go: a fit takes a good part of a second.
+        if document.settings.blockers != self.fitted_with
+            && document.settings.blockers.problems().is_empty()
+            && !ui.input(|i| i.pointer.any_down())
+            && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state)
+        {
+            self.blockers = fit_scene(&document.scene, &document.settings.blockers);
+            self.fitted_with = document.settings.blockers;
+            viewport.set_blockers(rs, &self.blockers.spheres());
+        }
+        if let Some(environment) = &mut document.scene.environment {
+            egui::CollapsingHeader::new("Environment")
+                .default_open(true)
+                .show(ui, |ui| {
+                    let name = environment
+                        .hdr
+                        .file_name()
+                        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+                    let mut changed = false;
+                    ui.horizontal(|ui| {
+                        ui.label(name);
+                        let intensity = egui::DragValue::new(&mut environment.intensity)
+                            .range(0.0..=1.0e4)
+                            .speed(0.01)
+                            .prefix("×");
+                        changed |= ui.add(intensity).changed();
+                    });
+                    let half_turn = std::f32::consts::PI;
+                    let rotation =
+                        egui::Slider::new(&mut environment.rotation_rad, -half_turn..=half_turn).text("rotation (rad)");
+                    changed |= ui.add(rotation).changed();
+                    if changed && let Some(viewport) = &mut self.viewport {
+                        viewport.set_environment(Some(environment));
+                    }
+                });
+        }
+    }
+
+    fn terrain_section(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        let Some(document) = &self.document else { return };
+        let mut edit = None;
+        egui::CollapsingHeader::new("Terrain")
+            .default_open(true)
+            .show(ui, |ui| {
+                edit = terrain_section(ui, &document.scene, &mut self.terrain_editing);
+            });
+        if let Some(edit) = edit {
+            self.apply_terrain_edit(edit, render_state);
+        }
+    }
+}
+
+/// Exposure, background, viewport resolution and baked indirect light; true if the
+/// baked indirect setting changed.
+fn render_settings(ui: &mut egui::Ui, settings: &mut crate::render::RenderSettings) -> bool {
+    ui.add(egui::Slider::new(&mut settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
+    ui.horizontal(|ui| {
+        ui.label("background");
+        ui.color_edit_button_srgb(&mut settings.background_srgb8);
+    });
+    ui.add(
+        egui::Slider::new(&mut settings.viewport_resolution_scale, 0.25..=1.0)
+            .text("viewport resolution")
+            .custom_formatter(|v, _| format!("{:.0} %", 100.0 * v))
+            .custom_parser(|text| {
+                text.trim()
+                    .trim_end_matches('%')
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .map(|p| p / 100.0)
+            }),
+    )
+    .on_hover_text("Share of the viewport's pixels shaded along each side: lower is faster.");
+    let indirect_changed = ui
+        .checkbox(&mut settings.baked_indirect, "baked indirect light")
+        .on_hover_text(
+            "Adds the light of the baked bounces once importance maps are baked \
+             (Painting > Bake importance maps); it follows every intensity change.",
+        )
+        .changed();
+    // The slider clamps typed values, but not NaN: a saved project must reopen.
+    let scale = &mut settings.viewport_resolution_scale;
+    *scale = if scale.is_finite() { scale.clamp(0.25, 1.0) } else { 1.0 };
+    indirect_changed
+}
+
+/// Name, size, material and shadow proxy of object `index`.
+fn object_summary(ui: &mut egui::Ui, document: &Document, blockers: &crate::blockers::SceneBlockers, index: usize) {
+    let object = &document.scene.objects[index];
+    ui.heading(format!("Object: {}", object.name));
+    egui::Grid::new("selected object").num_columns(2).show(ui, |ui| {
+        ui.label("vertices");
+        ui.label(format!(
+            "{} ({} triangles)",
+            object.positions.len(),
+            object.indices.len() / 3
+        ));
+        ui.end_row();
+        let bounds = object.bounds();
+        ui.label("size (m)");
+        let size = bounds.max - bounds.min;
+        ui.label(format!("{:.2} × {:.2} × {:.2}", size.x, size.y, size.z));
+        ui.end_row();
+        ui.label("shown");
+        ui.label(if document.hidden_objects.contains(&index) {
+            "hidden (still casts shadows)"
+        } else {
+            "yes"
+        });
+        ui.end_row();
+        ui.label("shadow proxy");
+        let proxy = match blockers.per_object.get(index) {
+            Some(set) => match &set.skipped {
+                Some(reason) => format!("none ({reason})"),
+                None => format!("{} spheres", set.spheres.len()),
+            },
+            None => "none".to_string(),
+        };
+        ui.label(proxy);
+        ui.end_row();
+    });
+    if let Some(material) = document.scene.materials.get(object.material) {
+        ui.label(egui::RichText::new(material.summary()).small());
+    }
+}
+
+/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
+/// radius there in degrees (the shaders decide per receiver; this is the view's pivot).
+fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: crate::render::LightPaths) -> (bool, f64) {
+    let gpu_light = crate::render::gpu_types::GpuLight::new(light);
+    let cap_ratio = crate::render::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
+    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+}

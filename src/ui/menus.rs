@@ -1,0 +1,175 @@
+//! The menu bar and the file actions behind it. Every dialog only picks a path; the
+//! action itself (`request_open`, `save_to`, `export_png`, `request_new`) is a public
+//! method, so tests and scripts reach it without a dialog.
+
+use std::path::Path;
+
+use super::EditorApp;
+use super::unsaved_prompt::Pending;
+use crate::project::PROJECT_EXTENSION;
+
+impl EditorApp {
+    pub(super) fn menu_bar(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        egui::Panel::top("menu").show(ui, |ui| {
+            egui::MenuBar::new().ui(ui, |ui| {
+                ui.menu_button("File", |ui| self.file_menu(ui, render_state));
+                ui.menu_button("Edit", |ui| {
+                    let (can_undo, can_redo) = self
+                        .painting
+                        .as_ref()
+                        .map_or((false, false), |p| (p.can_undo(), p.can_redo()));
+                    if ui
+                        .add_enabled(can_undo, egui::Button::new("Undo stroke (Ctrl+Z)"))
+                        .clicked()
+                    {
+                        self.undo(render_state);
+                    }
+                    if ui
+                        .add_enabled(can_redo, egui::Button::new("Redo stroke (Ctrl+Shift+Z)"))
+                        .clicked()
+                    {
+                        self.redo(render_state);
+                    }
+                });
+                ui.menu_button("View", |ui| {
+                    if ui.button("Frame all (F)").clicked() {
+                        self.frame_all();
+                    }
+                    ui.separator();
+                    let preferences = &mut self.preferences;
+                    ui.checkbox(&mut preferences.show_outliner, "Outliner");
+                    ui.checkbox(&mut preferences.show_inspector, "Inspector");
+                    ui.checkbox(&mut preferences.show_light_markers, "Light markers and gizmo");
+                });
+            });
+        });
+    }
+
+    fn file_menu(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+        if ui.button("New (Ctrl+N)").clicked() {
+            self.request_new();
+        }
+        if ui.button("Open… (Ctrl+O)").clicked() {
+            self.open_dialog(render_state);
+        }
+        ui.add_enabled_ui(!self.preferences.recent_files.is_empty(), |ui| {
+            ui.menu_button("Open Recent", |ui| {
+                for path in self.preferences.recent_files.clone() {
+                    let name = path
+                        .file_name()
+                        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+                    if ui.button(name).on_hover_text(path.display().to_string()).clicked() {
+                        self.request_open(&path, render_state);
+                    }
+                }
+            });
+        });
+        if ui.button("Import glTF…").clicked() {
+            self.import_dialog(render_state);
+        }
+        ui.separator();
+        let open = self.document.is_some();
+        if ui.add_enabled(open, egui::Button::new("Save (Ctrl+S)")).clicked() {
+            self.save_document();
+        }
+        if ui.add_enabled(open, egui::Button::new("Save As…")).clicked() {
+            self.save_as_dialog();
+        }
+        if ui
+            .add_enabled(self.viewport.is_some(), egui::Button::new("Export render as PNG…"))
+            .clicked()
+        {
+            self.export_dialog();
+        }
+        ui.separator();
+        if ui.button("Quit").clicked() {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+
+    /// File ▸ New: closes the document (asking to save unsaved changes first).
+    pub fn request_new(&mut self) {
+        if self.has_unsaved_changes() && self.document.is_some() {
+            self.pending = Some(Pending::New);
+        } else {
+            self.close_document();
+        }
+    }
+
+    /// Saves to the document's project file, or asks where when it has none.
+    pub(super) fn save_document(&mut self) {
+        match self.document.as_ref().and_then(|d| d.project_path.clone()) {
+            Some(path) => self.save_to(&path),
+            None => self.save_as_dialog(),
+        }
+    }
+
+    fn save_as_dialog(&mut self) {
+        let picked = rfd::FileDialog::new()
+            .add_filter("lightpaint project", &[PROJECT_EXTENSION])
+            .set_file_name(format!("untitled.{PROJECT_EXTENSION}"))
+            .save_file();
+        if let Some(path) = picked {
+            self.save_to(&path);
+        }
+    }
+
+    pub(super) fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let picked = rfd::FileDialog::new()
+            .add_filter("lightpaint project or glTF scene", &[PROJECT_EXTENSION, "gltf", "glb"])
+            .pick_file();
+        if let Some(path) = picked {
+            self.request_open(&path, render_state);
+        }
+    }
+
+    /// A new, unsaved project on a glTF scene.
+    fn import_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+        let picked = rfd::FileDialog::new()
+            .add_filter("glTF scene", &["gltf", "glb"])
+            .pick_file();
+        if let Some(path) = picked {
+            self.request_open(&path, render_state);
+        }
+    }
+
+    fn export_dialog(&mut self) {
+        let stem = self
+            .document
+            .as_ref()
+            .and_then(|d| d.project_path.as_deref().or(Some(&d.scene_path)))
+            .and_then(Path::file_stem)
+            .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
+        let picked = rfd::FileDialog::new()
+            .add_filter("PNG image", &["png"])
+            .set_file_name(format!("{stem}.png"))
+            .save_file();
+        if let Some(path) = picked {
+            self.export_png(&path);
+        }
+    }
+
+    /// Writes the image the viewport shows to `path` as PNG (atomically: a failed export
+    /// leaves an existing file as it was).
+    pub fn export_png(&mut self, path: &Path) {
+        let (Some(viewport), Some(rs)) = (&self.viewport, &self.render_state) else {
+            return self.report_error("nothing to export: no scene is shown".to_string());
+        };
+        let image = match viewport.read_image(rs) {
+            Some(Ok(image)) => image,
+            Some(Err(e)) => return self.report_error(format!("could not read the render back: {e}")),
+            None => return self.report_error("nothing to export yet: the viewport has not drawn".to_string()),
+        };
+        let mut bytes = Vec::new();
+        let encoded = image::DynamicImage::ImageRgba8(image)
+            .to_rgb8()
+            .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png);
+        let written = encoded
+            .map_err(|e| e.to_string())
+            .and_then(|()| crate::project::replace_atomically(path, &bytes).map_err(|e| e.to_string()));
+        match written {
+            Ok(()) => self.message = format!("exported {}", path.display()),
+            Err(e) => self.report_error(format!("could not write {}: {e}", path.display())),
+        }
+    }
+}

@@ -1,0 +1,280 @@
+//! Editing the scene in the editor under egui_kittest on the real wgpu adapter: selecting
+//! lights and objects (outliner and viewport), moving a light with its marker (and
+//! re-baking only its maps), hiding objects, soloing a light, exporting the view, File ▸
+//! New and the recent files.
+
+mod common;
+
+use common::editor::{drag_through, editor_on, viewport_pixels_differing};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use lightpaint::project::Document;
+use lightpaint::samples::Sample;
+use lightpaint::ui::{EditorApp, Selection};
+
+/// The editor on a fresh copy of `sample`, with the pointer parked off the viewport.
+fn editor_on_copy(sample: Sample) -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
+    if common::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+        return None;
+    }
+    let dir = tempfile::tempdir().expect("temp dir");
+    let project = sample.write(dir.path()).expect("sample written");
+    let mut harness = editor_on(project.clone());
+    park_pointer(&mut harness);
+    Some((dir, project, harness))
+}
+
+/// Moves the pointer to the status bar, where it draws nothing over the viewport.
+fn park_pointer(harness: &mut Harness<'static, EditorApp>) {
+    harness.hover_at(egui::pos2(5.0, 790.0));
+    harness.run();
+}
+
+/// A press and release of the left button at `at`, a frame each.
+fn click_at(harness: &mut Harness<'static, EditorApp>, at: egui::Pos2) {
+    harness.hover_at(at);
+    harness.run();
+    harness.drag_at(at);
+    harness.run();
+    harness.drop_at(at);
+    harness.run();
+}
+
+fn light_index(harness: &Harness<'static, EditorApp>, name: &str) -> usize {
+    let document = harness.state().document().expect("open");
+    document
+        .scene
+        .lights
+        .iter()
+        .position(|l| l.name == name)
+        .expect("the light exists")
+}
+
+/// Clicking a light in the outliner selects it and the inspector shows its editor;
+/// clicking an object in the viewport selects that object.
+#[test]
+fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    let key = light_index(&harness, "Key");
+    assert_eq!(harness.state().selection(), Some(Selection::Light(key)));
+    harness.get_by_label("Light: Key");
+    for row in ["position (m)", "aim", "cone", "colour"] {
+        assert!(
+            harness.query_all_by_label(row).count() >= 1,
+            "the spot's editor has {row}"
+        );
+    }
+
+    let document = harness.state().document().expect("open");
+    let figure = document
+        .scene
+        .objects
+        .iter()
+        .position(|o| o.name == "Figure")
+        .expect("the studio has a figure");
+    let chest = document.scene.objects[figure].bounds().center();
+    let at = harness.state().screen_position(chest).expect("the figure is in view");
+    click_at(&mut harness, at);
+    assert_eq!(harness.state().selection(), Some(Selection::Object(figure)));
+    harness.get_by_label("Object: Figure");
+}
+
+/// Dragging a light's marker moves the light in the view plane: it lands under the
+/// pointer, the render changes, and the project is changed.
+#[test]
+fn dragging_a_light_marker_moves_the_light() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    let lights = harness.state().document().expect("open").scene.lights.clone();
+    let viewport = harness.state().viewport_rect().shrink(120.0);
+    let (index, light, from) = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.kind.has_position())
+        .find_map(|(i, l)| {
+            let at = harness.state().screen_position(l.position)?;
+            viewport.contains(at).then(|| (i, l.clone(), at))
+        })
+        .expect("a light well inside the view");
+    let to = from + egui::vec2(-90.0, 40.0);
+    drag_through(&mut harness, &[from, to], 6);
+    park_pointer(&mut harness);
+    let moved = harness.state().document().expect("open").scene.lights[index].clone();
+    assert_ne!(moved.position, light.position, "the light moved");
+    assert_eq!(moved.direction, light.direction, "a move keeps the aim");
+    let landed = harness.state().screen_position(moved.position).expect("in view");
+    assert!(
+        landed.distance(to) < 1.5,
+        "the light is under the pointer: {landed:?} vs {to:?}"
+    );
+    assert_eq!(harness.state().selection(), Some(Selection::Light(index)));
+    assert!(harness.state().has_unsaved_changes());
+    let after = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let differing = viewport_pixels_differing(&before, &after, harness.state().viewport_rect(), ppp);
+    assert!(
+        differing > 1000,
+        "the lighting follows the light ({differing} pixels changed)"
+    );
+}
+
+/// With importance maps baked, moving a light re-bakes only that light's maps in the
+/// background; strokes use the direct estimate meanwhile and the baked maps after.
+#[test]
+fn a_moved_light_gets_only_its_maps_re_baked() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    harness.get_by_label("Bake importance maps").scroll_to_me();
+    harness.run();
+    harness.get_by_label("Bake importance maps").click();
+    harness.run();
+    wait_for_label(&mut harness, "Transfer: baked maps");
+
+    let mut light = harness.state().document().expect("open").scene.lights[1].clone();
+    light.position.x += 0.5;
+    harness.state_mut().set_light(1, light);
+    harness.run();
+    wait_for_label(&mut harness, "re-baked 1 moved light(s)");
+    harness.get_by_label_contains("Transfer: baked maps");
+}
+
+fn wait_for_label(harness: &mut Harness<'static, EditorApp>, text: &str) {
+    let started = std::time::Instant::now();
+    while harness.query_by_label_contains(text).is_none() {
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(300),
+            "waited 5 minutes for \"{text}\""
+        );
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        harness.run();
+    }
+}
+
+/// A hidden object is not drawn (the backdrop's pixels change) and stays hidden when the
+/// project is saved and reopened; showing it again restores the image exactly.
+#[test]
+fn hidden_objects_are_not_drawn_and_stay_hidden_after_reopening() {
+    let Some((_dir, project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    let backdrop = harness
+        .state()
+        .document()
+        .expect("open")
+        .scene
+        .objects
+        .iter()
+        .position(|o| o.name == "Backdrop")
+        .expect("the studio has a backdrop");
+    harness.get_by_label("show Backdrop").click();
+    harness.run();
+    park_pointer(&mut harness);
+    assert!(
+        harness
+            .state()
+            .document()
+            .expect("open")
+            .hidden_objects
+            .contains(&backdrop)
+    );
+    let hidden = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    assert!(
+        viewport_pixels_differing(&before, &hidden, viewport, ppp) > 10_000,
+        "the backdrop is gone"
+    );
+    assert!(harness.state().has_unsaved_changes());
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).expect("reopens");
+    assert!(reopened.hidden_objects.contains(&backdrop));
+
+    harness.state_mut().toggle_hidden(backdrop);
+    harness.run();
+    let shown = harness.render().expect("render");
+    assert_eq!(
+        viewport_pixels_differing(&before, &shown, viewport, ppp),
+        0,
+        "shown again exactly"
+    );
+}
+
+/// Solo shows one light alone (the image changes, intensities and the project do not);
+/// un-soloing restores the image exactly.
+#[test]
+fn a_soloed_light_is_shown_alone_without_changing_the_project() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    let intensities = harness.state().light_intensities();
+    harness
+        .get_all_by_label("S")
+        .next()
+        .expect("a solo toggle per light")
+        .click();
+    harness.run();
+    park_pointer(&mut harness);
+    let soloed = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    assert!(viewport_pixels_differing(&before, &soloed, viewport, ppp) > 10_000);
+    assert_eq!(harness.state().light_intensities(), intensities);
+    assert!(!harness.state().has_unsaved_changes(), "solo is a view setting");
+    harness.get_all_by_label("S").next().expect("toggle").click();
+    harness.run();
+    park_pointer(&mut harness);
+    let back = harness.render().expect("render");
+    assert_eq!(viewport_pixels_differing(&before, &back, viewport, ppp), 0);
+}
+
+/// Export writes the viewport's image as a PNG of the viewport's size.
+#[test]
+fn the_view_is_exported_as_png() {
+    let Some((dir, _project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    let path = dir.path().join("export.png");
+    harness.state_mut().export_png(&path);
+    harness.run();
+    let image = image::open(&path).expect("a PNG was written").to_rgb8();
+    let viewport = harness.state().viewport_rect();
+    let ppp = harness.ctx.pixels_per_point();
+    assert_eq!(image.width(), (viewport.width() * ppp).round() as u32);
+    assert_eq!(image.height(), (viewport.height() * ppp).round() as u32);
+    let lit = image.pixels().filter(|p| p.0.iter().any(|&c| c > 40)).count();
+    assert!(lit > image.pixels().len() / 4, "the export shows the lit scene");
+}
+
+/// File ▸ New closes the document (after asking about unsaved changes); the start page
+/// lists the recent files, and clicking one opens it again.
+#[test]
+fn new_closes_the_document_and_the_start_page_reopens_a_recent_file() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    harness.get_by_label("show Floor").click();
+    harness.run();
+    assert!(harness.state().has_unsaved_changes(), "hiding the floor is a change");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::N);
+    harness.run();
+    harness.get_by_label_contains("before starting anew");
+    harness.get_by_label("Discard").click();
+    harness.run();
+    assert!(harness.state().document().is_none());
+    harness.get_by_label("Nothing open");
+    harness.get_by_label("sample.lightpaint").click();
+    harness.run();
+    assert!(harness.state().document().is_some(), "the recent file reopened");
+    harness.get_by_label("Lights (4)");
+}
