@@ -819,7 +819,8 @@ fn editor(file: Option<PathBuf>) -> Result<(), CliError> {
     let options = lightpaint::ui::EditorOptions {
         file,
         close_when_file_exists: std::env::var_os("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS").map(PathBuf::from),
-        hide_frame_timings: false,
+        // Screenshots for the docs leave out the numbers that change from run to run.
+        hide_frame_timings: std::env::var_os("LIGHTPAINT_HIDE_FRAME_TIMINGS").is_some_and(|v| v == "1"),
     };
     lightpaint::ui::run_editor(options).map_err(|e| CliError::Editor(e.to_string()))
 }
