@@ -22,6 +22,11 @@ fn raster_module_validates() {
 }
 
 #[test]
+fn heat_map_module_validates() {
+    validate("heat map", &shaders::heat_map_source());
+}
+
+#[test]
 fn logsh_modules_validate_at_every_order_and_method() {
     for order in 2..=lightpaint::sh::MAX_REALTIME_ORDER {
         for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {

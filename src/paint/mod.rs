@@ -6,6 +6,7 @@
 
 pub mod brush;
 pub mod constraint;
+pub mod light_reach;
 pub mod modify;
 pub mod nnls;
 pub mod pick;

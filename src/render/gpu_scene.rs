@@ -154,6 +154,23 @@ impl GpuScene {
         gpu_scene
     }
 
+    /// A frame bind group like [`Self::frame_bind_group`] whose per-vertex binding (2)
+    /// reads `per_vertex` instead of the baked indirect light: 3 floats per vertex of
+    /// every uploaded object, in [`Self::objects`]' order.
+    pub fn frame_bind_group_with(
+        &self,
+        device: &wgpu::Device,
+        layouts: &SceneLayouts,
+        per_vertex: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        frame_bind_group(device, layouts, &self.frame_buffer, &self.light_buffer, per_vertex)
+    }
+
+    /// Vertices of every uploaded object together.
+    pub fn vertex_total(&self) -> u32 {
+        self.objects.iter().map(|o| o.vertex_count).sum()
+    }
+
     /// Rewrites the light buffer, growing it when there are more lights than it holds.
     /// Hides the objects whose [`Scene::objects`] index `hidden` holds (and shows the rest).
     pub fn set_hidden(&mut self, hidden: &std::collections::BTreeSet<usize>) {

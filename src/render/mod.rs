@@ -11,6 +11,7 @@ mod gpu_blockers;
 mod gpu_scene;
 mod gpu_terrain;
 pub mod gpu_types;
+pub mod heat_map;
 pub mod logsh;
 mod offscreen;
 pub mod paint_estimate;

@@ -103,51 +103,7 @@ impl ScenePipeline {
     pub fn with_samples(device: &wgpu::Device, samples: u32) -> ScenePipeline {
         let layouts = SceneLayouts::new(device);
         let module = shaders::create_module(device, "raster", &shaders::raster_source());
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("raster"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("raster"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(GpuVertex::layout())],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                front_face: wgpu::FrontFace::Ccw,
-                // glTF meshes are often open (planes, cards): draw both sides.
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: samples,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: COLOR_FORMAT,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = mesh_pipeline(device, &layouts, &module, "fs_main", samples);
         ScenePipeline { layouts, pipeline }
     }
 
@@ -159,18 +115,95 @@ impl ScenePipeline {
         scene: &GpuScene,
         background_linear: [f64; 3],
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("scene"),
-            color_attachments: &[Some(target.color_attachment(background_linear))],
-            depth_stencil_attachment: Some(target.depth_attachment()),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-        super::logsh::draw_objects(&mut pass, scene);
+        draw_meshes(
+            encoder,
+            target,
+            &self.pipeline,
+            &scene.frame_bind_group,
+            scene,
+            background_linear,
+        );
     }
+}
+
+/// Clears `target` to `background` (linear RGB) and draws every shown object of `scene`
+/// with `pipeline` (a [`mesh_pipeline`]) and `frame_group` as bind group 0.
+pub fn draw_meshes(
+    encoder: &mut wgpu::CommandEncoder,
+    target: &RenderTarget,
+    pipeline: &wgpu::RenderPipeline,
+    frame_group: &wgpu::BindGroup,
+    scene: &GpuScene,
+    background_linear: [f64; 3],
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("scene"),
+        color_attachments: &[Some(target.color_attachment(background_linear))],
+        depth_stencil_attachment: Some(target.depth_attachment()),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, frame_group, &[]);
+    super::logsh::draw_objects(&mut pass, scene);
+}
+
+/// A pipeline drawing the scene's meshes with scene.wgsl's vertex stage and `fragment`
+/// of `module` (which has the scene's bind groups 0 and 1), depth-tested, both faces,
+/// into a [`COLOR_FORMAT`] target of `samples` samples.
+pub fn mesh_pipeline(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    module: &wgpu::ShaderModule,
+    fragment: &str,
+    samples: u32,
+) -> wgpu::RenderPipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(fragment),
+        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(fragment),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(GpuVertex::layout())],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            front_face: wgpu::FrontFace::Ccw,
+            // glTF meshes are often open (planes, cards): draw both sides.
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fragment),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: COLOR_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// Where a frame is drawn: a colour and depth buffer (multisampled and resolved into a

@@ -12,6 +12,7 @@ pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
 pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
 pub const TERRAIN: &str = include_str!("../../shaders/terrain.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
+pub const HEAT_MAP: &str = include_str!("../../shaders/heat_map.wgsl");
 
 /// The shared prelude, then `body`.
 pub fn with_common(body: &str) -> String {
@@ -21,6 +22,11 @@ pub fn with_common(body: &str) -> String {
 /// The unshadowed raster module.
 pub fn raster_source() -> String {
     format!("{COMMON}\n{SCENE}\n{RASTER}")
+}
+
+/// The importance heat map module.
+pub fn heat_map_source() -> String {
+    format!("{COMMON}\n{SCENE}\n{HEAT_MAP}")
 }
 
 /// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
