@@ -28,6 +28,9 @@ pub struct Document {
     pub painting: PaintingState,
     /// Indices of the objects hidden in the viewport (see [`ProjectFile::hidden_objects`]).
     pub hidden_objects: std::collections::BTreeSet<usize>,
+    /// Names the user gave objects (see [`ProjectFile::object_names`]); already applied
+    /// to the scene's objects.
+    pub object_names: std::collections::BTreeMap<usize, String>,
 }
 
 /// Whether `path` names a project file (by extension) rather than a glTF scene.
@@ -60,6 +63,7 @@ impl Document {
             warnings,
             painting: PaintingState::default(),
             hidden_objects: Default::default(),
+            object_names: Default::default(),
         })
     }
 
@@ -110,7 +114,7 @@ impl Document {
             })?;
             scene.set_terrain(Some((spec, field)));
         }
-        // A hidden object the scene no longer has (the glTF changed) is forgotten.
+        // A hidden or renamed object the scene no longer has (the glTF changed) is forgotten.
         let object_count = scene.objects.len();
         let (hidden_objects, gone): (Vec<usize>, Vec<usize>) =
             file.hidden_objects.iter().partition(|&&index| index < object_count);
@@ -118,6 +122,22 @@ impl Document {
             warnings.push(format!(
                 "hidden objects {gone:?} are not in the scene ({object_count} objects); they are shown again"
             ));
+        }
+        let (object_names, gone): (
+            std::collections::BTreeMap<usize, String>,
+            std::collections::BTreeMap<usize, String>,
+        ) = file
+            .object_names
+            .into_iter()
+            .partition(|(index, _)| *index < object_count);
+        if !gone.is_empty() {
+            let gone: Vec<usize> = gone.into_keys().collect();
+            warnings.push(format!(
+                "renamed objects {gone:?} are not in the scene ({object_count} objects); their names are dropped"
+            ));
+        }
+        for (&index, name) in &object_names {
+            scene.objects[index].name = name.clone();
         }
         Ok(Document {
             scene,
@@ -128,6 +148,7 @@ impl Document {
             warnings,
             painting: file.painting,
             hidden_objects: hidden_objects.into_iter().collect(),
+            object_names,
         })
     }
 
@@ -158,6 +179,7 @@ impl Document {
             painting: self.painting.clone(),
             terrain: self.scene.terrain.as_ref().map(|t| t.spec.with_image_path(relative)),
             hidden_objects: self.hidden_objects.iter().copied().collect(),
+            object_names: self.object_names.clone(),
         }
     }
 
@@ -182,6 +204,7 @@ impl Document {
             },
             // Another scene has other objects.
             hidden_objects: Default::default(),
+            object_names: Default::default(),
         })
     }
 

@@ -43,6 +43,10 @@ pub struct ProjectFile {
     /// brush sees through them; they still cast shadows and take part in the bake.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hidden_objects: Vec<usize>,
+    /// Names given to objects in the editor (format 6), by object index as above; they
+    /// replace the glTF's names.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub object_names: std::collections::BTreeMap<usize, String>,
 }
 
 /// The painting state a project restores: the applied strokes (oldest first, replayable)

@@ -17,7 +17,8 @@
 //!   small lights): format 3 shadowed every light through the SH, so "harmonics".
 //! - 5: `terrain` (a height-field terrain) and `render.shadows.terrain` (its horizon
 //!   sampling); format 4 had no terrain, which is what their absence means.
-//! - 6: `hidden_objects` (objects hidden in the viewport); format 5 showed every object.
+//! - 6: `hidden_objects` (objects hidden in the viewport) and `object_names` (objects
+//!   renamed in the editor); format 5 showed every object under its glTF name.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
