@@ -82,6 +82,14 @@ fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
     click_at(&mut harness, at);
     assert_eq!(harness.state().selection(), Some(Selection::Object(figure)));
     harness.get_by_label("Object: Figure");
+
+    // F frames the selection: the figure's centre comes to the middle of the view.
+    park_pointer(&mut harness);
+    harness.key_press(egui::Key::F);
+    harness.run();
+    let centred = harness.state().screen_position(chest).expect("in view");
+    let middle = harness.state().viewport_rect().center();
+    assert!(centred.distance(middle) < 2.0, "{centred:?} vs {middle:?}");
 }
 
 /// Dragging a light's marker moves the light in the view plane: it lands under the
@@ -123,6 +131,11 @@ fn dragging_a_light_marker_moves_the_light() {
         differing > 1000,
         "the lighting follows the light ({differing} pixels changed)"
     );
+
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    let undone = harness.state().document().expect("open").scene.lights[index].clone();
+    assert_eq!(undone, light, "Ctrl+Z puts the light back exactly");
 }
 
 /// With importance maps baked, moving a light re-bakes only that light's maps in the
@@ -277,4 +290,137 @@ fn new_closes_the_document_and_the_start_page_reopens_a_recent_file() {
     harness.run();
     assert!(harness.state().document().is_some(), "the recent file reopened");
     harness.get_by_label("Lights (4)");
+}
+
+/// The heat map colours the scene by how much of the selected light reaches each vertex:
+/// the image changes, the scale is positive, and turning it off restores the image.
+#[test]
+fn the_heat_map_shows_where_the_selected_light_reaches() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    harness.get_by_label("heat map of where it reaches").click();
+    harness.run();
+    park_pointer(&mut harness);
+    let scale = harness.state().heat_map_scale().expect("a heat map is shown");
+    assert!(
+        scale.is_finite() && scale > 1e-3,
+        "the key light reaches the scene: {scale}"
+    );
+    let heat = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    assert!(viewport_pixels_differing(&before, &heat, viewport, ppp) > 10_000);
+    harness.get_by_label("heat map of where it reaches").click();
+    harness.run();
+    park_pointer(&mut harness);
+    assert!(harness.state().heat_map_scale().is_none());
+    let back = harness.render().expect("render");
+    // The key light stays selected, so its gizmo is drawn over the viewport now.
+    harness.state_mut().select(None);
+    harness.run();
+    park_pointer(&mut harness);
+    let back_unselected = harness.render().expect("render");
+    assert!(viewport_pixels_differing(&heat, &back, viewport, ppp) > 10_000);
+    assert_eq!(viewport_pixels_differing(&before, &back_unselected, viewport, ppp), 0);
+}
+
+/// Dragging the selected light's intensity in the inspector changes the render; Ctrl+Z
+/// takes the edit back exactly (intensity and image), Ctrl+Shift+Z brings it again.
+#[test]
+fn an_intensity_dragged_in_the_inspector_changes_the_render_and_undoes() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    harness.state_mut().select(None);
+    harness.run();
+    park_pointer(&mut harness);
+    let before = harness.render().expect("render");
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    let key = light_index(&harness, "Key");
+    let intensity = harness.state().light_intensities()[key];
+    let field = harness
+        .get_by_role_and_label(egui::accesskit::Role::SpinButton, "intensity")
+        .rect()
+        .center();
+    drag_through(&mut harness, &[field, field + egui::vec2(60.0, 0.0)], 4);
+    park_pointer(&mut harness);
+    let raised = harness.state().light_intensities()[key];
+    assert!(raised > intensity, "{intensity} → {raised} cd");
+    harness.state_mut().select(None);
+    harness.run();
+    park_pointer(&mut harness);
+    let brighter = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    assert!(viewport_pixels_differing(&before, &brighter, viewport, ppp) > 1000);
+
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    park_pointer(&mut harness);
+    assert_eq!(
+        harness.state().light_intensities()[key],
+        intensity,
+        "undo restores it exactly"
+    );
+    let undone = harness.render().expect("render");
+    assert_eq!(viewport_pixels_differing(&before, &undone, viewport, ppp), 0);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state().light_intensities()[key], raised, "redo brings it back");
+}
+
+/// An object renamed in the inspector keeps its name in the saved project.
+#[test]
+fn a_renamed_object_keeps_its_name_after_reopening() {
+    let Some((_dir, project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    harness.get_by_label("Figure").click();
+    harness.run();
+    harness.get_by_label("Object: Figure");
+    let field = harness.get_by_role_and_label(egui::accesskit::Role::TextInput, "name");
+    field.focus();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::accesskit::Role::TextInput, "name")
+        .type_text(" (hero)");
+    harness.run();
+    harness.key_press(egui::Key::Enter);
+    harness.run();
+    let document = harness.state().document().expect("open");
+    let figure = document
+        .scene
+        .objects
+        .iter()
+        .position(|o| o.name.contains("(hero)"))
+        .expect("the figure was renamed");
+    let name = document.scene.objects[figure].name.clone();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).expect("reopens");
+    assert_eq!(reopened.scene.objects[figure].name, name);
+}
+
+/// The main editing states look as reviewed: a light selected with its gizmo and
+/// inspector, and its heat map.
+#[test]
+fn selected_light_and_heat_map_look_as_reviewed() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    harness.get_by_label("Rim left — spot").click();
+    harness.run();
+    park_pointer(&mut harness);
+    harness.snapshot("editor_light_selected");
+    harness.get_by_label("heat map of where it reaches").click();
+    harness.run();
+    park_pointer(&mut harness);
+    harness.snapshot("editor_heat_map");
 }

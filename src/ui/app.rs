@@ -2,8 +2,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
+use super::blocker_overlay::draw_blockers;
 use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::tool_bar;
+use super::history::{History, Step};
 use super::light_gizmo::{GizmoOutput, light_gizmo};
 use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
 use super::painting::{Painting, Tool};
@@ -69,6 +71,21 @@ pub struct EditorApp {
     pub(super) preferences: Preferences,
     /// The window's wgpu device and queue (None without an adapter).
     pub(super) render_state: Option<egui_wgpu::RenderState>,
+    /// What the viewport's heat map shows (None: no heat map) and the value its
+    /// brightest colour stands for (cd/m²).
+    pub(super) heat_map: Option<(HeatMapKey, f32)>,
+    /// Strokes and light edits, for undo and redo.
+    pub(super) history: History,
+}
+
+/// What a heat map was computed from: the light, its placement and intensity, and
+/// whether the transfer came from fresh baked maps.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct HeatMapKey {
+    light: usize,
+    placement: [u8; 32],
+    intensity: f32,
+    baked: bool,
 }
 
 impl EditorApp {
@@ -102,6 +119,8 @@ impl EditorApp {
             lights_moved: false,
             preferences: Preferences::load(cc.storage),
             render_state: cc.wgpu_render_state.clone(),
+            heat_map: None,
+            history: History::default(),
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -238,6 +257,9 @@ impl EditorApp {
         self.selection = None;
         self.solo_light = None;
         self.lights_moved = false;
+        // The new viewport has no heat map yet.
+        self.heat_map = None;
+        self.history = History::new(self.document.as_ref().map_or(&[][..], |d| &d.scene.lights));
     }
 
     /// The lights as the viewport shows them: all, or only the soloed one.
@@ -326,6 +348,52 @@ impl EditorApp {
         if let Some(viewport) = &mut self.viewport {
             viewport.set_hidden(&document.hidden_objects);
         }
+    }
+
+    /// Keeps the viewport's heat map in step with the selected light (computing it again
+    /// only when the light, its intensity or the transfer's source changed).
+    fn refresh_heat_map(&mut self) {
+        let wanted = match (
+            self.preferences.show_heat_map,
+            self.selection,
+            &self.document,
+            &self.painting,
+        ) {
+            (true, Some(Selection::Light(light)), Some(document), Some(painting)) => {
+                document.scene.lights.get(light).map(|l| HeatMapKey {
+                    light,
+                    placement: crate::project::bake_cache::light_hash(l),
+                    intensity: l.intensity,
+                    baked: painting.has_fresh_maps(&document.scene),
+                })
+            }
+            _ => None,
+        };
+        if wanted.as_ref() == self.heat_map.as_ref().map(|(key, _)| key) {
+            return;
+        }
+        let (Some(viewport), Some(rs)) = (&mut self.viewport, &self.render_state) else {
+            return;
+        };
+        let (Some(key), Some(document), Some(painting)) = (wanted, &self.document, &self.painting) else {
+            viewport.set_heat_map(rs, None);
+            self.heat_map = None;
+            return;
+        };
+        let spheres = self.blockers.spheres();
+        let transfer = painting.transfer(&document.scene, &spheres, &document.settings.shadows);
+        let eye = viewport.orbit.camera().position;
+        let values =
+            crate::paint::light_reach::light_reach_per_vertex(&document.scene, transfer.as_ref(), key.light, eye);
+        let all: Vec<f32> = values.iter().flatten().copied().collect();
+        let scale = crate::render::heat_map::heat_scale(&all);
+        viewport.set_heat_map(rs, Some((&values, scale)));
+        self.heat_map = Some((key, scale));
+    }
+
+    /// The value the heat map's brightest colour stands for (cd/m²), while one is shown.
+    pub fn heat_map_scale(&self) -> Option<f32> {
+        self.heat_map.as_ref().map(|(_, scale)| *scale)
     }
 
     /// Sends the displayed lights to the viewport.
@@ -431,6 +499,8 @@ impl EditorApp {
         self.solo_light = None;
         self.lights_moved = false;
         self.terrain_editing = None;
+        self.heat_map = None;
+        self.history = History::default();
         self.message = "nothing open".to_string();
     }
 
@@ -502,36 +572,89 @@ impl EditorApp {
         let camera = viewport.orbit.camera();
         let shadows = document.settings.shadows;
         let hidden = &document.hidden_objects;
+        // A light edit still settling belongs before the stroke in the history.
+        self.history.settle(&document.scene.lights);
+        let strokes_before = painting.stroke_count();
         if let Some(report) = painting.paint(&mut document.scene, camera, stroke, &spheres, &shadows, hidden) {
+            if painting.stroke_count() > strokes_before {
+                self.history.stroke_done(&document.scene.lights);
+            } else {
+                self.history.resettle(&document.scene.lights);
+            }
             self.message = report.message;
             self.lights_changed(render_state);
         }
     }
 
-    /// Undoes the last stroke (Ctrl+Z).
+    /// Undoes the last stroke or light edit (Ctrl+Z).
     pub fn undo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let (Some(document), Some(painting)) = (&mut self.document, &mut self.painting) else {
-            return;
-        };
-        self.message = if painting.undo(&mut document.scene) {
-            "undid the last stroke".into()
-        } else {
-            "nothing to undo".into()
-        };
-        self.lights_changed(render_state);
+        if let Some(document) = &self.document {
+            self.history.settle(&document.scene.lights);
+        }
+        let step = self.history.undo();
+        self.message = self.carry_out(step, "undid", "nothing to undo", render_state);
     }
 
-    /// Redoes the last undone stroke (Ctrl+Shift+Z or Ctrl+Y).
+    /// Redoes the last undone stroke or light edit (Ctrl+Shift+Z or Ctrl+Y).
     pub fn redo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let (Some(document), Some(painting)) = (&mut self.document, &mut self.painting) else {
-            return;
+        let step = self.history.redo();
+        self.message = self.carry_out(step, "redid", "nothing to redo", render_state);
+    }
+
+    /// Whether Edit ▸ Undo and Redo have anything to do.
+    pub fn can_undo(&self) -> bool {
+        self.history.can_undo()
+    }
+
+    pub fn can_redo(&self) -> bool {
+        self.history.can_redo()
+    }
+
+    /// Carries out an undo or redo step; the message to show.
+    fn carry_out(
+        &mut self,
+        step: Option<Step>,
+        verb: &str,
+        nothing: &str,
+        render_state: Option<&egui_wgpu::RenderState>,
+    ) -> String {
+        let (Some(document), Some(painting), Some(step)) = (&mut self.document, &mut self.painting, step) else {
+            return nothing.to_string();
         };
-        self.message = if painting.redo(&mut document.scene) {
-            "redid the stroke".into()
-        } else {
-            "nothing to redo".into()
+        let message = match step {
+            Step::Stroke => {
+                let done = if verb == "undid" {
+                    painting.undo(&mut document.scene)
+                } else {
+                    painting.redo(&mut document.scene)
+                };
+                if done {
+                    format!("{verb} the stroke")
+                } else {
+                    nothing.to_string()
+                }
+            }
+            Step::SetLights(lights) => {
+                let moved = lights.iter().zip(&document.scene.lights).any(|(a, b)| {
+                    crate::project::bake_cache::light_hash(a) != crate::project::bake_cache::light_hash(b)
+                });
+                document.scene.lights = lights;
+                self.lights_moved |= moved;
+                format!("{verb} the light edit")
+            }
         };
+        self.history.resettle(&document.scene.lights);
+        self.indirect_stale = true;
         self.lights_changed(render_state);
+        message
+    }
+
+    /// Records a finished light edit (the pointer let go, no field focused) in the history.
+    fn settle_light_edits(&mut self, ctx: &egui::Context) {
+        let busy = ctx.input(|i| i.pointer.any_down()) || ctx.memory(|m| m.focused().is_some());
+        if let (false, Some(document)) = (busy, &self.document) {
+            self.history.settle(&document.scene.lights);
+        }
     }
 
     fn lights_changed(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
@@ -593,9 +716,23 @@ impl EditorApp {
         egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, &mut painting.tool));
     }
 
-    pub(super) fn frame_all(&mut self) {
-        if let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) {
-            viewport.frame_all(&document.scene);
+    /// Frames the selection (F): the selected object, the space around the selected light
+    /// (1 m each way), or everything when nothing (or a directional light) is selected.
+    pub fn frame_selection(&mut self) {
+        let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) else {
+            return;
+        };
+        let scene = &document.scene;
+        let bounds = match self.selection {
+            Some(Selection::Object(index)) => scene.objects.get(index).map(|o| o.bounds()),
+            Some(Selection::Light(index)) => scene.lights.get(index).filter(|l| l.kind.has_position()).map(|l| {
+                crate::scene::Aabb::from_points(&[l.position - glam::Vec3::ONE, l.position + glam::Vec3::ONE])
+            }),
+            None => None,
+        };
+        match bounds.filter(|b| !b.is_empty()) {
+            Some(bounds) => viewport.frame_bounds(&bounds),
+            None => viewport.frame_all(scene),
         }
     }
 
@@ -712,7 +849,7 @@ impl EditorApp {
             }
         }
         if frame_key && !typing {
-            self.frame_all();
+            self.frame_selection();
         }
         if open_key {
             self.open_dialog(render_state);
@@ -769,7 +906,9 @@ impl eframe::App for EditorApp {
             self.message = message;
             self.indirect_stale = true;
         }
+        self.settle_light_edits(&ctx);
         self.rebake_moved_lights(&ctx);
+        self.refresh_heat_map();
         if self.indirect_stale {
             self.refresh_baked_indirect(render_state.as_ref());
         }
@@ -785,6 +924,10 @@ impl eframe::App for EditorApp {
             match (&mut self.viewport, &self.document, &render_state) {
                 (Some(viewport), Some(document), Some(rs)) => {
                     let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
+                    if self.preferences.show_blockers {
+                        let painter = ui.painter_at(response.rect);
+                        draw_blockers(&painter, response.rect, &viewport.view(), &self.blockers.spheres());
+                    }
                     if self.preferences.show_light_markers {
                         let selected = match self.selection {
                             Some(Selection::Light(index)) => Some(index),

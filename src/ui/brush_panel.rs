@@ -23,10 +23,13 @@ pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
     });
 }
 
+/// The Painting section: brush, strategies, undo and redo, the transfer and the bake.
+/// `history` says whether there is something to undo and to redo (strokes and light edits).
 pub fn painting_section(
     ui: &mut egui::Ui,
     painting: &mut Painting,
     scene: &crate::scene::Scene,
+    history: (bool, bool),
 ) -> Option<PaintAction> {
     let mut action = None;
     let brush = &mut painting.brush;
@@ -75,16 +78,10 @@ pub fn painting_section(
             .custom_formatter(|v, _| format!("{:.0} %", 100.0 * v)),
     );
     ui.horizontal(|ui| {
-        if ui
-            .add_enabled(painting.can_undo(), egui::Button::new("Undo stroke"))
-            .clicked()
-        {
+        if ui.add_enabled(history.0, egui::Button::new("Undo")).clicked() {
             action = Some(PaintAction::Undo);
         }
-        if ui
-            .add_enabled(painting.can_redo(), egui::Button::new("Redo stroke"))
-            .clicked()
-        {
+        if ui.add_enabled(history.1, egui::Button::new("Redo")).clicked() {
             action = Some(PaintAction::Redo);
         }
     });

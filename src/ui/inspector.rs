@@ -56,6 +56,16 @@ impl EditorApp {
                     "shadow path at the view's pivot: {} ({angle_deg:.1}° in radius)",
                     if exact { "exact" } else { "SH" }
                 ));
+                ui.checkbox(&mut self.preferences.show_heat_map, "heat map of where it reaches")
+                    .on_hover_text(
+                        "Colours the scene by the luminance this light adds at each vertex \
+                         (baked maps once baked, else the direct estimate)",
+                    );
+                if let Some((_, scale)) = &self.heat_map {
+                    ui.weak(format!(
+                        "dark blue: 0, pale yellow: {scale:.3} cd/m² (99th percentile; square-root scale)"
+                    ));
+                }
                 ui.separator();
                 edit
             }
@@ -76,10 +86,13 @@ impl EditorApp {
     fn painting_and_lights(&mut self, ui: &mut egui::Ui, light_edit: &mut LightEdit) -> Option<PaintAction> {
         let document = self.document.as_mut()?;
         let mut action = None;
+        let history = (self.history.can_undo(), self.history.can_redo());
         if let Some(painting) = &mut self.painting {
             egui::CollapsingHeader::new("Painting")
                 .default_open(true)
-                .show(ui, |ui| action = painting_section(ui, painting, &document.scene));
+                .show(ui, |ui| {
+                    action = painting_section(ui, painting, &document.scene, history)
+                });
         }
         egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
             egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
@@ -119,6 +132,8 @@ impl EditorApp {
             .default_open(true)
             .show(ui, |ui| {
                 shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
+                ui.checkbox(&mut self.preferences.show_blockers, "show blocker spheres")
+                    .on_hover_text("Outlines the spheres that stand in for the meshes as shadow casters");
             });
         // Refit once the slider is let go: a fit takes a good part of a second.
         if document.settings.blockers != self.fitted_with
@@ -208,10 +223,17 @@ fn render_settings(ui: &mut egui::Ui, settings: &mut crate::render::RenderSettin
 }
 
 /// Name, size, material and shadow proxy of object `index`.
-fn object_summary(ui: &mut egui::Ui, document: &Document, blockers: &crate::blockers::SceneBlockers, index: usize) {
-    let object = &document.scene.objects[index];
-    ui.heading(format!("Object: {}", object.name));
+fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::blockers::SceneBlockers, index: usize) {
+    ui.heading(format!("Object: {}", document.scene.objects[index].name));
     egui::Grid::new("selected object").num_columns(2).show(ui, |ui| {
+        let label = ui.label("name");
+        let mut name = document.scene.objects[index].name.clone();
+        if ui.text_edit_singleline(&mut name).labelled_by(label.id).changed() {
+            document.scene.objects[index].name = name.clone();
+            document.object_names.insert(index, name);
+        }
+        ui.end_row();
+        let object = &document.scene.objects[index];
         ui.label("vertices");
         ui.label(format!(
             "{} ({} triangles)",
@@ -235,14 +257,19 @@ fn object_summary(ui: &mut egui::Ui, document: &Document, blockers: &crate::bloc
         let proxy = match blockers.per_object.get(index) {
             Some(set) => match &set.skipped {
                 Some(reason) => format!("none ({reason})"),
-                None => format!("{} spheres", set.spheres.len()),
+                None => format!(
+                    "{} spheres, fit error {:.0} %",
+                    set.spheres.len(),
+                    100.0 * set.fit_error
+                ),
             },
             None => "none".to_string(),
         };
         ui.label(proxy);
         ui.end_row();
     });
-    if let Some(material) = document.scene.materials.get(object.material) {
+    let material = document.scene.objects[index].material;
+    if let Some(material) = document.scene.materials.get(material) {
         ui.label(egui::RichText::new(material.summary()).small());
     }
 }

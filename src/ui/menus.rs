@@ -14,32 +14,28 @@ impl EditorApp {
             egui::MenuBar::new().ui(ui, |ui| {
                 ui.menu_button("File", |ui| self.file_menu(ui, render_state));
                 ui.menu_button("Edit", |ui| {
-                    let (can_undo, can_redo) = self
-                        .painting
-                        .as_ref()
-                        .map_or((false, false), |p| (p.can_undo(), p.can_redo()));
-                    if ui
-                        .add_enabled(can_undo, egui::Button::new("Undo stroke (Ctrl+Z)"))
-                        .clicked()
-                    {
+                    let (can_undo, can_redo) = (self.can_undo(), self.can_redo());
+                    if ui.add_enabled(can_undo, egui::Button::new("Undo (Ctrl+Z)")).clicked() {
                         self.undo(render_state);
                     }
                     if ui
-                        .add_enabled(can_redo, egui::Button::new("Redo stroke (Ctrl+Shift+Z)"))
+                        .add_enabled(can_redo, egui::Button::new("Redo (Ctrl+Shift+Z)"))
                         .clicked()
                     {
                         self.redo(render_state);
                     }
                 });
                 ui.menu_button("View", |ui| {
-                    if ui.button("Frame all (F)").clicked() {
-                        self.frame_all();
+                    if ui.button("Frame selection (F)").clicked() {
+                        self.frame_selection();
                     }
                     ui.separator();
                     let preferences = &mut self.preferences;
                     ui.checkbox(&mut preferences.show_outliner, "Outliner");
                     ui.checkbox(&mut preferences.show_inspector, "Inspector");
                     ui.checkbox(&mut preferences.show_light_markers, "Light markers and gizmo");
+                    ui.checkbox(&mut preferences.show_heat_map, "Heat map of the selected light");
+                    ui.checkbox(&mut preferences.show_blockers, "Blocker spheres");
                 });
             });
         });

@@ -3,8 +3,10 @@
 
 mod app;
 mod bake_job;
+mod blocker_overlay;
 mod brush_input;
 mod brush_panel;
+mod history;
 mod inspector;
 mod light_gizmo;
 mod light_inspector;

@@ -108,12 +108,9 @@ impl Painting {
         (!untouched).then_some(self.brush)
     }
 
-    pub fn can_undo(&self) -> bool {
-        self.painter.can_undo()
-    }
-
-    pub fn can_redo(&self) -> bool {
-        self.painter.can_redo()
+    /// Strokes applied in this session (undone ones not counted).
+    pub fn stroke_count(&self) -> usize {
+        self.painter.log().count()
     }
 
     /// Where strokes read the transfer from, for the panel.
@@ -264,17 +261,30 @@ impl Painting {
         let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
-            let fresh = self.maps_for(scene).is_some();
-            let transfer: Box<dyn Transfer> = match &self.maps {
-                Some(maps) if fresh => Box::new(BakedTransfer::new(scene, maps)),
-                _ => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
-            };
+            let maps = self.maps_for(scene).is_some().then_some(self.maps.as_ref()).flatten();
+            let transfer = transfer_from(maps, scene, blockers, shadows);
             self.painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
         };
         scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());
         Some(report)
+    }
+
+    /// The transfer strokes read now: the baked maps when they are fresh for `scene`,
+    /// else the direct estimate through `blockers`.
+    pub fn transfer<'a>(
+        &'a self,
+        scene: &'a Scene,
+        blockers: &[Sphere],
+        shadows: &ShadowSettings,
+    ) -> Box<dyn Transfer + 'a> {
+        transfer_from(self.maps_for(scene), scene, blockers, shadows)
+    }
+
+    /// Whether strokes read baked maps (fresh for `scene`) rather than the estimate.
+    pub fn has_fresh_maps(&self, scene: &Scene) -> bool {
+        self.maps_for(scene).is_some()
     }
 
     /// The BVH of `scene`'s triangles for picking (waits for the background build, or
@@ -302,5 +312,18 @@ impl Painting {
         let redone = self.painter.redo(&mut intensities);
         scene.set_light_intensities(&intensities);
         redone
+    }
+}
+
+/// The baked transfer of `maps`, or the direct estimate through `blockers` without them.
+fn transfer_from<'a>(
+    maps: Option<&'a ImportanceMaps>,
+    scene: &'a Scene,
+    blockers: &[Sphere],
+    shadows: &ShadowSettings,
+) -> Box<dyn Transfer + 'a> {
+    match maps {
+        Some(maps) => Box::new(BakedTransfer::new(scene, maps)),
+        None => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
     }
 }

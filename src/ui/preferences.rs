@@ -15,6 +15,10 @@ pub struct Preferences {
     pub recent_files: Vec<PathBuf>,
     /// Draw light markers and the light gizmo over the viewport.
     pub show_light_markers: bool,
+    /// Outline the shadow-casting sphere blockers over the viewport.
+    pub show_blockers: bool,
+    /// Colour the scene by how much of the selected light reaches each vertex.
+    pub show_heat_map: bool,
     pub show_outliner: bool,
     pub show_inspector: bool,
 }
@@ -24,6 +28,8 @@ impl Default for Preferences {
         Preferences {
             recent_files: Vec::new(),
             show_light_markers: true,
+            show_blockers: false,
+            show_heat_map: false,
             show_outliner: true,
             show_inspector: true,
         }

@@ -59,6 +59,18 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                     ui.selectable_value(&mut settings.exp, method, method_label(method));
                 }
             });
+        // Settings the GPU cannot draw (a project saved with the CPU-only reference
+        // exponential, say) are said, not silently replaced.
+        let problems = settings.gpu_problems();
+        if !problems.is_empty() {
+            ui.colored_label(
+                ui.visuals().warn_fg_color,
+                format!(
+                    "The viewport cannot draw this ({}); it keeps the last settings it could.",
+                    problems.join("; ")
+                ),
+            );
+        }
         if scene.terrain.is_some() {
             let terrain = &mut settings.terrain;
             ui.add(

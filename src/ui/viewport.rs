@@ -7,6 +7,7 @@
 //! stays fluid on a software GPU; the full frame follows as soon as the camera rests.
 
 use crate::blockers::Sphere;
+use crate::render::heat_map::HeatMapPipeline;
 use crate::render::logsh::{GpuBlockers, LogShPipeline};
 use crate::render::per_vertex::VertexVisibility;
 use crate::render::{BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
@@ -33,6 +34,8 @@ struct Shown {
 
 pub struct Viewport {
     pipeline: ScenePipeline,
+    /// Draws the importance heat map instead of the shading while it has values.
+    heat_map: HeatMapPipeline,
     gpu_scene: GpuScene,
     shadows: Shadows,
     target: Option<RenderTarget>,
@@ -83,8 +86,10 @@ impl Viewport {
             &settings,
         );
         let visibility = logsh.vertex_visibility(device, &gpu_scene);
+        let heat_map = HeatMapPipeline::new(device, &pipeline.layouts, crate::render::SAMPLE_COUNT);
         Viewport {
             pipeline,
+            heat_map,
             gpu_scene,
             shadows: Shadows {
                 settings,
@@ -109,6 +114,14 @@ impl Viewport {
             &self.pipeline.layouts,
             lights,
         );
+        self.rendered = None;
+    }
+
+    /// Shows per-vertex `values` (one list per scene object) as a heat map against
+    /// `scale` instead of the shading; None goes back to the shading.
+    pub fn set_heat_map(&mut self, render_state: &egui_wgpu::RenderState, values: Option<(&[Vec<f32>], f32)>) {
+        self.heat_map
+            .set_values(&render_state.device, &self.pipeline.layouts, &self.gpu_scene, values);
         self.rendered = None;
     }
 
@@ -192,8 +205,12 @@ impl Viewport {
 
     /// Frames the whole scene.
     pub fn frame_all(&mut self, scene: &Scene) {
-        let framing = OrbitCamera::framing(&scene.bounds());
-        self.orbit = framing;
+        self.frame_bounds(&scene.bounds());
+    }
+
+    /// Frames `bounds` (an object, or the space around a light).
+    pub fn frame_bounds(&mut self, bounds: &crate::scene::Aabb) {
+        self.orbit = OrbitCamera::framing(bounds);
     }
 
     /// Lays out the viewport in the remaining space of `ui`, handles its input and paints it.
@@ -320,7 +337,9 @@ impl Viewport {
         );
         let mut encoder = device.create_command_encoder(&Default::default());
         let background = settings.background_linear();
-        if settings.shadows.enabled && same_but_terrain(&self.shadows.settings, &settings.shadows) {
+        if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
+            // The heat map replaces the shading.
+        } else if settings.shadows.enabled && same_but_terrain(&self.shadows.settings, &settings.shadows) {
             self.shadows.pipeline.draw(
                 &mut encoder,
                 target,

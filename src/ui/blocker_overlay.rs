@@ -1,0 +1,73 @@
+//! The blocker overlay: every shadow sphere drawn over the viewport as the outline of its
+//! silhouette, so an artist can see what casts the soft shadows and how well the sphere
+//! fit follows each mesh.
+
+use crate::blockers::Sphere;
+use crate::paint::View;
+
+/// Radius in pixels of the silhouette of `sphere` seen by `view`, at its centre's depth
+/// (exact for a sphere on the view axis, a close estimate elsewhere); None behind the eye.
+pub fn silhouette_radius_px(view: &View, sphere: &Sphere) -> Option<f32> {
+    let camera = &view.camera;
+    let center = sphere.center;
+    let depth = (center - camera.position).dot(camera.forward);
+    if depth <= sphere.radius_m.max(camera.znear) {
+        return None;
+    }
+    // A sphere of radius r at distance d subtends a half-angle asin(r/d).
+    let distance = (center - camera.position).length();
+    let half_angle = (sphere.radius_m / distance).clamp(0.0, 1.0).asin();
+    let pixels_per_tan = view.height_px as f32 / (2.0 * (0.5 * camera.yfov_rad).tan());
+    Some(half_angle.tan() * pixels_per_tan)
+}
+
+/// Draws the outline of every sphere of `spheres` over `rect`.
+pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, spheres: &[Sphere]) {
+    let stroke = egui::Stroke::new(1.0, egui::Color32::from_rgba_unmultiplied(90, 220, 255, 150));
+    for sphere in spheres {
+        let (Some(center), Some(radius)) = (view.project(sphere.center), silhouette_radius_px(view, sphere)) else {
+            continue;
+        };
+        painter.circle_stroke(rect.min + egui::vec2(center.x, center.y), radius, stroke);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::scene::Camera;
+
+    #[test]
+    fn a_sphere_on_the_axis_spans_its_projected_diameter() {
+        let view = View {
+            camera: Camera {
+                position: Vec3::ZERO,
+                forward: Vec3::NEG_Z,
+                up: Vec3::Y,
+                yfov_rad: 60f32.to_radians(),
+                znear: 0.01,
+                zfar: None,
+            },
+            width_px: 400,
+            height_px: 300,
+        };
+        let sphere = Sphere {
+            center: Vec3::new(0.0, 0.0, -5.0),
+            radius_m: 1.0,
+        };
+        let radius = silhouette_radius_px(&view, &sphere).expect("in front");
+        // The tangent ray's direction (cos, sin) of the half-angle reaches the image plane
+        // at the point a world point on that ray projects to.
+        let half_angle = (1.0f32 / 5.0).asin();
+        let tangent_point = Vec3::new(half_angle.sin(), 0.0, -half_angle.cos()) * 4.0;
+        let edge = view.project(tangent_point).expect("in front");
+        assert!((edge.x - 200.0 - radius).abs() < 0.01, "{} vs {radius}", edge.x - 200.0);
+        let behind = Sphere {
+            center: Vec3::new(0.0, 0.0, 5.0),
+            radius_m: 1.0,
+        };
+        assert!(silhouette_radius_px(&view, &behind).is_none());
+    }
+}
