@@ -182,6 +182,15 @@ pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     }
 }
 
+/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
+/// radius seen from there in degrees (the shaders decide per receiver; the editor asks at
+/// the view's pivot).
+pub fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: LightPaths) -> (bool, f64) {
+    let gpu_light = super::gpu_types::GpuLight::new(light);
+    let cap_ratio = super::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
+    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@ use super::blocker_overlay::draw_blockers;
 use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::tool_bar;
 use super::history::{History, Step};
-use super::light_gizmo::{GizmoOutput, light_gizmo};
+use super::light_gizmo::{GizmoLights, GizmoOutput, light_gizmo};
 use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
 use super::painting::{Painting, Tool};
 use super::preferences::Preferences;
@@ -78,14 +78,16 @@ pub struct EditorApp {
     pub(super) history: History,
 }
 
-/// What a heat map was computed from: the light, its placement and intensity, and
-/// whether the transfer came from fresh baked maps.
+/// What a heat map was computed from: the light, its placement and intensity, whether
+/// the transfer came from fresh baked maps, and (for the direct estimate) the shadows.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct HeatMapKey {
     light: usize,
     placement: [u8; 32],
     intensity: f32,
     baked: bool,
+    shadows: crate::render::ShadowSettings,
+    blockers: BlockerSettings,
 }
 
 impl EditorApp {
@@ -365,6 +367,8 @@ impl EditorApp {
                     placement: crate::project::bake_cache::light_hash(l),
                     intensity: l.intensity,
                     baked: painting.has_fresh_maps(&document.scene),
+                    shadows: document.settings.shadows,
+                    blockers: self.fitted_with,
                 })
             }
             _ => None,
@@ -934,8 +938,19 @@ impl eframe::App for EditorApp {
                             _ => None,
                         };
                         let (pivot, distance) = (viewport.orbit.target, viewport.orbit.distance);
-                        let lights = &document.scene.lights;
-                        gizmo = light_gizmo(ui, response.rect, &viewport.view(), lights, selected, pivot, distance);
+                        let paths = document.settings.shadows.light_paths;
+                        let exact: Vec<bool> = document
+                            .scene
+                            .lights
+                            .iter()
+                            .map(|l| crate::render::light_path_at(l, pivot, paths).0)
+                            .collect();
+                        let lights = GizmoLights {
+                            lights: &document.scene.lights,
+                            selected,
+                            exact: &exact,
+                        };
+                        gizmo = light_gizmo(ui, response.rect, &viewport.view(), lights, pivot, distance);
                     }
                     if let Some(radius) = brush_radius {
                         finished = self.brush_input.update(ui, &response);

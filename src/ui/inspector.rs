@@ -51,7 +51,8 @@ impl EditorApp {
                 ui.heading(format!("Light: {}", light.name));
                 let distance = light.position.distance(pivot).max(0.1);
                 let edit = light_inspector(ui, light, distance);
-                let (exact, angle_deg) = light_path_at(light, pivot, document.settings.shadows.light_paths);
+                let (exact, angle_deg) =
+                    crate::render::light_path_at(light, pivot, document.settings.shadows.light_paths);
                 ui.weak(format!(
                     "shadow path at the view's pivot: {} ({angle_deg:.1}° in radius)",
                     if exact { "exact" } else { "SH" }
@@ -272,12 +273,4 @@ fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::
     if let Some(material) = document.scene.materials.get(material) {
         ui.label(egui::RichText::new(material.summary()).small());
     }
-}
-
-/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
-/// radius there in degrees (the shaders decide per receiver; this is the view's pivot).
-fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: crate::render::LightPaths) -> (bool, f64) {
-    let gpu_light = crate::render::gpu_types::GpuLight::new(light);
-    let cap_ratio = crate::render::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
-    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
 }

@@ -93,18 +93,30 @@ enum Handle {
     Aim,
 }
 
-/// Draws the markers of `lights` and the gizmo of the `selected` one over `rect`, and
+/// The lights a gizmo draws: the lights, which one is selected, and per light whether its
+/// shadows take the exact path (at the view's pivot) rather than the SH.
+pub struct GizmoLights<'a> {
+    pub lights: &'a [Light],
+    pub selected: Option<usize>,
+    pub exact: &'a [bool],
+}
+
+/// Draws the markers of the lights and the gizmo of the selected one over `rect`, and
 /// turns drags on them into light edits. `pivot` and `orbit_distance` place the sun
-/// markers of directional lights.
+/// markers of directional lights. A light shadowed exactly has a ring inside its marker.
 pub fn light_gizmo(
     ui: &mut egui::Ui,
     rect: egui::Rect,
     view: &View,
-    lights: &[Light],
-    selected: Option<usize>,
+    lights: GizmoLights,
     pivot: Vec3,
     orbit_distance: f32,
 ) -> GizmoOutput {
+    let GizmoLights {
+        lights,
+        selected,
+        exact,
+    } = lights;
     let mut output = GizmoOutput::default();
     let painter = ui.painter_at(rect);
     let to_screen = |p: Vec3| view.project(p).map(|q| rect.min + egui::vec2(q.x, q.y));
@@ -127,7 +139,16 @@ pub fn light_gizmo(
                 id,
                 egui::Sense::click_and_drag(),
             )
-            .on_hover_text(format!("{} ({})", light.name, light.kind.label()));
+            .on_hover_text(format!(
+                "{} ({}; {} shadows at the view's pivot)",
+                light.name,
+                light.kind.label(),
+                if exact.get(index).copied().unwrap_or(false) {
+                    "exact"
+                } else {
+                    "SH"
+                }
+            ));
         if response.clicked() || response.drag_started() {
             output.select = Some(index);
         }
@@ -143,6 +164,13 @@ pub fn light_gizmo(
             output.edited = Some((index, edited));
         }
         draw_marker(&painter, at, light, is_selected, response.hovered());
+        if exact.get(index).copied().unwrap_or(false) {
+            painter.circle_stroke(
+                at,
+                0.45 * MARKER_PX,
+                egui::Stroke::new(1.5, egui::Color32::from_black_alpha(200)),
+            );
+        }
         if is_selected && light.kind.has_position() {
             if let Some(edit) = gizmo_handles(ui, &painter, rect, view, index, light) {
                 output.edited = Some((index, edit));
