@@ -424,3 +424,41 @@ fn selected_light_and_heat_map_look_as_reviewed() {
     park_pointer(&mut harness);
     harness.snapshot("editor_heat_map");
 }
+
+/// A new SH order compiles its shaders in the background: the editor keeps drawing the
+/// previous shadows (and says so), then switches to the new order.
+#[test]
+fn a_new_order_compiles_in_the_background_while_the_editor_draws() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    harness.state_mut().render_settings_mut().expect("open").shadows.order = 6;
+    // One frame: it starts the compile and returns long before the compile can finish.
+    harness.step();
+    assert!(
+        harness.state().is_compiling_shaders(),
+        "order 6 compiles on its own thread"
+    );
+    let meanwhile = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    let shadows = viewport.shrink(40.0); // the notice sits in the bottom-left corner
+    assert_eq!(
+        viewport_pixels_differing(&before, &meanwhile, shadows, ppp),
+        0,
+        "the previous shadows are drawn while compiling"
+    );
+    let started = std::time::Instant::now();
+    while harness.state().is_compiling_shaders() {
+        assert!(started.elapsed().as_secs() < 300, "order 6 compiled within 5 minutes");
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        harness.run();
+    }
+    harness.run();
+    let after = harness.render().expect("render");
+    assert!(
+        viewport_pixels_differing(&before, &after, viewport, ppp) > 100,
+        "order 6 shadows are drawn"
+    );
+}

@@ -13,6 +13,7 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const SAMPLE_COUNT: u32 = 4;
 
 /// Bind group layouts and the shared sampler.
+#[derive(Clone)]
 pub struct SceneLayouts {
     pub frame: wgpu::BindGroupLayout,
     pub material: wgpu::BindGroupLayout,

@@ -327,6 +327,17 @@ impl EditorApp {
         self.lights_edited(moved);
     }
 
+    /// Whether the viewport is compiling shaders for new shadow settings (it keeps drawing
+    /// the previous ones meanwhile).
+    pub fn is_compiling_shaders(&self) -> bool {
+        self.viewport.as_ref().is_some_and(Viewport::is_compiling_shaders)
+    }
+
+    /// The open document's render settings, to change them as the inspector does.
+    pub fn render_settings_mut(&mut self) -> Option<&mut crate::render::RenderSettings> {
+        self.document.as_mut().map(|d| &mut d.settings)
+    }
+
     /// The current selection in the outliner, inspector and viewport.
     pub fn selection(&self) -> Option<Selection> {
         self.selection

@@ -23,6 +23,13 @@ struct Shadows {
     visibility: Option<VertexVisibility>,
 }
 
+/// Log-SH pipelines for new settings, compiling on a background thread: lavapipe takes
+/// over a second for a high order (order 8), and the editor must keep drawing meanwhile.
+struct Compiling {
+    settings: ShadowSettings,
+    handle: std::thread::JoinHandle<LogShPipeline>,
+}
+
 /// What the texture shows, to skip redundant renders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Shown {
@@ -38,6 +45,8 @@ pub struct Viewport {
     heat_map: HeatMapPipeline,
     gpu_scene: GpuScene,
     shadows: Shadows,
+    /// The pipeline being compiled for the settings asked for last, if any.
+    compiling: Option<Compiling>,
     target: Option<RenderTarget>,
     texture_id: Option<egui::TextureId>,
     pub orbit: OrbitCamera,
@@ -97,6 +106,7 @@ impl Viewport {
                 blockers: gpu_blockers,
                 visibility,
             },
+            compiling: None,
             target: None,
             texture_id: None,
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
@@ -143,24 +153,55 @@ impl Viewport {
         self.rendered = None;
     }
 
+    /// Whether shaders for new shadow settings are being compiled (the viewport shows
+    /// the previous settings until they are ready).
+    pub fn is_compiling_shaders(&self) -> bool {
+        self.compiling.is_some()
+    }
+
     /// Applies new shadow settings (invalid ones are ignored: see
-    /// [`ShadowSettings::gpu_problems`]); a new order or method rebuilds the pipeline.
+    /// [`ShadowSettings::gpu_problems`]). A new order or method needs a new pipeline: it
+    /// is compiled in the background and the settings apply once it is ready.
     fn apply_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings) {
         if !settings.gpu_problems().is_empty() {
             return;
         }
         if !self.shadows.pipeline.matches(&settings) {
-            self.shadows.pipeline = LogShPipeline::new(
-                &render_state.device,
-                &self.pipeline.layouts,
-                &settings,
-                crate::render::SAMPLE_COUNT,
-            );
+            let compiling_these = self.compiling.as_ref().is_some_and(|c| c.settings == settings);
+            if !compiling_these {
+                // An older compile still finishes on its thread; its result is dropped.
+                let (device, layouts) = (render_state.device.clone(), self.pipeline.layouts.clone());
+                let handle = std::thread::spawn(move || {
+                    LogShPipeline::new(&device, &layouts, &settings, crate::render::SAMPLE_COUNT)
+                });
+                self.compiling = Some(Compiling { settings, handle });
+            }
+            return;
+        }
+        self.compiling = None;
+        self.use_shadow_settings(render_state, settings);
+    }
+
+    /// Installs a compiled pipeline once its thread has finished.
+    fn poll_compiling(&mut self, render_state: &egui_wgpu::RenderState) {
+        if self.compiling.as_ref().is_none_or(|c| !c.handle.is_finished()) {
+            return;
+        }
+        let Some(Compiling { settings, handle }) = self.compiling.take() else {
+            return;
+        };
+        if let Ok(pipeline) = handle.join() {
+            self.shadows.pipeline = pipeline;
             self.shadows.visibility = self
                 .shadows
                 .pipeline
                 .vertex_visibility(&render_state.device, &self.gpu_scene);
+            self.use_shadow_settings(render_state, settings);
         }
+    }
+
+    /// Makes `settings` (which the pipeline matches) the ones drawn.
+    fn use_shadow_settings(&mut self, render_state: &egui_wgpu::RenderState, settings: ShadowSettings) {
         self.shadows
             .blockers
             .apply_settings(&render_state.device, &render_state.queue, &settings);
@@ -227,8 +268,13 @@ impl Viewport {
         // while a slider is dragged the viewport keeps the old one, and takes the new on release.
         let dragging = ui.input(|i| i.pointer.any_down());
         let only_terrain_changed = same_but_terrain(&settings.shadows, &self.shadows.settings);
+        self.poll_compiling(render_state);
         if settings.shadows != self.shadows.settings && !(only_terrain_changed && dragging) {
             self.apply_shadow_settings(render_state, settings.shadows);
+        }
+        if self.compiling.is_some() {
+            // Look again for the compiled pipeline while the frame stays as it is.
+            ui.ctx().request_repaint_after(std::time::Duration::from_millis(100));
         }
         let rect = ui.available_rect_before_wrap();
         self.rect = rect;
@@ -263,6 +309,18 @@ impl Viewport {
         if let Some(id) = self.texture_id {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
             ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+        }
+        if let Some(compiling) = &self.compiling {
+            let text = format!(
+                "compiling shaders for order {} ({:?})…",
+                compiling.settings.order, compiling.settings.exp
+            );
+            let at = rect.left_bottom() + egui::vec2(8.0, -8.0);
+            let painter = ui.painter_at(rect);
+            let galley = painter.layout_no_wrap(text, egui::FontId::proportional(14.0), egui::Color32::WHITE);
+            let backing = egui::Rect::from_min_size(at - egui::vec2(0.0, galley.size().y), galley.size()).expand(4.0);
+            painter.rect_filled(backing, 4.0, egui::Color32::from_black_alpha(160));
+            painter.galley(backing.min + egui::vec2(4.0, 4.0), galley, egui::Color32::WHITE);
         }
         response
     }
@@ -339,7 +397,10 @@ impl Viewport {
         let background = settings.background_linear();
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
             // The heat map replaces the shading.
-        } else if settings.shadows.enabled && same_but_terrain(&self.shadows.settings, &settings.shadows) {
+        } else if settings.shadows.enabled
+            // While new shaders compile, the shadows keep their previous settings.
+            && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.compiling.is_some())
+        {
             self.shadows.pipeline.draw(
                 &mut encoder,
                 target,
