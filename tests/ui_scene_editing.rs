@@ -462,3 +462,58 @@ fn a_new_order_compiles_in_the_background_while_the_editor_draws() {
         "order 6 shadows are drawn"
     );
 }
+
+/// Add light puts a point light in the scene (selected, drawn, saved); Delete light takes
+/// it out; each is one undoable edit.
+#[test]
+fn lights_are_added_and_deleted_with_undo() {
+    let Some((_dir, project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    let before = harness.render().expect("render");
+    let count = harness.state().light_intensities().len();
+    harness.get_by_label("Add light").click();
+    harness.run();
+    park_pointer(&mut harness);
+    assert_eq!(harness.state().light_intensities().len(), count + 1);
+    assert_eq!(harness.state().selection(), Some(Selection::Light(count)));
+    harness.get_by_label("Light: Light 1");
+    harness.state_mut().select(None);
+    harness.run();
+    park_pointer(&mut harness);
+    let added = harness.render().expect("render");
+    let ppp = harness.ctx.pixels_per_point();
+    let viewport = harness.state().viewport_rect();
+    assert!(
+        viewport_pixels_differing(&before, &added, viewport, ppp) > 1000,
+        "the new light lights the scene"
+    );
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    assert_eq!(Document::open(&project).expect("reopens").scene.lights.len(), count + 1);
+
+    harness.get_by_label("Light 1 — point").click();
+    harness.run();
+    harness.get_by_label("Delete light").scroll_to_me();
+    harness.run();
+    harness.get_by_label("Delete light").click();
+    harness.run();
+    assert_eq!(harness.state().light_intensities().len(), count);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(
+        harness.state().light_intensities().len(),
+        count + 1,
+        "undo brings it back"
+    );
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(
+        harness.state().light_intensities().len(),
+        count,
+        "undo takes the addition back"
+    );
+    park_pointer(&mut harness);
+    let undone = harness.render().expect("render");
+    assert_eq!(viewport_pixels_differing(&before, &undone, viewport, ppp), 0);
+}

@@ -314,6 +314,52 @@ impl EditorApp {
         }
     }
 
+    /// Adds a white 20 cd point light 2 m above the view's pivot and selects it (one
+    /// undoable edit). Its maps are baked in the background when the others are baked.
+    pub fn add_light(&mut self) {
+        let pivot = self.viewport.as_ref().map(|v| v.orbit.target);
+        let Some(document) = &mut self.document else { return };
+        let pivot = pivot.unwrap_or_else(|| document.scene.bounds().center());
+        let taken = |name: &str| document.scene.lights.iter().any(|l| l.name == name);
+        let name = (1..)
+            .map(|n| format!("Light {n}"))
+            .find(|name| !taken(name))
+            .unwrap_or_default();
+        document.scene.lights.push(Light {
+            name: name.clone(),
+            kind: crate::scene::LightKind::Point,
+            color: glam::Vec3::ONE,
+            intensity: 20.0,
+            position: pivot + 2.0 * glam::Vec3::Y,
+            direction: glam::Vec3::NEG_Y,
+            range: None,
+        });
+        self.selection = Some(Selection::Light(document.scene.lights.len() - 1));
+        self.history.settle(&document.scene.lights);
+        self.message = format!("added {name}");
+        self.lights_edited(true);
+    }
+
+    /// Deletes light `index` (one undoable edit).
+    pub fn delete_light(&mut self, index: usize) {
+        let Some(document) = &mut self.document else { return };
+        if index >= document.scene.lights.len() {
+            return;
+        }
+        // Whatever was still settling is its own edit, before the deletion.
+        self.history.settle(&document.scene.lights);
+        let light = document.scene.lights.remove(index);
+        self.history.settle(&document.scene.lights);
+        self.selection = None;
+        self.solo_light = match self.solo_light {
+            Some(solo) if solo == index => None,
+            Some(solo) if solo > index => Some(solo - 1),
+            other => other,
+        };
+        self.message = format!("deleted {} (Ctrl+Z brings it back)", light.name);
+        self.lights_edited(true);
+    }
+
     /// Replaces light `index` (a gizmo drag); values with problems are ignored.
     pub fn set_light(&mut self, index: usize, light: Light) {
         let Some(slot) = self.document.as_mut().and_then(|d| d.scene.lights.get_mut(index)) else {
@@ -770,6 +816,7 @@ impl EditorApp {
             Some(OutlinerAction::Select(selection)) => self.selection = Some(selection),
             Some(OutlinerAction::ToggleHidden(index)) => self.toggle_hidden(index),
             Some(OutlinerAction::Solo(light)) => self.solo(light),
+            Some(OutlinerAction::AddLight) => self.add_light(),
             Some(OutlinerAction::ShowGltfScene(index)) => self.request_gltf_scene(index, render_state),
             None => {}
         }

@@ -16,9 +16,10 @@ impl EditorApp {
     pub(super) fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
         let mut action = None;
         let mut light_edit = LightEdit::default();
+        let mut delete = None;
         egui::Panel::right("inspector").default_size(300.0).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                light_edit = self.selection_section(ui);
+                (light_edit, delete) = self.selection_section(ui);
                 action = self.painting_and_lights(ui, &mut light_edit);
                 self.render_sections(ui, render_state);
                 self.terrain_section(ui, render_state);
@@ -26,6 +27,9 @@ impl EditorApp {
         });
         if light_edit.changed {
             self.lights_edited(light_edit.moved);
+        }
+        if let Some(index) = delete {
+            self.delete_light(index);
         }
         match action {
             Some(PaintAction::Undo) => self.undo(render_state),
@@ -39,10 +43,12 @@ impl EditorApp {
         }
     }
 
-    /// The selected light's editor or the selected object's summary.
-    fn selection_section(&mut self, ui: &mut egui::Ui) -> LightEdit {
+    /// The selected light's editor or the selected object's summary; the light edit, and
+    /// the light to delete if its Delete button was clicked.
+    fn selection_section(&mut self, ui: &mut egui::Ui) -> (LightEdit, Option<usize>) {
+        let mut delete = None;
         let Some(document) = &mut self.document else {
-            return LightEdit::default();
+            return (LightEdit::default(), delete);
         };
         let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
         match self.selection {
@@ -62,23 +68,26 @@ impl EditorApp {
                         "Colours the scene by the luminance this light adds at each vertex \
                          (baked maps once baked, else the direct estimate)",
                     );
+                if ui.button("Delete light").clicked() {
+                    delete = Some(index);
+                }
                 if let Some((_, scale)) = &self.heat_map {
                     ui.weak(format!(
                         "dark blue: 0, pale yellow: {scale:.3} cd/m² (99th percentile; square-root scale)"
                     ));
                 }
                 ui.separator();
-                edit
+                (edit, delete)
             }
             Some(Selection::Object(index)) if index < document.scene.objects.len() => {
                 object_summary(ui, document, &self.blockers, index);
                 ui.separator();
-                LightEdit::default()
+                (LightEdit::default(), delete)
             }
             _ => {
                 ui.weak("Click a light or an object (outliner or viewport) to inspect it.");
                 ui.separator();
-                LightEdit::default()
+                (LightEdit::default(), delete)
             }
         }
     }

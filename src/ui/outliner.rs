@@ -19,6 +19,7 @@ pub enum OutlinerAction {
     ToggleHidden(usize),
     /// Show only this light in the viewport (None: all lights again).
     Solo(Option<usize>),
+    AddLight,
     ShowGltfScene(usize),
 }
 
@@ -106,6 +107,13 @@ pub fn outliner(ui: &mut egui::Ui, scene: &Scene, state: &OutlinerState) -> Opti
                             action = Some(OutlinerAction::Select(Selection::Light(index)));
                         }
                     });
+                }
+                if ui
+                    .button("Add light")
+                    .on_hover_text("A point light above the view's pivot; the inspector changes its kind")
+                    .clicked()
+                {
+                    action = Some(OutlinerAction::AddLight);
                 }
             });
     });

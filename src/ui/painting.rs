@@ -130,26 +130,30 @@ impl Painting {
             .filter(|maps| maps.fits(scene) && self.moved_lights(scene).is_empty())
     }
 
-    /// The lights of `scene` moved (or reshaped) since their maps were baked; empty
-    /// without maps. Every light when the light count changed.
+    /// The lights of `scene` moved (or reshaped) since their maps were baked, and those
+    /// added since; empty without maps. Every light once a light was deleted (the maps'
+    /// light numbers no longer match).
     pub fn moved_lights(&self, scene: &Scene) -> Vec<usize> {
         if self.maps.is_none() {
             return Vec::new();
         }
-        if self.maps_lights.len() != scene.lights.len() {
+        if self.maps_lights.len() > scene.lights.len() {
             return (0..scene.lights.len()).collect();
         }
         let now = scene.lights.iter().map(light_hash);
-        now.zip(&self.maps_lights)
+        let mut moved: Vec<usize> = now
+            .zip(&self.maps_lights)
             .enumerate()
             .filter(|(_, (now, baked))| now != *baked)
             .map(|(index, _)| index)
-            .collect()
+            .collect();
+        moved.extend(self.maps_lights.len()..scene.lights.len());
+        moved
     }
 
-    /// Re-bakes, in the background, only the lights that moved since the maps were
-    /// baked, keeping the others' maps; false if there is nothing to do (no maps, nothing
-    /// moved, or a bake already running).
+    /// Re-bakes, in the background, only the lights that moved or were added since the
+    /// maps were baked, keeping the others' maps (all of them after a deletion); false if
+    /// there is nothing to do (no maps, nothing moved, or a bake already running).
     pub fn rebake_moved_lights(&mut self, scene: &Scene) -> bool {
         let moved = self.moved_lights(scene);
         let Some(maps) = self.maps.as_ref().filter(|m| m.fits(scene)) else {
@@ -158,10 +162,16 @@ impl Painting {
         if moved.is_empty() || self.bake.is_some() {
             return false;
         }
+        let deleted = self.maps_lights.len() > scene.lights.len();
         self.bake_lights = scene.lights.iter().map(light_hash).collect();
         self.bake_cache = None;
         self.bake_key = None;
-        self.bake = Some(BakeJob::start_rebake(scene, self.bake_settings, maps.clone(), moved));
+        self.bake = Some(if deleted {
+            // The maps number lights as they were: bake them all afresh.
+            BakeJob::start(scene, self.bake_settings, None)
+        } else {
+            BakeJob::start_rebake(scene, self.bake_settings, maps.clone(), moved)
+        });
         true
     }
 
