@@ -55,9 +55,11 @@ fn light_index(harness: &Harness<'static, EditorApp>, name: &str) -> usize {
 /// clicking an object in the viewport selects that object.
 #[test]
 fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
-    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Studio) else {
+    let Some((_dir, project, mut harness)) = editor_on_copy(Sample::Studio) else {
         return;
     };
+    let spheres = lightpaint::project::sphere_cache::cache_path(&project);
+    assert!(spheres.exists(), "opening the project cached its sphere fit");
     harness.get_by_label("Key — spot").click();
     harness.run();
     let key = light_index(&harness, "Key");

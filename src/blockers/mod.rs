@@ -133,7 +133,7 @@ impl Default for BlockerSettings {
 }
 
 /// The spheres of one mesh and how well they fit it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SphereSet {
     pub spheres: Vec<Sphere>,
     /// |mesh △ spheres| / |mesh| of the chosen fit (0 for meshes without spheres).
@@ -143,7 +143,7 @@ pub struct SphereSet {
 }
 
 /// The sphere sets of every object of a scene, in object order.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SceneBlockers {
     pub per_object: Vec<SphereSet>,
 }

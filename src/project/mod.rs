@@ -7,6 +7,7 @@ mod document;
 mod error;
 mod file;
 mod migrate;
+pub mod sphere_cache;
 
 pub use atomic::{backup_path, replace_atomically, write_atomically, write_atomically_with};
 pub use document::{Document, is_project_path};

@@ -12,8 +12,9 @@ use super::painting::{Painting, Tool};
 use super::preferences::Preferences;
 use super::terrain_panel::{TerrainEdit, image_terrain};
 use super::unsaved_prompt::{self, Answer, Pending};
-use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
+use crate::blockers::{BlockerSettings, SceneBlockers};
 use crate::paint::BrushKind;
+use crate::project::sphere_cache;
 use crate::project::{Document, ProjectFile};
 use crate::render::describe_adapter;
 use crate::scene::Light;
@@ -241,7 +242,8 @@ impl EditorApp {
                 )
             }
         );
-        self.blockers = fit_scene(scene, &document.settings.blockers);
+        let project = document.project_path.as_deref();
+        self.blockers = sphere_cache::fit_with_cache(scene, &document.settings.blockers, project);
         self.fitted_with = document.settings.blockers;
         let spheres = self.blockers.spheres();
         self.viewport = render_state.map(|rs| {
@@ -735,6 +737,11 @@ impl EditorApp {
         match document.save(path) {
             Ok(()) => {
                 self.preferences.remember(path);
+                // The fit goes beside the project too, so it reopens without refitting.
+                let spheres = sphere_cache::cache_path(path);
+                if let Err(e) = sphere_cache::save(&spheres, &document.scene, &self.fitted_with, &self.blockers) {
+                    log::warn!("the sphere fit could not be cached at {}: {e}", spheres.display());
+                }
                 self.saved = Some(document.to_project_file(path));
                 self.message = format!("saved {}", path.display());
                 if let Some(problem) = self.painting.as_mut().and_then(|p| p.save_cache(&document.scene, path)) {

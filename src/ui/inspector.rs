@@ -9,8 +9,8 @@ use super::light_inspector::{LightEdit, light_inspector};
 use super::outliner::Selection;
 use super::shadow_panel::shadow_section;
 use super::terrain_panel::terrain_section;
-use crate::blockers::fit_scene;
 use crate::project::Document;
+use crate::project::sphere_cache;
 
 impl EditorApp {
     pub(super) fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
@@ -151,7 +151,8 @@ impl EditorApp {
             && !ui.input(|i| i.pointer.any_down())
             && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state)
         {
-            self.blockers = fit_scene(&document.scene, &document.settings.blockers);
+            let project = document.project_path.as_deref();
+            self.blockers = sphere_cache::fit_with_cache(&document.scene, &document.settings.blockers, project);
             self.fitted_with = document.settings.blockers;
             viewport.set_blockers(rs, &self.blockers.spheres());
         }
