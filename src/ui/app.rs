@@ -216,11 +216,19 @@ impl EditorApp {
 
     /// Shows glTF scene `index`, first asking to save when there are unsaved changes.
     pub fn request_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
-        if self.has_unsaved_changes() && self.document.is_some() {
-            self.pending = Some(Pending::ShowGltfScene(index));
-        } else {
+        if self.ready_or_ask(Pending::ShowGltfScene(index)) {
             self.show_gltf_scene(index, render_state);
         }
+    }
+
+    /// True when an action that replaces the document may go ahead now; with unsaved
+    /// changes it waits as `pending` for the answer to "save the changes?" instead.
+    pub(super) fn ready_or_ask(&mut self, pending: Pending) -> bool {
+        let ready = !(self.has_unsaved_changes() && self.document.is_some());
+        if !ready {
+            self.pending = Some(pending);
+        }
+        ready
     }
 
     /// Makes `document` the open one: fits its blockers, builds the viewport and the
@@ -538,9 +546,7 @@ impl EditorApp {
 
     /// Opens `path`, first asking to save when the document has unsaved changes.
     pub fn request_open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
-        if self.has_unsaved_changes() && self.document.is_some() {
-            self.pending = Some(Pending::Open(path.to_path_buf()));
-        } else {
+        if self.ready_or_ask(Pending::Open(path.to_path_buf())) {
             self.open(path, render_state);
         }
     }
@@ -575,11 +581,10 @@ impl EditorApp {
     /// Intercepts a close of the window with unsaved changes, and acts on the answer.
     fn guard_unsaved_changes(&mut self, ctx: &egui::Context, render_state: Option<&egui_wgpu::RenderState>) {
         if ctx.input(|i| i.viewport().close_requested()) && !self.closing {
-            if self.has_unsaved_changes() && self.document.is_some() {
-                ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
-                self.pending = Some(Pending::Close);
-            } else {
+            if self.ready_or_ask(Pending::Close) {
                 self.closing = true;
+            } else {
+                ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
             }
         }
         let Some(pending) = self.pending.clone() else { return };

@@ -85,9 +85,7 @@ impl EditorApp {
 
     /// File ▸ New: closes the document (asking to save unsaved changes first).
     pub fn request_new(&mut self) {
-        if self.has_unsaved_changes() && self.document.is_some() {
-            self.pending = Some(Pending::New);
-        } else {
+        if self.ready_or_ask(Pending::New) {
             self.close_document();
         }
     }
