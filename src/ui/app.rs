@@ -520,15 +520,8 @@ impl EditorApp {
     /// Where world point `p` appears on screen (points), if the viewport shows it.
     pub fn screen_position(&self, p: glam::Vec3) -> Option<egui::Pos2> {
         let viewport = self.viewport.as_ref()?;
-        let rect = viewport.rect;
-        let view = crate::paint::View {
-            camera: viewport.orbit.camera(),
-            width_px: rect.width().round().max(1.0) as u32,
-            height_px: rect.height().round().max(1.0) as u32,
-        };
-        let q = view.project(p)?;
-        let pos = rect.min + egui::vec2(q.x, q.y);
-        rect.contains(pos).then_some(pos)
+        let pos = super::viewport::screen_point(&viewport.view(), viewport.rect, p)?;
+        viewport.rect.contains(pos).then_some(pos)
     }
 
     /// Where the viewport is on screen, in points (nothing before the first frame).

@@ -2,6 +2,7 @@
 //! silhouette, so an artist can see what casts the soft shadows and how well the sphere
 //! fit follows each mesh.
 
+use super::viewport::screen_point;
 use crate::blockers::Sphere;
 use crate::paint::View;
 
@@ -25,10 +26,11 @@ pub fn silhouette_radius_px(view: &View, sphere: &Sphere) -> Option<f32> {
 pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, spheres: &[Sphere]) {
     let stroke = egui::Stroke::new(1.0, egui::Color32::from_rgba_unmultiplied(90, 220, 255, 150));
     for sphere in spheres {
-        let (Some(center), Some(radius)) = (view.project(sphere.center), silhouette_radius_px(view, sphere)) else {
+        let center = screen_point(view, rect, sphere.center);
+        let (Some(center), Some(radius)) = (center, silhouette_radius_px(view, sphere)) else {
             continue;
         };
-        painter.circle_stroke(rect.min + egui::vec2(center.x, center.y), radius, stroke);
+        painter.circle_stroke(center, radius, stroke);
     }
 }
 

@@ -7,6 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::viewport::screen_point;
 use crate::paint::View;
 use crate::scene::Light;
 
@@ -119,7 +120,7 @@ pub fn light_gizmo(
     } = lights;
     let mut output = GizmoOutput::default();
     let painter = ui.painter_at(rect);
-    let to_screen = |p: Vec3| view.project(p).map(|q| rect.min + egui::vec2(q.x, q.y));
+    let to_screen = |p: Vec3| screen_point(view, rect, p);
     let to_view = |p: egui::Pos2| Vec2::new(p.x - rect.min.x, p.y - rect.min.y);
     let sun_radius = sun_radius(orbit_distance);
     for (index, light) in lights.iter().enumerate() {
@@ -132,6 +133,7 @@ pub fn light_gizmo(
             continue;
         };
         let is_selected = selected == Some(index);
+        let exact_path = exact.get(index).copied().unwrap_or(false);
         let id = ui.scope_id().with(("light marker", index));
         let response = ui
             .interact(
@@ -143,11 +145,7 @@ pub fn light_gizmo(
                 "{} ({}; {} shadows at the view's pivot)",
                 light.name,
                 light.kind.label(),
-                if exact.get(index).copied().unwrap_or(false) {
-                    "exact"
-                } else {
-                    "SH"
-                }
+                if exact_path { "exact" } else { "SH" }
             ));
         if response.clicked() || response.drag_started() {
             output.select = Some(index);
@@ -164,7 +162,7 @@ pub fn light_gizmo(
             output.edited = Some((index, edited));
         }
         draw_marker(&painter, at, light, is_selected, response.hovered());
-        if exact.get(index).copied().unwrap_or(false) {
+        if exact_path {
             painter.circle_stroke(
                 at,
                 0.45 * MARKER_PX,
@@ -196,7 +194,7 @@ fn gizmo_handles(
     index: usize,
     light: &Light,
 ) -> Option<Light> {
-    let to_screen = |p: Vec3| view.project(p).map(|q| rect.min + egui::vec2(q.x, q.y));
+    let to_screen = |p: Vec3| screen_point(view, rect, p);
     let at = to_screen(light.position)?;
     let length = world_per_pixels(view, light.position, ARROW_PX);
     let mut handles = vec![

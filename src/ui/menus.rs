@@ -109,20 +109,18 @@ impl EditorApp {
     }
 
     pub(super) fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("lightpaint project or glTF scene", &[PROJECT_EXTENSION, "gltf", "glb"])
-            .pick_file();
-        if let Some(path) = picked {
-            self.request_open(&path, render_state);
-        }
+        let extensions = [PROJECT_EXTENSION, "gltf", "glb"];
+        self.pick_and_open("lightpaint project or glTF scene", &extensions, render_state);
     }
 
     /// A new, unsaved project on a glTF scene.
     fn import_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("glTF scene", &["gltf", "glb"])
-            .pick_file();
-        if let Some(path) = picked {
+        self.pick_and_open("glTF scene", &["gltf", "glb"], render_state);
+    }
+
+    /// Asks for a file of `extensions` and opens it (asking to save changes first).
+    fn pick_and_open(&mut self, filter: &str, extensions: &[&str], render_state: Option<&egui_wgpu::RenderState>) {
+        if let Some(path) = rfd::FileDialog::new().add_filter(filter, extensions).pick_file() {
             self.request_open(&path, render_state);
         }
     }

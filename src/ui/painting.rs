@@ -271,7 +271,9 @@ impl Painting {
         let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
-            let maps = self.maps_for(scene).is_some().then_some(self.maps.as_ref()).flatten();
+            // `maps_for` borrows all of `self`; the field alone leaves the painter free.
+            let fresh = self.maps_for(scene).is_some();
+            let maps = self.maps.as_ref().filter(|_| fresh);
             let transfer = transfer_from(maps, scene, blockers, shadows);
             self.painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)

@@ -65,6 +65,12 @@ pub fn scene_orbit(scene: &Scene) -> OrbitCamera {
     OrbitCamera::from_camera(&camera, pivot)
 }
 
+/// Where world point `p` appears on screen (points) in a viewport at `rect` seen through
+/// `view` (its size in points), None behind the eye; not clipped to `rect`.
+pub fn screen_point(view: &crate::paint::View, rect: egui::Rect, p: glam::Vec3) -> Option<egui::Pos2> {
+    view.project(p).map(|q| rect.min + egui::vec2(q.x, q.y))
+}
+
 /// Radians of orbit per point of mouse drag.
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
