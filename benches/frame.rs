@@ -1,9 +1,12 @@
 //! Frame time of the log-SH renderer on this machine's GPU (lavapipe in CI), at 960×540:
 //! `cargo bench --profile dev --bench frame`. Groups:
-//! - `frame/blockers/<scene>`: order 4, HYB (the defaults) with the scene's fitted spheres
-//!   and with 10, 50, 400 and 2,000 synthetic spheres scattered over the scene;
+//! - `frame/blockers/<scene>`: order 4, HYB (the defaults, every pixel shaded) with the
+//!   scene's fitted spheres and with 10, 50, 400 and 2,000 synthetic spheres scattered
+//!   over the scene;
 //! - `frame/order-method`: the studio scene with 50 synthetic spheres at orders 2, 3, 4, 6,
 //!   8 and each GPU exponentiation method;
+//! - `frame/shading-downsample`: the studio with its fitted spheres, one shaded pixel
+//!   per d × d for d = 1 to 4;
 //! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
 //!
 //! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
@@ -71,7 +74,9 @@ fn time_frame(
 fn frames(c: &mut Criterion) {
     let gpu = GpuContext::headless().expect("a GPU adapter (lavapipe on CI)");
     eprintln!("adapter: {}", gpu.adapter_summary());
-    let defaults = ShadowSettings::default();
+    // Every pixel shaded, as the CPU reference does; `frame/shading-downsample` times the
+    // reduced resolutions.
+    let defaults = ShadowSettings::default().every_pixel();
     for (name, path) in [
         ("studio", "projects/studio/studio.lightpaint"),
         ("sample", "projects/sample/sample.lightpaint"),
@@ -118,6 +123,33 @@ fn frames(c: &mut Criterion) {
             };
             time_frame(&mut group, BenchmarkId::new(format!("{exp:?}"), order), &gpu, &frame);
         }
+    }
+    group.finish();
+
+    let fitted = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let mut group = c.benchmark_group("frame/shading-downsample");
+    group.sample_size(10).measurement_time(Duration::from_secs(8));
+    for shading_downsample in 1..=4 {
+        let shadows = ShadowSettings {
+            shading_downsample,
+            ..defaults
+        };
+        let frame = ShadowFrame {
+            baked_indirect: None,
+            scene: &scene,
+            camera: &camera,
+            settings: &settings,
+            shadows: &shadows,
+            blockers: &fitted,
+            width: WIDTH,
+            height: HEIGHT,
+        };
+        time_frame(
+            &mut group,
+            BenchmarkId::new("studio-fitted", shading_downsample),
+            &gpu,
+            &frame,
+        );
     }
     group.finish();
 

@@ -20,13 +20,15 @@ studio=projects/studio/studio.lightpaint
 sample=projects/sample/sample.lightpaint
 echo "| configuration | $frames frames after a warm-up |"
 echo "|---|---|"
-row "studio, raster pass of the shading only (0 blockers), MSAA 4" "$studio" --blockers 0
-row "studio, defaults (order 4, HYB, 48 fitted spheres), MSAA 4" "$studio"
+row "studio, defaults (order 4, HYB, 48 fitted spheres, 1 in 2×2 shaded), MSAA 4" "$studio"
 row "studio, defaults, MSAA 1" "$studio" --msaa 1
-row "studio, defaults, per vertex, MSAA 4" "$studio" --per-vertex
-row "studio, defaults, per vertex, MSAA 1" "$studio" --per-vertex --msaa 1
+row "studio, every pixel shaded, MSAA 4" "$studio" --shading-downsample 1
+row "studio, every pixel shaded, MSAA 1" "$studio" --shading-downsample 1 --msaa 1
+row "studio, 1 in 4×4 shaded, MSAA 4" "$studio" --shading-downsample 4
+row "studio, 1 in 4×4 shaded, MSAA 1" "$studio" --shading-downsample 4 --msaa 1
+row "studio, per vertex, MSAA 1" "$studio" --per-vertex --msaa 1
 row "studio, order 2, DC, MSAA 1" "$studio" --order 2 --exp dc --msaa 1
 row "studio, order 8, HYB, MSAA 1" "$studio" --order 8 --msaa 1
 row "studio, 400 spheres (fitted), MSAA 1" "$studio" --blockers 400 --msaa 1
 row "sample, defaults (19 fitted spheres), MSAA 4" "$sample"
-row "sample, defaults, per vertex, MSAA 1" "$sample" --per-vertex --msaa 1
+row "sample, every pixel shaded, MSAA 4" "$sample" --shading-downsample 1

@@ -65,6 +65,17 @@ struct ShadowParams {
     _pad2: u32,
 };
 
+// Parameters of the reduced-resolution shading's upsampling (reduced_shading.wgsl).
+struct UpsampleParams {
+    // Low-resolution texels per full-resolution pixel along x and y (≈ 1/d).
+    full_to_low: vec2<f32>,
+    // A sample counts as on this pixel's surface within this many full-resolution pixel
+    // footprints of its tangent plane (Gaussian falloff).
+    plane_tolerance_px: f32,
+    // Below this share of the bilinear weight matching, the pixel is shaded in full.
+    min_matched_weight: f32,
+};
+
 // A height-field terrain for terrain.wgsl (src/render/gpu_terrain.rs fills it).
 struct TerrainParams {
     // 0: the scene has no terrain.

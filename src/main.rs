@@ -143,6 +143,10 @@ struct RenderArgs {
     /// Exponentiate the visibility at the vertices and interpolate it (faster; orders ≤ 6).
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
+    /// Shade one pixel in every d × d and upsample the rest from the samples on each
+    /// pixel's surface (1 shades every pixel; 1–4); default: the project's, or 2.
+    #[arg(long, conflicts_with = "cpu")]
+    shading_downsample: Option<u32>,
     /// Samples per pixel on the GPU: 4 (multisampled edges) or 1.
     #[arg(long, default_value_t = 4, value_parser = parse_msaa)]
     msaa: u32,
@@ -359,6 +363,10 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
     shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
+    shadows.shading_downsample = match args.cpu {
+        true => 1,
+        false => args.shading_downsample.unwrap_or(shadows.shading_downsample),
+    };
     let no_shadows = args.no_shadows || !shadows.enabled;
     let problems = if args.cpu {
         shadows.problems()
@@ -590,13 +598,17 @@ fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::
     } else {
         String::new()
     };
+    let resolution = if shadows.per_vertex {
+        ", per vertex".to_string()
+    } else if shadows.shading_downsample > 1 {
+        let d = shadows.shading_downsample;
+        format!(", shaded 1 in {d}×{d} pixels")
+    } else {
+        String::new()
+    };
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{}{terrain}, {:?} light paths",
-        shadows.order,
-        shadows.exp,
-        shadows.epsilon,
-        if shadows.per_vertex { ", per vertex" } else { "" },
-        shadows.light_paths
+        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths",
+        shadows.order, shadows.exp, shadows.epsilon, shadows.light_paths
     )
 }
 

@@ -55,7 +55,7 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         objects: vec![vec![], vec![red; vertices(1)], vec![blue; vertices(2)]],
     };
     let settings = RenderSettings::default();
-    let shadows = ShadowSettings::default();
+    let shadows = ShadowSettings::default().every_pixel();
     let frame = ShadowFrame {
         scene: &scene,
         camera: &camera,

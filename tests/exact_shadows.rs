@@ -49,11 +49,11 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
         }
         let exact = ShadowSettings {
             light_paths: LightPaths::Exact,
-            ..document.settings.shadows
+            ..document.settings.shadows.every_pixel()
         };
         let auto = ShadowSettings {
             light_paths: LightPaths::Auto,
-            ..document.settings.shadows
+            ..document.settings.shadows.every_pixel()
         };
         for (scene, shadows, what) in [
             (&document.scene, &exact, "exact"),
@@ -125,7 +125,7 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
         exposure_ev: -2.0,
         ..RenderSettings::default()
     };
-    let shadows = ShadowSettings::default(); // Auto: a 9.6° light takes the exact path
+    let shadows = ShadowSettings::default().every_pixel(); // Auto: a 9.6° light takes the exact path
     let blockers = [ball];
     let (width, height) = (160, 160);
     let frame = ShadowFrame {

@@ -71,7 +71,7 @@ fn gpu_matches_the_cpu_reference_on_the_samples() {
         let (scene, camera, settings) = open(path);
         let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
         assert!(!blockers.is_empty(), "{name}: the sample has sphere-like objects");
-        let shadows = ShadowSettings::default();
+        let shadows = ShadowSettings::default().every_pixel();
         let frame = ShadowFrame {
             baked_indirect: None,
             scene: &scene,
@@ -96,7 +96,7 @@ fn every_method_and_order_matches_the_cpu_reference() {
             let shadows = ShadowSettings {
                 order,
                 exp,
-                ..ShadowSettings::default()
+                ..ShadowSettings::default().every_pixel()
             };
             let frame = ShadowFrame {
                 baked_indirect: None,
@@ -135,7 +135,7 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     // The SH path's law (the exact path for small lights is tested below).
     let shadows = ShadowSettings {
         light_paths: lightpaint::render::LightPaths::Harmonics,
-        ..ShadowSettings::default()
+        ..ShadowSettings::default().every_pixel()
     };
     let (width, height) = (101, 101);
     let render = |blockers: &[Sphere]| {
@@ -196,7 +196,7 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
     let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
     let shadows = ShadowSettings {
         per_vertex: true,
-        ..ShadowSettings::default()
+        ..ShadowSettings::default().every_pixel()
     };
     let raster = ScenePipeline::new(&gpu.device);
     let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1);
@@ -261,7 +261,7 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
     let render = |per_vertex| {
         let shadows = ShadowSettings {
             per_vertex,
-            ..ShadowSettings::default()
+            ..ShadowSettings::default().every_pixel()
         };
         let frame = ShadowFrame {
             baked_indirect: None,
@@ -300,7 +300,7 @@ fn per_vertex_shading_builds_at_every_order_the_settings_accept() {
             ShadowSettings {
                 order,
                 per_vertex: true,
-                ..ShadowSettings::default()
+                ..ShadowSettings::default().every_pixel()
             }
             .gpu_problems()
             .is_empty()
@@ -311,7 +311,7 @@ fn per_vertex_shading_builds_at_every_order_the_settings_accept() {
         let shadows = ShadowSettings {
             order,
             per_vertex: true,
-            ..ShadowSettings::default()
+            ..ShadowSettings::default().every_pixel()
         };
         let frame = ShadowFrame {
             baked_indirect: None,

@@ -228,18 +228,22 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
     assert_eq!(document.scene.lights, current.scene.lights);
     // Formats before 4 drew no baked indirect light and shadowed every light through the
-    // SH, so they keep both.
+    // SH, so they keep both; formats before 7 shaded every pixel.
+    let every_pixel = current.settings.shadows.every_pixel();
     let expected = if version < 4 {
         lightpaint::render::RenderSettings {
             baked_indirect: false,
             shadows: lightpaint::render::ShadowSettings {
                 light_paths: lightpaint::render::LightPaths::Harmonics,
-                ..current.settings.shadows
+                ..every_pixel
             },
             ..current.settings
         }
     } else {
-        current.settings
+        lightpaint::render::RenderSettings {
+            shadows: every_pixel,
+            ..current.settings
+        }
     };
     assert_eq!(document.settings, expected);
     let dir = tempfile::tempdir().expect("temp dir");
@@ -258,7 +262,7 @@ fn a_format_1_project_opens_and_saves_as_the_current_format() {
     let document = open_old_fixture(1);
     let format_2_shadows = lightpaint::render::ShadowSettings {
         light_paths: lightpaint::render::LightPaths::Harmonics,
-        ..Default::default()
+        ..lightpaint::render::ShadowSettings::default().every_pixel()
     };
     assert_eq!(document.settings.shadows, format_2_shadows);
     assert_eq!(
@@ -303,6 +307,15 @@ fn a_format_5_project_opens_with_every_object_shown() {
     let document = open_old_fixture(5);
     assert!(document.hidden_objects.is_empty());
     assert!(document.scene.terrain.is_none());
+}
+
+/// Format 6 shaded every pixel, and keeps doing so; today's projects shade one in 2 × 2.
+#[test]
+fn a_format_6_project_opens_shading_every_pixel() {
+    let document = open_old_fixture(6);
+    assert_eq!(document.settings.shadows.shading_downsample, 1);
+    let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    assert_eq!(current.settings.shadows.shading_downsample, 2);
 }
 
 /// Hidden objects are saved by index and reopen hidden; an index the scene does not have

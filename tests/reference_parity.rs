@@ -88,7 +88,7 @@ fn assert_direct_parity(name: &str, scene: &Scene, camera: &Camera, orders: &[us
     for &order in orders {
         let shadows = ShadowSettings {
             order,
-            ..ShadowSettings::default()
+            ..ShadowSettings::default().every_pixel()
         };
         let frame = ShadowFrame {
             baked_indirect: None,

@@ -67,7 +67,7 @@ fn the_gpu_matches_the_cpu_twin_on_the_terrain_sample() {
                 azimuths,
                 pyramid_levels,
             },
-            ..document.settings.shadows
+            ..document.settings.shadows.every_pixel()
         };
         let within = gpu_and_cpu(&gpu, &document.scene, &camera, &shadows, &blockers);
         eprintln!(
@@ -124,7 +124,7 @@ fn the_gpu_matches_the_cpu_twin_at_a_cliff_and_beyond_the_border() {
     for light_paths in [LightPaths::Harmonics, LightPaths::Exact] {
         let shadows = ShadowSettings {
             light_paths,
-            ..ShadowSettings::default()
+            ..ShadowSettings::default().every_pixel()
         };
         let within = gpu_and_cpu(&gpu, &scene, &camera, &shadows, &[]);
         eprintln!("{light_paths:?}: {:.3} % within 2/255", 100.0 * within);
@@ -172,7 +172,7 @@ fn the_cliff_shadows_a_point_at_its_foot_and_a_ball_shadows_the_ground() {
     for light_paths in [LightPaths::Harmonics, LightPaths::Exact] {
         let settings = ShadowSettings {
             light_paths,
-            ..ShadowSettings::default()
+            ..ShadowSettings::default().every_pixel()
         };
         let terrain = cliff_shadow(&settings);
         // The sun shines toward −x from +x at 26° elevation: 3 m west of the 4 m cliff
@@ -243,7 +243,7 @@ fn terrain_log_visibility_converges_as_the_azimuth_count_grows() {
 #[test]
 fn shading_stays_finite_at_cliffs_on_flat_ground_and_beyond_the_border() {
     let scene = cliff_scene();
-    let settings = ShadowSettings::default();
+    let settings = ShadowSettings::default().every_pixel();
     let terrain = cliff_shadow(&settings);
     for p in [
         DVec3::new(0.0, 0.0, 0.0),

@@ -4,7 +4,7 @@
 use std::mem::{offset_of, size_of};
 
 use lightpaint::render::gpu_types::{
-    GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams, GpuTerrainParams,
+    GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams, GpuTerrainParams, GpuUpsampleParams,
 };
 use lightpaint::render::shaders;
 
@@ -118,6 +118,19 @@ fn shadow_params_match_wgsl() {
                 offset_of!(GpuShadowParams, exact_below_cap_ratio),
             ),
             ("exact_point_lights", offset_of!(GpuShadowParams, exact_point_lights)),
+        ],
+    );
+}
+
+#[test]
+fn upsample_params_match_wgsl() {
+    assert_twin(
+        "UpsampleParams",
+        size_of::<GpuUpsampleParams>(),
+        &[
+            ("full_to_low", offset_of!(GpuUpsampleParams, full_to_low)),
+            ("plane_tolerance_px", offset_of!(GpuUpsampleParams, plane_tolerance_px)),
+            ("min_matched_weight", offset_of!(GpuUpsampleParams, min_matched_weight)),
         ],
     );
 }

@@ -19,6 +19,8 @@
 //!   sampling); format 4 had no terrain, which is what their absence means.
 //! - 6: `hidden_objects` (objects hidden in the viewport) and `object_names` (objects
 //!   renamed in the editor); format 5 showed every object under its glTF name.
+//! - 7: `render.shadows.shading_downsample` (reduced-resolution shading); format 6 shaded
+//!   every pixel, so 1.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -43,6 +45,24 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 6 {
         value = v5_to_v6(value);
+    }
+    if version < 7 {
+        value = v6_to_v7(value);
+    }
+    value
+}
+
+fn v6_to_v7(mut value: Value) -> Value {
+    let shadows = value
+        .get_mut("render")
+        .and_then(|render| render.get_mut("shadows"))
+        .and_then(Value::as_object_mut);
+    if let Some(shadows) = shadows {
+        // Set, not defaulted: v1_to_v2 may have filled in today's defaults.
+        shadows.insert("shading_downsample".into(), Value::from(1));
+    }
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(7));
     }
     value
 }

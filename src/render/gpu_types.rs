@@ -175,6 +175,15 @@ pub struct GpuShadowParams {
     pub _pad: u32,
 }
 
+/// WGSL `UpsampleParams` (see `reduced_shading`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuUpsampleParams {
+    pub full_to_low: [f32; 2],
+    pub plane_tolerance_px: f32,
+    pub min_matched_weight: f32,
+}
+
 /// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).
 pub const GPU_TERRAIN_LEVELS: usize = 12;
 

@@ -1,13 +1,16 @@
 //! The log-SH soft-shadow pipeline (shaders/logsh.wgsl): a depth pre-pass, then one
 //! shading pass in which every visible pixel sums its blockers' log-visibility,
-//! exponentiates it and shades each light through it. The SH order and exponentiation
-//! method are baked into the module at creation (generated WGSL, `wgsl_sh`).
+//! exponentiates it and shades each light through it — or, with reduced-resolution
+//! shading (`reduced_shading`), the same for one pixel in d × d and an upsampling pass.
+//! The SH order and exponentiation method are baked into the module at creation
+//! (generated WGSL, `wgsl_sh`).
 
 pub use super::gpu_blockers::{GpuBlockers, shadow_layout};
 use super::gpu_scene::{GpuObject, GpuScene};
 use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
+use super::reduced_shading::{LowResolutionTargets, low_resolution_layout};
 use super::{ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
 
@@ -21,6 +24,45 @@ pub struct LogShPipeline {
     shade: wgpu::RenderPipeline,
     /// Per-vertex shading, where the order allows it.
     pub per_vertex: Option<(PerVertexCompute, wgpu::RenderPipeline)>,
+    /// Reduced-resolution shading, when the settings ask for it.
+    reduced: Option<ReducedShadingPipelines>,
+}
+
+/// How a frame's pixels are shaded, with the buffers that way needs.
+#[derive(Clone, Copy)]
+pub enum Shading<'a> {
+    /// Every pixel in full.
+    PerPixel,
+    /// Through visibility exponentiated at the vertices ([`LogShPipeline::vertex_visibility`]
+    /// for the same scene).
+    PerVertex(&'a VertexVisibility),
+    /// One pixel in d × d, the others upsampled
+    /// ([`LogShPipeline::low_resolution_targets`] for the target's size).
+    Reduced(&'a LowResolutionTargets),
+}
+
+impl<'a> Shading<'a> {
+    /// Per vertex when there is visibility, else at a reduced resolution when there are
+    /// low-resolution targets, else per pixel.
+    pub fn first_of(
+        per_vertex: Option<&'a VertexVisibility>,
+        low_resolution: Option<&'a LowResolutionTargets>,
+    ) -> Self {
+        match (per_vertex, low_resolution) {
+            (Some(visibility), _) => Shading::PerVertex(visibility),
+            (None, Some(low)) => Shading::Reduced(low),
+            (None, None) => Shading::PerPixel,
+        }
+    }
+}
+
+/// The passes of reduced-resolution shading (see `reduced_shading`).
+struct ReducedShadingPipelines {
+    downsample: u32,
+    low_resolution_layout: wgpu::BindGroupLayout,
+    low_depth: wgpu::RenderPipeline,
+    shade_low: wgpu::RenderPipeline,
+    upsample: wgpu::RenderPipeline,
 }
 
 /// What a pipeline's fragment stage is for.
@@ -32,7 +74,22 @@ enum Stage<'a> {
     ShadePerVertex(usize),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
+    /// Depth only, without a fragment stage (the reduced-resolution pre-pass).
+    LowDepthOnly,
+    /// The reduced-resolution samples (fs_shade_low) into [`LOW_RESOLUTION_FORMATS`].
+    ShadeLow,
+    /// Full-resolution pixels from the reduced-resolution samples (fs_upsample), which
+    /// reads them through bind group 3 of this layout.
+    Upsample(&'a wgpu::BindGroupLayout),
 }
+
+/// Formats of fs_shade_low's targets: lighting, position, normal (see reduced_shading.wgsl).
+/// 32 bytes a sample, the most wgpu's default limits allow across attachments.
+pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 3] = [
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba32Float,
+    wgpu::TextureFormat::Rgba16Float,
+];
 
 impl LogShPipeline {
     /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
@@ -53,6 +110,24 @@ impl LogShPipeline {
                 make(Stage::ShadePerVertex(settings.order)),
             )
         });
+        let reduced = (settings.shading_downsample > 1).then(|| {
+            let low_resolution_layout = low_resolution_layout(device);
+            let low = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, 1);
+            ReducedShadingPipelines {
+                downsample: settings.shading_downsample,
+                low_depth: low(Stage::LowDepthOnly),
+                shade_low: low(Stage::ShadeLow),
+                upsample: scene_pipeline(
+                    device,
+                    layouts,
+                    &shadow_layout,
+                    &module,
+                    Stage::Upsample(&low_resolution_layout),
+                    samples,
+                ),
+                low_resolution_layout,
+            }
+        });
         LogShPipeline {
             order: settings.order,
             exp: settings.exp,
@@ -60,13 +135,42 @@ impl LogShPipeline {
             depth_prepass: make(Stage::DepthOnly),
             shade: make(Stage::Shade),
             per_vertex,
+            reduced,
             shadow_layout,
         }
     }
 
-    /// Whether this pipeline was built for `settings`' order and method.
+    /// Whether this pipeline was built for `settings`' order, method and shading
+    /// resolution.
     pub fn matches(&self, settings: &ShadowSettings) -> bool {
-        self.order == settings.order && self.exp == settings.exp
+        self.order == settings.order
+            && self.exp == settings.exp
+            && self.shading_downsample() == settings.shading_downsample
+    }
+
+    /// Pixels per shaded sample along each side (1: every pixel is shaded).
+    pub fn shading_downsample(&self) -> u32 {
+        self.reduced.as_ref().map_or(1, |r| r.downsample)
+    }
+
+    /// The low-resolution images for frames of `full_size` when this pipeline shades at a
+    /// reduced resolution; `reuse` is returned as it is when it still fits.
+    pub fn low_resolution_targets(
+        &self,
+        device: &wgpu::Device,
+        full_size: [u32; 2],
+        reuse: Option<LowResolutionTargets>,
+    ) -> Option<LowResolutionTargets> {
+        let reduced = self.reduced.as_ref()?;
+        match reuse {
+            Some(targets) if targets.fits(full_size, reduced.downsample) => Some(targets),
+            _ => Some(LowResolutionTargets::new(
+                device,
+                &reduced.low_resolution_layout,
+                full_size,
+                reduced.downsample,
+            )),
+        }
     }
 
     /// The per-vertex visibility buffers for `scene`, if this order supports them.
@@ -76,9 +180,8 @@ impl LogShPipeline {
             .map(|(compute, _)| VertexVisibility::new(device, compute, scene))
     }
 
-    /// Clears `target` to `background` (linear RGB) and draws every object with shadows:
-    /// per pixel, or with `per_vertex` visibility (from [`Self::vertex_visibility`] for
-    /// the same scene) computed at the vertices first.
+    /// Clears `target` to `background` (linear RGB) and draws every object with shadows,
+    /// the way `shading` says (per pixel where this pipeline cannot do it that way).
     pub fn draw(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -86,11 +189,23 @@ impl LogShPipeline {
         scene: &GpuScene,
         blockers: &GpuBlockers,
         background_linear: [f64; 3],
-        per_vertex: Option<&VertexVisibility>,
+        shading: Shading,
     ) {
-        let per_vertex = per_vertex.zip(self.per_vertex.as_ref());
+        let per_vertex = match shading {
+            Shading::PerVertex(visibility) => Some(visibility).zip(self.per_vertex.as_ref()),
+            _ => None,
+        };
+        let reduced = match shading {
+            Shading::Reduced(low) => Some(low)
+                .zip(self.reduced.as_ref())
+                .filter(|(low, _)| low.full_size == [target.width, target.height]),
+            _ => None,
+        };
         if let Some((visibility, (compute, _))) = per_vertex {
             compute.run(encoder, &blockers.bind_group, visibility);
+        }
+        if let Some((low, pipelines)) = reduced {
+            shade_low_resolution(encoder, pipelines, low, scene, blockers);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("log-SH scene"),
@@ -105,8 +220,8 @@ impl LogShPipeline {
         // The pre-pass settles depth, so the costly shading runs once per visible pixel.
         pass.set_pipeline(&self.depth_prepass);
         draw_objects(&mut pass, scene);
-        match per_vertex {
-            Some((visibility, (_, shade))) => {
+        match (per_vertex, reduced) {
+            (Some((visibility, (_, shade))), _) => {
                 pass.set_pipeline(shade);
                 for (object, buffer) in scene.objects.iter().zip(&visibility.buffers) {
                     if object.hidden {
@@ -116,12 +231,68 @@ impl LogShPipeline {
                     draw_object(&mut pass, scene, object);
                 }
             }
-            None => {
+            (None, Some((low, pipelines))) => {
+                pass.set_pipeline(&pipelines.upsample);
+                pass.set_bind_group(3, &low.bind_group, &[]);
+                draw_objects(&mut pass, scene);
+                // The pixels the upsampling left (it moved the others' depth nearer).
+                if shades_unmatched_exactly(self.samples) {
+                    pass.set_pipeline(&self.shade);
+                    draw_objects(&mut pass, scene);
+                }
+            }
+            (None, None) => {
                 pass.set_pipeline(&self.shade);
                 draw_objects(&mut pass, scene);
             }
         }
     }
+}
+
+/// Whether reduced-resolution shading shades the pixels no sample matches in full, after
+/// the upsampling (see reduced_shading.wgsl): only where lavapipe tests depth before the
+/// fragment shader, which it does without multisampling; with it, they take the best
+/// sample nearby.
+fn shades_unmatched_exactly(samples: u32) -> bool {
+    samples == 1
+}
+
+/// The reduced-resolution samples: a depth pass, then the shading of the visible
+/// surface into `low`'s images.
+fn shade_low_resolution(
+    encoder: &mut wgpu::CommandEncoder,
+    pipelines: &ReducedShadingPipelines,
+    low: &LowResolutionTargets,
+    scene: &GpuScene,
+    blockers: &GpuBlockers,
+) {
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("low-resolution depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(low.depth_attachment(true)),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+        pass.set_bind_group(2, &blockers.bind_group, &[]);
+        pass.set_pipeline(&pipelines.low_depth);
+        draw_objects(&mut pass, scene);
+    }
+    let attachments = low.color_attachments();
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("low-resolution shading"),
+        color_attachments: &attachments,
+        depth_stencil_attachment: Some(low.depth_attachment(false)),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+    pass.set_bind_group(2, &blockers.bind_group, &[]);
+    pass.set_pipeline(&pipelines.shade_low);
+    draw_objects(&mut pass, scene);
 }
 
 pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
@@ -177,9 +348,13 @@ fn scene_pipeline(
     stage: Stage,
     samples: u32,
 ) -> wgpu::RenderPipeline {
+    let mut bind_group_layouts = vec![Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)];
+    if let Stage::Upsample(low_resolution) = stage {
+        bind_group_layouts.push(Some(low_resolution));
+    }
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("log-SH"),
-        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)],
+        bind_group_layouts: &bind_group_layouts,
         immediate_size: 0,
     });
     let visibility_attributes = match stage {
@@ -198,32 +373,41 @@ fn scene_pipeline(
         ),
         _ => ("vs_main", vec![Some(GpuVertex::layout())]),
     };
-    let (entry_point, format, write_mask, depth_write, compare) = match stage {
-        Stage::DepthOnly => (
-            "fs_surface",
-            super::pipeline::COLOR_FORMAT,
-            wgpu::ColorWrites::empty(),
+    let color = |format| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })
+    };
+    let depth_only = Some(wgpu::ColorTargetState {
+        format: super::pipeline::COLOR_FORMAT,
+        blend: None,
+        write_mask: wgpu::ColorWrites::empty(),
+    });
+    let shaded = color(super::pipeline::COLOR_FORMAT);
+    let (entry_point, targets, depth_write, compare) = match stage {
+        Stage::DepthOnly => ("fs_surface", vec![depth_only], true, wgpu::CompareFunction::Less),
+        Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        // Marks the pixels it did by moving their depth nearer (see reduced_shading.wgsl).
+        Stage::Upsample(_) if shades_unmatched_exactly(samples) => (
+            "fs_upsample_marking",
+            vec![shaded],
             true,
-            wgpu::CompareFunction::Less,
+            wgpu::CompareFunction::LessEqual,
         ),
-        Stage::ShadePerVertex(_) => (
-            "fs_per_vertex",
-            super::pipeline::COLOR_FORMAT,
-            wgpu::ColorWrites::ALL,
+        Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        Stage::ShadeLow => (
+            "fs_shade_low",
+            LOW_RESOLUTION_FORMATS.map(color).to_vec(),
             false,
             wgpu::CompareFunction::LessEqual,
         ),
-        Stage::Shade => (
-            "fs_logsh",
-            super::pipeline::COLOR_FORMAT,
-            wgpu::ColorWrites::ALL,
-            false,
-            wgpu::CompareFunction::LessEqual,
-        ),
+        Stage::LowDepthOnly => ("", Vec::new(), true, wgpu::CompareFunction::Less),
         Stage::Surface(..) => (
             "fs_surface",
-            SURFACE_FORMAT,
-            wgpu::ColorWrites::ALL,
+            vec![color(SURFACE_FORMAT)],
             true,
             wgpu::CompareFunction::Less,
         ),
@@ -258,18 +442,15 @@ fn scene_pipeline(
             count: samples,
             ..Default::default()
         },
-        fragment: Some(wgpu::FragmentState {
+        // A depth-only pass needs no fragment stage.
+        fragment: (!entry_point.is_empty()).then(|| wgpu::FragmentState {
             module,
             entry_point: Some(entry_point),
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants: &constants,
                 ..Default::default()
             },
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask,
-            })],
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,

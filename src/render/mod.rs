@@ -17,6 +17,7 @@ mod offscreen;
 pub mod paint_estimate;
 pub mod per_vertex;
 mod pipeline;
+pub mod reduced_shading;
 pub mod shaders;
 mod shadow_settings;
 pub mod wgsl_sh;

@@ -6,9 +6,12 @@ use rayon::prelude::*;
 
 use super::cpu::{self, ShadingInputs, SurfacePoint};
 use super::gpu_types::{GpuLight, environment_irradiance};
-use super::logsh::{GpuBlockers, LogShPipeline, SURFACE_FORMAT, draw_objects, shadow_layout, surface_pipelines};
+use super::logsh::{
+    GpuBlockers, LogShPipeline, SURFACE_FORMAT, Shading, draw_objects, shadow_layout, surface_pipelines,
+};
 use super::per_vertex::VertexVisibility;
 use super::pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
+use super::reduced_shading::LowResolutionTargets;
 use super::{BakedIndirect, GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
@@ -143,6 +146,7 @@ pub struct ShadowRenderer<'a> {
     gpu_scene: GpuScene,
     blockers: GpuBlockers,
     visibility: Option<VertexVisibility>,
+    low_resolution: Option<LowResolutionTargets>,
     target: RenderTarget,
     background: [f64; 3],
 }
@@ -169,12 +173,14 @@ impl<'a> ShadowRenderer<'a> {
         } else {
             None
         };
+        let low_resolution = pipeline.low_resolution_targets(&gpu.device, [target.width, target.height], None);
         Ok(ShadowRenderer {
             gpu,
             pipeline,
             gpu_scene,
             blockers,
             visibility,
+            low_resolution,
             target,
             background: frame.settings.background_linear(),
         })
@@ -188,7 +194,7 @@ impl<'a> ShadowRenderer<'a> {
             &self.gpu_scene,
             &self.blockers,
             self.background,
-            self.visibility.as_ref(),
+            Shading::first_of(self.visibility.as_ref(), self.low_resolution.as_ref()),
         );
         encoder
     }

@@ -11,6 +11,7 @@ pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
 pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
 pub const TERRAIN: &str = include_str!("../../shaders/terrain.wgsl");
+pub const REDUCED_SHADING: &str = include_str!("../../shaders/reduced_shading.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../shaders/heat_map.wgsl");
 
@@ -30,7 +31,8 @@ pub fn heat_map_source() -> String {
 }
 
 /// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
-/// form), with the per-vertex entry points where the order allows them.
+/// form), with the reduced-resolution entry points and the per-vertex ones where the
+/// order allows them.
 pub fn logsh_source(order: usize, method: ExpMethod) -> String {
     let generated = super::wgsl_sh::sh_module(order, method);
     let per_vertex = if super::wgsl_sh::supports_per_vertex(order) {
@@ -39,7 +41,7 @@ pub fn logsh_source(order: usize, method: ExpMethod) -> String {
         ""
     };
     let terrain = super::wgsl_terrain::terrain_module(order);
-    format!("{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{per_vertex}")
+    format!("{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{REDUCED_SHADING}\n{per_vertex}")
 }
 
 pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {

@@ -1,7 +1,8 @@
 //! The knobs of the log-SH shadow renderer: SH order, exponentiation method, ε, ratio
-//! attenuation, the influence cut-off, which lights go the exact way and the terrain's
-//! horizon sampling. Users trade speed for accuracy with them.
+//! attenuation, the influence cut-off, which lights go the exact way, the terrain's
+//! horizon sampling and the shading resolution. Users trade speed for accuracy with them.
 
+use super::reduced_shading::MAX_SHADING_DOWNSAMPLE;
 use crate::sh::{ExpMethod, MAX_REALTIME_ORDER};
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -30,6 +31,17 @@ pub struct ShadowSettings {
     /// How finely a height-field terrain's horizons are sampled (project format 5).
     #[serde(default)]
     pub terrain: TerrainShading,
+    /// d: shade one pixel in every d × d and upsample guided by each pixel's surface
+    /// (`render::reduced_shading`); 1 shades every pixel, up to
+    /// [`MAX_SHADING_DOWNSAMPLE`]. Per-vertex shading ignores it (project format 7).
+    #[serde(default = "default_shading_downsample")]
+    pub shading_downsample: u32,
+}
+
+/// Half resolution along each side: a quarter of the shading cost, and the lighting it
+/// interpolates is smooth where the upsampling interpolates it.
+fn default_shading_downsample() -> u32 {
+    2
 }
 
 /// The knobs of terrain shadows (`crate::terrain`): more azimuths remove the banding of
@@ -112,11 +124,21 @@ impl Default for ShadowSettings {
             per_vertex: false,
             light_paths: LightPaths::Auto,
             terrain: TerrainShading::default(),
+            shading_downsample: default_shading_downsample(),
         }
     }
 }
 
 impl ShadowSettings {
+    /// These settings shading every pixel: what the CPU reference does, so what GPU–CPU
+    /// comparisons and the accuracy study measure.
+    pub fn every_pixel(self) -> ShadowSettings {
+        ShadowSettings {
+            shading_downsample: 1,
+            ..self
+        }
+    }
+
     /// Every problem with these settings for the GPU renderer, as messages: those of
     /// [`Self::problems`], and the reference exponential, which has no GPU form.
     pub fn gpu_problems(&self) -> Vec<String> {
@@ -155,6 +177,12 @@ impl ShadowSettings {
             problems.push(format!(
                 "terrain azimuths {} must be 3..={MAX_TERRAIN_AZIMUTHS}",
                 self.terrain.azimuths
+            ));
+        }
+        if !(1..=MAX_SHADING_DOWNSAMPLE).contains(&self.shading_downsample) {
+            problems.push(format!(
+                "shading downsample {} must be 1..={MAX_SHADING_DOWNSAMPLE}",
+                self.shading_downsample
             ));
         }
         if !(1..=MAX_TERRAIN_LEVELS).contains(&self.terrain.pyramid_levels) {

@@ -75,7 +75,7 @@ pub fn method_label(method: ExpMethod) -> String {
 /// `terrain` adds its azimuth counts W (at the default levels) and pyramid levels (at the
 /// default W).
 pub fn knob_grid(quick: bool, default_blockers: SphereBudget, terrain: bool) -> Vec<Knobs> {
-    let defaults = ShadowSettings::default();
+    let defaults = ShadowSettings::default().every_pixel();
     let (orders, methods, epsilons, budgets): (Vec<usize>, Vec<ExpMethod>, Vec<f32>, Vec<usize>) = if quick {
         (
             vec![2, 4, 6],

@@ -142,7 +142,7 @@ pub fn cost_of_eight_lights(gpu: &GpuContext, size: u32, frames: u32) -> Result<
         .map(|path| {
             let shadows = ShadowSettings {
                 light_paths: path,
-                ..ShadowSettings::default()
+                ..ShadowSettings::default().every_pixel()
             };
             Ok((path, frame_ms(gpu, &scene, &camera, &shadows, &blockers, size, frames)?))
         })
@@ -186,7 +186,7 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
         for path in paths {
             let shadows = ShadowSettings {
                 light_paths: path,
-                ..ShadowSettings::default()
+                ..ShadowSettings::default().every_pixel()
             };
             let mut row = compare(&scene, &surfaces, &reference, &shadows, camera.position);
             row.light = label.clone();

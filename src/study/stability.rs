@@ -114,7 +114,7 @@ pub fn stability_cases() -> Vec<StabilityCase> {
     order8.shadows = ShadowSettings {
         order: 8,
         exp: ExpMethod::Hyb,
-        ..ShadowSettings::default()
+        ..ShadowSettings::default().every_pixel()
     };
     cases.push(order8);
     cases
@@ -230,7 +230,7 @@ fn case(name: &str, light: Light, blockers: Vec<Sphere>, scale: f32) -> Stabilit
                 radius_m: b.radius_m * scale,
             })
             .collect(),
-        shadows: ShadowSettings::default(),
+        shadows: ShadowSettings::default().every_pixel(),
     }
 }
 

@@ -1,5 +1,5 @@
-//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, and the
-//! terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
+//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, the
+//! shading resolution and the terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
 //! and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
@@ -36,6 +36,21 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             if !per_vertex_fits {
                 settings.per_vertex = false;
             }
+            ui.end_row();
+            ui.label("shaded pixels");
+            egui::ComboBox::from_id_salt("shading downsample")
+                .selected_text(downsample_label(settings.shading_downsample))
+                .show_ui(ui, |ui| {
+                    for d in 1..=crate::render::reduced_shading::MAX_SHADING_DOWNSAMPLE {
+                        ui.selectable_value(&mut settings.shading_downsample, d, downsample_label(d));
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "Shade one pixel in every d × d and rebuild the others from the samples on \
+                     their own surface (textures stay sharp; thin objects are shaded in full). \
+                     Fewer shaded pixels draw faster; per vertex ignores it.",
+                );
             ui.end_row();
         });
         egui::ComboBox::from_label("light shadows")
@@ -112,5 +127,12 @@ fn method_label(method: ExpMethod) -> String {
         ExpMethod::Hyb => "hybrid (default)".into(),
         ExpMethod::Ps(terms) => format!("power series ({terms} terms)"),
         ExpMethod::Reference => "reference (CPU)".into(),
+    }
+}
+
+fn downsample_label(d: u32) -> String {
+    match d {
+        1 => "every pixel".into(),
+        d => format!("1 in {d} × {d}"),
     }
 }

@@ -8,8 +8,9 @@
 
 use crate::blockers::Sphere;
 use crate::render::heat_map::HeatMapPipeline;
-use crate::render::logsh::{GpuBlockers, LogShPipeline};
+use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
+use crate::render::reduced_shading::LowResolutionTargets;
 use crate::render::{BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
@@ -21,6 +22,9 @@ struct Shadows {
     blockers: GpuBlockers,
     /// Per-vertex visibility buffers of the scene for the pipeline's order.
     visibility: Option<VertexVisibility>,
+    /// The reduced-resolution images of the pipeline for the last frame size, if it
+    /// shades at a reduced resolution.
+    low_resolution: Option<LowResolutionTargets>,
 }
 
 /// Log-SH pipelines for new settings, compiling on a background thread: lavapipe takes
@@ -111,6 +115,7 @@ impl Viewport {
                 pipeline: logsh,
                 blockers: gpu_blockers,
                 visibility,
+                low_resolution: None,
             },
             compiling: None,
             target: None,
@@ -198,6 +203,8 @@ impl Viewport {
         };
         if let Ok(pipeline) = handle.join() {
             self.shadows.pipeline = pipeline;
+            // Bound through the old pipeline's layout.
+            self.shadows.low_resolution = None;
             self.shadows.visibility = self
                 .shadows
                 .pipeline
@@ -407,16 +414,24 @@ impl Viewport {
             // While new shaders compile, the shadows keep their previous settings.
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.compiling.is_some())
         {
-            self.shadows.pipeline.draw(
+            let shadows = &mut self.shadows;
+            let per_vertex = shadows
+                .visibility
+                .as_ref()
+                .filter(|_| moving || shadows.settings.per_vertex);
+            if per_vertex.is_none() {
+                shadows.low_resolution =
+                    shadows
+                        .pipeline
+                        .low_resolution_targets(device, size, shadows.low_resolution.take());
+            }
+            shadows.pipeline.draw(
                 &mut encoder,
                 target,
                 &self.gpu_scene,
-                &self.shadows.blockers,
+                &shadows.blockers,
                 background,
-                self.shadows
-                    .visibility
-                    .as_ref()
-                    .filter(|_| moving || self.shadows.settings.per_vertex),
+                Shading::first_of(per_vertex, shadows.low_resolution.as_ref()),
             );
         } else {
             self.pipeline.draw(&mut encoder, target, &self.gpu_scene, background);

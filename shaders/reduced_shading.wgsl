@@ -1,0 +1,155 @@
+// Reduced-resolution shading (src/render/reduced_shading.rs): a low-resolution pass shades
+// one pixel in every d × d block with the full log-SH shading of logsh.wgsl and keeps the
+// surface it shaded; the full-resolution pass draws the meshes again and, per pixel,
+// blends the low-resolution samples that lie on its own surface (a joint bilateral
+// upsampling guided by position and normal, Kopf et al. 2007). Appended after logsh.wgsl.
+//
+// The low-resolution samples carry the exposed lighting with the material divided out,
+//   lighting = 2^EV · (L − emission) / (k_d + k_s),
+// (in half floats: clamped where the tone curve is long saturated) and each
+// full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
+// material edges stay sharp at full resolution while only the smooth lighting is
+// interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes)
+// are discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
+// pixel done here moves its depth a few steps nearer, so the depth test leaves only the
+// discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
+// pixel the full shading on a software GPU, which runs both sides of a divergent
+// branch.) Multisampled targets use fs_upsample, where such pixels take the
+// best-matching sample nearby: lavapipe tests their depth after the fragment shader, so
+// a fs_logsh pass would shade every fragment in full.
+
+struct LowResolutionSample {
+    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1.
+    @location(0) lighting: vec4<f32>,
+    // xyz: world position (metres); w = 1 where a surface was shaded.
+    @location(1) position: vec4<f32>,
+    // xyz: the unit shading normal.
+    @location(2) normal: vec4<f32>,
+};
+
+@group(3) @binding(0) var<uniform> upsample: UpsampleParams;
+@group(3) @binding(1) var low_lighting: texture_2d<f32>;
+@group(3) @binding(2) var low_position: texture_2d<f32>;
+@group(3) @binding(3) var low_normal: texture_2d<f32>;
+
+// What divides out of a surface's shading per channel: k_d + k_s, kept above 1e-3 so a
+// black material divides safely (what it reflects is as small).
+fn reflectance(s: Surface) -> vec3<f32> {
+    return max(s.k_d + s.k_s, vec3<f32>(1e-3));
+}
+
+// Under the half float's 65504: lighting this bright is white after the tone curve even
+// on the darkest reflectance (1e-3 × 6e4 = 60, where the curve is saturated).
+const MAX_LIGHTING: f32 = 6e4;
+
+@fragment
+fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> LowResolutionSample {
+    let s = surface(in, front_facing);
+    let radiance = shadowed_radiance(s) - material.emissive.rgb;
+    let lighting = min(frame.exposure * radiance / reflectance(s), vec3<f32>(MAX_LIGHTING));
+    var out: LowResolutionSample;
+    out.lighting = vec4<f32>(lighting, 1.0);
+    out.position = vec4<f32>(s.position, 1.0);
+    out.normal = vec4<f32>(s.normal, 0.0);
+    return out;
+}
+
+// The width (metres) of one full-resolution pixel seen at p, from the distance to the eye
+// and the projection's focal length (row y of view_proj has length 1/tan(fov_y / 2)
+// times a unit vector), so that it holds at triangle edges too, where screen-space
+// derivatives extrapolate.
+fn pixel_footprint_m(p: vec3<f32>, low_height: i32) -> f32 {
+    let vp = frame.view_proj;
+    let focal = length(vec3<f32>(vp[0][1], vp[1][1], vp[2][1]));
+    let full_height = f32(low_height) / upsample.full_to_low.y;
+    return distance(p, frame.camera_position.xyz) * 2.0 / (focal * full_height);
+}
+
+fn pow2(x: f32) -> f32 {
+    return x * x;
+}
+
+// A full-resolution pixel rebuilt from the low-resolution samples, and whether they
+// matched its surface (else it took the best match).
+struct Upsampled {
+    color: vec4<f32>,
+    matched: bool,
+};
+
+// `ring`: also look at the ring of 12 samples around the 2 × 2 nearest for the best match
+// of a pixel they do not match.
+fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
+    let s = surface(in, front_facing);
+    let last = vec2<i32>(textureDimensions(low_lighting)) - vec2<i32>(1);
+    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint_m(s.position, last.y + 1), 1e-6);
+    // in.clip is the pixel centre in framebuffer pixels here; low-resolution texel centres
+    // sit at integer + 0.5 in texel units.
+    let at = in.clip.xy * upsample.full_to_low - vec2<f32>(0.5);
+    let corner = floor(at);
+    let t = at - corner;
+    var lighting = vec3<f32>(0.0);
+    var matched = 0.0;
+    // The best-matching sample (by score), for pixels the 2 × 2 nearest do not match.
+    var best_lighting = vec3<f32>(0.0);
+    var best_match = 0.0;
+    let side = select(2u, 4u, ring);
+    let first = select(0, -1, ring);
+    for (var k = 0u; k < side * side; k++) {
+        let step = vec2<i32>(i32(k % side), i32(k / side)) + vec2<i32>(first);
+        let texel = clamp(vec2<i32>(corner) + step, vec2<i32>(0), last);
+        let position = textureLoad(low_position, texel, 0);
+        let normal = textureLoad(low_normal, texel, 0).xyz;
+        let sample = textureLoad(low_lighting, texel, 0).rgb;
+        let off_plane = dot(position.xyz - s.position, s.normal) / tolerance_m;
+        // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
+        // lighting of the rim of a curved object changes fast with its normal).
+        let facing2 = pow2(max(dot(normal, s.normal), 0.0));
+        let facing16 = pow2(pow2(pow2(facing2)));
+        // 0 where the low-resolution pixel saw no surface (position.w = 0).
+        let geometry = select(0.0, exp(-off_plane * off_plane) * facing16, position.w > 0.5);
+        // Any surface beats none, the nearer the better, when no sample matches (a sliver
+        // such as the top face of a wall takes its neighbour's light rather than none).
+        let distance2 = dot(vec2<f32>(step) - t, vec2<f32>(step) - t);
+        let score = geometry + select(0.0, 1e-3 / (1.0 + distance2), position.w > 0.5);
+        let better = score > best_match;
+        best_match = select(best_match, score, better);
+        best_lighting = select(best_lighting, sample, better);
+        // Bilinear weights of the 2 × 2 nearest samples; the ring around them only stands
+        // in for the best match.
+        let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
+        let weight = tent.x * tent.y * geometry;
+        lighting += weight * sample;
+        matched += weight;
+    }
+    let matches = matched >= upsample.min_matched_weight;
+    if !matches {
+        lighting = best_lighting;
+        matched = 1.0;
+    }
+    let exposed = frame.exposure * material.emissive.rgb + reflectance(s) * lighting / matched;
+    return Upsampled(vec4<f32>(tonemap_aces_fit(exposed), 1.0), matches);
+}
+
+// Upsampling into a multisampled target.
+@fragment
+fn fs_upsample(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return upsampled(in, front_facing, true).color;
+}
+
+struct MarkedPixel {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+};
+
+// Upsampling into a single-sampled target, leaving the unmatched pixels to fs_logsh.
+@fragment
+fn fs_upsample_marking(in: VertexOut, @builtin(front_facing) front_facing: bool) -> MarkedPixel {
+    let pixel = upsampled(in, front_facing, false);
+    if !pixel.matched {
+        discard;
+    }
+    // Eight float steps nearer than its own depth: the fs_logsh pass (depth test ≤) then
+    // skips this pixel, while fragments behind it still fail against it.
+    let nearer = bitcast<f32>(max(bitcast<u32>(in.clip.z), 8u) - 8u);
+    return MarkedPixel(pixel.color, nearer);
+}

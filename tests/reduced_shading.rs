@@ -1,0 +1,159 @@
+//! Reduced-resolution shading (`render::reduced_shading`, on lavapipe in CI) against
+//! shading every pixel: on the sample scenes the frames look alike, and texture detail
+//! finer than the shading blocks survives because only the lighting is interpolated.
+
+mod common;
+
+use glam::{Vec2, Vec3};
+use lightpaint::blockers::{Sphere, fit_scene};
+use lightpaint::project::Document;
+use lightpaint::render::{GpuContext, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::scene::gltf_write::LightSpec;
+use lightpaint::scene::{Camera, Scene, TextureImage};
+
+/// Shares of pixels whose channels all lie within 2/255 and within 8/255 of `full`, and
+/// the largest channel difference.
+fn agreement(reduced: &image::RgbaImage, full: &image::RgbaImage) -> (f64, f64, u8) {
+    let (mut within_2, mut within_8, mut worst) = (0usize, 0usize, 0u8);
+    for (a, b) in reduced.pixels().zip(full.pixels()) {
+        let d = (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0);
+        worst = worst.max(d);
+        within_2 += usize::from(d <= 2);
+        within_8 += usize::from(d <= 8);
+    }
+    let n = (full.width() * full.height()) as f64;
+    (within_2 as f64 / n, within_8 as f64 / n, worst)
+}
+
+fn save_for_review(name: &str, image: &image::RgbaImage) {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reduced_shading");
+    let _ = std::fs::create_dir_all(&dir);
+    let _ = image.save(dir.join(format!("{name}.png")));
+}
+
+/// The frame shaded at every pixel and with one shaded pixel per `downsample`².
+#[allow(clippy::too_many_arguments)]
+fn full_and_reduced(
+    gpu: &GpuContext,
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    blockers: &[Sphere],
+    downsample: u32,
+    width: u32,
+    height: u32,
+) -> (image::RgbaImage, image::RgbaImage) {
+    let render = |shading_downsample| {
+        let shadows = ShadowSettings {
+            shading_downsample,
+            ..settings.shadows
+        };
+        let frame = ShadowFrame {
+            baked_indirect: None,
+            scene,
+            camera,
+            settings,
+            shadows: &shadows,
+            blockers,
+            width,
+            height,
+        };
+        render_logsh_image(gpu, &frame, 1).expect("render")
+    };
+    (render(1), render(downsample))
+}
+
+#[test]
+fn shading_one_pixel_in_four_looks_like_shading_every_pixel_on_the_samples() {
+    let Some(gpu) = common::gpu() else { return };
+    for (name, project) in [
+        ("sample", "projects/sample/sample.lightpaint"),
+        ("studio", "projects/studio/studio.lightpaint"),
+    ] {
+        let document = Document::open(&common::repo_path(project)).expect("sample opens");
+        let camera = document
+            .camera
+            .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
+        let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
+        let (full, reduced) = full_and_reduced(
+            &gpu,
+            &document.scene,
+            &camera,
+            &document.settings,
+            &blockers,
+            2,
+            480,
+            270,
+        );
+        save_for_review(&format!("{name}-every-pixel"), &full);
+        save_for_review(&format!("{name}-one-in-four"), &reduced);
+        let (within_2, within_8, worst) = agreement(&reduced, &full);
+        eprintln!(
+            "{name}: {:.3} % within 2/255, {:.3} % within 8/255, worst {worst}/255",
+            100.0 * within_2,
+            100.0 * within_8
+        );
+        // What differs lies where the lighting changes within a 2 × 2 block: specular
+        // highlights (interpolated, slightly blurred) and the rims of curved objects.
+        assert!(within_2 >= 0.975, "{name}: only {:.3} % within 2/255", 100.0 * within_2);
+        assert!(within_8 >= 0.99, "{name}: only {:.3} % within 8/255", 100.0 * within_8);
+    }
+}
+
+/// A checker of cells about five pixels wide — about the size of the 4 × 4 shading blocks,
+/// which interpolating the shaded colour would smear — on a plane under a light high
+/// above: the lighting is smooth, so after dividing the material out and back in the
+/// checker must come through pixel for pixel.
+#[test]
+fn texture_detail_the_size_of_the_shading_blocks_survives() {
+    let Some(gpu) = common::gpu() else { return };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("plane.glb");
+    let light = LightSpec::Point {
+        color: [1.0; 3],
+        intensity_cd: 80.0,
+    };
+    std::fs::write(&path, common::scenes::white_plane(light, Vec3::new(0.3, 6.0, -0.2))).expect("write");
+    let mut scene = Scene::load(&path).expect("plane loads");
+    // The plane spans about 120 of the image's 216 pixels, so 24 cells span 5 pixels each.
+    let cells = 24;
+    // Eight texels a cell, so that linear filtering keeps the cells' edges sharp.
+    let side = cells * 8;
+    let rgba8 = (0..side * side)
+        .flat_map(|i| {
+            let (x, y) = ((i % side) / 8, (i / side) / 8);
+            if (x + y) % 2 == 0 {
+                [40, 60, 90, 255]
+            } else {
+                [230, 220, 200, 255]
+            }
+        })
+        .collect();
+    scene.textures.push(TextureImage {
+        name: "checker".into(),
+        width: side,
+        height: side,
+        rgba8,
+    });
+    let object = &mut scene.objects[0];
+    object.uvs = object
+        .positions
+        .iter()
+        .map(|p| Vec2::new((p.x + 1.0) / 2.0, (p.z + 1.0) / 2.0))
+        .collect();
+    let material = object.material;
+    scene.materials[material].base_color_texture = Some(scene.textures.len() - 1);
+    let camera = scene.initial_camera();
+    let settings = RenderSettings::default();
+    let (full, reduced) = full_and_reduced(&gpu, &scene, &camera, &settings, &[], 4, 216, 216);
+    save_for_review("checker-every-pixel", &full);
+    save_for_review("checker-one-in-sixteen", &reduced);
+    let (within_2, _, worst) = agreement(&reduced, &full);
+    eprintln!("checker: {:.3} % within 2/255, worst {worst}/255", 100.0 * within_2);
+    assert!(worst <= 2, "the checker changed by up to {worst}/255");
+    // The checker is really there: neighbouring pixels differ by far more than that.
+    let step = (90..126)
+        .map(|x| full.get_pixel(x, 108)[0].abs_diff(full.get_pixel(x + 1, 108)[0]))
+        .max();
+    assert!(step > Some(40), "no checker seen: largest step {step:?}");
+}
