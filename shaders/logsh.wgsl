@@ -19,6 +19,11 @@
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
+// false: no light of the scene can take the exact path, which is then left out of the
+// pipeline (lavapipe runs the code of both sides of a branch at every pixel, taken or
+// not). Set at pipeline creation (src/render/logsh.rs, render::exact_path_possible).
+override EXACT_LIGHT_PATH: bool = true;
+
 // Σ of the blockers' and the terrain's log-visibility seen from p with normal n. Skipped: blockers that
 // contain p (a sphere-fit artefact on the blocker's own surface), blockers too small in
 // the sky to matter, and blockers wholly below the tangent plane; blockers straddling it
@@ -157,6 +162,18 @@ fn shadowed_radiance(s: Surface) -> vec3<f32> {
     return radiance_through(s, sh_exp(log_visibility(s.position, s.normal)));
 }
 
+// The share of a light (incidence inc) that reaches s: exactly for lights small enough
+// at s, through the visibility SH g otherwise.
+fn light_visibility(s: Surface, g: Sh, inc: Incidence) -> f32 {
+    if EXACT_LIGHT_PATH {
+        if inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u) {
+            return exact_light_visibility(s.position, s.normal, inc)
+                * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
+        }
+    }
+    return clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
+}
+
 // Radiance of surface s lit through the visibility SH g.
 fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
     let environment_visibility = clamp(sh_visibility_cosine(g, s.normal), 0.0, 1.0);
@@ -167,14 +184,7 @@ fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
         if all(unshadowed == vec3<f32>(0.0)) {
             continue;
         }
-        var visibility: f32;
-        if inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u) {
-            visibility = exact_light_visibility(s.position, s.normal, inc)
-                * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
-        } else {
-            visibility = clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
-        }
-        radiance += unshadowed * visibility;
+        radiance += unshadowed * light_visibility(s, g, inc);
     }
     return radiance;
 }

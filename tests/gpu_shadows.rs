@@ -199,7 +199,7 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
         ..ShadowSettings::default().every_pixel()
     };
     let raster = ScenePipeline::new(&gpu.device);
-    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1);
+    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, true);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
     let gpu_blockers = GpuBlockers::upload(
         &gpu.device,

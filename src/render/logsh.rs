@@ -10,7 +10,7 @@ use super::gpu_scene::{GpuObject, GpuScene};
 use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
-use super::reduced_shading::{LowResolutionTargets, low_resolution_layout};
+use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
 use super::{ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
 
@@ -19,6 +19,8 @@ pub struct LogShPipeline {
     pub order: usize,
     pub exp: ExpMethod,
     pub samples: u32,
+    /// Whether the exact small-light path is compiled in.
+    pub exact_light_path: bool,
     pub shadow_layout: wgpu::BindGroupLayout,
     depth_prepass: wgpu::RenderPipeline,
     shade: wgpu::RenderPipeline,
@@ -83,27 +85,27 @@ enum Stage<'a> {
     Upsample(&'a wgpu::BindGroupLayout),
 }
 
-/// Formats of fs_shade_low's targets: lighting, position, normal (see reduced_shading.wgsl).
-/// 32 bytes a sample, the most wgpu's default limits allow across attachments.
-pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 3] = [
-    wgpu::TextureFormat::Rgba16Float,
-    wgpu::TextureFormat::Rgba32Float,
-    wgpu::TextureFormat::Rgba16Float,
-];
-
 impl LogShPipeline {
     /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
-    /// samples (the settings must be valid: see [`ShadowSettings::gpu_problems`]).
+    /// samples (the settings must be valid: see [`ShadowSettings::gpu_problems`]), with
+    /// the exact small-light path compiled in only if `exact_light_path` (see
+    /// [`super::exact_path_possible`]: lavapipe pays for its code at every pixel whether
+    /// or not a light takes it).
     pub fn new(
         device: &wgpu::Device,
         layouts: &SceneLayouts,
         settings: &ShadowSettings,
         samples: u32,
+        exact_light_path: bool,
     ) -> LogShPipeline {
         let shadow_layout = shadow_layout(device);
         let source = shaders::logsh_source(settings.order, settings.exp);
         let module = shaders::create_module(device, "log-SH shadows", &source);
-        let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, samples);
+        let variant = Variant {
+            samples,
+            exact_light_path,
+        };
+        let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
             (
                 PerVertexCompute::new(device, &module, &shadow_layout, settings.order),
@@ -112,7 +114,8 @@ impl LogShPipeline {
         });
         let reduced = (settings.shading_downsample > 1).then(|| {
             let low_resolution_layout = low_resolution_layout(device);
-            let low = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, 1);
+            let low_variant = Variant { samples: 1, ..variant };
+            let low = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, low_variant);
             ReducedShadingPipelines {
                 downsample: settings.shading_downsample,
                 low_depth: low(Stage::LowDepthOnly),
@@ -123,7 +126,7 @@ impl LogShPipeline {
                     &shadow_layout,
                     &module,
                     Stage::Upsample(&low_resolution_layout),
-                    samples,
+                    variant,
                 ),
                 low_resolution_layout,
             }
@@ -132,6 +135,7 @@ impl LogShPipeline {
             order: settings.order,
             exp: settings.exp,
             samples,
+            exact_light_path,
             depth_prepass: make(Stage::DepthOnly),
             shade: make(Stage::Shade),
             per_vertex,
@@ -141,9 +145,10 @@ impl LogShPipeline {
     }
 
     /// Whether this pipeline was built for `settings`' order, method and shading
-    /// resolution.
-    pub fn matches(&self, settings: &ShadowSettings) -> bool {
-        self.order == settings.order
+    /// resolution, and with the exact light path if `exact_light_path`.
+    pub fn matches(&self, settings: &ShadowSettings, exact_light_path: bool) -> bool {
+        self.exact_light_path == exact_light_path
+            && self.order == settings.order
             && self.exp == settings.exp
             && self.shading_downsample() == settings.shading_downsample
     }
@@ -334,10 +339,22 @@ pub fn surface_pipelines(
                 shadow_layout,
                 &module,
                 Stage::Surface(channel, "SURFACE_CHANNEL"),
-                1,
+                // fs_surface shades no light.
+                Variant {
+                    samples: 1,
+                    exact_light_path: false,
+                },
             )
         })
         .collect()
+}
+
+/// What a pipeline is compiled for besides its stage.
+#[derive(Clone, Copy)]
+struct Variant {
+    samples: u32,
+    /// Compile the exact small-light path (logsh.wgsl's EXACT_LIGHT_PATH).
+    exact_light_path: bool,
 }
 
 fn scene_pipeline(
@@ -346,8 +363,9 @@ fn scene_pipeline(
     shadow_layout: &wgpu::BindGroupLayout,
     module: &wgpu::ShaderModule,
     stage: Stage,
-    samples: u32,
+    variant: Variant,
 ) -> wgpu::RenderPipeline {
+    let samples = variant.samples;
     let mut bind_group_layouts = vec![Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)];
     if let Stage::Upsample(low_resolution) = stage {
         bind_group_layouts.push(Some(low_resolution));
@@ -412,10 +430,10 @@ fn scene_pipeline(
             wgpu::CompareFunction::Less,
         ),
     };
-    let constants: Vec<(&str, f64)> = match stage {
-        Stage::Surface(channel, name) => vec![(name, channel as f64)],
-        _ => Vec::new(),
-    };
+    let mut constants: Vec<(&str, f64)> = vec![("EXACT_LIGHT_PATH", f64::from(u8::from(variant.exact_light_path)))];
+    if let Stage::Surface(channel, name) = stage {
+        constants.push((name, channel as f64));
+    }
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(entry_point),
         layout: Some(&layout),

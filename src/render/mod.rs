@@ -35,7 +35,7 @@ pub use offscreen::{
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{
     AUTO_EXACT_BELOW_HALF_ANGLE_DEG, LightPaths, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, ShadowSettings,
-    TerrainShading, light_path_at, parse_exp_method,
+    TerrainShading, exact_path_possible, light_path_at, parse_exp_method,
 };
 
 /// Settings that change how a frame looks, not what the scene is.

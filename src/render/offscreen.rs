@@ -155,7 +155,8 @@ impl<'a> ShadowRenderer<'a> {
     pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
         let layouts = SceneLayouts::new(&gpu.device);
-        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples);
+        let exact_light_path = super::exact_path_possible(frame.shadows.light_paths, &frame.scene.lights);
+        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, exact_light_path);
         let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
         gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);
         let blockers = GpuBlockers::upload(

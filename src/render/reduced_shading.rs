@@ -11,8 +11,15 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_types::GpuUpsampleParams;
-use super::logsh::LOW_RESOLUTION_FORMATS;
 use super::pipeline::DEPTH_FORMAT;
+
+/// Formats of fs_shade_low's targets: lighting, position, normal (see reduced_shading.wgsl).
+/// 32 bytes a sample, the most wgpu's default limits allow across attachments.
+pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 3] = [
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba32Float,
+    wgpu::TextureFormat::Rgba16Float,
+];
 
 /// Largest shading downsampling factor d (one shaded sample per d × d pixels).
 pub const MAX_SHADING_DOWNSAMPLE: u32 = 4;

@@ -210,6 +210,19 @@ pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     }
 }
 
+/// Whether any of `lights` can take the exact shadow path under `paths` at some receiver:
+/// under Auto only lights with a size (sphere and area lights) can. Pipelines compile
+/// the exact path only then.
+pub fn exact_path_possible(paths: LightPaths, lights: &[crate::scene::Light]) -> bool {
+    match paths {
+        LightPaths::Harmonics => false,
+        LightPaths::Exact => true,
+        LightPaths::Auto => lights
+            .iter()
+            .any(|light| super::gpu_types::GpuLight::new(light).source_size > 0.0),
+    }
+}
+
 /// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
 /// radius seen from there in degrees (the shaders decide per receiver; the editor asks at
 /// the view's pivot).
@@ -235,5 +248,31 @@ mod tests {
         assert_eq!(parse_exp_method("ps8"), Ok(ExpMethod::Ps(8)));
         assert!(parse_exp_method("ps0").is_err());
         assert!(parse_exp_method("fast").is_err());
+    }
+
+    #[test]
+    fn only_lights_with_a_size_need_the_exact_path_under_auto() {
+        let light = |kind| crate::scene::Light {
+            name: "light".into(),
+            kind,
+            color: glam::Vec3::ONE,
+            intensity: 1.0,
+            position: glam::Vec3::Y,
+            direction: glam::Vec3::NEG_Y,
+            range: None,
+        };
+        let points = [
+            light(crate::scene::LightKind::Point),
+            light(crate::scene::LightKind::Directional),
+        ];
+        let with_sphere = [
+            points[0].clone(),
+            light(crate::scene::LightKind::Sphere { radius_m: 0.1 }),
+        ];
+        assert!(!exact_path_possible(LightPaths::Auto, &points));
+        assert!(exact_path_possible(LightPaths::Auto, &with_sphere));
+        assert!(exact_path_possible(LightPaths::Exact, &points));
+        assert!(!exact_path_possible(LightPaths::Harmonics, &with_sphere));
+        assert!(!exact_path_possible(LightPaths::Auto, &[]));
     }
 }

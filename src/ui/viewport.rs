@@ -11,7 +11,9 @@ use crate::render::heat_map::HeatMapPipeline;
 use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
 use crate::render::reduced_shading::LowResolutionTargets;
-use crate::render::{BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings};
+use crate::render::{
+    BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings, exact_path_possible,
+};
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
 /// Log-SH shadow state of a viewport.
@@ -31,6 +33,7 @@ struct Shadows {
 /// over a second for a high order (order 8), and the editor must keep drawing meanwhile.
 struct Compiling {
     settings: ShadowSettings,
+    exact_light_path: bool,
     handle: std::thread::JoinHandle<LogShPipeline>,
 }
 
@@ -51,6 +54,9 @@ pub struct Viewport {
     shadows: Shadows,
     /// The pipeline being compiled for the settings asked for last, if any.
     compiling: Option<Compiling>,
+    /// The scene's lights as last uploaded: whether any can take the exact shadow path
+    /// decides what the pipeline compiles.
+    lights: Vec<Light>,
     target: Option<RenderTarget>,
     texture_id: Option<egui::TextureId>,
     pub orbit: OrbitCamera,
@@ -95,7 +101,14 @@ impl Viewport {
         } else {
             ShadowSettings::default()
         };
-        let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT);
+        let exact_light_path = exact_path_possible(settings.light_paths, &scene.lights);
+        let logsh = LogShPipeline::new(
+            device,
+            &pipeline.layouts,
+            &settings,
+            crate::render::SAMPLE_COUNT,
+            exact_light_path,
+        );
         let gpu_blockers = GpuBlockers::upload(
             device,
             queue,
@@ -118,6 +131,7 @@ impl Viewport {
                 low_resolution: None,
             },
             compiling: None,
+            lights: scene.lights.clone(),
             target: None,
             texture_id: None,
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
@@ -127,7 +141,8 @@ impl Viewport {
         }
     }
 
-    /// Uploads changed lights; the next frame shows them.
+    /// Uploads changed lights; the next frame shows them. A first light able to take the
+    /// exact shadow path (or the last one gone) recompiles the pipeline in the background.
     pub fn set_lights(&mut self, render_state: &egui_wgpu::RenderState, lights: &[Light]) {
         self.gpu_scene.update_lights(
             &render_state.device,
@@ -135,6 +150,14 @@ impl Viewport {
             &self.pipeline.layouts,
             lights,
         );
+        self.lights = lights.to_vec();
+        let (wanted, has_exact_path) = match &self.compiling {
+            Some(c) => (c.settings, c.exact_light_path),
+            None => (self.shadows.settings, self.shadows.pipeline.exact_light_path),
+        };
+        if exact_path_possible(wanted.light_paths, &self.lights) != has_exact_path {
+            self.apply_shadow_settings(render_state, wanted);
+        }
         self.rendered = None;
     }
 
@@ -177,15 +200,29 @@ impl Viewport {
         if !settings.gpu_problems().is_empty() {
             return;
         }
-        if !self.shadows.pipeline.matches(&settings) {
-            let compiling_these = self.compiling.as_ref().is_some_and(|c| c.settings == settings);
+        let exact_light_path = exact_path_possible(settings.light_paths, &self.lights);
+        if !self.shadows.pipeline.matches(&settings, exact_light_path) {
+            let compiling_these = self
+                .compiling
+                .as_ref()
+                .is_some_and(|c| c.settings == settings && c.exact_light_path == exact_light_path);
             if !compiling_these {
                 // An older compile still finishes on its thread; its result is dropped.
                 let (device, layouts) = (render_state.device.clone(), self.pipeline.layouts.clone());
                 let handle = std::thread::spawn(move || {
-                    LogShPipeline::new(&device, &layouts, &settings, crate::render::SAMPLE_COUNT)
+                    LogShPipeline::new(
+                        &device,
+                        &layouts,
+                        &settings,
+                        crate::render::SAMPLE_COUNT,
+                        exact_light_path,
+                    )
                 });
-                self.compiling = Some(Compiling { settings, handle });
+                self.compiling = Some(Compiling {
+                    settings,
+                    exact_light_path,
+                    handle,
+                });
             }
             return;
         }
@@ -198,7 +235,7 @@ impl Viewport {
         if self.compiling.as_ref().is_none_or(|c| !c.handle.is_finished()) {
             return;
         }
-        let Some(Compiling { settings, handle }) = self.compiling.take() else {
+        let Some(Compiling { settings, handle, .. }) = self.compiling.take() else {
             return;
         };
         if let Ok(pipeline) = handle.join() {
