@@ -271,33 +271,26 @@ fn shade_low_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) {
-    {
+    let attachments = low.color_attachments();
+    // First the depth alone, so that the costly shading runs once per visible sample.
+    let passes = [
+        ("low-resolution depth", &[][..], true, &pipelines.low_depth),
+        ("low-resolution shading", &attachments[..], false, &pipelines.shade_low),
+    ];
+    for (label, color_attachments, depth_pass, pipeline) in passes {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("low-resolution depth"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(low.depth_attachment(true)),
+            label: Some(label),
+            color_attachments,
+            depth_stencil_attachment: Some(low.depth_attachment(depth_pass)),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.frame_bind_group, &[]);
         pass.set_bind_group(2, &blockers.bind_group, &[]);
-        pass.set_pipeline(&pipelines.low_depth);
+        pass.set_pipeline(pipeline);
         draw_objects(&mut pass, scene);
     }
-    let attachments = low.color_attachments();
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("low-resolution shading"),
-        color_attachments: &attachments,
-        depth_stencil_attachment: Some(low.depth_attachment(false)),
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-    pass.set_bind_group(2, &blockers.bind_group, &[]);
-    pass.set_pipeline(&pipelines.shade_low);
-    draw_objects(&mut pass, scene);
 }
 
 pub(crate) fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
