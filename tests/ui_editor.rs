@@ -63,6 +63,32 @@ fn shadow_settings_edited_in_the_inspector_are_saved() {
     assert!(!reopened.settings.shadows.enabled, "shadows off was saved");
 }
 
+/// The Shadows section's choice of shaded pixels (one in 2 × 2 in the sample) is drawn
+/// after the new pipelines compile, marked unsaved, and saved into the project.
+#[test]
+fn the_shaded_pixels_choice_is_saved() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    scroll_and_click(&mut harness, "shaded pixels");
+    harness.get_by_label("every pixel").click();
+    harness.run();
+    assert!(harness.state().has_unsaved_changes(), "the choice is a change");
+    for _ in 0..600 {
+        if !harness.state().is_compiling_shaders() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        harness.run();
+    }
+    assert!(!harness.state().is_compiling_shaders(), "the new pipelines compiled");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert_eq!(reopened.settings.shadows.shading_downsample, 1);
+}
+
 /// Mean Rec. 709 luma (sRGB values) of the image within `radius` of `centre`.
 /// The bake runs in the background: the editor keeps drawing frames while it runs, shows
 /// its progress, and strokes read the baked maps once it is done.

@@ -37,21 +37,6 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                 settings.per_vertex = false;
             }
             ui.end_row();
-            ui.label("shaded pixels");
-            egui::ComboBox::from_id_salt("shading downsample")
-                .selected_text(downsample_label(settings.shading_downsample))
-                .show_ui(ui, |ui| {
-                    for d in 1..=crate::render::reduced_shading::MAX_SHADING_DOWNSAMPLE {
-                        ui.selectable_value(&mut settings.shading_downsample, d, downsample_label(d));
-                    }
-                })
-                .response
-                .on_hover_text(
-                    "Shade one pixel in every d × d and rebuild the others from the samples on \
-                     their own surface (textures stay sharp; thin objects are shaded in full). \
-                     Fewer shaded pixels draw faster; per vertex ignores it.",
-                );
-            ui.end_row();
         });
         egui::ComboBox::from_label("light shadows")
             .selected_text(light_paths_label(settings.light_paths))
@@ -74,6 +59,19 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                     ui.selectable_value(&mut settings.exp, method, method_label(method));
                 }
             });
+        egui::ComboBox::from_label("shaded pixels")
+            .selected_text(downsample_label(settings.shading_downsample))
+            .show_ui(ui, |ui| {
+                for d in 1..=crate::render::reduced_shading::MAX_SHADING_DOWNSAMPLE {
+                    ui.selectable_value(&mut settings.shading_downsample, d, downsample_label(d));
+                }
+            })
+            .response
+            .on_hover_text(
+                "Shade one pixel in every d × d and rebuild the others from the samples on \
+                 their own surface (textures stay sharp; thin objects are shaded in full). \
+                 Fewer shaded pixels draw faster; per vertex ignores it.",
+            );
         // Settings the GPU cannot draw (a project saved with the CPU-only reference
         // exponential, say) are said, not silently replaced.
         let problems = settings.gpu_problems();
