@@ -2,11 +2,12 @@
 //! runs once per d × d block of pixels, and a cheap full-resolution pass rebuilds every
 //! pixel from the samples on its own surface (joint bilateral upsampling guided by world
 //! position and normal), multiplying its own material back in. Pixels no sample matches
-//! are shaded in full, so thin objects and silhouettes keep their shading.
+//! (thin objects, silhouettes) are shaded in full on single-sampled targets, and take the
+//! best sample nearby on multisampled ones (see `logsh::shades_unmatched_exactly`).
 //!
-//! A frame is three passes: the depth of the low-resolution image, its shading into
-//! [`LOW_RESOLUTION_FORMATS`] targets, then the full-resolution depth pre-pass and
-//! upsampling into the frame's [`RenderTarget`].
+//! A frame is three render passes: the depth of the low-resolution image, its shading
+//! into [`LOW_RESOLUTION_FORMATS`] targets, then in the frame's [`super::RenderTarget`] the
+//! depth pre-pass, the upsampling and the full shading of the unmatched pixels.
 
 use wgpu::util::DeviceExt;
 
