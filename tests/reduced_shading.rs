@@ -31,7 +31,9 @@ fn save_for_review(name: &str, image: &image::RgbaImage) {
     let _ = image.save(dir.join(format!("{name}.png")));
 }
 
-/// The frame shaded at every pixel and with one shaded pixel per `downsample`².
+/// The frame shaded at every pixel and with one shaded pixel per `downsample`², with
+/// `samples` per pixel (1, where unmatched pixels are shaded in full, or 4, where they
+/// take the best sample nearby).
 #[allow(clippy::too_many_arguments)]
 fn full_and_reduced(
     gpu: &GpuContext,
@@ -40,8 +42,8 @@ fn full_and_reduced(
     settings: &RenderSettings,
     blockers: &[Sphere],
     downsample: u32,
-    width: u32,
-    height: u32,
+    samples: u32,
+    [width, height]: [u32; 2],
 ) -> (image::RgbaImage, image::RgbaImage) {
     let render = |shading_downsample| {
         let shadows = ShadowSettings {
@@ -58,7 +60,7 @@ fn full_and_reduced(
             width,
             height,
         };
-        render_logsh_image(gpu, &frame, 1).expect("render")
+        render_logsh_image(gpu, &frame, samples).expect("render")
     };
     (render(1), render(downsample))
 }
@@ -75,28 +77,35 @@ fn shading_one_pixel_in_four_looks_like_shading_every_pixel_on_the_samples() {
             .camera
             .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
         let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
-        let (full, reduced) = full_and_reduced(
-            &gpu,
-            &document.scene,
-            &camera,
-            &document.settings,
-            &blockers,
-            2,
-            480,
-            270,
-        );
-        save_for_review(&format!("{name}-every-pixel"), &full);
-        save_for_review(&format!("{name}-one-in-four"), &reduced);
-        let (within_2, within_8, worst) = agreement(&reduced, &full);
-        eprintln!(
-            "{name}: {:.3} % within 2/255, {:.3} % within 8/255, worst {worst}/255",
-            100.0 * within_2,
-            100.0 * within_8
-        );
-        // What differs lies where the lighting changes within a 2 × 2 block: specular
-        // highlights (interpolated, slightly blurred) and the rims of curved objects.
-        assert!(within_2 >= 0.975, "{name}: only {:.3} % within 2/255", 100.0 * within_2);
-        assert!(within_8 >= 0.99, "{name}: only {:.3} % within 8/255", 100.0 * within_8);
+        for samples in [1, 4] {
+            let (full, reduced) = full_and_reduced(
+                &gpu,
+                &document.scene,
+                &camera,
+                &document.settings,
+                &blockers,
+                2,
+                samples,
+                [480, 270],
+            );
+            let label = format!("{name}, {samples} sample(s) per pixel");
+            save_for_review(&format!("{name}-msaa{samples}-every-pixel"), &full);
+            save_for_review(&format!("{name}-msaa{samples}-one-in-four"), &reduced);
+            let (within_2, within_8, worst) = agreement(&reduced, &full);
+            eprintln!(
+                "{label}: {:.3} % within 2/255, {:.3} % within 8/255, worst {worst}/255",
+                100.0 * within_2,
+                100.0 * within_8
+            );
+            // What differs lies where the lighting changes within a 2 × 2 block: specular
+            // highlights (interpolated, slightly blurred) and the rims of curved objects.
+            assert!(
+                within_2 >= 0.975,
+                "{label}: only {:.3} % within 2/255",
+                100.0 * within_2
+            );
+            assert!(within_8 >= 0.99, "{label}: only {:.3} % within 8/255", 100.0 * within_8);
+        }
     }
 }
 
@@ -145,7 +154,7 @@ fn texture_detail_the_size_of_the_shading_blocks_survives() {
     scene.materials[material].base_color_texture = Some(scene.textures.len() - 1);
     let camera = scene.initial_camera();
     let settings = RenderSettings::default();
-    let (full, reduced) = full_and_reduced(&gpu, &scene, &camera, &settings, &[], 4, 216, 216);
+    let (full, reduced) = full_and_reduced(&gpu, &scene, &camera, &settings, &[], 4, 1, [216, 216]);
     save_for_review("checker-every-pixel", &full);
     save_for_review("checker-one-in-sixteen", &reduced);
     let (within_2, _, worst) = agreement(&reduced, &full);
