@@ -9,7 +9,7 @@ pub use super::gpu_blockers::{GpuBlockers, shadow_layout};
 use super::gpu_scene::{GpuObject, GpuScene};
 use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
-use super::pipeline::{DEPTH_FORMAT, RenderTarget, SceneLayouts};
+use super::pipeline::{RenderTarget, SceneLayouts, depth_test, two_sided_triangles};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
 use super::{ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
@@ -436,19 +436,8 @@ fn scene_pipeline(
             compilation_options: Default::default(),
             buffers: &buffers,
         },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            front_face: wgpu::FrontFace::Ccw,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(depth_write),
-            depth_compare: Some(compare),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        primitive: two_sided_triangles(),
+        depth_stencil: Some(depth_test(depth_write, compare)),
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()

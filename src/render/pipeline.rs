@@ -174,20 +174,8 @@ pub fn mesh_pipeline(
             compilation_options: Default::default(),
             buffers: &[Some(GpuVertex::layout())],
         },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            front_face: wgpu::FrontFace::Ccw,
-            // glTF meshes are often open (planes, cards): draw both sides.
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        primitive: two_sided_triangles(),
+        depth_stencil: Some(depth_test(true, wgpu::CompareFunction::Less)),
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()
@@ -205,6 +193,28 @@ pub fn mesh_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// Triangle lists, counter-clockwise front faces, both sides drawn: glTF meshes are often
+/// open (planes, cards).
+pub(super) fn two_sided_triangles() -> wgpu::PrimitiveState {
+    wgpu::PrimitiveState {
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        front_face: wgpu::FrontFace::Ccw,
+        cull_mode: None,
+        ..Default::default()
+    }
+}
+
+/// A [`DEPTH_FORMAT`] depth test with `compare`, writing depth if `write`.
+pub(super) fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
 }
 
 /// Where a frame is drawn: a colour and depth buffer (multisampled and resolved into a
