@@ -6,7 +6,8 @@
 //       + the terrain's log-visibility (terrain.wgsl)
 //   G = exp*(F)                                                     (visibility SH)
 //   L = emissive + environment · ⟨G, cos⟩ + Σ_lights direct · clamp(mean of G over the
-//       light's cap, 0, 1), or, for lights small enough for the exact path,
+//       light's cap, 0, 1) (the default separate BRDF; the log and product variants
+//       below carry the BRDF in the SH), or, for lights small enough for the exact path,
 //       direct · Π_blockers (1 − share of the light's disc the blocker hides) · share of
 //       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
@@ -158,33 +159,112 @@ fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
     return exp(log_v);
 }
 
-fn shadowed_radiance(s: Surface) -> vec3<f32> {
-    return radiance_through(s, sh_exp(log_visibility(s.position, s.normal)));
+// How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'
+// BrdfShading by src/render/wgsl_lobes.rs; render::cpu_lobes is the f64 twin):
+//   separate: each light's exact unshadowed BRDF times the visibility G = exp*(F)
+//             averaged over the light;
+//   log:      the diffuse and Phong lobes' logs added to F before exponentiating, one
+//             exponentiation per lobe (Ren et al. 2006);
+//   product:  G times each lobe by the SH product.
+// In log and product each lobe's SH averaged over the light is clamped to [0, unshadowed]
+// (design.md §4b); lobes sharper than the order carries stay out of the SH and are
+// shaded as in separate.
+const BRDF_SEPARATE: u32 = 0u;
+const BRDF_LOG: u32 = 1u;
+const BRDF_PRODUCT: u32 = 2u;
+
+// The SH each lobe is shaded through: the visibility (separate), or the visibility times
+// the diffuse and the Phong lobe. specular_in_sh false: `specular` is the plain visibility.
+struct LobeVisibility {
+    diffuse: Sh,
+    specular: Sh,
+    specular_in_sh: bool,
+};
+
+fn specular_carried(s: Surface) -> bool {
+    return BRDF_SHADING != BRDF_SEPARATE && s.phong_exponent <= SH_MAX_PHONG_EXPONENT;
 }
 
-// The share of a light (incidence inc) that reaches s: exactly for lights small enough
-// at s, through the visibility SH g otherwise.
-fn light_visibility(s: Surface, g: Sh, inc: Incidence) -> f32 {
-    if EXACT_LIGHT_PATH {
-        if inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u) {
-            return exact_light_visibility(s.position, s.normal, inc)
-                * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
+// The lobes' SH from the log-visibility f.
+fn lobes_from_log_visibility(s: Surface, f: Sh) -> LobeVisibility {
+    if BRDF_SHADING == BRDF_LOG {
+        let diffuse = sh_exp(sh_add_zonal(f, sh_log_phong_lobe_zh(1.0, shadow.ln_epsilon), 1.0, s.normal));
+        let carried = specular_carried(s);
+        var specular_log = f;
+        if carried {
+            specular_log = sh_add_zonal(f, sh_log_phong_lobe_zh(s.phong_exponent, shadow.ln_epsilon), 1.0, mirrored_view(s));
         }
+        return LobeVisibility(diffuse, sh_exp(specular_log), carried);
     }
-    return clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
+    return lobes_through(s, sh_exp(f));
 }
 
-// Radiance of surface s lit through the visibility SH g.
-fn radiance_through(s: Surface, g: Sh) -> vec3<f32> {
-    let environment_visibility = clamp(sh_visibility_cosine(g, s.normal), 0.0, 1.0);
-    var radiance = s.emissive + environment_radiance(s) * environment_visibility;
+// The lobes' SH from the visibility SH g (per-vertex shading interpolates g).
+fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
+    if BRDF_SHADING == BRDF_PRODUCT {
+        let diffuse = sh_times_lobe(g, sh_add_zonal(sh_zero(), sh_phong_lobe_zh(1.0), 1.0, s.normal));
+        let carried = specular_carried(s);
+        var specular = g;
+        if carried {
+            specular = sh_times_lobe(g, sh_add_zonal(sh_zero(), sh_phong_lobe_zh(s.phong_exponent), 1.0, mirrored_view(s)));
+        }
+        return LobeVisibility(diffuse, specular, carried);
+    }
+    return LobeVisibility(g, g, false);
+}
+
+fn shadowed_radiance(s: Surface) -> vec3<f32> {
+    return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+}
+
+// Whether the light seen as inc takes the exact path at s.
+fn takes_exact_path(inc: Incidence) -> bool {
+    return inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u);
+}
+
+// A light's shadowed radiance at s through the lobes' SH.
+fn light_through(s: Surface, lobes: LobeVisibility, inc: Incidence) -> vec3<f32> {
+    let direct = direct_lobes(s, inc);
+    let diffuse_mean = sh_visibility_toward(lobes.diffuse, inc.to_light, inc.cap_ratio);
+    if BRDF_SHADING == BRDF_SEPARATE {
+        return inc.irradiance * (s.k_d * direct.x + s.k_s * direct.y) * clamp(diffuse_mean, 0.0, 1.0);
+    }
+    let specular_mean = sh_visibility_toward(lobes.specular, inc.to_light, inc.cap_ratio);
+    var specular = direct.y * clamp(specular_mean, 0.0, 1.0);
+    if lobes.specular_in_sh {
+        specular = clamp(specular_mean, 0.0, direct.y);
+    }
+    return inc.irradiance * (s.k_d * clamp(diffuse_mean, 0.0, direct.x) + s.k_s * specular);
+}
+
+// The environment's diffuse light at s through the lobes' SH.
+fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
+    let unshadowed = environment_irradiance_at(s) / PI;
+    if BRDF_SHADING == BRDF_SEPARATE {
+        return s.k_d * unshadowed * clamp(sh_visibility_cosine(lobes.diffuse, s.normal), 0.0, 1.0);
+    }
+    return s.k_d * clamp(sh_dot_environment(lobes.diffuse), vec3<f32>(0.0), unshadowed);
+}
+
+// Radiance of surface s lit through the lobes' SH; lights small enough take the exact
+// path instead: their exact visibility (times the share above the terrain's horizon)
+// times their unshadowed radiance.
+fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
+    var radiance = s.emissive + environment_through(s, lobes);
     for (var i = 0u; i < frame.light_count; i++) {
         let inc = incidence(lights[i], s.position);
         let unshadowed = direct_radiance(s, inc);
         if all(unshadowed == vec3<f32>(0.0)) {
             continue;
         }
-        radiance += unshadowed * light_visibility(s, g, inc);
+        if EXACT_LIGHT_PATH {
+            if takes_exact_path(inc) {
+                radiance += unshadowed * exact_light_visibility(s.position, s.normal, inc)
+                    * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
+                continue;
+            }
+        }
+        radiance += light_through(s, lobes, inc);
     }
     return radiance;
 }

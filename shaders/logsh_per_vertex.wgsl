@@ -33,6 +33,7 @@ fn fs_per_vertex(
     visibility: Visibility,
     @builtin(front_facing) front_facing: bool,
 ) -> @location(0) vec4<f32> {
-    let radiance = radiance_through(surface(in, front_facing), sh_from_visibility(visibility));
+    let s = surface(in, front_facing);
+    let radiance = radiance_through(s, lobes_through(s, sh_from_visibility(visibility)));
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }

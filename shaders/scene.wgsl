@@ -135,21 +135,36 @@ fn surface(in: VertexOut, front_facing: bool) -> Surface {
     return s;
 }
 
-// Unshadowed radiance toward the eye from one light (0 when the light is below the horizon).
-fn direct_radiance(s: Surface, inc: Incidence) -> vec3<f32> {
+// The view direction mirrored about s's normal, the Phong lobe's axis.
+fn mirrored_view(s: Surface) -> vec3<f32> {
+    return reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);
+}
+
+// A light's unshadowed diffuse and glossy factors, n·l/π and (r+1)/(2π)·max(ρ·l, 0)^r
+// (both 0 when the light is below the horizon).
+fn direct_lobes(s: Surface, inc: Incidence) -> vec2<f32> {
     let n_dot_l = dot(s.normal, inc.to_light);
     if n_dot_l <= 0.0 {
-        return vec3<f32>(0.0);
+        return vec2<f32>(0.0);
     }
-    let to_eye = normalize(frame.camera_position.xyz - s.position);
-    let mirrored = reflect(-to_eye, s.normal);
-    let cos_mirror = max(dot(mirrored, inc.to_light), 1e-8);
+    let cos_mirror = max(dot(mirrored_view(s), inc.to_light), 1e-8);
     // exp2(r·log2 c) rather than pow: equals 1 at r = 0 even where c underflows.
     let glossy = (s.phong_exponent + 1.0) / (2.0 * PI) * exp2(s.phong_exponent * log2(cos_mirror));
-    return inc.irradiance * (s.k_d / PI * n_dot_l + s.k_s * glossy);
+    return vec2<f32>(n_dot_l / PI, glossy);
+}
+
+// Unshadowed radiance toward the eye from one light (0 when the light is below the horizon).
+fn direct_radiance(s: Surface, inc: Incidence) -> vec3<f32> {
+    let lobes = direct_lobes(s, inc);
+    return inc.irradiance * (s.k_d * lobes.x + s.k_s * lobes.y);
+}
+
+// The environment's irradiance on s's tangent plane (clamped at 0 against ringing).
+fn environment_irradiance_at(s: Surface) -> vec3<f32> {
+    return max(sh3_eval(frame.environment_irradiance, s.normal), vec3<f32>(0.0));
 }
 
 // Diffuse light of the environment from its irradiance SH (clamped at 0 against ringing).
 fn environment_radiance(s: Surface) -> vec3<f32> {
-    return s.k_d / PI * max(sh3_eval(frame.environment_irradiance, s.normal), vec3<f32>(0.0));
+    return s.k_d / PI * environment_irradiance_at(s);
 }

@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 use lightpaint::blockers::{SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
-    BakedIndirect, GpuContext, LightPaths, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings, parse_exp_method,
-    render_cpu_image, render_image, render_logsh_image,
+    BakedIndirect, BrdfShading, GpuContext, LightPaths, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings,
+    parse_exp_method, render_cpu_image, render_image, render_logsh_image,
 };
 use lightpaint::scene::SceneError;
 use lightpaint::sh::ExpMethod;
@@ -134,6 +134,11 @@ struct RenderArgs {
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     light_paths: Option<LightPaths>,
+    /// How the BRDF meets the visibility: separate (each light's exact BRDF times its
+    /// visibility), log (the log-BRDF added before exponentiating) or product (the BRDF
+    /// multiplied in by the SH product); default: the project's, or separate.
+    #[arg(long, value_parser = BrdfShading::parse)]
+    brdf: Option<BrdfShading>,
     /// Terrain: marching directions per receiver (W, 3–64); default: the project's, or 16.
     #[arg(long)]
     terrain_azimuths: Option<u32>,
@@ -359,6 +364,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
     shadows.ratio_attenuation |= args.ratio_attenuation;
     shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
+    shadows.brdf = args.brdf.unwrap_or(shadows.brdf);
     shadows.terrain.azimuths = args.terrain_azimuths.unwrap_or(shadows.terrain.azimuths);
     shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
@@ -607,8 +613,12 @@ fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::
         String::new()
     };
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths",
-        shadows.order, shadows.exp, shadows.epsilon, shadows.light_paths
+        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths, {} BRDF",
+        shadows.order,
+        shadows.exp,
+        shadows.epsilon,
+        shadows.light_paths,
+        shadows.brdf.name()
     )
 }
 

@@ -8,7 +8,8 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    GpuContext, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image, render_logsh_image,
+    BrdfShading, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image,
+    render_logsh_image,
 };
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene};
@@ -109,6 +110,39 @@ fn every_method_and_order_matches_the_cpu_reference() {
                 height: 54,
             };
             assert_parity(&gpu, &format!("studio-{order}-{exp:?}"), &frame);
+        }
+    }
+}
+
+#[test]
+fn the_brdf_in_the_sh_matches_the_cpu_reference() {
+    let Some(gpu) = common::gpu() else { return };
+    for (name, path) in [
+        ("studio", "projects/studio/studio.lightpaint"),
+        ("sample", "projects/sample/sample.lightpaint"),
+    ] {
+        let (scene, camera, settings) = open(path);
+        let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+        // Every light through the SH, so the lobes shade every light; order 8 carries
+        // sharper Phong lobes (up to 16) through longer generated sums.
+        for (brdf, order) in [(BrdfShading::Log, 4), (BrdfShading::Product, 4), (BrdfShading::Log, 8)] {
+            let shadows = ShadowSettings {
+                brdf,
+                order,
+                light_paths: lightpaint::render::LightPaths::Harmonics,
+                ..ShadowSettings::default().every_pixel()
+            };
+            let frame = ShadowFrame {
+                baked_indirect: None,
+                scene: &scene,
+                camera: &camera,
+                settings: &settings,
+                shadows: &shadows,
+                blockers: &blockers,
+                width: 160,
+                height: 90,
+            };
+            assert_parity(&gpu, &format!("{name}-{brdf:?}-{order}"), &frame);
         }
     }
 }
@@ -252,15 +286,17 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
 }
 
 /// Per-vertex shading interpolates what per-pixel shading computes: on the studio, with
-/// soft order-4 shadows, the two frames barely differ.
+/// soft order-4 shadows, the two frames barely differ, with the BRDF outside the SH and
+/// with it multiplied in per pixel (the product of the interpolated visibility).
 #[test]
 fn per_vertex_frames_look_like_per_pixel_frames() {
     let Some(gpu) = common::gpu() else { return };
     let (scene, camera, settings) = open("projects/studio/studio.lightpaint");
     let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
-    let render = |per_vertex| {
+    let render = |per_vertex, brdf| {
         let shadows = ShadowSettings {
             per_vertex,
+            brdf,
             ..ShadowSettings::default().every_pixel()
         };
         let frame = ShadowFrame {
@@ -275,54 +311,16 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
         };
         render_logsh_image(&gpu, &frame, 1).expect("render")
     };
-    let (per_pixel, per_vertex) = (render(false), render(true));
-    save_for_review("studio-per-vertex", &per_vertex);
-    let close = per_pixel
-        .pixels()
-        .zip(per_vertex.pixels())
-        .filter(|(a, b)| (0..3).all(|c| a[c].abs_diff(b[c]) <= 4))
-        .count();
-    let share = close as f64 / (240.0 * 135.0);
-    eprintln!("{:.2} % of pixels within 4/255", 100.0 * share);
-    assert!(share > 0.97, "{share}");
-}
-
-/// Every order the settings accept for per-vertex shading builds its pipelines on the
-/// device (wgpu counts the `front_facing` built-in against the 16 inter-stage variables,
-/// which order 7 exceeded) and draws a frame; the first order beyond is refused.
-#[test]
-fn per_vertex_shading_builds_at_every_order_the_settings_accept() {
-    let Some(gpu) = common::gpu() else { return };
-    let (scene, camera, settings) = open("projects/sample/sample.lightpaint");
-    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
-    let accepted: Vec<usize> = (2..=8)
-        .filter(|&order| {
-            ShadowSettings {
-                order,
-                per_vertex: true,
-                ..ShadowSettings::default().every_pixel()
-            }
-            .gpu_problems()
-            .is_empty()
-        })
-        .collect();
-    assert_eq!(accepted, (2..=6).collect::<Vec<_>>());
-    for order in accepted {
-        let shadows = ShadowSettings {
-            order,
-            per_vertex: true,
-            ..ShadowSettings::default().every_pixel()
-        };
-        let frame = ShadowFrame {
-            baked_indirect: None,
-            scene: &scene,
-            camera: &camera,
-            settings: &settings,
-            shadows: &shadows,
-            blockers: &blockers,
-            width: 64,
-            height: 36,
-        };
-        render_logsh_image(&gpu, &frame, 1).unwrap_or_else(|e| panic!("order {order}: {e}"));
+    for brdf in [BrdfShading::Separate, BrdfShading::Product] {
+        let (per_pixel, per_vertex) = (render(false, brdf), render(true, brdf));
+        save_for_review(&format!("studio-per-vertex-{brdf:?}"), &per_vertex);
+        let close = per_pixel
+            .pixels()
+            .zip(per_vertex.pixels())
+            .filter(|(a, b)| (0..3).all(|c| a[c].abs_diff(b[c]) <= 4))
+            .count();
+        let share = close as f64 / (240.0 * 135.0);
+        eprintln!("{brdf:?}: {:.2} % of pixels within 4/255", 100.0 * share);
+        assert!(share > 0.97, "{brdf:?}: {share}");
     }
 }

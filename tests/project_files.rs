@@ -229,7 +229,11 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     assert_eq!(document.scene.lights, current.scene.lights);
     // Formats before 4 drew no baked indirect light and shadowed every light through the
     // SH, so they keep both; formats before 7 shaded every pixel.
-    let every_pixel = current.settings.shadows.every_pixel();
+    let every_pixel = if version < 7 {
+        current.settings.shadows.every_pixel()
+    } else {
+        current.settings.shadows
+    };
     let expected = if version < 4 {
         lightpaint::render::RenderSettings {
             baked_indirect: false,
@@ -316,6 +320,31 @@ fn a_format_6_project_opens_shading_every_pixel() {
     assert_eq!(document.settings.shadows.shading_downsample, 1);
     let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
     assert_eq!(current.settings.shadows.shading_downsample, 2);
+}
+
+/// Format 7 shaded each light's exact BRDF through its visibility, as the default does.
+#[test]
+fn a_format_7_project_opens_with_the_brdf_outside_the_sh() {
+    let document = open_old_fixture(7);
+    assert_eq!(
+        document.settings.shadows.brdf,
+        lightpaint::render::BrdfShading::Separate
+    );
+    assert_eq!(document.settings.shadows.shading_downsample, 2);
+}
+
+/// The BRDF variant is saved and reopened.
+#[test]
+fn the_brdf_variant_is_saved_and_reopened() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut document = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    for brdf in lightpaint::render::BrdfShading::ALL {
+        document.settings.shadows.brdf = brdf;
+        let saved = dir.path().join("brdf.lightpaint");
+        document.save(&saved).expect("save");
+        let reopened = lightpaint::project::Document::open(&saved).expect("reopen");
+        assert_eq!(reopened.settings.shadows.brdf, brdf);
+    }
 }
 
 /// Hidden objects are saved by index and reopen hidden; an index the scene does not have

@@ -9,7 +9,7 @@ use glam::{DVec3, Vec3};
 use lightpaint::blockers::Sphere;
 use lightpaint::render::cpu::{self, ShadingInputs, SurfacePoint};
 use lightpaint::render::gpu_types::GpuLight;
-use lightpaint::render::{LightPaths, ShadowSettings};
+use lightpaint::render::{BrdfShading, LightPaths, ShadowSettings};
 use lightpaint::scene::{Light, LightKind};
 use lightpaint::sh::ExpMethod;
 
@@ -154,17 +154,27 @@ fn white_furnace_shades_to_one() {
             ..white_floor_point(DVec3::ZERO)
         };
         for order in [2, 3, 4, 8] {
-            let settings = ShadowSettings { order, ..sh_path() };
-            let inputs = ShadingInputs {
-                lights: &[],
-                environment_irradiance: &irradiance,
-                blockers: &[],
-                terrain: None,
-                settings: &settings,
-                eye: DVec3::new(0.0, 5.0, 0.0),
-            };
-            let radiance = cpu::shadowed_radiance(&p, &inputs);
-            assert!((radiance - DVec3::ONE).abs().max_element() < 1e-6, "{radiance}");
+            // The product's diffuse lobe against a uniform environment is exact too: the
+            // constant visibility times the lobe is the lobe, whose integral is 1.
+            for brdf in [BrdfShading::Separate, BrdfShading::Product] {
+                let settings = ShadowSettings {
+                    order,
+                    ..with_brdf(brdf)
+                };
+                let inputs = ShadingInputs {
+                    lights: &[],
+                    environment_irradiance: &irradiance,
+                    blockers: &[],
+                    terrain: None,
+                    settings: &settings,
+                    eye: DVec3::new(0.0, 5.0, 0.0),
+                };
+                let radiance = cpu::shadowed_radiance(&p, &inputs);
+                assert!(
+                    (radiance - DVec3::ONE).abs().max_element() < 1e-6,
+                    "{brdf:?}: {radiance}"
+                );
+            }
         }
     }
 }
@@ -206,10 +216,14 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
         light_paths: LightPaths::Exact,
         ..sh_path()
     };
-    for ((x, z), settings) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.6)]
-        .into_iter()
-        .flat_map(|at| [(at, sh_path()), (at, exact)])
-    {
+    for ((x, z), settings) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.6)].into_iter().flat_map(|at| {
+        [
+            (at, sh_path()),
+            (at, exact),
+            (at, with_brdf(BrdfShading::Log)),
+            (at, with_brdf(BrdfShading::Product)),
+        ]
+    }) {
         let p = white_floor_point(DVec3::new(x, 0.0, z));
         let moved_p = SurfacePoint {
             position: p.position + shift.as_dvec3(),
@@ -256,13 +270,92 @@ fn permuting_blockers_changes_nothing() {
     reversed.reverse();
     let lights = [light(LightKind::Point, Vec3::new(0.3, 3.0, 0.2), 9.0)];
     for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
+        for brdf in BrdfShading::ALL {
+            let settings = ShadowSettings {
+                exp: method,
+                ..with_brdf(brdf)
+            };
+            let p = white_floor_point(DVec3::new(0.2, 0.0, 0.1));
+            let a = shade(&p, &lights, &blockers, &settings);
+            let b = shade(&p, &lights, &reversed, &settings);
+            assert!((a - b).abs().max_element() < 1e-12, "{method:?} {brdf:?}: {a} vs {b}");
+        }
+    }
+}
+
+fn with_brdf(brdf: BrdfShading) -> ShadowSettings {
+    ShadowSettings { brdf, ..sh_path() }
+}
+
+/// The scene of `a_blocker_darkens_the_point_below_by_its_cap_exponential`, where every
+/// function is zonal about the receiver's normal: with the log-BRDF the light reads
+/// exp(ln ε·cap + ln max(cos θ/π, ε)) straight up, exponentiated exactly, computed here
+/// from the functions themselves (`common::zonal_exp`).
+#[test]
+fn the_log_brdf_shades_through_the_exponential_of_the_summed_logs() {
+    let blocker = Sphere {
+        center: Vec3::new(0.0, 1.5, 0.0),
+        radius_m: 0.3,
+    };
+    // 9 cd at 3 m: irradiance 1.
+    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
+    let p = white_floor_point(DVec3::ZERO);
+    let ln_epsilon = 0.1f64.ln();
+    let c = (1.0f64 - 0.2 * 0.2).sqrt();
+    let kink = PI * 0.1;
+    let log_diffuse = |t: f64| {
+        if t > 0.0 {
+            (t / PI).ln().max(ln_epsilon)
+        } else {
+            ln_epsilon
+        }
+    };
+    for order in [3, 4, 6] {
+        let f = common::zonal_projection(
+            order,
+            |t| log_diffuse(t) + if t > c { ln_epsilon } else { 0.0 },
+            &[(-1.0, 0.0), (0.0, kink), (kink, c), (c, 1.0)],
+        );
+        let expected = common::zonal_value(&common::zonal_exp(&f), 1.0);
+        assert!(expected > 0.0 && expected < 0.99 / PI, "not clamped: {expected}");
         let settings = ShadowSettings {
-            exp: method,
-            ..sh_path()
+            order,
+            exp: ExpMethod::Reference,
+            ..with_brdf(BrdfShading::Log)
         };
-        let p = white_floor_point(DVec3::new(0.2, 0.0, 0.1));
-        let a = shade(&p, &lights, &blockers, &settings);
-        let b = shade(&p, &lights, &reversed, &settings);
-        assert!((a - b).abs().max_element() < 1e-12, "{method:?}: {a} vs {b}");
+        let radiance = shade(&p, &lights, &[blocker], &settings).x;
+        assert!(
+            (radiance - expected).abs() < 1e-6,
+            "order {order}: {radiance} vs {expected}"
+        );
+    }
+}
+
+/// As above with the BRDF by product: the light reads (exp(ln ε·cap) ∗ cos⁺/π) straight up,
+/// both factors and their product computed here from the functions.
+#[test]
+fn the_product_brdf_shades_through_the_product_of_visibility_and_cosine() {
+    let blocker = Sphere {
+        center: Vec3::new(0.0, 1.5, 0.0),
+        radius_m: 0.3,
+    };
+    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
+    let p = white_floor_point(DVec3::ZERO);
+    let c = (1.0f64 - 0.2 * 0.2).sqrt();
+    for order in [3, 4, 6] {
+        let visibility = common::zonal_exp_reference(order, c, 0.1f64.ln());
+        let cosine = common::zonal_projection(order, |t| t / PI, &[(0.0, 1.0)]);
+        let expected = common::zonal_value(&common::zonal_product(&visibility, &cosine), 1.0);
+        assert!(expected > 0.0 && expected < 0.99 / PI, "not clamped: {expected}");
+        let settings = ShadowSettings {
+            order,
+            exp: ExpMethod::Reference,
+            ..with_brdf(BrdfShading::Product)
+        };
+        let radiance = shade(&p, &lights, &[blocker], &settings).x;
+        assert!(
+            (radiance - expected).abs() < 1e-6,
+            "order {order}: {radiance} vs {expected}"
+        );
     }
 }

@@ -75,6 +75,46 @@ fn the_shaded_pixels_choice_is_saved() {
     harness.get_by_label("every pixel").click();
     harness.run();
     assert!(harness.state().has_unsaved_changes(), "the choice is a change");
+    wait_for_new_shaders(&mut harness);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert_eq!(reopened.settings.shadows.shading_downsample, 1);
+}
+
+/// The BRDF carried in the SH, chosen in the Shadows section, changes the drawn frame once
+/// its pipelines compile, rules out per-vertex shading while it is the log-BRDF, and is
+/// saved into the project.
+#[test]
+fn the_brdf_choice_is_drawn_and_saved() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let before = harness.render().expect("render");
+    scroll_and_click(&mut harness, "BRDF");
+    harness.get_by_label("log-BRDF in the SH").click();
+    harness.run();
+    assert!(harness.state().has_unsaved_changes(), "the choice is a change");
+    wait_for_new_shaders(&mut harness);
+    let after = harness.render().expect("render");
+    let (viewport, ppp) = (harness.state().viewport_rect(), harness.ctx.pixels_per_point());
+    assert!(
+        viewport_pixels_differing(&before, &after, viewport, ppp) > 100,
+        "the log-BRDF shades differently"
+    );
+    // Per-vertex shading cannot carry the log-BRDF: its checkbox is disabled.
+    scroll_and_click(&mut harness, "per vertex");
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert_eq!(reopened.settings.shadows.brdf, lightpaint::render::BrdfShading::Log);
+    assert!(!reopened.settings.shadows.per_vertex, "per vertex stayed off");
+}
+
+/// Runs frames until the viewport's new pipelines have compiled (at most ~12 s).
+fn wait_for_new_shaders(harness: &mut Harness<'_, EditorApp>) {
     for _ in 0..600 {
         if !harness.state().is_compiling_shaders() {
             break;
@@ -83,13 +123,8 @@ fn the_shaded_pixels_choice_is_saved() {
         harness.run();
     }
     assert!(!harness.state().is_compiling_shaders(), "the new pipelines compiled");
-    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
-    harness.run();
-    let reopened = Document::open(&project).unwrap();
-    assert_eq!(reopened.settings.shadows.shading_downsample, 1);
 }
 
-/// Mean Rec. 709 luma (sRGB values) of the image within `radius` of `centre`.
 /// The bake runs in the background: the editor keeps drawing frames while it runs, shows
 /// its progress, and strokes read the baked maps once it is done.
 #[test]

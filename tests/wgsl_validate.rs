@@ -1,8 +1,8 @@
 //! Every WGSL module the renderer can create parses and validates with naga, without a GPU:
 //! the raster module and the log-SH module at every real-time order and exponentiation
-//! method.
+//! method, and with each BRDF-in-SH variant.
 
-use lightpaint::render::shaders;
+use lightpaint::render::{BrdfShading, shaders};
 use lightpaint::sh::ExpMethod;
 
 fn validate(label: &str, source: &str) {
@@ -32,8 +32,22 @@ fn logsh_modules_validate_at_every_order_and_method() {
         for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {
             validate(
                 &format!("logsh order {order} {method:?}"),
-                &shaders::logsh_source(order, method),
+                &shaders::logsh_source(order, method, BrdfShading::Separate),
             );
+        }
+    }
+}
+
+#[test]
+fn logsh_modules_validate_with_the_brdf_in_the_sh_at_every_order() {
+    for order in 2..=lightpaint::sh::MAX_REALTIME_ORDER {
+        for brdf in [BrdfShading::Log, BrdfShading::Product] {
+            for method in [ExpMethod::Hyb, ExpMethod::Ps(6)] {
+                validate(
+                    &format!("logsh order {order} {method:?} {brdf:?}"),
+                    &shaders::logsh_source(order, method, brdf),
+                );
+            }
         }
     }
 }

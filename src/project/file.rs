@@ -13,7 +13,7 @@ use crate::render::RenderSettings;
 use crate::scene::{Light, OrbitCamera, TerrainSpec};
 
 /// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 7;
+pub const FORMAT_VERSION: u64 = 8;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";

@@ -21,6 +21,8 @@
 //!   renamed in the editor); format 5 showed every object under its glTF name.
 //! - 7: `render.shadows.shading_downsample` (reduced-resolution shading); format 6 shaded
 //!   every pixel, so 1.
+//! - 8: `render.shadows.brdf` (the BRDF carried in the SH or not); format 7 shaded each
+//!   light's exact BRDF through its visibility, which is what its absence means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -48,6 +50,16 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 7 {
         value = v6_to_v7(value);
+    }
+    if version < 8 {
+        value = v7_to_v8(value);
+    }
+    value
+}
+
+fn v7_to_v8(mut value: Value) -> Value {
+    if let Some(object) = value.as_object_mut() {
+        object.insert("format_version".into(), Value::from(8));
     }
     value
 }

@@ -7,7 +7,8 @@
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
 //! - visibility G = exp*(F) by the chosen [`ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
-//!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1), where V̄ is the mean of G over
+//!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
+//!   [`super::BrdfShading::Separate`]; the BRDF-in-SH variants are in `cpu_lobes`), where V̄ is the mean of G over
 //!   the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d) with w_0 = 1 and
 //!   w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap (s = sin of its
 //!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d). Lights the
@@ -23,6 +24,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::ShadowSettings;
+use super::cpu_lobes::{direct_lobes, environment_through, light_through, lobes_from_log_visibility};
 use super::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
@@ -102,15 +104,8 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
 
 /// Unshadowed radiance toward `eye` from one light (`direct_radiance` in scene.wgsl).
 pub fn direct_radiance(s: &SurfacePoint, inc: &Incidence, eye: DVec3) -> DVec3 {
-    let n_dot_l = s.normal.dot(inc.to_light);
-    if n_dot_l <= 0.0 {
-        return DVec3::ZERO;
-    }
-    let to_eye = (eye - s.position).normalize_or_zero();
-    let mirrored = -to_eye - 2.0 * s.normal.dot(-to_eye) * s.normal;
-    let cos_mirror = mirrored.dot(inc.to_light).max(1e-8);
-    let glossy = (s.phong_exponent + 1.0) / (2.0 * PI) * (s.phong_exponent * cos_mirror.log2()).exp2();
-    inc.irradiance * (s.k_d / PI * n_dot_l + s.k_s * glossy)
+    let (diffuse, glossy) = direct_lobes(s, inc, eye);
+    inc.irradiance * (s.k_d * diffuse + s.k_s * glossy)
 }
 
 /// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl).
@@ -203,18 +198,8 @@ pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
 /// Clamped-cosine average of `g` about `n`: ⟨G, max(n·ω, 0)/π⟩ (1 when unoccluded).
 pub fn visibility_cosine(g: &[f64], n: DVec3) -> f64 {
     let order = sh::order_of(g.len()).unwrap_or(0);
-    let cosine = sh::rotate_zh(&clamped_cosine_zh(order), n);
+    let cosine = sh::rotate_zh(&sh::phong_lobe_zh(order, 1.0), n);
     g.iter().zip(cosine).map(|(a, b)| a * b).sum()
-}
-
-/// `sh::clamped_cosine_zh`, computed once per order (its quadrature is costly per pixel).
-fn clamped_cosine_zh(order: usize) -> Vec<f64> {
-    static CACHE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
-    let cache = CACHE.get_or_init(|| (0..=16).map(sh::clamped_cosine_zh).collect());
-    cache
-        .get(order)
-        .cloned()
-        .unwrap_or_else(|| sh::clamped_cosine_zh(order))
 }
 
 /// What shades a frame besides the surface: lights, environment, blockers, settings.
@@ -232,29 +217,35 @@ pub struct ShadingInputs<'a> {
 
 /// Diffuse environment light at `s` (`environment_radiance` in scene.wgsl).
 pub fn environment_radiance(s: &SurfacePoint, irradiance_sh: &[[f32; 4]; 9]) -> DVec3 {
-    let y = sh::basis(3, s.normal);
+    s.k_d / PI * environment_irradiance_at(s.normal, irradiance_sh)
+}
+
+/// The environment's irradiance on a plane of normal `n`, clamped at 0 against ringing.
+pub fn environment_irradiance_at(n: DVec3, irradiance_sh: &[[f32; 4]; 9]) -> DVec3 {
+    let y = sh::basis(3, n);
     let e = irradiance_sh
         .iter()
         .zip(&y)
         .fold(DVec3::ZERO, |acc, (c, yi)| acc + v3(*c) * *yi);
-    s.k_d / PI * e.max(DVec3::ZERO)
+    e.max(DVec3::ZERO)
 }
 
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
 pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
-    let f = scene_log_visibility(inputs.settings, inputs.blockers, inputs.terrain, s.position, s.normal);
-    let g = exp_for_shading(inputs.settings.exp, &f);
-    let environment_visibility = visibility_cosine(&g, s.normal).clamp(0.0, 1.0);
-    let mut radiance = s.emissive + environment_radiance(s, inputs.environment_irradiance) * environment_visibility;
+    let settings = inputs.settings;
+    let f = scene_log_visibility(settings, inputs.blockers, inputs.terrain, s.position, s.normal);
+    let lobes = lobes_from_log_visibility(settings, s, inputs.eye, &f, |f| exp_for_shading(settings.exp, f));
+    let mut radiance = s.emissive + environment_through(settings, s, inputs.environment_irradiance, &lobes);
     for light in inputs.lights {
         let inc = incidence(light, s.position);
         let unshadowed = direct_radiance(s, &inc, inputs.eye);
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        let visibility = exact_visibility(s, &inc, inputs.settings, inputs.blockers, inputs.terrain)
-            .unwrap_or_else(|| visibility_toward(&g, inc.to_light, inc.cap_ratio).clamp(0.0, 1.0));
-        radiance += unshadowed * visibility;
+        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain) {
+            Some(visibility) => unshadowed * visibility,
+            None => light_through(settings, s, &inc, inputs.eye, &lobes),
+        };
     }
     radiance
 }

@@ -11,13 +11,14 @@ use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::pipeline::{RenderTarget, SceneLayouts, depth_test, two_sided_triangles};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
-use super::{ShadowSettings, shaders, wgsl_sh};
+use super::{BrdfShading, ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
 
 /// Pipelines drawing a scene with log-SH shadows at one order and method.
 pub struct LogShPipeline {
     pub order: usize,
     pub exp: ExpMethod,
+    pub brdf: BrdfShading,
     pub samples: u32,
     /// Whether the exact small-light path is compiled in.
     pub exact_light_path: bool,
@@ -99,7 +100,7 @@ impl LogShPipeline {
         exact_light_path: bool,
     ) -> LogShPipeline {
         let shadow_layout = shadow_layout(device);
-        let source = shaders::logsh_source(settings.order, settings.exp);
+        let source = shaders::logsh_source(settings.order, settings.exp, settings.brdf);
         let module = shaders::create_module(device, "log-SH shadows", &source);
         let variant = Variant {
             samples,
@@ -134,6 +135,7 @@ impl LogShPipeline {
         LogShPipeline {
             order: settings.order,
             exp: settings.exp,
+            brdf: settings.brdf,
             samples,
             exact_light_path,
             depth_prepass: make(Stage::DepthOnly),
@@ -144,12 +146,13 @@ impl LogShPipeline {
         }
     }
 
-    /// Whether this pipeline was built for `settings`' order, method and shading
+    /// Whether this pipeline was built for `settings`' order, method, BRDF and shading
     /// resolution, and with the exact light path if `exact_light_path`.
     pub fn matches(&self, settings: &ShadowSettings, exact_light_path: bool) -> bool {
         self.exact_light_path == exact_light_path
             && self.order == settings.order
             && self.exp == settings.exp
+            && self.brdf == settings.brdf
             && self.shading_downsample() == settings.shading_downsample
     }
 
@@ -322,7 +325,7 @@ pub fn surface_pipelines(
     shadow_layout: &wgpu::BindGroupLayout,
 ) -> Vec<wgpu::RenderPipeline> {
     // Any order and method: fs_surface uses no SH.
-    let source = shaders::logsh_source(2, ExpMethod::Dc);
+    let source = shaders::logsh_source(2, ExpMethod::Dc, BrdfShading::Separate);
     let module = shaders::create_module(device, "surface channels", &source);
     (0..SURFACE_CHANNELS)
         .map(|channel| {

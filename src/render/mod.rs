@@ -7,6 +7,7 @@ pub mod blocker_groups;
 mod color;
 mod context;
 pub mod cpu;
+pub mod cpu_lobes;
 mod gpu_blockers;
 mod gpu_scene;
 mod gpu_terrain;
@@ -20,6 +21,7 @@ mod pipeline;
 pub mod reduced_shading;
 pub mod shaders;
 mod shadow_settings;
+pub mod wgsl_lobes;
 pub mod wgsl_sh;
 pub mod wgsl_terrain;
 
@@ -34,7 +36,7 @@ pub use offscreen::{
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{
-    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, LightPaths, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, ShadowSettings,
+    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, LightPaths, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, ShadowSettings,
     TerrainShading, exact_path_possible, light_path_at, parse_exp_method,
 };
 

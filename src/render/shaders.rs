@@ -4,6 +4,7 @@
 //! takes the SH code generated for its order and method (`wgsl_sh`) and the terrain's
 //! (`wgsl_terrain`, then `terrain.wgsl`).
 
+use super::BrdfShading;
 use crate::sh::ExpMethod;
 
 pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
@@ -31,10 +32,10 @@ pub fn heat_map_source() -> String {
 }
 
 /// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
-/// form), with the reduced-resolution entry points and the per-vertex ones where the
-/// order allows them.
-pub fn logsh_source(order: usize, method: ExpMethod) -> String {
-    let generated = super::wgsl_sh::sh_module(order, method);
+/// form) and the `brdf` variant, with the reduced-resolution entry points and the
+/// per-vertex ones where the order allows them.
+pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
+    let generated = super::wgsl_sh::sh_module(order, method) + &super::wgsl_lobes::lobes_module(order, method, brdf);
     let per_vertex = if super::wgsl_sh::supports_per_vertex(order) {
         LOGSH_PER_VERTEX
     } else {

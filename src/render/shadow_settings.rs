@@ -36,6 +36,9 @@ pub struct ShadowSettings {
     /// [`MAX_SHADING_DOWNSAMPLE`]. Per-vertex shading ignores it (project format 7).
     #[serde(default = "default_shading_downsample")]
     pub shading_downsample: u32,
+    /// How each light's BRDF meets the visibility (project format 8).
+    #[serde(default)]
+    pub brdf: BrdfShading,
 }
 
 /// Half resolution along each side: a quarter of the shading cost, and the lighting it
@@ -85,6 +88,46 @@ pub enum LightPaths {
     Exact,
 }
 
+/// How the BRDF meets the visibility SH for the lights that take the SH path (lights on the
+/// exact path always shade their exact BRDF times their exact visibility).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BrdfShading {
+    /// Each light's exact unshadowed BRDF times the visibility averaged over the light
+    /// (design.md §4b: the SH never carry the cosine, so grazing light does not ring).
+    #[default]
+    Separate,
+    /// Ren et al.'s log-BRDF: the diffuse and Phong lobes' logs (design.md §4) added to the
+    /// log-visibility before exponentiating, one exponentiation per lobe; each light reads
+    /// the product averaged over its cap. Per-pixel and reduced shading only.
+    Log,
+    /// The visibility SH times each lobe's SH by the truncated SH product after
+    /// exponentiating; each light reads the product averaged over its cap.
+    Product,
+}
+
+impl BrdfShading {
+    pub const ALL: [BrdfShading; 3] = [BrdfShading::Separate, BrdfShading::Log, BrdfShading::Product];
+
+    /// The name the CLI and the inspector use.
+    pub fn name(self) -> &'static str {
+        match self {
+            BrdfShading::Separate => "separate",
+            BrdfShading::Log => "log",
+            BrdfShading::Product => "product",
+        }
+    }
+
+    /// Parses [`Self::name`].
+    pub fn parse(text: &str) -> Result<BrdfShading, String> {
+        let lower = text.trim().to_ascii_lowercase();
+        BrdfShading::ALL
+            .into_iter()
+            .find(|b| b.name() == lower)
+            .ok_or_else(|| format!("expected separate, log or product, got '{text}'"))
+    }
+}
+
 /// In [`LightPaths::Auto`], lights that look smaller than this (angular radius, degrees)
 /// take the exact path: §4b of design.md measures the SH path's penumbra error at 5–10 %
 /// of the unshadowed light for a 40° light and far worse below, while above it the SH
@@ -125,6 +168,7 @@ impl Default for ShadowSettings {
             light_paths: LightPaths::Auto,
             terrain: TerrainShading::default(),
             shading_downsample: default_shading_downsample(),
+            brdf: BrdfShading::Separate,
         }
     }
 }
@@ -167,6 +211,11 @@ impl ShadowSettings {
                 "per-vertex shading supports orders up to 6, not {}",
                 self.order
             ));
+        }
+        if self.per_vertex && self.brdf == BrdfShading::Log {
+            problems.push(
+                "the log-BRDF exponentiates per pixel: use it without per-vertex shading, or the product BRDF".into(),
+            );
         }
         if let ExpMethod::Ps(terms) = self.exp
             && !(1..=32).contains(&terms)

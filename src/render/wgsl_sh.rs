@@ -289,7 +289,7 @@ fn helpers(order: usize) -> String {
 
 /// `sh_product(a, b)` or, with `square`, `sh_square(a)`: (a∗b)_i = Σ_jk Γ_ijk a_j b_k with
 /// the symmetric pairs (j, k), (k, j) merged.
-fn product_fn(order: usize, square: bool) -> String {
+pub(super) fn product_fn(order: usize, square: bool) -> String {
     let n = sh::coefficient_count(order);
     let gaunt = sh::gaunt(order);
     // Per output i: Σ over j ≤ k of weight · (a_j b_k + a_k b_j) (or a_j a_k when squaring).

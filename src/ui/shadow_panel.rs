@@ -1,9 +1,9 @@
-//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, the
-//! shading resolution and the terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
+//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, how the
+//! BRDF meets the visibility, the shading resolution and the terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
 //! and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
-use crate::render::{LightPaths, RenderSettings};
+use crate::render::{BrdfShading, LightPaths, RenderSettings};
 use crate::scene::Scene;
 use crate::sh::ExpMethod;
 
@@ -28,9 +28,11 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             ui.checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d");
             ui.end_row();
             let per_vertex_fits = crate::render::wgsl_sh::supports_per_vertex(settings.order);
-            ui.add_enabled_ui(per_vertex_fits, |ui| {
+            // The log-BRDF exponentiates per pixel (ShadowSettings::problems).
+            ui.add_enabled_ui(per_vertex_fits && settings.brdf != BrdfShading::Log, |ui| {
                 ui.checkbox(&mut settings.per_vertex, "per vertex").on_hover_text(
-                    "Exponentiate at the vertices and interpolate: faster on dense meshes (orders ≤ 6).",
+                    "Exponentiate at the vertices and interpolate: faster on dense meshes (orders ≤ 6; \
+                     not with the log-BRDF).",
                 );
             });
             if !per_vertex_fits {
@@ -59,6 +61,24 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                     ui.selectable_value(&mut settings.exp, method, method_label(method));
                 }
             });
+        egui::ComboBox::from_label("BRDF")
+            .selected_text(brdf_label(settings.brdf))
+            .show_ui(ui, |ui| {
+                for brdf in BrdfShading::ALL {
+                    let allowed = brdf != BrdfShading::Log || !settings.per_vertex;
+                    ui.add_enabled_ui(allowed, |ui| {
+                        ui.selectable_value(&mut settings.brdf, brdf, brdf_label(brdf));
+                    });
+                }
+            })
+            .response
+            .on_hover_text(
+                "Separate: each light's exact diffuse and Phong shading times its visibility. \
+                 Log-BRDF and product carry the BRDF in the SH with the visibility (Ren et al.): \
+                 the shadow follows the cosine across the light, at the cost of band-limited \
+                 shading (the study measures both). Highlights sharper than the order carries \
+                 stay exact. The log-BRDF needs per-pixel shading.",
+            );
         egui::ComboBox::from_label("shaded pixels")
             .selected_text(downsample_label(settings.shading_downsample))
             .show_ui(ui, |ui| {
@@ -125,6 +145,14 @@ fn method_label(method: ExpMethod) -> String {
         ExpMethod::Hyb => "hybrid (default)".into(),
         ExpMethod::Ps(terms) => format!("power series ({terms} terms)"),
         ExpMethod::Reference => "reference (CPU)".into(),
+    }
+}
+
+fn brdf_label(brdf: BrdfShading) -> &'static str {
+    match brdf {
+        BrdfShading::Separate => "separate (default)",
+        BrdfShading::Log => "log-BRDF in the SH",
+        BrdfShading::Product => "by SH product",
     }
 }
 

@@ -66,35 +66,68 @@ pub mod editor;
 pub mod scenes;
 
 /// exp(M_f)·1 of a zonal log-visibility (ln ε inside a cap of cos half-angle `c` about
-/// +z), computed without the crate: f's order-n zonal projection f_l = 2π∫ f y_l dt, the
-/// Galerkin matrix M_ab = 2π∫ f_n y_a y_b dt of the m = 0 Legendre basis (both by a fine
-/// midpoint rule), exponentiated by its power series to convergence. Returns the zonal
-/// coefficients g_l.
+/// +z), computed without the crate (see [`zonal_exp`]). Returns the zonal coefficients g_l.
 pub fn zonal_exp_reference(order: usize, c: f64, ln_epsilon: f64) -> Vec<f64> {
-    let steps = 200_000;
-    let dt = 2.0 / steps as f64;
-    let y0 = |l: usize, t: f64| {
-        let mut p = [1.0, t];
-        for k in 1..l {
-            let kf = k as f64;
-            p = [p[1], ((2.0 * kf + 1.0) * t * p[1] - kf * p[0]) / (kf + 1.0)];
-        }
-        let value = if l == 0 { 1.0 } else { p[1] };
-        ((2 * l + 1) as f64 / (4.0 * std::f64::consts::PI)).sqrt() * value
-    };
-    let nodes: Vec<f64> = (0..steps).map(|i| -1.0 + (i as f64 + 0.5) * dt).collect();
     // The cap is [c, 1] in t: integrate over it alone, so the rule sees no discontinuity.
-    let cap_dt = (1.0 - c) / steps as f64;
-    let f: Vec<f64> = (0..order)
+    zonal_exp(&zonal_projection(order, |_| ln_epsilon, &[(c, 1.0)]))
+}
+
+const MIDPOINT_STEPS: usize = 200_000;
+
+/// y_l^0 at t = cos θ, by Bonnet's recurrence.
+pub fn zonal_basis(l: usize, t: f64) -> f64 {
+    let mut p = [1.0, t];
+    for k in 1..l {
+        let kf = k as f64;
+        p = [p[1], ((2.0 * kf + 1.0) * t * p[1] - kf * p[0]) / (kf + 1.0)];
+    }
+    let value = if l == 0 { 1.0 } else { p[1] };
+    ((2 * l + 1) as f64 / (4.0 * std::f64::consts::PI)).sqrt() * value
+}
+
+/// The order-`order` zonal projection f_l = 2π ∫ f(t) y_l^0(t) dt of a function of
+/// t = cos θ that is zero outside `panels` (t intervals), by a fine midpoint rule on each;
+/// put discontinuities at panel ends.
+pub fn zonal_projection(order: usize, f: impl Fn(f64) -> f64, panels: &[(f64, f64)]) -> Vec<f64> {
+    (0..order)
         .map(|l| {
-            (0..steps)
-                .map(|i| 2.0 * std::f64::consts::PI * ln_epsilon * y0(l, c + (i as f64 + 0.5) * cap_dt) * cap_dt)
+            panels
+                .iter()
+                .map(|&(a, b)| {
+                    let dt = (b - a) / MIDPOINT_STEPS as f64;
+                    (0..MIDPOINT_STEPS)
+                        .map(|i| {
+                            let t = a + (i as f64 + 0.5) * dt;
+                            2.0 * std::f64::consts::PI * f(t) * zonal_basis(l, t) * dt
+                        })
+                        .sum::<f64>()
+                })
                 .sum()
         })
-        .collect();
+        .collect()
+}
+
+/// A zonal SH vector's value at t = cos θ.
+pub fn zonal_value(g: &[f64], t: f64) -> f64 {
+    g.iter().enumerate().map(|(l, g)| g * zonal_basis(l, t)).sum()
+}
+
+/// The truncated product of two zonal vectors, (a∗b)_l = 2π ∫ a(t) b(t) y_l^0(t) dt
+/// (the product of zonal functions is zonal, so this is the SH product's m = 0 part).
+pub fn zonal_product(a: &[f64], b: &[f64]) -> Vec<f64> {
+    zonal_projection(a.len(), |t| zonal_value(a, t) * zonal_value(b, t), &[(-1.0, 1.0)])
+}
+
+/// exp(M_f)·1 of a zonal vector f without the crate: the Galerkin matrix
+/// M_ab = 2π ∫ f(t) y_a y_b dt of the m = 0 Legendre basis by a fine midpoint rule,
+/// exponentiated by its power series to convergence. Returns the zonal coefficients g_l.
+pub fn zonal_exp(f: &[f64]) -> Vec<f64> {
+    let order = f.len();
+    let dt = 2.0 / MIDPOINT_STEPS as f64;
     let mut m = vec![vec![0.0; order]; order];
-    for &t in &nodes {
-        let y: Vec<f64> = (0..order).map(|l| y0(l, t)).collect();
+    for i in 0..MIDPOINT_STEPS {
+        let t = -1.0 + (i as f64 + 0.5) * dt;
+        let y: Vec<f64> = (0..order).map(|l| zonal_basis(l, t)).collect();
         let f_n: f64 = f.iter().zip(&y).map(|(a, b)| a * b).sum();
         for a in 0..order {
             for b in 0..order {
