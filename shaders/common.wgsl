@@ -18,7 +18,8 @@ struct Frame {
     // Linear multiplier 2^EV applied before tone mapping.
     exposure: f32,
     light_count: u32,
-    _pad0: u32,
+    // The angle one pixel subtends at the image centre, 2 tan(yfov/2) / height (radians).
+    pixel_angle_rad: f32,
     _pad1: u32,
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
     // axes, polar axis +z (design.md §3).

@@ -54,17 +54,6 @@ fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> Low
     return out;
 }
 
-// The width (metres) of one full-resolution pixel seen at p, from the distance to the eye
-// and the projection's focal length (row y of view_proj has length 1/tan(fov_y / 2)
-// times a unit vector), so that it holds at triangle edges too, where screen-space
-// derivatives extrapolate.
-fn pixel_footprint_m(p: vec3<f32>, low_height: i32) -> f32 {
-    let vp = frame.view_proj;
-    let focal = length(vec3<f32>(vp[0][1], vp[1][1], vp[2][1]));
-    let full_height = f32(low_height) / upsample.full_to_low.y;
-    return distance(p, frame.camera_position.xyz) * 2.0 / (focal * full_height);
-}
-
 fn pow2(x: f32) -> f32 {
     return x * x;
 }
@@ -81,7 +70,7 @@ struct Upsampled {
 fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     let s = surface(in, front_facing);
     let last = vec2<i32>(textureDimensions(low_lighting)) - vec2<i32>(1);
-    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint_m(s.position, last.y + 1), 1e-6);
+    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
     // in.clip is the pixel centre in framebuffer pixels here; low-resolution texel centres
     // sit at integer + 0.5 in texel units.
     let at = in.clip.xy * upsample.full_to_low - vec2<f32>(0.5);

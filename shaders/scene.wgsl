@@ -135,6 +135,12 @@ fn surface(in: VertexOut, front_facing: bool) -> Surface {
     return s;
 }
 
+// The width (metres) of one pixel at p: its distance from the eye times the angle a pixel
+// subtends at the image centre (without the surface's slant).
+fn pixel_footprint(p: vec3<f32>) -> f32 {
+    return distance(frame.camera_position.xyz, p) * frame.pixel_angle_rad;
+}
+
 // The view direction mirrored about s's normal, the Phong lobe's axis.
 fn mirrored_view(s: Surface) -> vec3<f32> {
     return reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);

@@ -44,6 +44,11 @@ enum Command {
         /// without the stability and small-light suites.
         #[arg(long = "scene", value_parser = parse_sample)]
         scenes: Vec<lightpaint::samples::Sample>,
+        /// Only the settings whose label contains this (e.g. "brdf", "vertex", "-s"), with
+        /// the no-shadow baseline and the defaults, without the stability and small-light
+        /// suites.
+        #[arg(long)]
+        knobs: Option<String>,
     },
     /// Validate a project or scene file; print every problem found, exit 2 if there is one.
     Check {
@@ -290,7 +295,12 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Check { file }) => check(&file),
-        Some(Command::Study { quick, output, scenes }) => study(quick, output, scenes),
+        Some(Command::Study {
+            quick,
+            output,
+            scenes,
+            knobs,
+        }) => study(quick, output, scenes, knobs),
         Some(Command::Bake {
             file,
             order,
@@ -462,12 +472,18 @@ fn parse_sample(text: &str) -> Result<lightpaint::samples::Sample, String> {
         .ok_or_else(|| format!("expected sample, studio, interior, large or terrain, got '{text}'"))
 }
 
-fn study(quick: bool, output_dir: PathBuf, scenes: Vec<lightpaint::samples::Sample>) -> Result<(), CliError> {
+fn study(
+    quick: bool,
+    output_dir: PathBuf,
+    scenes: Vec<lightpaint::samples::Sample>,
+    knobs: Option<String>,
+) -> Result<(), CliError> {
     let gpu = GpuContext::headless()?;
     let options = lightpaint::study::StudyOptions {
         quick,
         output_dir,
         only_scenes: (!scenes.is_empty()).then_some(scenes),
+        only_knobs: knobs,
     };
     let started = std::time::Instant::now();
     let results = lightpaint::study::run_study(&gpu, &options, |line| say!("{line}"))?;

@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 
 use glam::{DVec3, Vec3, Vec4};
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
+use lightpaint::penumbra::{LightDisc, light_visibility};
 use lightpaint::project::Document;
 use lightpaint::render::{
     LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image, render_logsh_image,
@@ -182,13 +183,66 @@ fn the_f64_path_draws_the_exact_penumbra_of_a_ball() {
         let p = DVec3::new(k as f64 * 0.05, 0.0, 0.0);
         let offset = light - p;
         let d = offset.length();
-        let v = lightpaint::penumbra::light_visibility(p, DVec3::Y, offset / d, d, 0.5 / d, &ball, 0.0);
+        let disc = LightDisc {
+            to_light: offset / d,
+            distance_m: d,
+            cap_ratio: 0.5 / d,
+        };
+        let v = light_visibility(p, DVec3::Y, &disc, &ball, 0.0, 0.0);
         let expected = 1.0 - hidden_share(p, light, 0.5, DVec3::new(0.0, 1.0, 0.0), 0.3);
         assert!((v - expected).abs() < 3e-3, "x = {:.2}: {v} vs {expected}", p.x);
         assert!(v >= last - 1e-9, "visibility rises away from the ball");
         last = v;
     }
     assert!(last > 0.999, "far points see the whole light");
+}
+
+/// A point light's hard shadow is anti-aliased: along a line across the edge of a ball's
+/// shadow, the visibility ramps from 5 % to 95 % over about one pixel footprint, centred
+/// on the geometric edge (the cone from the light tangent to the ball, in closed form), and
+/// is exactly 0 and 1 a pixel and a half inside and outside it.
+#[test]
+fn a_point_lights_shadow_edge_ramps_over_about_one_pixel() {
+    let (centre, radius) = (DVec3::new(0.0, 1.0, 0.0), 0.3);
+    let ball = [Sphere {
+        center: centre.as_vec3(),
+        radius_m: radius as f32,
+    }];
+    let light = DVec3::new(0.0, 3.0, 0.0);
+    // The cone from the light tangent to the ball meets the floor at this radius.
+    let half_angle = (radius / (light - centre).length()).asin();
+    let edge = light.y * half_angle.tan();
+    let visibility = |x: f64, footprint: f64| {
+        let p = DVec3::new(x, 0.0, 0.0);
+        let offset = light - p;
+        let disc = LightDisc {
+            to_light: offset.normalize(),
+            distance_m: offset.length(),
+            cap_ratio: 0.0,
+        };
+        light_visibility(p, DVec3::Y, &disc, &ball, 0.0, footprint)
+    };
+    // Without a footprint the edge is a step.
+    assert_eq!(visibility(edge - 1e-4, 0.0), 0.0);
+    assert_eq!(visibility(edge + 1e-4, 0.0), 1.0);
+    for footprint in [0.004, 0.01, 0.03] {
+        let xs: Vec<f64> = (-60..=60).map(|k| edge + k as f64 * footprint / 20.0).collect();
+        let vs: Vec<f64> = xs.iter().map(|&x| visibility(x, footprint)).collect();
+        assert!(vs.windows(2).all(|w| w[1] >= w[0] - 1e-12), "monotonic across the edge");
+        let crossing = |level: f64| xs[vs.iter().position(|&v| v >= level).expect("crosses")];
+        let width = crossing(0.95) - crossing(0.05);
+        assert!(
+            (0.5 * footprint..=2.0 * footprint).contains(&width),
+            "footprint {footprint}: 5-95 % over {width}"
+        );
+        assert!(
+            (crossing(0.5) - edge).abs() <= 0.25 * footprint,
+            "footprint {footprint}: centred at {} vs the edge at {edge}",
+            crossing(0.5)
+        );
+        assert_eq!(visibility(edge - 1.5 * footprint, footprint), 0.0, "umbra stays dark");
+        assert_eq!(visibility(edge + 1.5 * footprint, footprint), 1.0, "lit stays lit");
+    }
 }
 
 /// Share of the light's cap, seen from p, whose rays meet the ball (a fine polar grid of

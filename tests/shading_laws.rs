@@ -56,6 +56,7 @@ fn shade(p: &SurfacePoint, lights: &[GpuLight], blockers: &[Sphere], settings: &
             terrain: None,
             settings,
             eye: DVec3::new(0.0, 5.0, 0.1),
+            pixel_angle_rad: 0.0,
         },
     )
 }
@@ -168,6 +169,7 @@ fn white_furnace_shades_to_one() {
                     terrain: None,
                     settings: &settings,
                     eye: DVec3::new(0.0, 5.0, 0.0),
+                    pixel_angle_rad: 0.0,
                 };
                 let radiance = cpu::shadowed_radiance(&p, &inputs);
                 assert!(
@@ -238,6 +240,7 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
                 terrain: None,
                 settings: &settings,
                 eye,
+                pixel_angle_rad: 0.0,
             },
         );
         let there = cpu::shadowed_radiance(
@@ -249,6 +252,7 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
                 terrain: None,
                 settings: &settings,
                 eye: eye + shift.as_dvec3(),
+                pixel_angle_rad: 0.0,
             },
         );
         // f32 positions moved by metres round at ~1e-7 relative.

@@ -53,6 +53,9 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
             .unwrap_or_else(|| panic!("a {knobs} row"))
     };
     let (none, default) = (find("no-shadows"), find("o4-hyb-e0.1"));
+    // The BRDF carried in the SH is measured beside the default separate shading.
+    find("o4-hyb-e0.1-log-brdf");
+    find("o4-hyb-e0.1-product-brdf");
     // Where the reference is in shadow, the log-SH shadows must bring the image closer to it
     // than no shadows at all.
     assert!(
@@ -112,4 +115,38 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
     assert!(table.contains("| 10,000 blockers |"), "{table}");
     assert!(!table.contains("**no**"), "every stability case holds: {table}");
     assert!(stdout.contains("study of"), "{stdout}");
+}
+
+/// `--knobs` measures only the settings it names, beside the baseline and the defaults,
+/// and skips the scene-independent suites.
+#[test]
+fn a_study_of_some_knobs_measures_them_beside_the_defaults() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::run_lightpaint(&[
+        OsStr::new("study"),
+        OsStr::new("--quick"),
+        OsStr::new("--knobs"),
+        OsStr::new("brdf"),
+        OsStr::new("-o"),
+        dir.path().as_os_str(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let rows = read_csv(&std::fs::read_to_string(dir.path().join("study.csv")).unwrap());
+    let mut knobs: Vec<&str> = rows.iter().map(|r| r["knobs"].as_str()).collect();
+    knobs.sort_unstable();
+    assert_eq!(
+        knobs,
+        [
+            "no-shadows",
+            "o4-hyb-e0.1",
+            "o4-hyb-e0.1-log-brdf",
+            "o4-hyb-e0.1-product-brdf"
+        ]
+    );
+    let table = std::fs::read_to_string(dir.path().join("study.md")).unwrap();
+    assert!(!table.contains("## Stability at the extremes"), "no suites: {table}");
 }

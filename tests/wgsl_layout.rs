@@ -54,6 +54,7 @@ fn frame_matches_wgsl() {
             ("camera_position", offset_of!(GpuFrame, camera_position)),
             ("exposure", offset_of!(GpuFrame, exposure)),
             ("light_count", offset_of!(GpuFrame, light_count)),
+            ("pixel_angle_rad", offset_of!(GpuFrame, pixel_angle_rad)),
             ("environment_irradiance", offset_of!(GpuFrame, environment_irradiance)),
         ],
     );

@@ -10,7 +10,9 @@
 //! The blockers skipped are the SH path's ([`Sphere::cap_from`]): those that contain the
 //! receiver, those with r/d under `min_cap_ratio`, and those below the tangent plane,
 //! faded by the same smoothstep; and, as depth now matters, those wholly beyond the
-//! light. `shaders/logsh.wgsl` (`exact_light_visibility`) is the f32 twin.
+//! light. `shaders/logsh.wgsl` (`exact_light_visibility`) is the f32 twin. Given the width
+//! of a pixel at the receiver, hard edges (point lights, and lights narrower than a pixel's
+//! worth of angle) are anti-aliased by widening the light's disc to it, per blocker.
 
 pub mod cap_overlap;
 
@@ -20,33 +22,47 @@ use glam::DVec3;
 
 use crate::blockers::Sphere;
 
-/// Visibility (0–1) from `p` (unit normal `n`) of a light in unit direction `to_light`,
-/// `light_distance_m` away (infinite for directional lights), whose disc has
-/// sin(angular radius) `cap_ratio`, through `blockers`.
+/// A light as one receiver sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightDisc {
+    /// Unit direction from the receiver toward the light.
+    pub to_light: DVec3,
+    /// Distance to the light (infinite for directional lights).
+    pub distance_m: f64,
+    /// sin of the angular radius of the light's disc (0 for point-like lights).
+    pub cap_ratio: f64,
+}
+
+/// Visibility (0–1) from `p` (unit normal `n`) of `light` through `blockers`.
+///
+/// `pixel_footprint_m`, the width of one pixel at `p` (0: none), anti-aliases hard edges:
+/// against a blocker at distance d the disc is taken at least footprint/(2d) wide, the
+/// angle over which one pixel's step across the receiver turns the blocker's direction,
+/// so a point light's shadow edge ramps over about one pixel instead of stepping.
 pub fn light_visibility(
     p: DVec3,
     n: DVec3,
-    to_light: DVec3,
-    light_distance_m: f64,
-    cap_ratio: f64,
+    light: &LightDisc,
     blockers: &[Sphere],
     min_cap_ratio: f64,
+    pixel_footprint_m: f64,
 ) -> f64 {
-    let light_rad = cap_ratio.clamp(0.0, 1.0).asin();
+    let light_rad = light.cap_ratio.clamp(0.0, 1.0).asin();
     let mut log_visibility = 0.0;
     for b in blockers {
         let Some(cap) = b.cap_from(p, n, min_cap_ratio) else {
             continue;
         };
-        if cap.distance_m - b.radius_m as f64 >= light_distance_m {
+        if cap.distance_m - b.radius_m as f64 >= light.distance_m {
             continue; // wholly beyond the light
         }
         let separation = cap
             .direction
-            .cross(to_light)
+            .cross(light.to_light)
             .length()
-            .atan2(cap.direction.dot(to_light));
-        let hidden = cap.horizon * hidden_fraction(light_rad, cap.ratio.asin(), separation);
+            .atan2(cap.direction.dot(light.to_light));
+        let disc_rad = light_rad.max(0.5 * pixel_footprint_m / cap.distance_m);
+        let hidden = cap.horizon * hidden_fraction(disc_rad, cap.ratio.asin(), separation);
         if hidden >= 1.0 {
             return 0.0;
         }
@@ -60,6 +76,15 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
+    /// A light straight up (+y) at 3 m with the disc of sin(angular radius) `cap_ratio`.
+    fn overhead(cap_ratio: f64) -> LightDisc {
+        LightDisc {
+            to_light: DVec3::Y,
+            distance_m: 3.0,
+            cap_ratio,
+        }
+    }
+
     #[test]
     fn a_blocker_behind_the_light_or_below_the_horizon_hides_nothing() {
         let ball = [Sphere {
@@ -68,7 +93,7 @@ mod tests {
         }];
         // The light at 3 m, the ball beyond it at 5 m.
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, DVec3::Y, 3.0, 0.1, &ball, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &ball, 0.0, 0.0),
             1.0
         );
         // A ball under the floor.
@@ -77,7 +102,7 @@ mod tests {
             radius_m: 0.5,
         }];
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, DVec3::Y, 3.0, 0.1, &under, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &under, 0.0, 0.0),
             1.0
         );
         // A ball between covering the whole light: nothing arrives, no light leaks.
@@ -86,7 +111,7 @@ mod tests {
             radius_m: 0.5,
         }];
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, DVec3::Y, 3.0, 0.05, &cover, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.05), &cover, 0.0, 0.0),
             0.0
         );
     }

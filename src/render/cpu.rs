@@ -213,6 +213,9 @@ pub struct ShadingInputs<'a> {
     pub terrain: Option<&'a TerrainShadow>,
     pub settings: &'a ShadowSettings,
     pub eye: DVec3,
+    /// The angle one pixel subtends (`gpu_types::pixel_angle_rad`): exact-path shadow edges
+    /// ramp over one pixel's width; 0 leaves them hard.
+    pub pixel_angle_rad: f64,
 }
 
 /// Diffuse environment light at `s` (`environment_radiance` in scene.wgsl).
@@ -242,7 +245,8 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain) {
+        let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
+        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
             Some(visibility) => unshadowed * visibility,
             None => light_through(settings, s, &inc, inputs.eye, &lobes),
         };
@@ -252,25 +256,32 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
 
 /// The visibility of the light seen as `inc` from `s` when the settings send it the
 /// exact way (`crate::penumbra`, times the share of its disc above the terrain's horizon);
-/// None when it takes the SH path.
+/// None when it takes the SH path. `pixel_footprint_m` anti-aliases hard blocker edges
+/// (`penumbra::light_visibility`; 0: none).
 pub fn exact_visibility(
     s: &SurfacePoint,
     inc: &Incidence,
     settings: &ShadowSettings,
     blockers: &[Sphere],
     terrain: Option<&TerrainShadow>,
+    pixel_footprint_m: f64,
 ) -> Option<f64> {
     settings.light_paths.is_exact(inc.cap_ratio).then(|| {
         let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
+        let light = crate::penumbra::LightDisc {
+            to_light: inc.to_light,
+            distance_m: inc.distance_m,
+            cap_ratio: inc.cap_ratio,
+        };
+        let min_cap_ratio = settings.min_cap_ratio as f64;
         above_terrain
             * crate::penumbra::light_visibility(
                 s.position,
                 s.normal,
-                inc.to_light,
-                inc.distance_m,
-                inc.cap_ratio,
+                &light,
                 blockers,
-                settings.min_cap_ratio as f64,
+                min_cap_ratio,
+                pixel_footprint_m,
             )
     })
 }

@@ -204,11 +204,11 @@ impl GpuScene {
         self.light_count = lights.len();
     }
 
-    /// Writes the per-frame constants for `camera` seen at `aspect` (width / height).
-    pub fn write_frame(&self, queue: &wgpu::Queue, camera: &Camera, aspect: f32, exposure_ev: f32) {
+    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
+    pub fn write_frame(&self, queue: &wgpu::Queue, camera: &Camera, size_px: [u32; 2], exposure_ev: f32) {
         let frame = GpuFrame::new(
             camera,
-            aspect,
+            size_px,
             exposure_ev,
             self.light_count,
             self.environment_irradiance,

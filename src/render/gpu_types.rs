@@ -43,26 +43,29 @@ pub struct GpuFrame {
     pub camera_position: [f32; 4],
     pub exposure: f32,
     pub light_count: u32,
-    pub _pad0: u32,
+    /// The angle one pixel subtends at the image centre (see [`pixel_angle_rad`]).
+    pub pixel_angle_rad: f32,
     pub _pad1: u32,
     /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
     pub environment_irradiance: [[f32; 4]; 9],
 }
 
 impl GpuFrame {
+    /// The frame of `camera` drawn into `size_px` (width, height) pixels.
     pub fn new(
         camera: &Camera,
-        aspect: f32,
+        size_px: [u32; 2],
         exposure_ev: f32,
         light_count: usize,
         environment_irradiance: [[f32; 4]; 9],
     ) -> GpuFrame {
+        let [width, height] = size_px.map(|v| v.max(1) as f32);
         GpuFrame {
-            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
+            view_proj: camera.view_projection(width / height).to_cols_array_2d(),
             camera_position: camera.position.extend(1.0).to_array(),
             exposure: exposure_ev.exp2(),
             light_count: light_count as u32,
-            _pad0: 0,
+            pixel_angle_rad: pixel_angle_rad(camera, size_px[1]) as f32,
             _pad1: 0,
             environment_irradiance,
         }
@@ -71,6 +74,13 @@ impl GpuFrame {
     pub fn view_projection(&self) -> Mat4 {
         Mat4::from_cols_array_2d(&self.view_proj)
     }
+}
+
+/// The angle (radians) one pixel subtends at the centre of an image `height_px` tall seen
+/// through `camera`: 2 tan(yfov/2) / height. Times a point's distance from the eye, it is
+/// the width of a pixel there (shaders: `pixel_footprint`).
+pub fn pixel_angle_rad(camera: &Camera, height_px: u32) -> f64 {
+    2.0 * (0.5 * camera.yfov_rad as f64).tan() / height_px.max(1) as f64
 }
 
 /// The environment's irradiance SH in the layout of `Frame::environment_irradiance`

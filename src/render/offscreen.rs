@@ -64,7 +64,7 @@ impl<'a> RasterRenderer<'a> {
         let pipeline = ScenePipeline::with_samples(&gpu.device, samples);
         let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
         let target = RenderTarget::with_samples(&gpu.device, width, height, samples);
-        gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, settings.exposure_ev);
+        gpu_scene.write_frame(&gpu.queue, camera, [width, height], settings.exposure_ev);
         Ok(RasterRenderer {
             gpu,
             pipeline,
@@ -123,10 +123,6 @@ impl ShadowFrame<'_> {
         }
         Ok(())
     }
-
-    fn aspect(&self) -> f32 {
-        self.width as f32 / self.height as f32
-    }
 }
 
 /// Renders a frame with log-SH shadows on the GPU, with `samples` (1 or 4) per pixel.
@@ -168,7 +164,12 @@ impl<'a> ShadowRenderer<'a> {
             frame.shadows,
         );
         let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
-        gpu_scene.write_frame(&gpu.queue, frame.camera, frame.aspect(), frame.settings.exposure_ev);
+        gpu_scene.write_frame(
+            &gpu.queue,
+            frame.camera,
+            [frame.width, frame.height],
+            frame.settings.exposure_ev,
+        );
         let visibility = if frame.shadows.per_vertex {
             pipeline.vertex_visibility(&gpu.device, &gpu_scene)
         } else {
@@ -226,7 +227,7 @@ pub fn capture_surfaces(
     let layouts = SceneLayouts::new(&gpu.device);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
-    gpu_scene.write_frame(&gpu.queue, camera, width as f32 / height as f32, 0.0);
+    gpu_scene.write_frame(&gpu.queue, camera, [width, height], 0.0);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
     let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], None, &ShadowSettings::default());
@@ -321,6 +322,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         terrain: terrain.as_ref(),
         settings: frame.shadows,
         eye: frame.camera.position.as_dvec3(),
+        pixel_angle_rad: super::gpu_types::pixel_angle_rad(frame.camera, frame.height),
     };
     let exposure = frame.settings.exposure_ev as f64;
     let background = frame.settings.background_srgb8;

@@ -113,11 +113,17 @@ impl<'a> DirectEstimate<'a> {
                 if unshadowed == DVec3::ZERO {
                     return None;
                 }
-                let visible =
-                    cpu::exact_visibility(s, &incidence, &self.settings, &self.blockers, self.terrain.as_ref())
-                        .unwrap_or_else(|| {
-                            cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
-                        });
+                let visible = cpu::exact_visibility(
+                    s,
+                    &incidence,
+                    &self.settings,
+                    &self.blockers,
+                    self.terrain.as_ref(),
+                    0.0,
+                )
+                .unwrap_or_else(|| {
+                    cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                });
                 let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
             })

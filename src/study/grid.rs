@@ -1,12 +1,12 @@
 //! The knob settings a study measures: every order and exponentiation method crossed
 //! (the CPU's exact exponential up to order 6),
-//! then one knob at a time around the defaults (ε, ratio attenuation, blocker count,
+//! then one knob at a time around the defaults (ε, ratio attenuation, the BRDF in the SH, blocker count,
 //! per-vertex shading, and on terrain the azimuth count and pyramid levels), plus no
 //! shadows at all as the baseline; and the defaults against the global-illumination
 //! reference, with and without the bake's indirect light.
 
 use crate::blockers::SphereBudget;
-use crate::render::ShadowSettings;
+use crate::render::{BrdfShading, ShadowSettings};
 use crate::sh::ExpMethod;
 
 /// One point of the grid.
@@ -40,6 +40,9 @@ impl Knobs {
         }
         if s.per_vertex {
             label.push_str("-vertex");
+        }
+        if s.brdf != crate::render::BrdfShading::Separate {
+            label.push_str(&format!("-{}-brdf", s.brdf.name()));
         }
         if let SphereBudget::Total(n) = self.blockers {
             label.push_str(&format!("-s{n}"));
@@ -131,6 +134,17 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget, terrain: bool) -> 
         grid.push(with(&|s| s.epsilon = epsilon));
     }
     grid.push(with(&|s| s.ratio_attenuation = true));
+    // The BRDF carried in the SH (Ren et al.'s log-BRDF and product) against the default
+    // separate shading, at the default order and at 8, which carries sharper lobes.
+    let brdf_orders: Vec<usize> = if quick { vec![4] } else { vec![4, 8] };
+    for order in brdf_orders {
+        for brdf in [BrdfShading::Log, BrdfShading::Product] {
+            grid.push(with(&|s| {
+                s.order = order;
+                s.brdf = brdf;
+            }));
+        }
+    }
     let per_vertex_orders: Vec<usize> = if quick { vec![4] } else { (2..=6).collect() };
     for order in per_vertex_orders {
         grid.push(with(&|s| {

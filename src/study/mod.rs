@@ -21,13 +21,13 @@ pub mod stability;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use crate::blockers::{BlockerSettings, fit_scene};
+use crate::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use crate::project::{Document, ProjectError};
 use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
 use crate::render::cpu::SurfacePoint;
 use crate::render::{
     BakedIndirect, GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer,
-    capture_surfaces, shade_surfaces,
+    ShadowSettings, capture_surfaces, shade_surfaces,
 };
 use crate::samples::Sample;
 use crate::scene::{Camera, Scene};
@@ -43,6 +43,9 @@ pub struct StudyOptions {
     /// Only these sample scenes, and without the scene-independent suites (stability,
     /// small lights); None: the scenes of `quick` or the full study, and every suite.
     pub only_scenes: Option<Vec<Sample>>,
+    /// Only the grid points whose label contains this (e.g. "brdf"), with the no-shadow
+    /// baseline and the defaults beside them, and without the scene-independent suites.
+    pub only_knobs: Option<String>,
 }
 
 impl StudyOptions {
@@ -52,6 +55,25 @@ impl StudyOptions {
             None if self.quick => vec![Sample::Sample],
             None => vec![Sample::Sample, Sample::Studio, Sample::Interior, Sample::Terrain],
         }
+    }
+
+    /// Whether the scene-independent suites (stability, small lights) run.
+    fn runs_suites(&self) -> bool {
+        self.only_scenes.is_none() && self.only_knobs.is_none()
+    }
+
+    /// Whether this study measures `knobs`, a point of the grid of a scene whose sphere
+    /// budget is `default_blockers`.
+    fn keeps(&self, knobs: &Knobs, default_blockers: SphereBudget) -> bool {
+        let Some(wanted) = &self.only_knobs else {
+            return true;
+        };
+        let defaults = Knobs {
+            shadows: Some(ShadowSettings::default().every_pixel()),
+            blockers: default_blockers,
+            lighting: Lighting::Direct,
+        };
+        knobs.shadows.is_none() || *knobs == defaults || knobs.label().contains(wanted.as_str())
     }
 
     fn size(&self) -> (u32, u32) {
@@ -182,11 +204,14 @@ pub fn run_study(
             frames: options.timed_frames(),
             surfaces: capture_surfaces(gpu, &document.scene, &camera, None, width, height)?,
         };
-        let grid = knob_grid(
+        let grid: Vec<Knobs> = knob_grid(
             options.quick,
             document.settings.blockers.budget,
             document.scene.terrain.is_some(),
-        );
+        )
+        .into_iter()
+        .filter(|knobs| options.keeps(knobs, document.settings.blockers.budget))
+        .collect();
         let gi_bounces = crate::bake::BakeSettings::default().bounces as u32;
         let wants_gi = grid.iter().any(|k| k.lighting != Lighting::Direct);
         let mut references = Vec::new();
@@ -215,7 +240,7 @@ pub fn run_study(
             .rows
             .extend(scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?);
     }
-    if options.only_scenes.is_some() {
+    if !options.runs_suites() {
         report::write_all(&results, &options.output_dir)?;
         return Ok(results);
     }

@@ -188,7 +188,7 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
                 light_paths: path,
                 ..ShadowSettings::default().every_pixel()
             };
-            let mut row = compare(&scene, &surfaces, &reference, &shadows, camera.position);
+            let mut row = compare(&scene, &surfaces, &reference, &shadows, &camera, size);
             row.light = label.clone();
             row.ms_per_frame = frame_ms(
                 gpu,
@@ -246,7 +246,8 @@ fn compare(
     surfaces: &[Option<SurfacePoint>],
     reference: &References,
     shadows: &ShadowSettings,
-    eye: Vec3,
+    camera: &Camera,
+    size: u32,
 ) -> PenumbraRow {
     let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
     let environment = environment_irradiance(scene.environment.as_ref());
@@ -257,7 +258,8 @@ fn compare(
         blockers: &blockers,
         terrain: None,
         settings: shadows,
-        eye: eye.as_dvec3(),
+        eye: camera.position.as_dvec3(),
+        pixel_angle_rad: crate::render::gpu_types::pixel_angle_rad(camera, size),
     };
     let open = ShadingInputs {
         blockers: &[],

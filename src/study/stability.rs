@@ -149,6 +149,7 @@ pub fn measure(
         terrain: None,
         settings: &case.shadows,
         eye: case.camera.position.as_dvec3(),
+        pixel_angle_rad: crate::render::gpu_types::pixel_angle_rad(&case.camera, height),
     };
     let unlit = ShadingInputs {
         blockers: &[],

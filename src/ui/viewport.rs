@@ -437,12 +437,8 @@ impl Viewport {
         }
         let Some(target) = &self.target else { return };
         let camera = self.orbit.camera();
-        self.gpu_scene.write_frame(
-            &render_state.queue,
-            &camera,
-            size[0] as f32 / size[1] as f32,
-            settings.exposure_ev,
-        );
+        self.gpu_scene
+            .write_frame(&render_state.queue, &camera, size, settings.exposure_ev);
         let mut encoder = device.create_command_encoder(&Default::default());
         let background = settings.background_linear();
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
