@@ -108,6 +108,25 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
             assert!(row[6].parse::<f64>().unwrap() <= 1.001, "overshoot: {row:?}");
         }
     }
+    // Small lights over meshes: one row per sphere budget, with the automatic fit, each
+    // with a fit error in (0, 1] and finite errors.
+    let fit_rows: Vec<Vec<String>> = table
+        .lines()
+        .skip_while(|l| !l.starts_with("## Small lights over meshes"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("## "))
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| budget"))
+        .map(|l| l.split('|').map(|c| c.trim().to_string()).collect())
+        .collect();
+    assert_eq!(fit_rows.len(), 3, "two budgets and the automatic fit: {fit_rows:?}");
+    for row in &fit_rows {
+        let fit_error: f64 = row[3].parse().expect("fit error");
+        assert!(fit_error > 0.0 && fit_error <= 1.0, "{row:?}");
+        for column in [4, 6] {
+            let rms: f64 = row[column].parse().expect("penumbra RMS");
+            assert!(rms.is_finite() && rms < 0.6, "{row:?}");
+        }
+    }
     assert!(
         table.contains("## Stability at the extremes"),
         "the stability table is written"
@@ -149,4 +168,15 @@ fn a_study_of_some_knobs_measures_them_beside_the_defaults() {
     );
     let table = std::fs::read_to_string(dir.path().join("study.md")).unwrap();
     assert!(!table.contains("## Stability at the extremes"), "no suites: {table}");
+}
+
+/// The sphere-fit suite alone at the full study's size (128 × 128, 2048 samples per pixel,
+/// sphere budgets 3 to 192): prints its table for docs/speed-accuracy.md. Minutes, so
+/// not in CI: `cargo nextest run --test study --run-ignored only --no-capture sphere_fit`.
+#[test]
+#[ignore]
+fn sphere_fit_suite_at_full_size() {
+    let Some(gpu) = common::gpu() else { return };
+    let rows = lightpaint::study::sphere_fit::measure_sphere_fit(&gpu, false).expect("suite runs");
+    println!("{}", lightpaint::study::sphere_fit::markdown_table(&rows));
 }

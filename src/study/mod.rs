@@ -16,6 +16,7 @@ pub mod grid;
 pub mod metrics;
 pub mod penumbra;
 pub mod report;
+pub mod sphere_fit;
 pub mod stability;
 
 use std::path::PathBuf;
@@ -153,6 +154,8 @@ pub struct StudyResults {
     pub stability: Vec<stability::StabilityResult>,
     /// Small lights: penumbra errors of the SH and exact paths.
     pub penumbrae: Vec<penumbra::PenumbraRow>,
+    /// Small lights over mesh blockers: the exact path's error by sphere budget.
+    pub sphere_fit: Vec<sphere_fit::SphereFitRow>,
     /// ms per frame of 8 small lights and 50 blockers, by path, at `cost_size`² pixels.
     pub eight_light_cost: Vec<(crate::render::LightPaths, f64)>,
     pub cost_size: u32,
@@ -184,6 +187,7 @@ pub fn run_study(
         stability: Vec::new(),
         stability_size: options.stability_size(),
         penumbrae: Vec::new(),
+        sphere_fit: Vec::new(),
         eight_light_cost: Vec::new(),
         cost_size: if options.quick { 128 } else { 540 },
     };
@@ -269,6 +273,13 @@ pub fn run_study(
             row.ms_per_frame
         ));
         results.penumbrae.push(row);
+    }
+    for row in sphere_fit::measure_sphere_fit(gpu, options.quick)? {
+        say(&format!(
+            "sphere fit on meshes, budget {}: {} spheres, fit error {:.3}; penumbra RMS exact {:.4}, SH {:.4}",
+            row.budget, row.spheres, row.fit_error, row.exact_penumbra_rms, row.sh_penumbra_rms
+        ));
+        results.sphere_fit.push(row);
     }
     results.eight_light_cost = penumbra::cost_of_eight_lights(gpu, results.cost_size, options.timed_frames())?;
     for (path, ms) in &results.eight_light_cost {

@@ -69,13 +69,23 @@ fn balls() -> [Sphere; 3] {
 
 /// The floor and (`with_balls`) the balls as meshes, lit by `light` or by a uniform sky.
 fn scene(light: Option<Light>, with_balls: bool) -> Scene {
+    let balls = balls()
+        .iter()
+        .enumerate()
+        .filter(|_| with_balls)
+        .map(|(i, ball)| {
+            shapes::uv_sphere(ball.radius_m, 96, 48)
+                .transformed(glam::Affine3A::from_translation(ball.center))
+                .into_object(&format!("ball {i}"))
+        })
+        .collect();
+    floor_scene(light, balls)
+}
+
+/// A white floor with `casters` over it, lit by `light` or by a uniform sky.
+pub(super) fn floor_scene(light: Option<Light>, casters: Vec<crate::scene::MeshObject>) -> Scene {
     let mut objects = vec![shapes::plane(8.0, 8, 1.0).into_object("floor")];
-    for (i, ball) in balls().iter().enumerate().filter(|_| with_balls) {
-        let mesh = shapes::uv_sphere(ball.radius_m, 96, 48)
-            .transformed(glam::Affine3A::from_translation(ball.center))
-            .into_object(&format!("ball {i}"));
-        objects.push(mesh);
-    }
+    objects.extend(casters);
     Scene {
         objects,
         materials: vec![Material {
@@ -92,7 +102,7 @@ fn scene(light: Option<Light>, with_balls: bool) -> Scene {
 
 /// A sphere light 10 m above the floor's centre, `half_angle_deg` in radius there, giving
 /// the centre 3 lux.
-fn sphere_light(half_angle_deg: f64) -> Light {
+pub(super) fn sphere_light(half_angle_deg: f64) -> Light {
     let radius = HEIGHT_M * half_angle_deg.to_radians().sin() as f32;
     Light {
         name: format!("{half_angle_deg}°"),
@@ -149,18 +159,28 @@ pub fn cost_of_eight_lights(gpu: &GpuContext, size: u32, frames: u32) -> Result<
         .collect()
 }
 
-/// Measures every light size and the sky with both paths; `quick` uses a small image and
-/// fewer reference samples.
-pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRow>, StudyError> {
-    let (size, spp) = if quick { (64u32, 512u32) } else { (128, 2048) };
-    let camera = Camera {
+/// Image size (square) and reference samples per pixel of the small-light suites.
+pub(super) fn size_and_spp(quick: bool) -> (u32, u32) {
+    if quick { (64, 512) } else { (128, 2048) }
+}
+
+/// The camera looking straight down at the floor's centre from 7 m.
+pub(super) fn overhead_camera() -> Camera {
+    Camera {
         position: Vec3::new(0.0, 7.0, 0.01),
         forward: Vec3::NEG_Y,
         up: Vec3::NEG_Z,
         yfov_rad: 45f32.to_radians(),
         znear: 0.1,
         zfar: None,
-    };
+    }
+}
+
+/// Measures every light size and the sky with both paths; `quick` uses a small image and
+/// fewer reference samples.
+pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRow>, StudyError> {
+    let (size, spp) = size_and_spp(quick);
+    let camera = overhead_camera();
     let mut rows = Vec::new();
     let lights: Vec<Option<Light>> = LIGHT_HALF_ANGLES_DEG
         .iter()
@@ -171,13 +191,7 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
         let (scene, open) = (scene(light.clone(), true), scene(light.clone(), false));
         let label = light.as_ref().map_or("sky".to_string(), |l| l.name.clone());
         let surfaces = capture_surfaces(gpu, &scene, &camera, None, size, size)?;
-        let (shadowed, noise) = reference(&scene, &surfaces, camera.position, size, spp);
-        let (unshadowed, _) = reference(&open, &surfaces, camera.position, size, spp);
-        let reference = References {
-            shadowed,
-            unshadowed,
-            noise,
-        };
+        let reference = References::render(&scene, &open, &surfaces, camera.position, size, spp);
         let paths = if light.is_some() {
             vec![LightPaths::Harmonics, LightPaths::Exact]
         } else {
@@ -188,7 +202,7 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
                 light_paths: path,
                 ..ShadowSettings::default().every_pixel()
             };
-            let mut row = compare(&scene, &surfaces, &reference, &shadows, &camera, size);
+            let mut row = compare(&scene, &surfaces, &reference, &shadows, &balls(), &camera);
             row.light = label.clone();
             row.ms_per_frame = frame_ms(
                 gpu,
@@ -205,12 +219,32 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
     Ok(rows)
 }
 
-/// The reference luminance of each pixel with and without the balls, and the noise of
+/// The reference luminance of each pixel with and without the casters, and the noise of
 /// the first.
-struct References {
+pub(super) struct References {
     shadowed: Vec<f64>,
     unshadowed: Vec<f64>,
     noise: Vec<f64>,
+}
+
+impl References {
+    /// Path-traces `scene` and `open` (the same without casters) at the `surfaces`.
+    pub(super) fn render(
+        scene: &Scene,
+        open: &Scene,
+        surfaces: &[Option<SurfacePoint>],
+        eye: Vec3,
+        size: u32,
+        spp: u32,
+    ) -> References {
+        let (shadowed, noise) = reference(scene, surfaces, eye, size, spp);
+        let (unshadowed, _) = reference(open, surfaces, eye, size, spp);
+        References {
+            shadowed,
+            unshadowed,
+            noise,
+        }
+    }
 }
 
 /// The direct-light reference of every pixel (luminance), and its noise per pixel from two
@@ -240,26 +274,29 @@ struct PixelSample {
     shaded_visibility: f64,
 }
 
-/// Errors of one path against the reference over the floor's penumbra and umbra.
-fn compare(
+/// Errors of one path, shading with `blockers`, against the reference over the floor's
+/// penumbra and umbra.
+pub(super) fn compare(
     scene: &Scene,
     surfaces: &[Option<SurfacePoint>],
     reference: &References,
     shadows: &ShadowSettings,
+    blockers: &[Sphere],
     camera: &Camera,
-    size: u32,
 ) -> PenumbraRow {
     let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
     let environment = environment_irradiance(scene.environment.as_ref());
-    let blockers = balls();
     let inputs = ShadingInputs {
         lights: &lights,
         environment_irradiance: &environment,
-        blockers: &blockers,
+        blockers,
         terrain: None,
         settings: shadows,
         eye: camera.position.as_dvec3(),
-        pixel_angle_rad: crate::render::gpu_types::pixel_angle_rad(camera, size),
+        // The reference samples each pixel at its centre, unfiltered: so does the shading
+        // compared with it (no anti-aliasing of hard edges, which would widen them by a
+        // pixel the reference does not blur).
+        pixel_angle_rad: 0.0,
     };
     let open = ShadingInputs {
         blockers: &[],

@@ -128,6 +128,7 @@ fn markdown(results: &StudyResults) -> String {
         }
     }
     text.push_str(&penumbra_markdown(results));
+    text.push_str(&sphere_fit_markdown(results));
     text.push_str(&stability_markdown(results));
     text
 }
@@ -175,6 +176,21 @@ fn penumbra_markdown(results: &StudyResults) -> String {
             .join(", ")
     );
     text
+}
+
+/// Small lights over mesh blockers: error by sphere budget (src/study/sphere_fit.rs).
+fn sphere_fit_markdown(results: &StudyResults) -> String {
+    if results.sphere_fit.is_empty() {
+        return String::new();
+    }
+    format!(
+        "\n## Small lights over meshes: the sphere fit's share\n\nA box, a torus and a cylinder \
+         over the floor under a {}° sphere light; the path tracer sees the meshes, the renderer \
+         spheres fitted with each budget. The exact path is exact for its spheres, so its \
+         penumbra error is the fit's.\n\n{}",
+        super::sphere_fit::LIGHT_HALF_ANGLE_DEG,
+        super::sphere_fit::markdown_table(&results.sphere_fit)
+    )
 }
 
 /// The stability suite's table: what each extreme measured.
