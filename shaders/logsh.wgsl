@@ -104,11 +104,11 @@ fn hidden_fraction(a: f32, b: f32, g: f32) -> f32 {
 // Visibility of a light's disc (sin of its angular radius: inc.cap_ratio) from p with
 // normal n: Π over blockers of (1 − fade · hidden share), skipping what log_visibility
 // skips and blockers wholly beyond the light (src/penumbra/mod.rs, the f64 twin).
-// Anti-aliasing: against each blocker the disc is at least footprint/(2d) wide (d the
-// blocker's distance, footprint one pixel's width at p), so a point light's hard edge
-// ramps over one pixel instead of stepping.
+// Anti-aliasing: against each blocker at distance d the disc's sine is at least
+// footprint/(2d) (footprint one pixel's width at p), so a point light's hard edge ramps
+// over about one pixel instead of stepping.
 fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
-    let light_angle = asin(clamp(inc.cap_ratio, 0.0, 1.0));
+    let sin_light = clamp(inc.cap_ratio, 0.0, 1.0);
     let half_footprint = 0.5 * pixel_footprint(p);
     var log_v = 0.0;
     for (var g = 0u; g < shadow.group_count; g++) {
@@ -120,14 +120,17 @@ fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
             continue;
         }
         // The group's bounding sphere outside the light's cone: none of its spheres can
-        // hide any of the light (γ ≥ α + β with sin β = extent/distance; α at its widest
-        // for the group's nearest sphere).
+        // hide any of the light (cos γ ≤ cos(α + β) with sin β = extent/distance, α at its
+        // widest for the group's nearest sphere). No trigonometry: lavapipe pays for it
+        // at every pixel.
         let group_distance = sqrt(group_distance2);
         let extent = group.center_extent.w;
         if group_distance > extent {
-            let widest = max(light_angle, half_footprint / (group_distance - extent));
-            let reach = widest + asin(extent / group_distance);
-            if reach < PI && dot(to_group, inc.to_light) / group_distance <= cos(reach) {
+            let sin_a = min(max(sin_light, half_footprint / (group_distance - extent)), 1.0);
+            let cos_a = sqrt(1.0 - sin_a * sin_a);
+            let sin_g = extent / group_distance;
+            let cos_g = sqrt(max(1.0 - sin_g * sin_g, 0.0));
+            if dot(to_group, inc.to_light) / group_distance <= cos_a * cos_g - sin_a * sin_g {
                 continue;
             }
         }
@@ -146,15 +149,15 @@ fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
                 continue;
             }
             let direction = offset / distance;
-            let angle = max(light_angle, half_footprint / distance);
-            let blocker_angle = asin(ratio);
-            // Disjoint caps (the common case) are rejected before the lens's trigonometry.
+            let sin_a = min(max(sin_light, half_footprint / distance), 1.0);
+            let cos_a = sqrt(1.0 - sin_a * sin_a);
+            // Disjoint caps (the common case) are rejected before any trigonometry.
             let cos_separation = dot(direction, inc.to_light);
-            if angle + blocker_angle < PI && cos_separation <= cos(angle + blocker_angle) {
+            if cos_separation <= cos_a * sqrt(max(1.0 - ratio * ratio, 0.0)) - sin_a * ratio {
                 continue;
             }
             let separation = atan2(length(cross(direction, inc.to_light)), cos_separation);
-            let hidden = horizon * hidden_fraction(angle, blocker_angle, separation);
+            let hidden = horizon * hidden_fraction(asin(sin_a), asin(ratio), separation);
             if hidden >= 1.0 {
                 return 0.0;
             }

@@ -36,9 +36,10 @@ pub struct LightDisc {
 /// Visibility (0–1) from `p` (unit normal `n`) of `light` through `blockers`.
 ///
 /// `pixel_footprint_m`, the width of one pixel at `p` (0: none), anti-aliases hard edges:
-/// against a blocker at distance d the disc is taken at least footprint/(2d) wide, the
-/// angle over which one pixel's step across the receiver turns the blocker's direction,
-/// so a point light's shadow edge ramps over about one pixel instead of stepping.
+/// against a blocker at distance d the disc's sine is taken at least footprint/(2d),
+/// about the angle over which one pixel's step across the receiver turns the blocker's
+/// direction, so a point light's shadow edge ramps over about one pixel instead of
+/// stepping.
 pub fn light_visibility(
     p: DVec3,
     n: DVec3,
@@ -47,7 +48,7 @@ pub fn light_visibility(
     min_cap_ratio: f64,
     pixel_footprint_m: f64,
 ) -> f64 {
-    let light_rad = light.cap_ratio.clamp(0.0, 1.0).asin();
+    let sin_light = light.cap_ratio.clamp(0.0, 1.0);
     let mut log_visibility = 0.0;
     for b in blockers {
         let Some(cap) = b.cap_from(p, n, min_cap_ratio) else {
@@ -61,8 +62,8 @@ pub fn light_visibility(
             .cross(light.to_light)
             .length()
             .atan2(cap.direction.dot(light.to_light));
-        let disc_rad = light_rad.max(0.5 * pixel_footprint_m / cap.distance_m);
-        let hidden = cap.horizon * hidden_fraction(disc_rad, cap.ratio.asin(), separation);
+        let sin_disc = sin_light.max(0.5 * pixel_footprint_m / cap.distance_m).min(1.0);
+        let hidden = cap.horizon * hidden_fraction(sin_disc.asin(), cap.ratio.asin(), separation);
         if hidden >= 1.0 {
             return 0.0;
         }
