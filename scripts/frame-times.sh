@@ -30,5 +30,7 @@ row "studio, per vertex, MSAA 1" "$studio" --per-vertex --msaa 1
 row "studio, order 2, DC, MSAA 1" "$studio" --order 2 --exp dc --msaa 1
 row "studio, order 8, HYB, MSAA 1" "$studio" --order 8 --msaa 1
 row "studio, 400 spheres (fitted), MSAA 1" "$studio" --blockers 400 --msaa 1
+row "studio, log-BRDF, MSAA 1" "$studio" --brdf log --msaa 1
+row "studio, product BRDF, MSAA 1" "$studio" --brdf product --msaa 1
 row "sample, defaults (19 fitted spheres), MSAA 4" "$sample"
 row "sample, every pixel shaded, MSAA 4" "$sample" --shading-downsample 1

@@ -14,20 +14,25 @@ fn read_csv(text: &str) -> Vec<std::collections::HashMap<String, String>> {
         .collect()
 }
 
+/// Runs `lightpaint study --quick` with `extra` arguments into a new directory; returns it
+/// and the standard output, once the run has succeeded (None without a GPU).
+fn quick_study(extra: &[&str]) -> Option<(tempfile::TempDir, String)> {
+    common::gpu()?;
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec![OsStr::new("study"), OsStr::new("--quick")];
+    args.extend(extra.iter().map(OsStr::new));
+    args.extend([OsStr::new("-o"), dir.path().as_os_str()]);
+    let out = common::run_lightpaint(&args);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    Some((dir, stdout))
+}
+
 #[test]
 fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
-    if common::gpu().is_none() {
+    let Some((dir, stdout)) = quick_study(&[]) else {
         return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let out = common::run_lightpaint(&[
-        OsStr::new("study"),
-        OsStr::new("--quick"),
-        OsStr::new("-o"),
-        dir.path().as_os_str(),
-    ]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    };
     for file in ["study.csv", "study.md", "pareto.png", "images/sample-o4-hyb-e0.1.png"] {
         assert!(dir.path().join(file).is_file(), "{file} was written");
     }
@@ -140,20 +145,9 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
 /// and skips the scene-independent suites.
 #[test]
 fn a_study_of_some_knobs_measures_them_beside_the_defaults() {
-    if common::gpu().is_none() {
+    let Some((dir, _)) = quick_study(&["--knobs", "brdf"]) else {
         return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let out = common::run_lightpaint(&[
-        OsStr::new("study"),
-        OsStr::new("--quick"),
-        OsStr::new("--knobs"),
-        OsStr::new("brdf"),
-        OsStr::new("-o"),
-        dir.path().as_os_str(),
-    ]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    };
     let rows = read_csv(&std::fs::read_to_string(dir.path().join("study.csv")).unwrap());
     let mut knobs: Vec<&str> = rows.iter().map(|r| r["knobs"].as_str()).collect();
     knobs.sort_unstable();
