@@ -62,36 +62,58 @@ fn assert_parity(gpu: &GpuContext, name: &str, frame: &ShadowFrame) {
     );
 }
 
+/// A committed sample project with its camera, render settings and automatic sphere fit.
+struct SampleFrame {
+    name: &'static str,
+    scene: Scene,
+    camera: Camera,
+    settings: RenderSettings,
+    blockers: Vec<Sphere>,
+}
+
+impl SampleFrame {
+    fn open(name: &'static str) -> SampleFrame {
+        let (scene, camera, settings) = open(&format!("projects/{name}/{name}.lightpaint"));
+        let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+        assert!(!blockers.is_empty(), "{name}: the sample has sphere-like objects");
+        SampleFrame {
+            name,
+            scene,
+            camera,
+            settings,
+            blockers,
+        }
+    }
+
+    /// Draws this sample with `shadows` at `width` × `height` on the GPU and the CPU, and
+    /// asserts that they agree.
+    fn assert_parity(&self, gpu: &GpuContext, label: &str, shadows: &ShadowSettings, width: u32, height: u32) {
+        let frame = ShadowFrame {
+            baked_indirect: None,
+            scene: &self.scene,
+            camera: &self.camera,
+            settings: &self.settings,
+            shadows,
+            blockers: &self.blockers,
+            width,
+            height,
+        };
+        assert_parity(gpu, &format!("{}-{label}", self.name), &frame);
+    }
+}
+
 #[test]
 fn gpu_matches_the_cpu_reference_on_the_samples() {
     let Some(gpu) = common::gpu() else { return };
-    for (name, path) in [
-        ("studio", "projects/studio/studio.lightpaint"),
-        ("sample", "projects/sample/sample.lightpaint"),
-    ] {
-        let (scene, camera, settings) = open(path);
-        let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
-        assert!(!blockers.is_empty(), "{name}: the sample has sphere-like objects");
-        let shadows = ShadowSettings::default().every_pixel();
-        let frame = ShadowFrame {
-            baked_indirect: None,
-            scene: &scene,
-            camera: &camera,
-            settings: &settings,
-            shadows: &shadows,
-            blockers: &blockers,
-            width: 240,
-            height: 135,
-        };
-        assert_parity(&gpu, name, &frame);
+    for name in ["studio", "sample"] {
+        SampleFrame::open(name).assert_parity(&gpu, "defaults", &ShadowSettings::default().every_pixel(), 240, 135);
     }
 }
 
 #[test]
 fn every_method_and_order_matches_the_cpu_reference() {
     let Some(gpu) = common::gpu() else { return };
-    let (scene, camera, settings) = open("projects/studio/studio.lightpaint");
-    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let studio = SampleFrame::open("studio");
     for order in [2, 3, 6, 8] {
         for exp in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {
             let shadows = ShadowSettings {
@@ -99,17 +121,7 @@ fn every_method_and_order_matches_the_cpu_reference() {
                 exp,
                 ..ShadowSettings::default().every_pixel()
             };
-            let frame = ShadowFrame {
-                baked_indirect: None,
-                scene: &scene,
-                camera: &camera,
-                settings: &settings,
-                shadows: &shadows,
-                blockers: &blockers,
-                width: 96,
-                height: 54,
-            };
-            assert_parity(&gpu, &format!("studio-{order}-{exp:?}"), &frame);
+            studio.assert_parity(&gpu, &format!("{order}-{exp:?}"), &shadows, 96, 54);
         }
     }
 }
@@ -117,12 +129,8 @@ fn every_method_and_order_matches_the_cpu_reference() {
 #[test]
 fn the_brdf_in_the_sh_matches_the_cpu_reference() {
     let Some(gpu) = common::gpu() else { return };
-    for (name, path) in [
-        ("studio", "projects/studio/studio.lightpaint"),
-        ("sample", "projects/sample/sample.lightpaint"),
-    ] {
-        let (scene, camera, settings) = open(path);
-        let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    for name in ["studio", "sample"] {
+        let sample = SampleFrame::open(name);
         // Every light through the SH, so the lobes shade every light; order 8 carries
         // sharper Phong lobes (up to 16) through longer generated sums.
         for (brdf, order) in [(BrdfShading::Log, 4), (BrdfShading::Product, 4), (BrdfShading::Log, 8)] {
@@ -132,17 +140,7 @@ fn the_brdf_in_the_sh_matches_the_cpu_reference() {
                 light_paths: lightpaint::render::LightPaths::Harmonics,
                 ..ShadowSettings::default().every_pixel()
             };
-            let frame = ShadowFrame {
-                baked_indirect: None,
-                scene: &scene,
-                camera: &camera,
-                settings: &settings,
-                shadows: &shadows,
-                blockers: &blockers,
-                width: 160,
-                height: 90,
-            };
-            assert_parity(&gpu, &format!("{name}-{brdf:?}-{order}"), &frame);
+            sample.assert_parity(&gpu, &format!("{brdf:?}-{order}"), &shadows, 160, 90);
         }
     }
 }

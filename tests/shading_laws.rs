@@ -61,20 +61,53 @@ fn shade(p: &SurfacePoint, lights: &[GpuLight], blockers: &[Sphere], settings: &
     )
 }
 
-/// A 0.3 m ball 1.5 m above the origin, a point light 3 m up: the ball's cap is centred on
-/// the light, so the light's visibility at the origin is the zonal exp*(ln ε·cap) evaluated
-/// straight up, Σ_l g_l·√((2l+1)/(4π)).
+/// A 0.3 m ball 1.5 m above a white floor point at the origin and a point light of 9 cd
+/// 3 m up (irradiance 1 there): the ball's cap, of cos half-angle c = √(1 − 0.2²), is
+/// centred on the light, so every function of these laws is zonal about the normal.
+struct BallBelowLight {
+    blocker: Sphere,
+    lights: [GpuLight; 1],
+    p: SurfacePoint,
+    c: f64,
+}
+
+fn ball_below_light() -> BallBelowLight {
+    BallBelowLight {
+        blocker: Sphere {
+            center: Vec3::new(0.0, 1.5, 0.0),
+            radius_m: 0.3,
+        },
+        lights: [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)],
+        p: white_floor_point(DVec3::ZERO),
+        c: (1.0f64 - 0.2 * 0.2).sqrt(),
+    }
+}
+
+impl BallBelowLight {
+    /// The point's radiance with `brdf` at `order`, exactly exponentiated, is `expected`
+    /// (a value below the clamp at the unshadowed 1/π, so the clamp does not decide it).
+    fn assert_reference_shading(&self, brdf: BrdfShading, order: usize, expected: f64) {
+        assert!(expected > 0.0 && expected < 0.99 / PI, "not clamped: {expected}");
+        let settings = ShadowSettings {
+            order,
+            exp: ExpMethod::Reference,
+            ..with_brdf(brdf)
+        };
+        let radiance = shade(&self.p, &self.lights, &[self.blocker], &settings).x;
+        assert!(
+            (radiance - expected).abs() < 1e-6,
+            "{brdf:?} order {order}: {radiance} vs {expected}"
+        );
+    }
+}
+
+/// [`ball_below_light`]: the light's visibility at the origin is the zonal exp*(ln ε·cap)
+/// evaluated straight up, Σ_l g_l·√((2l+1)/(4π)).
 #[test]
 fn a_blocker_darkens_the_point_below_by_its_cap_exponential() {
-    let blocker = Sphere {
-        center: Vec3::new(0.0, 1.5, 0.0),
-        radius_m: 0.3,
-    };
-    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
-    let p = white_floor_point(DVec3::ZERO);
+    let BallBelowLight { blocker, lights, p, c } = ball_below_light();
     for order in [2, 3, 4, 6] {
         // The cap axis is world +y while the SH polar axis is +z: the law must not care.
-        let c = (1.0f64 - 0.2 * 0.2).sqrt();
         let g = common::zonal_exp_reference(order, c, 0.1f64.ln());
         let expected: f64 = g
             .iter()
@@ -291,21 +324,14 @@ fn with_brdf(brdf: BrdfShading) -> ShadowSettings {
     ShadowSettings { brdf, ..sh_path() }
 }
 
-/// The scene of `a_blocker_darkens_the_point_below_by_its_cap_exponential`, where every
-/// function is zonal about the receiver's normal: with the log-BRDF the light reads
+/// [`ball_below_light`] with the log-BRDF: the light reads
 /// exp(ln ε·cap + ln max(cos θ/π, ε)) straight up, exponentiated exactly, computed here
 /// from the functions themselves (`common::zonal_exp`).
 #[test]
 fn the_log_brdf_shades_through_the_exponential_of_the_summed_logs() {
-    let blocker = Sphere {
-        center: Vec3::new(0.0, 1.5, 0.0),
-        radius_m: 0.3,
-    };
-    // 9 cd at 3 m: irradiance 1.
-    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
-    let p = white_floor_point(DVec3::ZERO);
+    let scene = ball_below_light();
+    let c = scene.c;
     let ln_epsilon = 0.1f64.ln();
-    let c = (1.0f64 - 0.2 * 0.2).sqrt();
     let kink = PI * 0.1;
     let log_diffuse = |t: f64| {
         if t > 0.0 {
@@ -321,45 +347,20 @@ fn the_log_brdf_shades_through_the_exponential_of_the_summed_logs() {
             &[(-1.0, 0.0), (0.0, kink), (kink, c), (c, 1.0)],
         );
         let expected = common::zonal_value(&common::zonal_exp(&f), 1.0);
-        assert!(expected > 0.0 && expected < 0.99 / PI, "not clamped: {expected}");
-        let settings = ShadowSettings {
-            order,
-            exp: ExpMethod::Reference,
-            ..with_brdf(BrdfShading::Log)
-        };
-        let radiance = shade(&p, &lights, &[blocker], &settings).x;
-        assert!(
-            (radiance - expected).abs() < 1e-6,
-            "order {order}: {radiance} vs {expected}"
-        );
+        scene.assert_reference_shading(BrdfShading::Log, order, expected);
     }
 }
 
-/// As above with the BRDF by product: the light reads (exp(ln ε·cap) ∗ cos⁺/π) straight up,
-/// both factors and their product computed here from the functions.
+/// [`ball_below_light`] with the BRDF by product: the light reads (exp(ln ε·cap) ∗ cos⁺/π)
+/// straight up, both factors and their product computed here from the functions.
 #[test]
 fn the_product_brdf_shades_through_the_product_of_visibility_and_cosine() {
-    let blocker = Sphere {
-        center: Vec3::new(0.0, 1.5, 0.0),
-        radius_m: 0.3,
-    };
-    let lights = [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)];
-    let p = white_floor_point(DVec3::ZERO);
-    let c = (1.0f64 - 0.2 * 0.2).sqrt();
+    let scene = ball_below_light();
+    let c = scene.c;
     for order in [3, 4, 6] {
         let visibility = common::zonal_exp_reference(order, c, 0.1f64.ln());
         let cosine = common::zonal_projection(order, |t| t / PI, &[(0.0, 1.0)]);
         let expected = common::zonal_value(&common::zonal_product(&visibility, &cosine), 1.0);
-        assert!(expected > 0.0 && expected < 0.99 / PI, "not clamped: {expected}");
-        let settings = ShadowSettings {
-            order,
-            exp: ExpMethod::Reference,
-            ..with_brdf(BrdfShading::Product)
-        };
-        let radiance = shade(&p, &lights, &[blocker], &settings).x;
-        assert!(
-            (radiance - expected).abs() < 1e-6,
-            "order {order}: {radiance} vs {expected}"
-        );
+        scene.assert_reference_shading(BrdfShading::Product, order, expected);
     }
 }
