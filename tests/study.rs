@@ -174,3 +174,15 @@ fn sphere_fit_suite_at_full_size() {
     let rows = lightpaint::study::sphere_fit::measure_sphere_fit(&gpu, false).expect("suite runs");
     println!("{}", lightpaint::study::sphere_fit::markdown_table(&rows));
 }
+
+/// The small lights' cost at the full study's size (8 sphere lights over 50 blockers,
+/// 540 × 540, 10 frames): prints it for docs/speed-accuracy.md. Not in CI:
+/// `cargo nextest run --test study --run-ignored only --no-capture eight_lights`.
+#[test]
+#[ignore]
+fn eight_lights_cost_at_full_size() {
+    let Some(gpu) = common::gpu() else { return };
+    for (path, ms) in lightpaint::study::penumbra::cost_of_eight_lights(&gpu, 540, 10).expect("suite runs") {
+        println!("8 small lights x 50 blockers via {path:?}: {ms:.1} ms per frame");
+    }
+}
