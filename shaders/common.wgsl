@@ -43,8 +43,10 @@ struct Light {
     // Sphere lights (kind LIGHT_POINT): radius in metres; area lights: emitting area in m²;
     // 0 for point-like lights.
     source_size: f32,
-    _pad1: u32,
-    _pad2: u32,
+    // 1: may take the exact shadow path; 0: stays on the SH path (the settings' budget of
+    // exact lights, render::shading_lights).
+    exact_allowed: u32,
+    _pad: u32,
 };
 
 // Parameters of the log-SH shadow pass (logsh.wgsl).

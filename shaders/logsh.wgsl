@@ -266,7 +266,7 @@ fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
             continue;
         }
         if EXACT_LIGHT_PATH {
-            if takes_exact_path(inc) {
+            if lights[i].exact_allowed != 0u && takes_exact_path(inc) {
                 radiance += unshadowed * exact_light_visibility(s.position, s.normal, inc)
                     * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
                 continue;

@@ -139,6 +139,10 @@ struct RenderArgs {
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     light_paths: Option<LightPaths>,
+    /// Under --light-paths auto, at most this many lights go the exact way (the brightest
+    /// sphere and area lights at the scene's centre, 0-64); default: the project's, or 4.
+    #[arg(long)]
+    exact_lights: Option<u32>,
     /// How the BRDF meets the visibility: separate (each light's exact BRDF times its
     /// visibility), log (the log-BRDF added before exponentiating) or product (the BRDF
     /// multiplied in by the SH product); default: the project's, or separate.
@@ -375,6 +379,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.ratio_attenuation |= args.ratio_attenuation;
     shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
     shadows.brdf = args.brdf.unwrap_or(shadows.brdf);
+    shadows.exact_light_budget = args.exact_lights.unwrap_or(shadows.exact_light_budget);
     shadows.terrain.azimuths = args.terrain_azimuths.unwrap_or(shadows.terrain.azimuths);
     shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.

@@ -56,9 +56,16 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
             light_paths: LightPaths::Auto,
             ..document.settings.shadows.every_pixel()
         };
+        // A budget of one exact light: the brightest sphere light goes exact, the others
+        // stay on the SH, on the GPU and the CPU alike.
+        let one_exact = ShadowSettings {
+            exact_light_budget: 1,
+            ..auto
+        };
         for (scene, shadows, what) in [
             (&document.scene, &exact, "exact"),
             (&spheres, &auto, "sphere lights, auto"),
+            (&spheres, &one_exact, "sphere lights, auto, one exact"),
         ] {
             let frame = ShadowFrame {
                 scene,

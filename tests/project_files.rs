@@ -229,11 +229,13 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     assert_eq!(document.scene.lights, current.scene.lights);
     // Formats before 4 drew no baked indirect light and shadowed every light through the
     // SH, so they keep both; formats before 7 shaded every pixel.
-    let every_pixel = if version < 7 {
+    let mut every_pixel = if version < 7 {
         current.settings.shadows.every_pixel()
     } else {
         current.settings.shadows
     };
+    // Formats before 8 had no budget of exact lights: any number could go exact.
+    every_pixel.exact_light_budget = lightpaint::render::MAX_EXACT_LIGHT_BUDGET;
     let expected = if version < 4 {
         lightpaint::render::RenderSettings {
             baked_indirect: false,
@@ -266,6 +268,7 @@ fn a_format_1_project_opens_and_saves_as_the_current_format() {
     let document = open_old_fixture(1);
     let format_2_shadows = lightpaint::render::ShadowSettings {
         light_paths: lightpaint::render::LightPaths::Harmonics,
+        exact_light_budget: lightpaint::render::MAX_EXACT_LIGHT_BUDGET,
         ..lightpaint::render::ShadowSettings::default().every_pixel()
     };
     assert_eq!(document.settings.shadows, format_2_shadows);

@@ -72,6 +72,7 @@ fn light_matches_wgsl() {
             ("spot_cone", offset_of!(GpuLight, spot_cone)),
             ("kind", offset_of!(GpuLight, kind)),
             ("source_size", offset_of!(GpuLight, source_size)),
+            ("exact_allowed", offset_of!(GpuLight, exact_allowed)),
         ],
     );
 }

@@ -22,7 +22,9 @@
 //! - 7: `render.shadows.shading_downsample` (reduced-resolution shading); format 6 shaded
 //!   every pixel, so 1.
 //! - 8: `render.shadows.brdf` (the BRDF carried in the SH or not); format 7 shaded each
-//!   light's exact BRDF through its visibility, which is what its absence means.
+//!   light's exact BRDF through its visibility, which is what its absence means; and
+//!   `render.shadows.exact_light_budget` (at most so many exact lights under Auto): format
+//!   7 had no limit, so the largest budget.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -58,6 +60,15 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
 }
 
 fn v7_to_v8(mut value: Value) -> Value {
+    let shadows = value
+        .get_mut("render")
+        .and_then(|render| render.get_mut("shadows"))
+        .and_then(Value::as_object_mut);
+    if let Some(shadows) = shadows {
+        // Format 7 had no budget: every small light could go exact.
+        let unlimited = crate::render::MAX_EXACT_LIGHT_BUDGET;
+        shadows.insert("exact_light_budget".into(), Value::from(unlimited));
+    }
     if let Some(object) = value.as_object_mut() {
         object.insert("format_version".into(), Value::from(8));
     }

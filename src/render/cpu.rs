@@ -246,7 +246,10 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
             continue;
         }
         let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
-        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
+        let exact = (light.exact_allowed != 0)
+            .then(|| exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint))
+            .flatten();
+        radiance += match exact {
             Some(visibility) => unshadowed * visibility,
             None => light_through(settings, s, &inc, inputs.eye, &lobes),
         };

@@ -7,7 +7,7 @@ use wgpu::util::DeviceExt;
 use super::BakedIndirect;
 use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance};
 use super::pipeline::SceneLayouts;
-use crate::scene::{Camera, Environment, Light, Scene, TextureImage};
+use crate::scene::{Camera, Environment, Scene, TextureImage};
 
 pub struct GpuObject {
     /// [`GpuVertex`]es, also readable as storage (the per-vertex shadow pass reads them).
@@ -150,7 +150,8 @@ impl GpuScene {
             light_count: 0,
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
         };
-        gpu_scene.update_lights(device, queue, layouts, &scene.lights);
+        let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
+        gpu_scene.update_lights(device, queue, layouts, &lights);
         gpu_scene
     }
 
@@ -184,7 +185,7 @@ impl GpuScene {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         layouts: &SceneLayouts,
-        lights: &[Light],
+        lights: &[GpuLight],
     ) {
         if lights.len() > self.light_capacity {
             self.light_capacity = lights.len().next_power_of_two();
@@ -197,9 +198,8 @@ impl GpuScene {
                 &self.indirect_buffer,
             );
         }
-        let gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
-        if !gpu_lights.is_empty() {
-            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(&gpu_lights));
+        if !lights.is_empty() {
+            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(lights));
         }
         self.light_count = lights.len();
     }

@@ -107,7 +107,10 @@ pub struct GpuLight {
     pub kind: u32,
     /// Sphere lights: radius in metres; area lights: emitting area in m²; otherwise 0.
     pub source_size: f32,
-    pub _pad: [u32; 2],
+    /// 1 if this light may take the exact shadow path, 0 if it stays on the SH path
+    /// (`render::shading_lights` applies the settings' budget; [`GpuLight::new`] allows it).
+    pub exact_allowed: u32,
+    pub _pad: u32,
 }
 
 impl GpuLight {
@@ -142,7 +145,8 @@ impl GpuLight {
             spot_cone,
             kind,
             source_size,
-            _pad: [0; 2],
+            exact_allowed: 1,
+            _pad: 0,
         }
     }
 }

@@ -115,6 +115,12 @@ pub struct ShadowFrame<'a> {
 }
 
 impl ShadowFrame<'_> {
+    /// The scene's lights as this frame shades them (`render::shading_lights`, about the
+    /// scene's centre).
+    pub fn shading_lights(&self) -> Vec<GpuLight> {
+        super::shading_lights(&self.scene.lights, self.shadows, self.scene.bounds().center())
+    }
+
     fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
         check_size(gpu, self.width, self.height)?;
         let problems = self.shadows.gpu_problems();
@@ -151,9 +157,10 @@ impl<'a> ShadowRenderer<'a> {
     pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
         let layouts = SceneLayouts::new(&gpu.device);
-        let exact_light_path = super::exact_path_possible(frame.shadows.light_paths, &frame.scene.lights);
+        let exact_light_path = super::exact_path_possible(frame.shadows, &frame.scene.lights);
         let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, exact_light_path);
-        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
+        let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
+        gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &frame.shading_lights());
         gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);
         let blockers = GpuBlockers::upload(
             &gpu.device,
@@ -308,7 +315,7 @@ pub fn render_cpu_image(gpu: &GpuContext, frame: &ShadowFrame) -> Result<image::
 /// Shades captured surface points (row-major, `frame.width` × `frame.height`) in f64 on
 /// all cores: the CPU reference's share of a frame.
 pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) -> Result<image::RgbaImage, RenderError> {
-    let lights: Vec<GpuLight> = frame.scene.lights.iter().map(GpuLight::new).collect();
+    let lights = frame.shading_lights();
     let environment = environment_irradiance(frame.scene.environment.as_ref());
     let terrain = frame
         .scene

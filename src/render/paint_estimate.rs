@@ -28,11 +28,15 @@ pub struct DirectEstimate<'a> {
 
 impl<'a> DirectEstimate<'a> {
     pub fn new(scene: &'a Scene, blockers: Vec<Sphere>, settings: ShadowSettings) -> DirectEstimate<'a> {
+        // Unit intensities, each light on the shadow path the frame gives it.
+        let shading = super::shading_lights(&scene.lights, &settings, scene.bounds().center());
         let unit_lights = scene
             .lights
             .iter()
-            .map(|light| {
-                GpuLight::new(&Light {
+            .zip(shading)
+            .map(|(light, shaded)| GpuLight {
+                exact_allowed: shaded.exact_allowed,
+                ..GpuLight::new(&Light {
                     intensity: 1.0,
                     ..light.clone()
                 })
@@ -113,15 +117,17 @@ impl<'a> DirectEstimate<'a> {
                 if unshadowed == DVec3::ZERO {
                     return None;
                 }
-                let visible = cpu::exact_visibility(
-                    s,
-                    &incidence,
-                    &self.settings,
-                    &self.blockers,
-                    self.terrain.as_ref(),
-                    0.0,
-                )
-                .unwrap_or_else(|| {
+                let exact = (light.exact_allowed != 0).then(|| {
+                    cpu::exact_visibility(
+                        s,
+                        &incidence,
+                        &self.settings,
+                        &self.blockers,
+                        self.terrain.as_ref(),
+                        0.0,
+                    )
+                });
+                let visible = exact.flatten().unwrap_or_else(|| {
                     cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
                 });
                 let t = luminance(unshadowed) * visible;

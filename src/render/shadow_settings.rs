@@ -39,7 +39,20 @@ pub struct ShadowSettings {
     /// How each light's BRDF meets the visibility (project format 8).
     #[serde(default)]
     pub brdf: BrdfShading,
+    /// Under [`LightPaths::Auto`], at most this many lights take the exact path (each
+    /// costs a pass over the blockers per pixel): the brightest sphere and area lights at
+    /// the scene's centre (project format 8).
+    #[serde(default = "default_exact_light_budget")]
+    pub exact_light_budget: u32,
 }
+
+/// Four exact lights: key, rim and two accents, at about the SH path's cost each.
+fn default_exact_light_budget() -> u32 {
+    4
+}
+
+/// The most exact lights the budget may ask for.
+pub const MAX_EXACT_LIGHT_BUDGET: u32 = 64;
 
 /// Half resolution along each side: a quarter of the shading cost, and the lighting it
 /// interpolates is smooth where the upsampling interpolates it.
@@ -169,6 +182,7 @@ impl Default for ShadowSettings {
             terrain: TerrainShading::default(),
             shading_downsample: default_shading_downsample(),
             brdf: BrdfShading::Separate,
+            exact_light_budget: default_exact_light_budget(),
         }
     }
 }
@@ -217,6 +231,12 @@ impl ShadowSettings {
                 "the log-BRDF exponentiates per pixel: use it without per-vertex shading, or the product BRDF".into(),
             );
         }
+        if self.exact_light_budget > MAX_EXACT_LIGHT_BUDGET {
+            problems.push(format!(
+                "exact light budget {} must be 0..={MAX_EXACT_LIGHT_BUDGET}",
+                self.exact_light_budget
+            ));
+        }
         if let ExpMethod::Ps(terms) = self.exp
             && !(1..=32).contains(&terms)
         {
@@ -259,26 +279,83 @@ pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     }
 }
 
-/// Whether any of `lights` can take the exact shadow path under `paths` at some receiver:
-/// under Auto only lights with a size (sphere and area lights) can. Pipelines compile
-/// the exact path only then.
-pub fn exact_path_possible(paths: LightPaths, lights: &[crate::scene::Light]) -> bool {
-    match paths {
+/// Whether any of `lights` can take the exact shadow path under `settings` at some
+/// receiver: under Auto only lights with a size (sphere and area lights) can, and only
+/// with a budget. Pipelines compile the exact path only then.
+pub fn exact_path_possible(settings: &ShadowSettings, lights: &[crate::scene::Light]) -> bool {
+    match settings.light_paths {
         LightPaths::Harmonics => false,
         LightPaths::Exact => true,
-        LightPaths::Auto => lights
-            .iter()
-            .any(|light| super::gpu_types::GpuLight::new(light).source_size > 0.0),
+        LightPaths::Auto => {
+            settings.exact_light_budget > 0
+                && lights
+                    .iter()
+                    .any(|light| super::gpu_types::GpuLight::new(light).source_size > 0.0)
+        }
     }
 }
 
-/// Whether `light` takes the exact shadow path at `point` under `paths`, and its angular
+/// The lights as the shaders and the CPU reference take them, with the exact path allowed
+/// as `settings` say: every light under Exact, none under Harmonics, and under Auto the
+/// `exact_light_budget` sphere and area lights brightest at `centre` (the scene's centre:
+/// one choice for the whole frame, the same in the editor, the CLI and the reference).
+/// The shaders then send an allowed light the exact way where it is small enough.
+pub fn shading_lights(
+    lights: &[crate::scene::Light],
+    settings: &ShadowSettings,
+    centre: glam::Vec3,
+) -> Vec<super::gpu_types::GpuLight> {
+    use super::gpu_types::GpuLight;
+    // A scene without geometry has no centre: its lights are ranked from the origin.
+    let centre = if centre.is_finite() { centre } else { glam::Vec3::ZERO };
+    let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
+    let allowed: Vec<bool> = match settings.light_paths {
+        LightPaths::Exact => vec![true; lights.len()],
+        LightPaths::Harmonics => vec![false; lights.len()],
+        LightPaths::Auto => {
+            let brightness = |light: &GpuLight| {
+                let irradiance = super::cpu::incidence(light, centre.as_dvec3()).irradiance;
+                crate::scene::luminance(irradiance)
+            };
+            let mut sized: Vec<(usize, f64)> = gpu_lights
+                .iter()
+                .enumerate()
+                .filter(|(_, light)| light.source_size > 0.0)
+                .map(|(i, light)| (i, brightness(light)))
+                .collect();
+            // Brightest first; equal ones in scene order, so the choice is stable.
+            sized.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            let mut allowed = vec![false; lights.len()];
+            for &(i, _) in sized.iter().take(settings.exact_light_budget as usize) {
+                allowed[i] = true;
+            }
+            allowed
+        }
+    };
+    for (light, allowed) in gpu_lights.iter_mut().zip(allowed) {
+        light.exact_allowed = u32::from(allowed);
+    }
+    gpu_lights
+}
+
+/// For each of `lights` (the scene's, with its centre `centre`): whether it takes the
+/// exact shadow path at `point` under `settings` (its budget included) and its angular
 /// radius seen from there in degrees (the shaders decide per receiver; the editor asks at
 /// the view's pivot).
-pub fn light_path_at(light: &crate::scene::Light, point: glam::Vec3, paths: LightPaths) -> (bool, f64) {
-    let gpu_light = super::gpu_types::GpuLight::new(light);
-    let cap_ratio = super::cpu::incidence(&gpu_light, point.as_dvec3()).cap_ratio;
-    (paths.is_exact(cap_ratio), cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+pub fn light_paths_at(
+    lights: &[crate::scene::Light],
+    point: glam::Vec3,
+    settings: &ShadowSettings,
+    centre: glam::Vec3,
+) -> Vec<(bool, f64)> {
+    shading_lights(lights, settings, centre)
+        .iter()
+        .map(|light| {
+            let cap_ratio = super::cpu::incidence(light, point.as_dvec3()).cap_ratio;
+            let exact = light.exact_allowed != 0 && settings.light_paths.is_exact(cap_ratio);
+            (exact, cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -299,29 +376,68 @@ mod tests {
         assert!(parse_exp_method("fast").is_err());
     }
 
-    #[test]
-    fn only_lights_with_a_size_need_the_exact_path_under_auto() {
-        let light = |kind| crate::scene::Light {
+    fn light(kind: crate::scene::LightKind, intensity: f32) -> crate::scene::Light {
+        crate::scene::Light {
             name: "light".into(),
             kind,
             color: glam::Vec3::ONE,
-            intensity: 1.0,
+            intensity,
             position: glam::Vec3::Y,
             direction: glam::Vec3::NEG_Y,
             range: None,
+        }
+    }
+
+    #[test]
+    fn only_lights_with_a_size_need_the_exact_path_under_auto() {
+        use crate::scene::LightKind;
+        let points = [light(LightKind::Point, 1.0), light(LightKind::Directional, 1.0)];
+        let with_sphere = [points[0].clone(), light(LightKind::Sphere { radius_m: 0.1 }, 1.0)];
+        let paths = |light_paths| ShadowSettings {
+            light_paths,
+            ..ShadowSettings::default()
         };
-        let points = [
-            light(crate::scene::LightKind::Point),
-            light(crate::scene::LightKind::Directional),
+        assert!(!exact_path_possible(&paths(LightPaths::Auto), &points));
+        assert!(exact_path_possible(&paths(LightPaths::Auto), &with_sphere));
+        assert!(exact_path_possible(&paths(LightPaths::Exact), &points));
+        assert!(!exact_path_possible(&paths(LightPaths::Harmonics), &with_sphere));
+        assert!(!exact_path_possible(&paths(LightPaths::Auto), &[]));
+        let no_budget = ShadowSettings {
+            exact_light_budget: 0,
+            ..paths(LightPaths::Auto)
+        };
+        assert!(!exact_path_possible(&no_budget, &with_sphere));
+    }
+
+    #[test]
+    fn the_budget_lets_the_brightest_sized_lights_go_exact() {
+        use crate::scene::LightKind;
+        let lights = [
+            light(LightKind::Sphere { radius_m: 0.1 }, 2.0),
+            light(LightKind::Point, 50.0),
+            light(LightKind::Sphere { radius_m: 0.1 }, 9.0),
+            light(LightKind::Disk { radius_m: 0.2 }, 100.0),
+            light(LightKind::Sphere { radius_m: 0.1 }, 9.0),
         ];
-        let with_sphere = [
-            points[0].clone(),
-            light(crate::scene::LightKind::Sphere { radius_m: 0.1 }),
-        ];
-        assert!(!exact_path_possible(LightPaths::Auto, &points));
-        assert!(exact_path_possible(LightPaths::Auto, &with_sphere));
-        assert!(exact_path_possible(LightPaths::Exact, &points));
-        assert!(!exact_path_possible(LightPaths::Harmonics, &with_sphere));
-        assert!(!exact_path_possible(LightPaths::Auto, &[]));
+        let allowed = |light_paths, exact_light_budget| -> Vec<u32> {
+            let settings = ShadowSettings {
+                light_paths,
+                exact_light_budget,
+                ..ShadowSettings::default()
+            };
+            shading_lights(&lights, &settings, glam::Vec3::ZERO)
+                .iter()
+                .map(|l| l.exact_allowed)
+                .collect()
+        };
+        // At the centre, 1 m below them all: the disk (100 × π 0.2² ≈ 12.6 lux) outshines
+        // the 9 cd spheres; of those equal two, the first in the scene wins; the point light
+        // has no disc.
+        assert_eq!(allowed(LightPaths::Auto, 2), [0, 0, 1, 1, 0]);
+        assert_eq!(allowed(LightPaths::Auto, 3), [0, 0, 1, 1, 1]);
+        assert_eq!(allowed(LightPaths::Auto, 64), [1, 0, 1, 1, 1]);
+        assert_eq!(allowed(LightPaths::Auto, 0), [0; 5]);
+        assert_eq!(allowed(LightPaths::Exact, 0), [1; 5]);
+        assert_eq!(allowed(LightPaths::Harmonics, 64), [0; 5]);
     }
 }

@@ -21,7 +21,7 @@ use super::StudyError;
 use crate::blockers::Sphere;
 use crate::reference::{ProgressiveRender, SurfaceHit};
 use crate::render::cpu::{self, ShadingInputs, SurfacePoint};
-use crate::render::gpu_types::{GpuLight, environment_irradiance};
+use crate::render::gpu_types::environment_irradiance;
 use crate::render::{
     GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
 };
@@ -284,7 +284,7 @@ pub(super) fn compare(
     blockers: &[Sphere],
     camera: &Camera,
 ) -> PenumbraRow {
-    let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
+    let lights = crate::render::shading_lights(&scene.lights, shadows, scene.bounds().center());
     let environment = environment_irradiance(scene.environment.as_ref());
     let inputs = ShadingInputs {
         lights: &lights,

@@ -10,7 +10,6 @@ use glam::{DVec3, Vec3};
 
 use crate::blockers::Sphere;
 use crate::render::cpu::{self, ShadingInputs};
-use crate::render::gpu_types::GpuLight;
 use crate::render::{
     GpuContext, RenderError, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_logsh_image,
     shade_surfaces,
@@ -140,7 +139,7 @@ pub fn measure(
         height,
     };
     let surfaces = capture_surfaces(gpu, &case.scene, &case.camera, None, width, height)?;
-    let lights: Vec<GpuLight> = case.scene.lights.iter().map(GpuLight::new).collect();
+    let lights = frame.shading_lights();
     let no_environment = [[0.0f32; 4]; 9];
     let inputs = ShadingInputs {
         lights: &lights,

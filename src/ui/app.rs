@@ -1001,13 +1001,15 @@ impl eframe::App for EditorApp {
                             _ => None,
                         };
                         let (pivot, distance) = (viewport.orbit.target, viewport.orbit.distance);
-                        let paths = document.settings.shadows.light_paths;
-                        let exact: Vec<bool> = document
-                            .scene
-                            .lights
-                            .iter()
-                            .map(|l| crate::render::light_path_at(l, pivot, paths).0)
-                            .collect();
+                        let exact: Vec<bool> = crate::render::light_paths_at(
+                            &document.scene.lights,
+                            pivot,
+                            &document.settings.shadows,
+                            viewport.scene_centre(),
+                        )
+                        .into_iter()
+                        .map(|(exact, _)| exact)
+                        .collect();
                         let lights = GizmoLights {
                             lights: &document.scene.lights,
                             selected,

@@ -51,14 +51,16 @@ impl EditorApp {
             return (LightEdit::default(), delete);
         };
         let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
+        let centre = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.scene_centre());
         match self.selection {
             Some(Selection::Light(index)) if index < document.scene.lights.len() => {
+                let (exact, angle_deg) =
+                    crate::render::light_paths_at(&document.scene.lights, pivot, &document.settings.shadows, centre)
+                        [index];
                 let light = &mut document.scene.lights[index];
                 ui.heading(format!("Light: {}", light.name));
                 let distance = light.position.distance(pivot).max(0.1);
                 let edit = light_inspector(ui, light, distance);
-                let (exact, angle_deg) =
-                    crate::render::light_path_at(light, pivot, document.settings.shadows.light_paths);
                 ui.weak(format!(
                     "shadow path at the view's pivot: {} ({angle_deg:.1}° in radius)",
                     if exact { "exact" } else { "SH" }

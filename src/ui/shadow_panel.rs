@@ -54,6 +54,20 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                  SH: one visibility for all lights, soft. Auto: exact for sphere and area lights \
                  under 40° of angular radius. The Lights list shows each light's path.",
             );
+        if settings.light_paths == LightPaths::Auto {
+            ui.add(
+                egui::Slider::new(
+                    &mut settings.exact_light_budget,
+                    0..=crate::render::MAX_EXACT_LIGHT_BUDGET,
+                )
+                .text("exact lights at most"),
+            )
+            .on_hover_text(
+                "Auto sends at most this many sphere and area lights the exact way, the \
+                 brightest at the scene's centre first; each costs a pass over the blockers \
+                 per pixel. The others stay on the SH.",
+            );
+        }
         egui::ComboBox::from_label("exponentiation")
             .selected_text(method_label(settings.exp))
             .show_ui(ui, |ui| {

@@ -57,6 +57,8 @@ pub struct Viewport {
     /// The scene's lights as last uploaded: whether any can take the exact shadow path
     /// decides what the pipeline compiles.
     lights: Vec<Light>,
+    /// The scene's centre, about which the budget of exact lights is chosen.
+    scene_centre: glam::Vec3,
     target: Option<RenderTarget>,
     texture_id: Option<egui::TextureId>,
     pub orbit: OrbitCamera,
@@ -101,7 +103,7 @@ impl Viewport {
         } else {
             ShadowSettings::default()
         };
-        let exact_light_path = exact_path_possible(settings.light_paths, &scene.lights);
+        let exact_light_path = exact_path_possible(&settings, &scene.lights);
         let logsh = LogShPipeline::new(
             device,
             &pipeline.layouts,
@@ -119,7 +121,7 @@ impl Viewport {
         );
         let visibility = logsh.vertex_visibility(device, &gpu_scene);
         let heat_map = HeatMapPipeline::new(device, &pipeline.layouts, crate::render::SAMPLE_COUNT);
-        Viewport {
+        let mut viewport = Viewport {
             pipeline,
             heat_map,
             gpu_scene,
@@ -132,30 +134,44 @@ impl Viewport {
             },
             compiling: None,
             lights: scene.lights.clone(),
+            scene_centre: scene.bounds().center(),
             target: None,
             texture_id: None,
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
             rendered: None,
             last_render_ms: 0.0,
             rect: egui::Rect::NOTHING,
-        }
+        };
+        viewport.write_lights(render_state);
+        viewport
+    }
+
+    /// The scene's centre, about which the budget of exact lights is chosen.
+    pub fn scene_centre(&self) -> glam::Vec3 {
+        self.scene_centre
+    }
+
+    /// Writes the lights with the exact path allowed as the drawn settings say.
+    fn write_lights(&mut self, render_state: &egui_wgpu::RenderState) {
+        let lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, self.scene_centre);
+        self.gpu_scene.update_lights(
+            &render_state.device,
+            &render_state.queue,
+            &self.pipeline.layouts,
+            &lights,
+        );
     }
 
     /// Uploads changed lights; the next frame shows them. A first light able to take the
     /// exact shadow path (or the last one gone) recompiles the pipeline in the background.
     pub fn set_lights(&mut self, render_state: &egui_wgpu::RenderState, lights: &[Light]) {
-        self.gpu_scene.update_lights(
-            &render_state.device,
-            &render_state.queue,
-            &self.pipeline.layouts,
-            lights,
-        );
         self.lights = lights.to_vec();
+        self.write_lights(render_state);
         let (wanted, has_exact_path) = match &self.compiling {
             Some(c) => (c.settings, c.exact_light_path),
             None => (self.shadows.settings, self.shadows.pipeline.exact_light_path),
         };
-        if exact_path_possible(wanted.light_paths, &self.lights) != has_exact_path {
+        if exact_path_possible(&wanted, &self.lights) != has_exact_path {
             self.apply_shadow_settings(render_state, wanted);
         }
         self.rendered = None;
@@ -200,7 +216,7 @@ impl Viewport {
         if !settings.gpu_problems().is_empty() {
             return;
         }
-        let exact_light_path = exact_path_possible(settings.light_paths, &self.lights);
+        let exact_light_path = exact_path_possible(&settings, &self.lights);
         if !self.shadows.pipeline.matches(&settings, exact_light_path) {
             let compiling_these = self
                 .compiling
@@ -256,6 +272,8 @@ impl Viewport {
             .blockers
             .apply_settings(&render_state.device, &render_state.queue, &settings);
         self.shadows.settings = settings;
+        // The budget and the paths decide which lights may go the exact way.
+        self.write_lights(render_state);
         self.rendered = None;
     }
 
