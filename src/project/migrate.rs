@@ -60,34 +60,35 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
 }
 
 fn v7_to_v8(mut value: Value) -> Value {
-    let shadows = value
-        .get_mut("render")
-        .and_then(|render| render.get_mut("shadows"))
-        .and_then(Value::as_object_mut);
-    if let Some(shadows) = shadows {
-        // Format 7 had no budget: every small light could go exact.
-        let unlimited = crate::render::MAX_EXACT_LIGHT_BUDGET;
-        shadows.insert("exact_light_budget".into(), Value::from(unlimited));
-    }
-    if let Some(object) = value.as_object_mut() {
-        object.insert("format_version".into(), Value::from(8));
-    }
+    // Format 7 had no budget: every small light could go exact.
+    let unlimited = crate::render::MAX_EXACT_LIGHT_BUDGET;
+    set_shadow_setting(&mut value, "exact_light_budget", Value::from(unlimited));
+    set_format(&mut value, 8);
     value
 }
 
 fn v6_to_v7(mut value: Value) -> Value {
+    // Set, not defaulted: v1_to_v2 may have filled in today's defaults.
+    set_shadow_setting(&mut value, "shading_downsample", Value::from(1));
+    set_format(&mut value, 7);
+    value
+}
+
+/// Sets `render.shadows.<key>` where the file has shadow settings.
+fn set_shadow_setting(value: &mut Value, key: &str, setting: Value) {
     let shadows = value
         .get_mut("render")
         .and_then(|render| render.get_mut("shadows"))
         .and_then(Value::as_object_mut);
     if let Some(shadows) = shadows {
-        // Set, not defaulted: v1_to_v2 may have filled in today's defaults.
-        shadows.insert("shading_downsample".into(), Value::from(1));
+        shadows.insert(key.into(), setting);
     }
+}
+
+fn set_format(value: &mut Value, version: u64) {
     if let Some(object) = value.as_object_mut() {
-        object.insert("format_version".into(), Value::from(7));
+        object.insert("format_version".into(), Value::from(version));
     }
-    value
 }
 
 fn v5_to_v6(mut value: Value) -> Value {
