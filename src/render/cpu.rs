@@ -8,12 +8,13 @@
 //! - visibility G = exp*(F) by the chosen [`ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
-//!   [`super::BrdfShading::Separate`]; the BRDF-in-SH variants are in `cpu_lobes`), where V̄ is the mean of G over
-//!   the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d) with w_0 = 1 and
-//!   w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap (s = sin of its
-//!   half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d). Lights the
-//!   settings' [`super::LightPaths`] send the exact way take `penumbra::light_visibility`
-//!   instead (the share of their disc no blocker hides);
+//!   [`super::BrdfShading::Separate`]; the BRDF-in-SH variants are in `cpu_lobes`), where
+//!   V̄ is the mean of G over the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d)
+//!   with w_0 = 1 and w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap
+//!   (s = sin of its half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d).
+//!   Lights the settings' [`super::LightPaths`] send the exact way (and whose
+//!   `exact_allowed` the budget set, `render::shading_lights`) take
+//!   `penumbra::light_visibility` instead (the share of their disc no blocker hides);
 //! - with a terrain, F gains its log-visibility (`TerrainShadow::log_visibility`, the twin
 //!   of terrain.wgsl) and exact-path lights the share of their disc above its horizon.
 //!
