@@ -225,7 +225,7 @@ fn shadowed_radiance(s: Surface) -> vec3<f32> {
     return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
 }
 
-// Whether the light seen as inc takes the exact path at s.
+// Whether the light seen as inc takes the exact path at this receiver (its budget aside).
 fn takes_exact_path(inc: Incidence) -> bool {
     return inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u);
 }
