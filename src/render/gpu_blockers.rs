@@ -9,6 +9,7 @@ use super::ShadowSettings;
 use super::blocker_groups::group_blockers;
 use super::gpu_terrain::GpuTerrain;
 use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams};
+use super::pipeline::numbered_entries;
 use crate::blockers::Sphere;
 use crate::terrain::HeightField;
 
@@ -141,28 +142,13 @@ fn storage_bind_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow"),
         layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: params.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: sphere_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: group_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: terrain.params.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 4,
-                resource: terrain.heights.as_entire_binding(),
-            },
-        ],
+        entries: &numbered_entries([
+            params.as_entire_binding(),
+            sphere_buffer.as_entire_binding(),
+            group_buffer.as_entire_binding(),
+            terrain.params.as_entire_binding(),
+            terrain.heights.as_entire_binding(),
+        ]),
     })
 }
 

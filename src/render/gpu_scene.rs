@@ -6,7 +6,7 @@ use wgpu::util::DeviceExt;
 
 use super::BakedIndirect;
 use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance};
-use super::pipeline::SceneLayouts;
+use super::pipeline::{SceneLayouts, numbered_entries};
 use crate::scene::{Camera, Environment, Scene, TextureImage};
 
 pub struct GpuObject {
@@ -112,20 +112,11 @@ impl GpuScene {
                 device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&material.name),
                     layout: &layouts.material,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::Sampler(&layouts.sampler),
-                        },
-                    ],
+                    entries: &numbered_entries([
+                        buffer.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
+                        wgpu::BindingResource::Sampler(&layouts.sampler),
+                    ]),
                 })
             })
             .collect();
@@ -261,20 +252,11 @@ fn frame_bind_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
         layout: &layouts.frame,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: lights.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: indirect.as_entire_binding(),
-            },
-        ],
+        entries: &numbered_entries([
+            frame.as_entire_binding(),
+            lights.as_entire_binding(),
+            indirect.as_entire_binding(),
+        ]),
     })
 }
 

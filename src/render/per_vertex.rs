@@ -3,6 +3,7 @@
 //! binds as a second vertex buffer.
 
 use super::gpu_scene::GpuScene;
+use super::pipeline::numbered_entries;
 use super::wgsl_sh;
 
 /// The compute pipeline and the bind group layout of its per-object buffers (group 3).
@@ -120,16 +121,7 @@ impl VertexVisibility {
             bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("per-vertex object"),
                 layout: &compute.object_layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: object.vertex_buffer.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: buffer.as_entire_binding(),
-                    },
-                ],
+                entries: &numbered_entries([object.vertex_buffer.as_entire_binding(), buffer.as_entire_binding()]),
             }));
             buffers.push(buffer);
             vertex_counts.push(object.vertex_count);

@@ -317,3 +317,16 @@ impl RenderTarget {
         }
     }
 }
+
+/// Bind group entries binding each of `resources` at its position (0, 1, …), the order
+/// in which the shaders and the layout declare them.
+pub(super) fn numbered_entries<'a, const N: usize>(
+    resources: [wgpu::BindingResource<'a>; N],
+) -> [wgpu::BindGroupEntry<'a>; N] {
+    let mut binding = 0;
+    resources.map(|resource| {
+        let entry = wgpu::BindGroupEntry { binding, resource };
+        binding += 1;
+        entry
+    })
+}

@@ -12,7 +12,7 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_types::GpuUpsampleParams;
-use super::pipeline::DEPTH_FORMAT;
+use super::pipeline::{DEPTH_FORMAT, numbered_entries};
 
 /// Formats of fs_shade_low's targets: lighting, position, normal (see reduced_shading.wgsl).
 /// 32 bytes a sample, the most wgpu's default limits allow across attachments.
@@ -142,24 +142,12 @@ impl LowResolutionTargets {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("low-resolution samples"),
             layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&views[0]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&views[1]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&views[2]),
-                },
-            ],
+            entries: &numbered_entries([
+                params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[0]),
+                wgpu::BindingResource::TextureView(&views[1]),
+                wgpu::BindingResource::TextureView(&views[2]),
+            ]),
         });
         LowResolutionTargets {
             full_size,
