@@ -27,14 +27,41 @@ use lightpaint::sh::ExpMethod;
 const WIDTH: u32 = 960;
 const HEIGHT: u32 = 540;
 
-fn open(relative: &str) -> (Scene, Camera, RenderSettings) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
-    let document = Document::open(&path).expect("sample project opens");
-    let camera = document
-        .camera
-        .map(|orbit| orbit.camera())
-        .unwrap_or_else(|| document.scene.initial_camera());
-    (document.scene, camera, document.settings)
+/// A sample project's scene, camera and render settings.
+struct Sample {
+    scene: Scene,
+    camera: Camera,
+    settings: RenderSettings,
+}
+
+impl Sample {
+    fn open(relative: &str) -> Sample {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
+        let document = Document::open(&path).expect("sample project opens");
+        let camera = document
+            .camera
+            .map(|orbit| orbit.camera())
+            .unwrap_or_else(|| document.scene.initial_camera());
+        Sample {
+            scene: document.scene,
+            camera,
+            settings: document.settings,
+        }
+    }
+
+    /// Its frame at WIDTH × HEIGHT with `shadows` and `blockers`.
+    fn frame<'a>(&'a self, shadows: &'a ShadowSettings, blockers: &'a [Sphere]) -> ShadowFrame<'a> {
+        ShadowFrame {
+            baked_indirect: None,
+            scene: &self.scene,
+            camera: &self.camera,
+            settings: &self.settings,
+            shadows,
+            blockers,
+            width: WIDTH,
+            height: HEIGHT,
+        }
+    }
 }
 
 /// `count` spheres on a jittered grid over the lower half of the scene's bounds, each a
@@ -81,52 +108,34 @@ fn frames(c: &mut Criterion) {
         ("studio", "projects/studio/studio.lightpaint"),
         ("sample", "projects/sample/sample.lightpaint"),
     ] {
-        let (scene, camera, settings) = open(path);
+        let sample = Sample::open(path);
         let mut group = c.benchmark_group(format!("frame/blockers/{name}"));
         group.sample_size(10).measurement_time(Duration::from_secs(10));
-        let fitted = fit_scene(&scene, &BlockerSettings::default()).spheres();
+        let fitted = fit_scene(&sample.scene, &BlockerSettings::default()).spheres();
         let sets: Vec<(String, Vec<Sphere>)> = std::iter::once((format!("fitted-{}", fitted.len()), fitted))
-            .chain([10, 50, 400, 2000].map(|n| (format!("scattered-{n}"), scattered(&scene, n))))
+            .chain([10, 50, 400, 2000].map(|n| (format!("scattered-{n}"), scattered(&sample.scene, n))))
             .collect();
         for (label, blockers) in &sets {
-            let frame = ShadowFrame {
-                baked_indirect: None,
-                scene: &scene,
-                camera: &camera,
-                settings: &settings,
-                shadows: &defaults,
-                blockers,
-                width: WIDTH,
-                height: HEIGHT,
-            };
+            let frame = sample.frame(&defaults, blockers);
             time_frame(&mut group, BenchmarkId::from_parameter(label), &gpu, &frame);
         }
         group.finish();
     }
 
-    let (scene, camera, settings) = open("projects/studio/studio.lightpaint");
-    let blockers = scattered(&scene, 50);
+    let sample = Sample::open("projects/studio/studio.lightpaint");
+    let blockers = scattered(&sample.scene, 50);
     let mut group = c.benchmark_group("frame/order-method");
     group.sample_size(10).measurement_time(Duration::from_secs(8));
     for order in [2, 3, 4, 6, 8] {
         for exp in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(8)] {
             let shadows = ShadowSettings { order, exp, ..defaults };
-            let frame = ShadowFrame {
-                baked_indirect: None,
-                scene: &scene,
-                camera: &camera,
-                settings: &settings,
-                shadows: &shadows,
-                blockers: &blockers,
-                width: WIDTH,
-                height: HEIGHT,
-            };
+            let frame = sample.frame(&shadows, &blockers);
             time_frame(&mut group, BenchmarkId::new(format!("{exp:?}"), order), &gpu, &frame);
         }
     }
     group.finish();
 
-    let fitted = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let fitted = fit_scene(&sample.scene, &BlockerSettings::default()).spheres();
     let mut group = c.benchmark_group("frame/shading-downsample");
     group.sample_size(10).measurement_time(Duration::from_secs(8));
     for shading_downsample in 1..=4 {
@@ -134,16 +143,7 @@ fn frames(c: &mut Criterion) {
             shading_downsample,
             ..defaults
         };
-        let frame = ShadowFrame {
-            baked_indirect: None,
-            scene: &scene,
-            camera: &camera,
-            settings: &settings,
-            shadows: &shadows,
-            blockers: &fitted,
-            width: WIDTH,
-            height: HEIGHT,
-        };
+        let frame = sample.frame(&shadows, &fitted);
         time_frame(
             &mut group,
             BenchmarkId::new("studio-fitted", shading_downsample),
@@ -155,17 +155,8 @@ fn frames(c: &mut Criterion) {
 
     let mut group = c.benchmark_group("cpu-reference");
     group.sample_size(10).measurement_time(Duration::from_secs(10));
-    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, WIDTH, HEIGHT).expect("surfaces");
-    let frame = ShadowFrame {
-        baked_indirect: None,
-        scene: &scene,
-        camera: &camera,
-        settings: &settings,
-        shadows: &defaults,
-        blockers: &blockers,
-        width: WIDTH,
-        height: HEIGHT,
-    };
+    let surfaces = capture_surfaces(&gpu, &sample.scene, &sample.camera, None, WIDTH, HEIGHT).expect("surfaces");
+    let frame = sample.frame(&defaults, &blockers);
     group.throughput(Throughput::Elements((WIDTH * HEIGHT) as u64 * blockers.len() as u64));
     group.bench_function("studio-scattered-50", |b| {
         b.iter(|| shade_surfaces(&surfaces, &frame).expect("shade"))
