@@ -225,9 +225,11 @@ fn shadowed_radiance(s: Surface) -> vec3<f32> {
     return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
 }
 
-// Whether the light seen as inc takes the exact path at this receiver (its budget aside).
+// Whether the light seen as inc takes the exact path at this receiver: allowed by the
+// budget and small enough here (render::cpu::takes_exact_path).
 fn takes_exact_path(inc: Incidence) -> bool {
-    return inc.cap_ratio < shadow.exact_below_cap_ratio && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u);
+    return inc.exact_allowed && inc.cap_ratio < shadow.exact_below_cap_ratio
+        && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u);
 }
 
 // A light's shadowed radiance at s through the lobes' SH.
@@ -266,7 +268,7 @@ fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
             continue;
         }
         if EXACT_LIGHT_PATH {
-            if lights[i].exact_allowed != 0u && takes_exact_path(inc) {
+            if takes_exact_path(inc) {
                 radiance += unshadowed * exact_light_visibility(s.position, s.normal, inc)
                     * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
                 continue;

@@ -52,6 +52,8 @@ pub struct Incidence {
     pub cap_ratio: f64,
     /// Distance to the light (infinite for directional lights).
     pub distance_m: f64,
+    /// Whether the light may take the exact path (`GpuLight::exact_allowed`).
+    pub exact_allowed: bool,
 }
 
 fn v3(a: [f32; 4]) -> DVec3 {
@@ -67,6 +69,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
             to_light: -direction,
             cap_ratio: 0.0,
             distance_m: f64::INFINITY,
+            exact_allowed: light.exact_allowed != 0,
         };
     }
     let offset = v3(light.position) - p;
@@ -100,6 +103,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
         to_light,
         cap_ratio,
         distance_m: distance2.sqrt(),
+        exact_allowed: light.exact_allowed != 0,
     }
 }
 
@@ -240,17 +244,14 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     let f = scene_log_visibility(settings, inputs.blockers, inputs.terrain, s.position, s.normal);
     let lobes = lobes_from_log_visibility(settings, s, inputs.eye, &f, |f| exp_for_shading(settings.exp, f));
     let mut radiance = s.emissive + environment_through(settings, s, inputs.environment_irradiance, &lobes);
+    let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
     for light in inputs.lights {
         let inc = incidence(light, s.position);
         let unshadowed = direct_radiance(s, &inc, inputs.eye);
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
-        let exact = (light.exact_allowed != 0)
-            .then(|| exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint))
-            .flatten();
-        radiance += match exact {
+        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
             Some(visibility) => unshadowed * visibility,
             None => light_through(settings, s, &inc, inputs.eye, &lobes),
         };
@@ -270,7 +271,7 @@ pub fn exact_visibility(
     terrain: Option<&TerrainShadow>,
     pixel_footprint_m: f64,
 ) -> Option<f64> {
-    settings.light_paths.is_exact(inc.cap_ratio).then(|| {
+    takes_exact_path(inc, settings.light_paths).then(|| {
         let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
         let light = crate::penumbra::LightDisc {
             to_light: inc.to_light,
@@ -288,6 +289,12 @@ pub fn exact_visibility(
                 pixel_footprint_m,
             )
     })
+}
+
+/// Whether the light seen as `inc` takes the exact path at this receiver under `paths`:
+/// allowed by the budget and small enough here (`takes_exact_path` in logsh.wgsl).
+pub fn takes_exact_path(inc: &Incidence, paths: super::LightPaths) -> bool {
+    inc.exact_allowed && paths.is_exact(inc.cap_ratio)
 }
 
 /// exp* as the GPU evaluates it: HYB's carried magnitude capped where f32 stops (see

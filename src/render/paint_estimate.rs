@@ -117,17 +117,15 @@ impl<'a> DirectEstimate<'a> {
                 if unshadowed == DVec3::ZERO {
                     return None;
                 }
-                let exact = (light.exact_allowed != 0).then(|| {
-                    cpu::exact_visibility(
-                        s,
-                        &incidence,
-                        &self.settings,
-                        &self.blockers,
-                        self.terrain.as_ref(),
-                        0.0,
-                    )
-                });
-                let visible = exact.flatten().unwrap_or_else(|| {
+                let visible = cpu::exact_visibility(
+                    s,
+                    &incidence,
+                    &self.settings,
+                    &self.blockers,
+                    self.terrain.as_ref(),
+                    0.0,
+                )
+                .unwrap_or_else(|| {
                     cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
                 });
                 let t = luminance(unshadowed) * visible;

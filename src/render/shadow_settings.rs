@@ -351,9 +351,9 @@ pub fn light_paths_at(
     shading_lights(lights, settings, centre)
         .iter()
         .map(|light| {
-            let cap_ratio = super::cpu::incidence(light, point.as_dvec3()).cap_ratio;
-            let exact = light.exact_allowed != 0 && settings.light_paths.is_exact(cap_ratio);
-            (exact, cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+            let inc = super::cpu::incidence(light, point.as_dvec3());
+            let exact = super::cpu::takes_exact_path(&inc, settings.light_paths);
+            (exact, inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
         })
         .collect()
 }
