@@ -20,7 +20,9 @@ struct Frame {
     light_count: u32,
     // The angle one pixel subtends at the image centre, 2 tan(yfov/2) / height (radians).
     pixel_angle_rad: f32,
-    _pad1: u32,
+    // Lights from this index on take the exact shadow path (render::shading_lights
+    // decides per light for the frame; the upload puts them last).
+    first_exact_light: u32,
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
     // axes, polar axis +z (design.md §3).
     environment_irradiance: array<vec4<f32>, 9>,
@@ -43,9 +45,9 @@ struct Light {
     // Sphere lights (kind LIGHT_POINT): radius in metres; area lights: emitting area in m²;
     // 0 for point-like lights.
     source_size: f32,
-    // 1: may take the exact shadow path; 0: stays on the SH path (the settings' budget of
-    // exact lights, render::shading_lights).
-    exact_allowed: u32,
+    // 1: shadowed on the exact path, 0: through the SH (decided per light for the frame
+    // by render::shading_lights; the shaders read Frame.first_exact_light).
+    exact_path: u32,
     _pad: u32,
 };
 
@@ -60,11 +62,8 @@ struct ShadowParams {
     ratio_attenuation: u32,
     // Number of BlockerGroups (src/render/blocker_groups.rs).
     group_count: u32,
-    // Lights whose sin(angular radius) is below this are shadowed exactly, per light
-    // (exact_light_visibility in logsh.wgsl); 0: none, 2: all.
-    exact_below_cap_ratio: f32,
-    // 1: lights of no size (cap_ratio 0) take the exact path too.
-    exact_point_lights: u32,
+    _pad0: u32,
+    _pad1: u32,
     _pad2: u32,
 };
 

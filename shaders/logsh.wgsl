@@ -20,10 +20,14 @@
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
-// false: no light of the scene can take the exact path, which is then left out of the
+// false: no light of the frame is on the exact path, which is then left out of the
 // pipeline (lavapipe runs the code of both sides of a branch at every pixel, taken or
-// not). Set at pipeline creation (src/render/logsh.rs, render::exact_path_possible).
+// not). Set at pipeline creation (src/render/logsh.rs, render::compiled_paths).
 override EXACT_LIGHT_PATH: bool = true;
+
+// false: no light is on the SH path and no environment lights the scene, so the
+// visibility SH would go unread and are not computed. Set likewise.
+override SH_VISIBILITY: bool = true;
 
 // Σ of the blockers' and the terrain's log-visibility seen from p with normal n. Skipped: blockers that
 // contain p (a sphere-fit artefact on the blocker's own surface), blockers too small in
@@ -68,103 +72,6 @@ fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
         scale *= ratio;
     }
     return sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
-}
-
-// The share (0–1) of a cap of angular radius a hidden by a cap of angular radius b whose
-// centre is g away (src/penumbra/cap_overlap.rs, the f64 twin): the lens of the two caps,
-// 2θ_L(1 − cos a) + 2θ_B(1 − cos b) − 2E, from half-angle formulas and L'Huilier's
-// theorem so that tiny caps keep their digits, over the light's 2π(1 − cos a).
-fn hidden_fraction(a: f32, b: f32, g: f32) -> f32 {
-    if g >= a + b || b <= 0.0 {
-        return 0.0;
-    }
-    if g + a <= b {
-        return 1.0;
-    }
-    let ha = sin(0.5 * a);
-    let light_area = 4.0 * PI * ha * ha;
-    if g + b <= a {
-        let hb = sin(0.5 * b);
-        return min(4.0 * PI * hb * hb / light_area, 1.0);
-    }
-    let s = 0.5 * (a + b + g);
-    let sin_s = sin(s);
-    let sin_sa = sin(s - a);
-    let sin_sb = sin(s - b);
-    let sin_sg = sin(s - g);
-    let theta_light = 2.0 * atan(sqrt(max(sin_sa * sin_sg / (sin_s * sin_sb), 0.0)));
-    let theta_blocker = 2.0 * atan(sqrt(max(sin_sb * sin_sg / (sin_s * sin_sa), 0.0)));
-    let t = tan(0.5 * s) * tan(0.5 * (s - a)) * tan(0.5 * (s - b)) * tan(0.5 * (s - g));
-    let excess = 4.0 * atan(sqrt(max(t, 0.0)));
-    let hb = sin(0.5 * b);
-    let lens = 4.0 * theta_light * ha * ha + 4.0 * theta_blocker * hb * hb - 2.0 * excess;
-    return clamp(lens / light_area, 0.0, 1.0);
-}
-
-// Visibility of a light's disc (sin of its angular radius: inc.cap_ratio) from p with
-// normal n: Π over blockers of (1 − fade · hidden share), skipping what log_visibility
-// skips and blockers wholly beyond the light (src/penumbra/mod.rs, the f64 twin).
-// Anti-aliasing: against each blocker at distance d the disc's sine is at least
-// footprint/(2d) (footprint one pixel's width at p), so a point light's hard edge ramps
-// over about one pixel instead of stepping.
-fn exact_light_visibility(p: vec3<f32>, n: vec3<f32>, inc: Incidence) -> f32 {
-    let sin_light = clamp(inc.cap_ratio, 0.0, 1.0);
-    let half_footprint = 0.5 * pixel_footprint(p);
-    var log_v = 0.0;
-    for (var g = 0u; g < shadow.group_count; g++) {
-        let group = groups[g];
-        let to_group = group.center_extent.xyz - p;
-        let group_distance2 = dot(to_group, to_group);
-        if group_distance2 > group.influence_m * group.influence_m
-            || dot(to_group, n) + group.center_extent.w <= 0.0 {
-            continue;
-        }
-        // The group's bounding sphere outside the light's cone: none of its spheres can
-        // hide any of the light (cos γ ≤ cos(α + β) with sin β = extent/distance, α at its
-        // widest for the group's nearest sphere). No trigonometry: lavapipe pays for it
-        // at every pixel.
-        let group_distance = sqrt(group_distance2);
-        let extent = group.center_extent.w;
-        if group_distance > extent {
-            let sin_a = min(max(sin_light, half_footprint / (group_distance - extent)), 1.0);
-            let cos_a = sqrt(1.0 - sin_a * sin_a);
-            let sin_g = extent / group_distance;
-            let cos_g = sqrt(max(1.0 - sin_g * sin_g, 0.0));
-            if dot(to_group, inc.to_light) / group_distance <= cos_a * cos_g - sin_a * sin_g {
-                continue;
-            }
-        }
-        for (var i = group.first; i < group.first + group.count; i++) {
-            let b = blockers[i].center_radius;
-            let offset = b.xyz - p;
-            let distance2 = dot(offset, offset);
-            let radius = b.w;
-            if distance2 <= radius * radius {
-                continue;
-            }
-            let distance = sqrt(distance2);
-            let ratio = radius / distance;
-            let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / radius);
-            if ratio < shadow.min_cap_ratio || horizon <= 0.0 || distance - radius >= inc.distance {
-                continue;
-            }
-            let direction = offset / distance;
-            let sin_a = min(max(sin_light, half_footprint / distance), 1.0);
-            let cos_a = sqrt(1.0 - sin_a * sin_a);
-            // Disjoint caps (the common case) are rejected before any trigonometry.
-            let cos_separation = dot(direction, inc.to_light);
-            if cos_separation <= cos_a * sqrt(max(1.0 - ratio * ratio, 0.0)) - sin_a * ratio {
-                continue;
-            }
-            let separation = atan2(length(cross(direction, inc.to_light)), cos_separation);
-            let hidden = horizon * hidden_fraction(asin(sin_a), asin(ratio), separation);
-            if hidden >= 1.0 {
-                return 0.0;
-            }
-            log_v += log(1.0 - hidden);
-        }
-    }
-    return exp(log_v);
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'
@@ -222,14 +129,12 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
+    if !SH_VISIBILITY {
+        // Read only by a light the viewport draws before its pipeline with the SH path is
+        // compiled: it shows unshadowed meanwhile.
+        return radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+    }
     return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
-}
-
-// Whether the light seen as inc takes the exact path at this receiver: allowed by the
-// budget and small enough here (render::cpu::takes_exact_path).
-fn takes_exact_path(inc: Incidence) -> bool {
-    return inc.exact_allowed && inc.cap_ratio < shadow.exact_below_cap_ratio
-        && (inc.cap_ratio > 0.0 || shadow.exact_point_lights != 0u);
 }
 
 // A light's shadowed radiance at s through the lobes' SH.
@@ -256,27 +161,82 @@ fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     return s.k_d * clamp(sh_dot_environment(lobes.diffuse), vec3<f32>(0.0), unshadowed);
 }
 
-// Radiance of surface s lit through the lobes' SH; lights small enough take the exact
-// path instead: their exact visibility (times the share above the terrain's horizon)
-// times their unshadowed radiance.
+// Radiance of surface s lit through the lobes' SH by the lights before
+// frame.first_exact_light; the lights from there on take the exact path instead, eight
+// at a time: their exact visibility (times the share above the terrain's horizon) times their
+// unshadowed radiance.
 fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     var radiance = s.emissive + environment_through(s, lobes);
-    for (var i = 0u; i < frame.light_count; i++) {
-        let inc = incidence(lights[i], s.position);
-        let unshadowed = direct_radiance(s, inc);
-        if all(unshadowed == vec3<f32>(0.0)) {
-            continue;
+    for (var i = 0u; i < frame.first_exact_light; i++) {
+        radiance += light_through(s, lobes, incidence(lights[i], s.position));
+    }
+    if EXACT_LIGHT_PATH {
+        for (var first = frame.first_exact_light; first < frame.light_count; first += select(4u, 8u, EXACT_WIDE)) {
+            radiance += exact_lights_radiance(s, first);
         }
-        if EXACT_LIGHT_PATH {
-            if takes_exact_path(inc) {
-                radiance += unshadowed * exact_light_visibility(s.position, s.normal, inc)
-                    * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
-                continue;
-            }
-        }
-        radiance += light_through(s, lobes, inc);
     }
     return radiance;
+}
+
+// The shadowed radiance of the exact-path lights first..first + 7 (those that exist;
+// first..first + 3 without EXACT_WIDE). Written out lane by lane: lavapipe makes a loop
+// writing vector lanes by index costly.
+fn exact_lights_radiance(s: Surface, first: u32) -> vec3<f32> {
+    let lo = exact_lights(s, first);
+    var hi = ExactLights(no_exact_batch(), array<vec3<f32>, 4>());
+    if EXACT_WIDE {
+        hi = exact_lights(s, first + 4u);
+    }
+    let v = exact_batch_visibility(s.position, s.normal, lo.batch, hi.batch);
+    return lo.unshadowed[0] * v.lo.x + lo.unshadowed[1] * v.lo.y + lo.unshadowed[2] * v.lo.z
+        + lo.unshadowed[3] * v.lo.w + hi.unshadowed[0] * v.hi.x + hi.unshadowed[1] * v.hi.y
+        + hi.unshadowed[2] * v.hi.z + hi.unshadowed[3] * v.hi.w;
+}
+
+// Four lights as a batch half, with their unshadowed radiance (times the share of their
+// disc above the terrain's horizon).
+struct ExactLights {
+    batch: ExactBatch,
+    unshadowed: array<vec3<f32>, 4>,
+};
+
+fn no_exact_batch() -> ExactBatch {
+    return ExactBatch(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+}
+
+fn exact_lights(s: Surface, first: u32) -> ExactLights {
+    let l0 = exact_light(s, first);
+    let l1 = exact_light(s, first + 1u);
+    let l2 = exact_light(s, first + 2u);
+    let l3 = exact_light(s, first + 3u);
+    let batch = ExactBatch(
+        vec4<f32>(l0.to_light.x, l1.to_light.x, l2.to_light.x, l3.to_light.x),
+        vec4<f32>(l0.to_light.y, l1.to_light.y, l2.to_light.y, l3.to_light.y),
+        vec4<f32>(l0.to_light.z, l1.to_light.z, l2.to_light.z, l3.to_light.z),
+        vec4<f32>(l0.sin_light, l1.sin_light, l2.sin_light, l3.sin_light),
+        vec4<f32>(l0.distance, l1.distance, l2.distance, l3.distance),
+    );
+    return ExactLights(batch, array<vec3<f32>, 4>(l0.unshadowed, l1.unshadowed, l2.unshadowed, l3.unshadowed));
+}
+
+// One lane of an ExactBatch, with the light's unshadowed radiance (times the share of its
+// disc above the terrain's horizon).
+struct ExactLight {
+    to_light: vec3<f32>,
+    sin_light: f32,
+    // 0 for a light that does not exist or does not light s: every blocker counts as
+    // beyond it, so it costs no lens.
+    distance: f32,
+    unshadowed: vec3<f32>,
+};
+
+fn exact_light(s: Surface, index: u32) -> ExactLight {
+    let exists = index < frame.light_count;
+    let inc = incidence(lights[min(index, frame.light_count - 1u)], s.position);
+    let unshadowed = select(vec3<f32>(0.0), direct_radiance(s, inc), exists)
+        * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
+    let lit = any(unshadowed != vec3<f32>(0.0));
+    return ExactLight(inc.to_light, clamp(inc.cap_ratio, 0.0, 1.0), select(0.0, inc.distance, lit), unshadowed);
 }
 
 @fragment

@@ -59,14 +59,11 @@ struct Incidence {
     cap_ratio: f32,
     // Distance to the light (the largest f32 for directional lights).
     distance: f32,
-    // Whether the light may take the exact shadow path (Light.exact_allowed).
-    exact_allowed: bool,
 };
 
 fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     var result: Incidence;
     result.cap_ratio = 0.0;
-    result.exact_allowed = light.exact_allowed != 0u;
     if light.kind == LIGHT_DIRECTIONAL {
         result.to_light = -light.direction_range.xyz;
         result.irradiance = light.intensity_rgb.rgb;

@@ -10,6 +10,10 @@
 // surface cache (terrain.surface_first on): the marched sum at every finest sample.
 @group(2) @binding(4) var<storage, read> terrain_heights: array<f32>;
 
+// false: the frame has no terrain, and its code is left out of the pipeline (lavapipe
+// runs every branch at every pixel). Set at pipeline creation (render::compiled_paths).
+override TERRAIN_SHADOWS: bool = true;
+
 // log2(2^(1/4) − 1): sample i is read from level round(i/4 + this) (terrain::March).
 const TERRAIN_GAP_LOG2: f32 = -2.4019313;
 
@@ -77,7 +81,7 @@ fn terrain_horizon_sin(p: vec3<f32>, direction: vec2<f32>, samples: u32) -> f32 
 // The terrain's log-visibility at p in world axes (zero without a terrain): the surface
 // cache on the terrain inside its footprint, marched elsewhere (TerrainShadow::log_visibility).
 fn terrain_log_visibility(p: vec3<f32>) -> Sh {
-    if terrain.present == 0u {
+    if !TERRAIN_SHADOWS || terrain.present == 0u {
         return sh_zero();
     }
     let frame = terrain.level_frame[0];
@@ -141,7 +145,7 @@ fn terrain_marched_sh(p: vec3<f32>, azimuths: u32) -> Sh {
 // The share of a light's disc (sin of its angular radius: cap_ratio) above the terrain's
 // horizon along the light's azimuth (TerrainShadow::light_visibility).
 fn terrain_light_visibility(p: vec3<f32>, to_light: vec3<f32>, cap_ratio: f32) -> f32 {
-    if terrain.present == 0u {
+    if !TERRAIN_SHADOWS || terrain.present == 0u {
         return 1.0;
     }
     let horizontal = length(to_light.xz);

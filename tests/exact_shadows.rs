@@ -90,6 +90,107 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
     }
 }
 
+/// Ten exact lights of every kind over a tight cluster of small balls: the GPU takes the
+/// lights eight at a time and, under the cluster, finds more blockers cutting a disc than
+/// its list of eight holds, and must still agree with the f64 CPU, which takes every light
+/// and blocker one by one.
+#[test]
+fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
+    let Some(gpu) = common::gpu() else { return };
+    let light = |name: &str, kind, position: Vec3, intensity| Light {
+        name: name.into(),
+        kind,
+        color: Vec3::ONE,
+        intensity,
+        position,
+        direction: Vec3::new(0.2, -1.0, 0.1).normalize(),
+        range: None,
+    };
+    let spot = LightKind::Spot {
+        inner_cone_rad: 0.4,
+        outer_cone_rad: 0.7,
+    };
+    let mut lights: Vec<Light> = [0.05f32, 0.2, 0.4, 0.8, 1.2, 0.1]
+        .iter()
+        .enumerate()
+        .map(|(k, &radius_m)| {
+            let turn = k as f32 * 1.1;
+            let position = Vec3::new(1.5 * turn.cos(), 3.0 + 0.3 * k as f32, 1.5 * turn.sin());
+            light(&format!("sphere {k}"), LightKind::Sphere { radius_m }, position, 12.0)
+        })
+        .collect();
+    lights.push(light("point", LightKind::Point, Vec3::new(-0.4, 2.5, 0.3), 8.0));
+    lights.push(light("spot", spot, Vec3::new(0.5, 3.0, -0.2), 20.0));
+    lights.push(light("sun", LightKind::Directional, Vec3::ZERO, 0.5));
+    lights.push(light(
+        "far sphere",
+        LightKind::Sphere { radius_m: 0.3 },
+        Vec3::new(0.0, 6.0, 0.0),
+        30.0,
+    ));
+    let scene = Scene {
+        objects: vec![shapes::plane(4.0, 4, 1.0).into_object("floor")],
+        materials: vec![Material {
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        lights,
+        ..Scene::default()
+    };
+    // Thirty 6 cm balls 10 cm apart, 0.8 m up: under them a light's disc meets many.
+    let blockers: Vec<Sphere> = (0..30)
+        .map(|k| Sphere {
+            center: Vec3::new(-0.25 + 0.1 * (k % 6) as f32, 0.8, -0.2 + 0.1 * (k / 6) as f32),
+            radius_m: 0.06,
+        })
+        .collect();
+    let camera = Camera {
+        position: Vec3::new(0.0, 4.0, 0.01),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 40f32.to_radians(),
+        znear: 0.1,
+        zfar: None,
+    };
+    let settings = RenderSettings::default();
+    let shadows = ShadowSettings {
+        light_paths: LightPaths::Exact,
+        ..ShadowSettings::default().every_pixel()
+    };
+    let frame = ShadowFrame {
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        baked_indirect: None,
+        width: 160,
+        height: 160,
+    };
+    let gpu_image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
+    let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
+    let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
+    eprintln!("{:.3} % within 1/255, worst {worst}/255", 100.0 * within);
+    assert!(within >= 0.995, "{:.3} % within 1/255", 100.0 * within);
+    // The crowd is there: under its middle, the largest sphere light's disc meets more
+    // than eight balls.
+    let under = DVec3::new(0.0, 0.0, 0.0);
+    let big = &scene.lights[4];
+    let to_light = (big.position.as_dvec3() - under).normalize();
+    let disc = (1.2 / (big.position.as_dvec3() - under).length()).asin();
+    let cutting = blockers
+        .iter()
+        .filter(|b| {
+            let offset = b.center.as_dvec3() - under;
+            let cap = (b.radius_m as f64 / offset.length()).asin();
+            offset.normalize().angle_between(to_light) < disc + cap
+        })
+        .count();
+    assert!(cutting > 8, "{cutting} balls cut the disc");
+}
+
 /// A white Lambertian floor, a 0.5 m sphere light 3 m above the origin (40 cd) and a ball
 /// of 0.3 m at 1 m: along the floor the radiance is E/π·V with E = I·cos θ/d² (the
 /// renderer's unshadowed sphere light) and V the share of the light's disc whose rays miss

@@ -8,8 +8,8 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    BrdfShading, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image,
-    render_logsh_image,
+    BrdfShading, CompiledPaths, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
+    render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene};
@@ -231,7 +231,7 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
         ..ShadowSettings::default().every_pixel()
     };
     let raster = ScenePipeline::new(&gpu.device);
-    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, true);
+    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, CompiledPaths::ALL);
     let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
     let gpu_blockers = GpuBlockers::upload(
         &gpu.device,

@@ -55,6 +55,7 @@ fn frame_matches_wgsl() {
             ("exposure", offset_of!(GpuFrame, exposure)),
             ("light_count", offset_of!(GpuFrame, light_count)),
             ("pixel_angle_rad", offset_of!(GpuFrame, pixel_angle_rad)),
+            ("first_exact_light", offset_of!(GpuFrame, first_exact_light)),
             ("environment_irradiance", offset_of!(GpuFrame, environment_irradiance)),
         ],
     );
@@ -72,7 +73,7 @@ fn light_matches_wgsl() {
             ("spot_cone", offset_of!(GpuLight, spot_cone)),
             ("kind", offset_of!(GpuLight, kind)),
             ("source_size", offset_of!(GpuLight, source_size)),
-            ("exact_allowed", offset_of!(GpuLight, exact_allowed)),
+            ("exact_path", offset_of!(GpuLight, exact_path)),
         ],
     );
 }
@@ -115,11 +116,6 @@ fn shadow_params_match_wgsl() {
             ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
             ("group_count", offset_of!(GpuShadowParams, group_count)),
-            (
-                "exact_below_cap_ratio",
-                offset_of!(GpuShadowParams, exact_below_cap_ratio),
-            ),
-            ("exact_point_lights", offset_of!(GpuShadowParams, exact_point_lights)),
         ],
     );
 }

@@ -12,9 +12,9 @@
 //!   V̄ is the mean of G over the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d)
 //!   with w_0 = 1 and w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap
 //!   (s = sin of its half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d).
-//!   Lights the settings' [`super::LightPaths`] send the exact way (and whose
-//!   `exact_allowed` the budget set, `render::shading_lights`) take
-//!   `penumbra::light_visibility` instead (the share of their disc no blocker hides);
+//!   Lights on the exact path (`GpuLight::exact_path`, chosen per light for the frame by
+//!   `render::shading_lights`) take `penumbra::light_visibility` instead (the share of
+//!   their disc no blocker hides);
 //! - with a terrain, F gains its log-visibility (`TerrainShadow::log_visibility`, the twin
 //!   of terrain.wgsl) and exact-path lights the share of their disc above its horizon.
 //!
@@ -52,8 +52,6 @@ pub struct Incidence {
     pub cap_ratio: f64,
     /// Distance to the light (infinite for directional lights).
     pub distance_m: f64,
-    /// Whether the light may take the exact path (`GpuLight::exact_allowed`).
-    pub exact_allowed: bool,
 }
 
 fn v3(a: [f32; 4]) -> DVec3 {
@@ -69,7 +67,6 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
             to_light: -direction,
             cap_ratio: 0.0,
             distance_m: f64::INFINITY,
-            exact_allowed: light.exact_allowed != 0,
         };
     }
     let offset = v3(light.position) - p;
@@ -103,7 +100,6 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
         to_light,
         cap_ratio,
         distance_m: distance2.sqrt(),
-        exact_allowed: light.exact_allowed != 0,
     }
 }
 
@@ -251,7 +247,7 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         if unshadowed == DVec3::ZERO {
             continue;
         }
-        radiance += match exact_visibility(s, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
+        radiance += match exact_visibility(s, light, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
             Some(visibility) => unshadowed * visibility,
             None => light_through(settings, s, &inc, inputs.eye, &lobes),
         };
@@ -259,19 +255,21 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     radiance
 }
 
-/// The visibility of the light seen as `inc` from `s` when the settings send it the
-/// exact way (`crate::penumbra`, times the share of its disc above the terrain's horizon);
-/// None when it takes the SH path. `pixel_footprint_m` anti-aliases hard blocker edges
-/// (`penumbra::light_visibility`; 0: none).
+/// The visibility of `light`, seen as `inc` from `s`, when it is on the exact path
+/// (`GpuLight::exact_path`, which `render::shading_lights` sets): `crate::penumbra` times
+/// the share of its disc above the terrain's horizon. None when it takes the SH path.
+/// `pixel_footprint_m` anti-aliases hard blocker edges (`penumbra::light_visibility`; 0:
+/// none).
 pub fn exact_visibility(
     s: &SurfacePoint,
+    light: &GpuLight,
     inc: &Incidence,
     settings: &ShadowSettings,
     blockers: &[Sphere],
     terrain: Option<&TerrainShadow>,
     pixel_footprint_m: f64,
 ) -> Option<f64> {
-    takes_exact_path(inc, settings.light_paths).then(|| {
+    (light.exact_path != 0).then(|| {
         let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
         let light = crate::penumbra::LightDisc {
             to_light: inc.to_light,
@@ -289,12 +287,6 @@ pub fn exact_visibility(
                 pixel_footprint_m,
             )
     })
-}
-
-/// Whether the light seen as `inc` takes the exact path at this receiver under `paths`:
-/// allowed by the budget and small enough here (`takes_exact_path` in logsh.wgsl).
-pub fn takes_exact_path(inc: &Incidence, paths: super::LightPaths) -> bool {
-    inc.exact_allowed && paths.is_exact(inc.cap_ratio)
 }
 
 /// exp* as the GPU evaluates it: HYB's carried magnitude capped where f32 stops (see

@@ -97,9 +97,7 @@ impl GpuBlockers {
             blocker_count: self.spheres.len() as u32,
             ratio_attenuation: settings.ratio_attenuation as u32,
             group_count: self.groups.len() as u32,
-            exact_below_cap_ratio: settings.light_paths.exact_below_cap_ratio() as f32,
-            exact_point_lights: settings.light_paths.exact_point_lights() as u32,
-            _pad: 0,
+            _pad: [0; 3],
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }

@@ -34,6 +34,8 @@ pub struct GpuScene {
     indirect_buffer: wgpu::Buffer,
     pub frame_bind_group: wgpu::BindGroup,
     pub light_count: usize,
+    /// Lights from this index on (in the buffer's order) take the exact shadow path.
+    first_exact_light: usize,
     environment_irradiance: [[f32; 4]; 9],
 }
 
@@ -139,6 +141,7 @@ impl GpuScene {
             indirect_buffer,
             frame_bind_group,
             light_count: 0,
+            first_exact_light: 0,
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
@@ -163,7 +166,6 @@ impl GpuScene {
         self.objects.iter().map(|o| o.vertex_count).sum()
     }
 
-    /// Rewrites the light buffer, growing it when there are more lights than it holds.
     /// Hides the objects whose [`Scene::objects`] index `hidden` holds (and shows the rest).
     pub fn set_hidden(&mut self, hidden: &std::collections::BTreeSet<usize>) {
         for object in &mut self.objects {
@@ -171,6 +173,8 @@ impl GpuScene {
         }
     }
 
+    /// Rewrites the light buffer, growing it when there are more lights than it holds;
+    /// lights on the exact path go last ([`super::gpu_types::exact_lights_last`]).
     pub fn update_lights(
         &mut self,
         device: &wgpu::Device,
@@ -189,10 +193,12 @@ impl GpuScene {
                 &self.indirect_buffer,
             );
         }
-        if !lights.is_empty() {
-            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(lights));
+        let (ordered, first_exact_light) = super::gpu_types::exact_lights_last(lights);
+        if !ordered.is_empty() {
+            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(&ordered));
         }
-        self.light_count = lights.len();
+        self.light_count = ordered.len();
+        self.first_exact_light = first_exact_light;
     }
 
     /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
@@ -202,6 +208,7 @@ impl GpuScene {
             size_px,
             exposure_ev,
             self.light_count,
+            self.first_exact_light,
             self.environment_irradiance,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));

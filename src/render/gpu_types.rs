@@ -45,7 +45,8 @@ pub struct GpuFrame {
     pub light_count: u32,
     /// The angle one pixel subtends at the image centre (see [`pixel_angle_rad`]).
     pub pixel_angle_rad: f32,
-    pub _pad1: u32,
+    /// Lights from this index on take the exact shadow path (see [`exact_lights_last`]).
+    pub first_exact_light: u32,
     /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
     pub environment_irradiance: [[f32; 4]; 9],
 }
@@ -57,6 +58,7 @@ impl GpuFrame {
         size_px: [u32; 2],
         exposure_ev: f32,
         light_count: usize,
+        first_exact_light: usize,
         environment_irradiance: [[f32; 4]; 9],
     ) -> GpuFrame {
         let [width, height] = size_px.map(|v| v.max(1) as f32);
@@ -66,7 +68,7 @@ impl GpuFrame {
             exposure: exposure_ev.exp2(),
             light_count: light_count as u32,
             pixel_angle_rad: pixel_angle_rad(camera, size_px[1]) as f32,
-            _pad1: 0,
+            first_exact_light: first_exact_light.min(light_count) as u32,
             environment_irradiance,
         }
     }
@@ -74,6 +76,16 @@ impl GpuFrame {
     pub fn view_projection(&self) -> Mat4 {
         Mat4::from_cols_array_2d(&self.view_proj)
     }
+}
+
+/// `lights` in the order the shaders take them: those on the SH path first, then those on
+/// the exact path (each side in scene order), with the index of the first exact one. The
+/// shaders walk each side in its own loop: lavapipe runs both sides of a branch at every
+/// pixel, so a per-light choice inside one loop would cost both paths for every light.
+pub fn exact_lights_last(lights: &[GpuLight]) -> (Vec<GpuLight>, usize) {
+    let (exact, harmonics): (Vec<GpuLight>, Vec<GpuLight>) = lights.iter().partition(|light| light.exact_path != 0);
+    let first_exact = harmonics.len();
+    (harmonics.into_iter().chain(exact).collect(), first_exact)
 }
 
 /// The angle (radians) one pixel subtends at the centre of an image `height_px` tall seen
@@ -107,9 +119,9 @@ pub struct GpuLight {
     pub kind: u32,
     /// Sphere lights: radius in metres; area lights: emitting area in m²; otherwise 0.
     pub source_size: f32,
-    /// 1 if this light may take the exact shadow path, 0 if it stays on the SH path
-    /// (`render::shading_lights` applies the settings' budget; [`GpuLight::new`] allows it).
-    pub exact_allowed: u32,
+    /// 1 if this light is shadowed on the exact path, 0 on the SH path (decided for the
+    /// frame by `render::shading_lights`; [`GpuLight::new`] sets 0).
+    pub exact_path: u32,
     pub _pad: u32,
 }
 
@@ -145,7 +157,7 @@ impl GpuLight {
             spot_cone,
             kind,
             source_size,
-            exact_allowed: 1,
+            exact_path: 0,
             _pad: 0,
         }
     }
@@ -184,9 +196,7 @@ pub struct GpuShadowParams {
     pub blocker_count: u32,
     pub ratio_attenuation: u32,
     pub group_count: u32,
-    pub exact_below_cap_ratio: f32,
-    pub exact_point_lights: u32,
-    pub _pad: u32,
+    pub _pad: [u32; 3],
 }
 
 /// WGSL `UpsampleParams` (see `reduced_shading`).

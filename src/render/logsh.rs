@@ -11,7 +11,7 @@ use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::pipeline::{RenderTarget, SceneLayouts, depth_test, two_sided_triangles};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
-use super::{BrdfShading, ShadowSettings, shaders, wgsl_sh};
+use super::{BrdfShading, CompiledPaths, ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
 
 /// Pipelines drawing a scene with log-SH shadows at one order and method.
@@ -20,8 +20,8 @@ pub struct LogShPipeline {
     pub exp: ExpMethod,
     pub brdf: BrdfShading,
     pub samples: u32,
-    /// Whether the exact small-light path is compiled in.
-    pub exact_light_path: bool,
+    /// The shading paths compiled in.
+    pub paths: CompiledPaths,
     pub shadow_layout: wgpu::BindGroupLayout,
     depth_prepass: wgpu::RenderPipeline,
     shade: wgpu::RenderPipeline,
@@ -89,23 +89,19 @@ enum Stage<'a> {
 impl LogShPipeline {
     /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
     /// samples (the settings must be valid: see [`ShadowSettings::gpu_problems`]), with
-    /// the exact small-light path compiled in only if `exact_light_path` (see
-    /// [`super::exact_path_possible`]: lavapipe pays for its code at every pixel whether
-    /// or not a light takes it).
+    /// the shading `paths` compiled in (see [`super::compiled_paths`]: lavapipe pays for
+    /// a path's code at every pixel whether or not a light takes it).
     pub fn new(
         device: &wgpu::Device,
         layouts: &SceneLayouts,
         settings: &ShadowSettings,
         samples: u32,
-        exact_light_path: bool,
+        paths: CompiledPaths,
     ) -> LogShPipeline {
         let shadow_layout = shadow_layout(device);
         let source = shaders::logsh_source(settings.order, settings.exp, settings.brdf);
         let module = shaders::create_module(device, "log-SH shadows", &source);
-        let variant = Variant {
-            samples,
-            exact_light_path,
-        };
+        let variant = Variant { samples, paths };
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
             (
@@ -137,7 +133,7 @@ impl LogShPipeline {
             exp: settings.exp,
             brdf: settings.brdf,
             samples,
-            exact_light_path,
+            paths,
             depth_prepass: make(Stage::DepthOnly),
             shade: make(Stage::Shade),
             per_vertex,
@@ -147,9 +143,9 @@ impl LogShPipeline {
     }
 
     /// Whether this pipeline was built for `settings`' order, method, BRDF and shading
-    /// resolution, and with the exact light path if `exact_light_path`.
-    pub fn matches(&self, settings: &ShadowSettings, exact_light_path: bool) -> bool {
-        self.exact_light_path == exact_light_path
+    /// resolution, and with `paths`.
+    pub fn matches(&self, settings: &ShadowSettings, paths: CompiledPaths) -> bool {
+        self.paths == paths
             && self.order == settings.order
             && self.exp == settings.exp
             && self.brdf == settings.brdf
@@ -338,7 +334,12 @@ pub fn surface_pipelines(
                 // fs_surface shades no light.
                 Variant {
                     samples: 1,
-                    exact_light_path: false,
+                    paths: CompiledPaths {
+                        exact: false,
+                        exact_wide: false,
+                        harmonics: false,
+                        terrain: false,
+                    },
                 },
             )
         })
@@ -349,8 +350,8 @@ pub fn surface_pipelines(
 #[derive(Clone, Copy)]
 struct Variant {
     samples: u32,
-    /// Compile the exact small-light path (logsh.wgsl's EXACT_LIGHT_PATH).
-    exact_light_path: bool,
+    /// The shading paths compiled in (logsh.wgsl's EXACT_LIGHT_PATH and SH_VISIBILITY).
+    paths: CompiledPaths,
 }
 
 fn scene_pipeline(
@@ -426,7 +427,12 @@ fn scene_pipeline(
             wgpu::CompareFunction::Less,
         ),
     };
-    let mut constants: Vec<(&str, f64)> = vec![("EXACT_LIGHT_PATH", f64::from(u8::from(variant.exact_light_path)))];
+    let mut constants: Vec<(&str, f64)> = vec![
+        ("EXACT_LIGHT_PATH", f64::from(u8::from(variant.paths.exact))),
+        ("EXACT_WIDE", f64::from(u8::from(variant.paths.exact_wide))),
+        ("SH_VISIBILITY", f64::from(u8::from(variant.paths.harmonics))),
+        ("TERRAIN_SHADOWS", f64::from(u8::from(variant.paths.terrain))),
+    ];
     if let Stage::Surface(channel, name) = stage {
         constants.push((name, channel as f64));
     }

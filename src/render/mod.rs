@@ -36,9 +36,9 @@ pub use offscreen::{
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{
-    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, LightPaths, MAX_EXACT_LIGHT_BUDGET, MAX_TERRAIN_AZIMUTHS,
-    MAX_TERRAIN_LEVELS, ShadowSettings, TerrainShading, exact_path_possible, light_paths_at, parse_exp_method,
-    shading_lights,
+    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, CompiledPaths, LightPaths, MAX_EXACT_LIGHT_BUDGET,
+    MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, SceneLighting, ShadowSettings, TerrainShading, compiled_paths,
+    light_paths_at, parse_exp_method, shading_lights,
 };
 
 /// Settings that change how a frame looks, not what the scene is.

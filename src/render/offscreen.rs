@@ -157,8 +157,13 @@ impl<'a> ShadowRenderer<'a> {
     pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
         let layouts = SceneLayouts::new(&gpu.device);
-        let exact_light_path = super::exact_path_possible(frame.shadows, &frame.scene.lights);
-        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, exact_light_path);
+        let paths = super::compiled_paths(
+            frame.shadows,
+            &frame.scene.lights,
+            frame.scene.bounds().center(),
+            super::SceneLighting::of(frame.scene),
+        );
+        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, paths);
         let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
         gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &frame.shading_lights());
         gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);

@@ -35,7 +35,7 @@ impl<'a> DirectEstimate<'a> {
             .iter()
             .zip(shading)
             .map(|(light, shaded)| GpuLight {
-                exact_allowed: shaded.exact_allowed,
+                exact_path: shaded.exact_path,
                 ..GpuLight::new(&Light {
                     intensity: 1.0,
                     ..light.clone()
@@ -119,6 +119,7 @@ impl<'a> DirectEstimate<'a> {
                 }
                 let visible = cpu::exact_visibility(
                     s,
+                    light,
                     &incidence,
                     &self.settings,
                     &self.blockers,

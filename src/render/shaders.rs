@@ -11,6 +11,7 @@ pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
 pub const SCENE: &str = include_str!("../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../shaders/raster.wgsl");
 pub const LOGSH: &str = include_str!("../../shaders/logsh.wgsl");
+pub const EXACT_LIGHTS: &str = include_str!("../../shaders/exact_lights.wgsl");
 pub const TERRAIN: &str = include_str!("../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../shaders/reduced_shading.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
@@ -42,7 +43,9 @@ pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> Strin
         ""
     };
     let terrain = super::wgsl_terrain::terrain_module(order);
-    format!("{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{REDUCED_SHADING}\n{per_vertex}")
+    format!(
+        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{per_vertex}"
+    )
 }
 
 pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {

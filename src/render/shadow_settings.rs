@@ -89,8 +89,10 @@ impl Default for TerrainShading {
 #[serde(rename_all = "snake_case")]
 pub enum LightPaths {
     /// Extended lights (spheres, rectangles, disks) under
-    /// [`AUTO_EXACT_BELOW_HALF_ANGLE_DEG`] of angular radius at the receiver exactly; larger
-    /// ones, and lights of no size (points, spots, the sun), through the SH. Point-like
+    /// [`AUTO_EXACT_BELOW_HALF_ANGLE_DEG`] of angular radius at the scene's centre exactly,
+    /// as many as the settings' budget allows (brightest first); larger ones, and lights
+    /// of no size (points, spots, the sun), through the SH. The choice is one per light
+    /// for the whole frame, so no receiver shows a seam where a light changes path. Point-like
     /// lights cast hard shadows on the exact path, which show the sphere blockers' beads
     /// on mesh scenes; the SH's soft shadows hide them, so Auto keeps those on the SH.
     #[default]
@@ -279,27 +281,72 @@ pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     }
 }
 
-/// Whether any of `lights` can take the exact shadow path under `settings` at some
-/// receiver: under Auto only lights with a size (sphere and area lights) can, and only
-/// with a budget. Pipelines compile the exact path only then.
-pub fn exact_path_possible(settings: &ShadowSettings, lights: &[crate::scene::Light]) -> bool {
-    match settings.light_paths {
-        LightPaths::Harmonics => false,
-        LightPaths::Exact => true,
-        LightPaths::Auto => {
-            settings.exact_light_budget > 0
-                && lights
-                    .iter()
-                    .any(|light| super::gpu_types::GpuLight::new(light).source_size > 0.0)
+/// Which shading paths a log-SH pipeline compiles in (logsh.wgsl's EXACT_LIGHT_PATH and
+/// SH_VISIBILITY): lavapipe runs the code of both sides of a branch at every pixel whether
+/// taken or not, so code that no light of the frame needs is left out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CompiledPaths {
+    /// Some light is on the exact path.
+    pub exact: bool,
+    /// More than four lights are: the exact path takes them eight at a time rather than
+    /// four (EXACT_WIDE).
+    pub exact_wide: bool,
+    /// The visibility SH are read: some light is on the SH path, or an environment lights
+    /// the scene.
+    pub harmonics: bool,
+    /// The scene has a terrain (TERRAIN_SHADOWS).
+    pub terrain: bool,
+}
+
+impl CompiledPaths {
+    /// Both paths (a frame any light can be drawn with).
+    pub const ALL: CompiledPaths = CompiledPaths {
+        exact: true,
+        exact_wide: true,
+        harmonics: true,
+        terrain: true,
+    };
+}
+
+/// What a frame lights a scene with, besides its lights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneLighting {
+    pub has_environment: bool,
+    pub has_terrain: bool,
+}
+
+impl SceneLighting {
+    pub fn of(scene: &crate::scene::Scene) -> SceneLighting {
+        SceneLighting {
+            has_environment: scene.environment.is_some(),
+            has_terrain: scene.terrain.is_some(),
         }
     }
 }
 
-/// The lights as the shaders and the CPU reference take them, with the exact path allowed
-/// as `settings` say: every light under Exact, none under Harmonics, and under Auto the
-/// `exact_light_budget` sphere and area lights brightest at `centre` (the scene's centre:
-/// one choice for the whole frame, the same in the editor, the CLI and the reference).
-/// The shaders then send an allowed light the exact way where it is small enough.
+/// The paths a frame of `lights` (the scene's, about its centre `centre`) needs under
+/// `settings` (see [`shading_lights`]).
+pub fn compiled_paths(
+    settings: &ShadowSettings,
+    lights: &[crate::scene::Light],
+    centre: glam::Vec3,
+    lighting: SceneLighting,
+) -> CompiledPaths {
+    let shaded = shading_lights(lights, settings, centre);
+    let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
+    CompiledPaths {
+        exact: exact_count > 0,
+        exact_wide: exact_count > 4,
+        harmonics: lighting.has_environment || shaded.iter().any(|light| light.exact_path == 0),
+        terrain: lighting.has_terrain,
+    }
+}
+
+/// The lights as the shaders and the CPU reference take them, each on the shadow path
+/// `settings` give it (`GpuLight::exact_path`): every light exact under Exact, none under
+/// Harmonics, and under Auto the `exact_light_budget` sphere and area lights brightest at
+/// `centre` (the scene's centre) among those small enough there. One choice per light for
+/// the whole frame, the same in the editor, the CLI and the reference.
 pub fn shading_lights(
     lights: &[crate::scene::Light],
     settings: &ShadowSettings,
@@ -309,7 +356,7 @@ pub fn shading_lights(
     // A scene without geometry has no centre: its lights are ranked from the origin.
     let centre = if centre.is_finite() { centre } else { glam::Vec3::ZERO };
     let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
-    let allowed: Vec<bool> = match settings.light_paths {
+    let exact: Vec<bool> = match settings.light_paths {
         LightPaths::Exact => vec![true; lights.len()],
         LightPaths::Harmonics => vec![false; lights.len()],
         LightPaths::Auto => {
@@ -317,31 +364,35 @@ pub fn shading_lights(
                 let irradiance = super::cpu::incidence(light, centre.as_dvec3()).irradiance;
                 crate::scene::luminance(irradiance)
             };
+            let small_at_centre = |light: &GpuLight| {
+                settings
+                    .light_paths
+                    .is_exact(super::cpu::incidence(light, centre.as_dvec3()).cap_ratio)
+            };
             let mut sized: Vec<(usize, f64)> = gpu_lights
                 .iter()
                 .enumerate()
-                .filter(|(_, light)| light.source_size > 0.0)
+                .filter(|(_, light)| light.source_size > 0.0 && small_at_centre(light))
                 .map(|(i, light)| (i, brightness(light)))
                 .collect();
             // Brightest first; equal ones in scene order, so the choice is stable.
             sized.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-            let mut allowed = vec![false; lights.len()];
+            let mut exact = vec![false; lights.len()];
             for &(i, _) in sized.iter().take(settings.exact_light_budget as usize) {
-                allowed[i] = true;
+                exact[i] = true;
             }
-            allowed
+            exact
         }
     };
-    for (light, allowed) in gpu_lights.iter_mut().zip(allowed) {
-        light.exact_allowed = u32::from(allowed);
+    for (light, exact) in gpu_lights.iter_mut().zip(exact) {
+        light.exact_path = u32::from(exact);
     }
     gpu_lights
 }
 
 /// For each of `lights` (the scene's, with its centre `centre`): whether it takes the
-/// exact shadow path at `point` under `settings` (its budget included) and its angular
-/// radius seen from there in degrees (the shaders decide per receiver; the editor asks at
-/// the view's pivot).
+/// exact shadow path under `settings` (see [`shading_lights`]) and its angular radius
+/// seen from `point` in degrees (the editor asks at the view's pivot).
 pub fn light_paths_at(
     lights: &[crate::scene::Light],
     point: glam::Vec3,
@@ -352,8 +403,7 @@ pub fn light_paths_at(
         .iter()
         .map(|light| {
             let inc = super::cpu::incidence(light, point.as_dvec3());
-            let exact = super::cpu::takes_exact_path(&inc, settings.light_paths);
-            (exact, inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+            (light.exact_path != 0, inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
         })
         .collect()
 }
@@ -389,24 +439,61 @@ mod tests {
     }
 
     #[test]
-    fn only_lights_with_a_size_need_the_exact_path_under_auto() {
+    fn pipelines_compile_only_the_paths_the_lights_take() {
         use crate::scene::LightKind;
         let points = [light(LightKind::Point, 1.0), light(LightKind::Directional, 1.0)];
         let with_sphere = [points[0].clone(), light(LightKind::Sphere { radius_m: 0.1 }, 1.0)];
+        let sphere_only = [with_sphere[1].clone()];
+        // 0.1 m at 1 m is 5.7°; at 0.11 m the light is 65° wide, above Auto's 40°.
+        let near_sphere_centre = glam::Vec3::new(0.0, 0.89, 0.0);
         let paths = |light_paths| ShadowSettings {
             light_paths,
             ..ShadowSettings::default()
         };
-        assert!(!exact_path_possible(&paths(LightPaths::Auto), &points));
-        assert!(exact_path_possible(&paths(LightPaths::Auto), &with_sphere));
-        assert!(exact_path_possible(&paths(LightPaths::Exact), &points));
-        assert!(!exact_path_possible(&paths(LightPaths::Harmonics), &with_sphere));
-        assert!(!exact_path_possible(&paths(LightPaths::Auto), &[]));
+        let compiled = |settings: &ShadowSettings, lights: &[crate::scene::Light], centre, has_environment| {
+            let lighting = SceneLighting {
+                has_environment,
+                has_terrain: false,
+            };
+            let CompiledPaths { exact, harmonics, .. } = compiled_paths(settings, lights, centre, lighting);
+            (exact, harmonics)
+        };
+        let origin = glam::Vec3::ZERO;
+        // Auto: point-like lights stay on the SH, small sized ones go exact.
+        assert_eq!(
+            compiled(&paths(LightPaths::Auto), &points, origin, false),
+            (false, true)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Auto), &with_sphere, origin, false),
+            (true, true)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Auto), &sphere_only, origin, false),
+            (true, false)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Auto), &sphere_only, origin, true),
+            (true, true)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Auto), &sphere_only, near_sphere_centre, false),
+            (false, true)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Exact), &points, origin, false),
+            (true, false)
+        );
+        assert_eq!(
+            compiled(&paths(LightPaths::Harmonics), &with_sphere, origin, false),
+            (false, true)
+        );
+        assert_eq!(compiled(&paths(LightPaths::Auto), &[], origin, false), (false, false));
         let no_budget = ShadowSettings {
             exact_light_budget: 0,
             ..paths(LightPaths::Auto)
         };
-        assert!(!exact_path_possible(&no_budget, &with_sphere));
+        assert_eq!(compiled(&no_budget, &with_sphere, origin, false), (false, true));
     }
 
     #[test]
@@ -427,7 +514,7 @@ mod tests {
             };
             shading_lights(&lights, &settings, glam::Vec3::ZERO)
                 .iter()
-                .map(|l| l.exact_allowed)
+                .map(|l| l.exact_path)
                 .collect()
         };
         // At the centre, 1 m below them all: the disk (100 × π 0.2² ≈ 12.6 lux) outshines

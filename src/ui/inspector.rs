@@ -179,8 +179,8 @@ impl EditorApp {
                     let rotation =
                         egui::Slider::new(&mut environment.rotation_rad, -half_turn..=half_turn).text("rotation (rad)");
                     changed |= ui.add(rotation).changed();
-                    if changed && let Some(viewport) = &mut self.viewport {
-                        viewport.set_environment(Some(environment));
+                    if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
+                        viewport.set_environment(rs, Some(environment));
                     }
                 });
         }

@@ -95,7 +95,7 @@ enum Handle {
 }
 
 /// The lights a gizmo draws: the lights, which one is selected, and per light whether its
-/// shadows take the exact path (at the view's pivot) rather than the SH.
+/// shadows take the exact path rather than the SH.
 pub struct GizmoLights<'a> {
     pub lights: &'a [Light],
     pub selected: Option<usize>,

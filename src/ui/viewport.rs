@@ -12,7 +12,8 @@ use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
 use crate::render::reduced_shading::LowResolutionTargets;
 use crate::render::{
-    BakedIndirect, GpuScene, RenderSettings, RenderTarget, ScenePipeline, ShadowSettings, exact_path_possible,
+    BakedIndirect, CompiledPaths, GpuScene, RenderSettings, RenderTarget, SceneLighting, ScenePipeline, ShadowSettings,
+    compiled_paths,
 };
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
@@ -33,7 +34,7 @@ struct Shadows {
 /// over a second for a high order (order 8), and the editor must keep drawing meanwhile.
 struct Compiling {
     settings: ShadowSettings,
-    exact_light_path: bool,
+    paths: CompiledPaths,
     handle: std::thread::JoinHandle<LogShPipeline>,
 }
 
@@ -59,6 +60,8 @@ pub struct Viewport {
     lights: Vec<Light>,
     /// The scene's centre, about which the budget of exact lights is chosen.
     scene_centre: glam::Vec3,
+    /// Whether an environment or a terrain is there (each compiles in shading code).
+    lighting: SceneLighting,
     target: Option<RenderTarget>,
     texture_id: Option<egui::TextureId>,
     pub orbit: OrbitCamera,
@@ -103,14 +106,10 @@ impl Viewport {
         } else {
             ShadowSettings::default()
         };
-        let exact_light_path = exact_path_possible(&settings, &scene.lights);
-        let logsh = LogShPipeline::new(
-            device,
-            &pipeline.layouts,
-            &settings,
-            crate::render::SAMPLE_COUNT,
-            exact_light_path,
-        );
+        let scene_centre = scene.bounds().center();
+        let lighting = SceneLighting::of(scene);
+        let paths = compiled_paths(&settings, &scene.lights, scene_centre, lighting);
+        let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT, paths);
         let gpu_blockers = GpuBlockers::upload(
             device,
             queue,
@@ -134,7 +133,8 @@ impl Viewport {
             },
             compiling: None,
             lights: scene.lights.clone(),
-            scene_centre: scene.bounds().center(),
+            scene_centre,
+            lighting,
             target: None,
             texture_id: None,
             orbit: orbit.unwrap_or_else(|| scene_orbit(scene)),
@@ -151,9 +151,19 @@ impl Viewport {
         self.scene_centre
     }
 
-    /// Writes the lights with the exact path allowed as the drawn settings say.
+    /// Writes the lights on the paths the drawn settings give them. Until a pipeline with
+    /// every path they need is compiled, a light whose path the drawn pipeline lacks takes
+    /// the other one.
     fn write_lights(&mut self, render_state: &egui_wgpu::RenderState) {
-        let lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, self.scene_centre);
+        let mut lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, self.scene_centre);
+        let compiled = self.shadows.pipeline.paths;
+        for light in &mut lights {
+            if !compiled.exact {
+                light.exact_path = 0;
+            } else if !compiled.harmonics {
+                light.exact_path = 1;
+            }
+        }
         self.gpu_scene.update_lights(
             &render_state.device,
             &render_state.queue,
@@ -162,19 +172,28 @@ impl Viewport {
         );
     }
 
-    /// Uploads changed lights; the next frame shows them. A first light able to take the
-    /// exact shadow path (or the last one gone) recompiles the pipeline in the background.
+    /// Uploads changed lights; the next frame shows them. Lights that need a path the
+    /// pipeline lacks, or no longer need one it has, recompile it in the background.
     pub fn set_lights(&mut self, render_state: &egui_wgpu::RenderState, lights: &[Light]) {
         self.lights = lights.to_vec();
         self.write_lights(render_state);
-        let (wanted, has_exact_path) = match &self.compiling {
-            Some(c) => (c.settings, c.exact_light_path),
-            None => (self.shadows.settings, self.shadows.pipeline.exact_light_path),
+        self.recompile_if_paths_changed(render_state);
+        self.rendered = None;
+    }
+
+    /// The paths `settings` need for the viewport's lights and environment.
+    fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
+        compiled_paths(settings, &self.lights, self.scene_centre, self.lighting)
+    }
+
+    fn recompile_if_paths_changed(&mut self, render_state: &egui_wgpu::RenderState) {
+        let (wanted, paths) = match &self.compiling {
+            Some(c) => (c.settings, c.paths),
+            None => (self.shadows.settings, self.shadows.pipeline.paths),
         };
-        if exact_path_possible(&wanted, &self.lights) != has_exact_path {
+        if self.paths_for(&wanted) != paths {
             self.apply_shadow_settings(render_state, wanted);
         }
-        self.rendered = None;
     }
 
     /// Shows per-vertex `values` (one list per scene object) as a heat map against
@@ -197,9 +216,12 @@ impl Viewport {
         self.rendered = None;
     }
 
-    /// Replaces the environment light; the next frame shows it.
-    pub fn set_environment(&mut self, environment: Option<&Environment>) {
+    /// Replaces the environment light; the next frame shows it (an environment that
+    /// appears or goes away recompiles the pipeline in the background).
+    pub fn set_environment(&mut self, render_state: &egui_wgpu::RenderState, environment: Option<&Environment>) {
         self.gpu_scene.set_environment(environment);
+        self.lighting.has_environment = environment.is_some();
+        self.recompile_if_paths_changed(render_state);
         self.rendered = None;
     }
 
@@ -216,27 +238,21 @@ impl Viewport {
         if !settings.gpu_problems().is_empty() {
             return;
         }
-        let exact_light_path = exact_path_possible(&settings, &self.lights);
-        if !self.shadows.pipeline.matches(&settings, exact_light_path) {
+        let paths = self.paths_for(&settings);
+        if !self.shadows.pipeline.matches(&settings, paths) {
             let compiling_these = self
                 .compiling
                 .as_ref()
-                .is_some_and(|c| c.settings == settings && c.exact_light_path == exact_light_path);
+                .is_some_and(|c| c.settings == settings && c.paths == paths);
             if !compiling_these {
                 // An older compile still finishes on its thread; its result is dropped.
                 let (device, layouts) = (render_state.device.clone(), self.pipeline.layouts.clone());
                 let handle = std::thread::spawn(move || {
-                    LogShPipeline::new(
-                        &device,
-                        &layouts,
-                        &settings,
-                        crate::render::SAMPLE_COUNT,
-                        exact_light_path,
-                    )
+                    LogShPipeline::new(&device, &layouts, &settings, crate::render::SAMPLE_COUNT, paths)
                 });
                 self.compiling = Some(Compiling {
                     settings,
-                    exact_light_path,
+                    paths,
                     handle,
                 });
             }

@@ -1,0 +1,232 @@
+// The exact path for small lights (src/penumbra/mod.rs is the f64 twin): a light's
+// visibility from p is Π over blockers of (1 − fade · share of the light's disc the
+// blocker's cap hides), skipping what log_visibility skips and blockers wholly beyond the
+// light. Included after logsh.wgsl's bindings.
+//
+// Shaped for lavapipe, which runs every statement of a branch at every pixel whether
+// taken or not, and every loop at least once: lights go eight at a time (a vec4 lane
+// each, in two halves), so each blocker is loaded and measured once per eight lights; the cheap cone test
+// of every blocker only lists the few that cut a disc, and the lens (the costly
+// trigonometry) runs in a second loop over that list alone.
+
+// Four exact-path lights seen from one receiver, one per lane (half of an eight-light
+// batch); unused lanes have distance 0, so that every blocker counts as beyond them.
+struct ExactBatch {
+    to_light_x: vec4<f32>,
+    to_light_y: vec4<f32>,
+    to_light_z: vec4<f32>,
+    // sin of each light's angular radius, clamped to [0, 1].
+    sin_light: vec4<f32>,
+    distance: vec4<f32>,
+};
+
+// A blocker as seen from the receiver, with the tests shared by every light.
+struct BlockerCap {
+    direction: vec3<f32>,
+    distance: f32,
+    // sin of the cap's angular radius, r/d.
+    ratio: f32,
+    // √(1 − ratio²), the cosine of the cap's angular radius.
+    cos_b: f32,
+    // smoothstep fade below the tangent plane (as in add_blocker).
+    horizon: f32,
+    // false: skipped for every light (contains p, too small, or below the horizon).
+    counts: bool,
+};
+
+fn blocker_cap(b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> BlockerCap {
+    let offset = b.xyz - p;
+    let distance = sqrt(max(dot(offset, offset), 1e-30));
+    let ratio = b.w / distance;
+    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / b.w);
+    let counts = distance > b.w && ratio >= shadow.min_cap_ratio && horizon > 0.0;
+    return BlockerCap(offset / distance, distance, ratio, sqrt(max(1.0 - ratio * ratio, 0.0)), horizon, counts);
+}
+
+fn cos_to_lights(direction: vec3<f32>, batch: ExactBatch) -> vec4<f32> {
+    return direction.x * batch.to_light_x + direction.y * batch.to_light_y + direction.z * batch.to_light_z;
+}
+
+// sin of each light's angular radius against a blocker at `distance`: at least half a
+// pixel's footprint over the distance, so that a point light's hard edge ramps over about
+// one pixel instead of stepping (penumbra::light_visibility).
+fn disc_sines(batch: ExactBatch, half_footprint: f32, distance: f32) -> vec4<f32> {
+    return min(max(batch.sin_light, vec4<f32>(half_footprint / distance)), vec4<f32>(1.0));
+}
+
+// The share (0–1) of a cap of angular radius a hidden by a cap of angular radius b whose
+// centre is g away, for four lights at once (src/penumbra/cap_overlap.rs, the f64 twin):
+// the lens of the two caps, 2θ_L(1 − cos a) + 2θ_B(1 − cos b) − 2E, from half-angle
+// formulas and L'Huilier's theorem so that tiny caps keep their digits, over the light's
+// 2π(1 − cos a). Lanes outside the general case take their closed forms by select.
+fn hidden_fractions(a: vec4<f32>, b: f32, g: vec4<f32>) -> vec4<f32> {
+    let ha = sin(0.5 * a);
+    let light_area = 4.0 * PI * ha * ha;
+    let hb = sin(0.5 * b);
+    let blocker_area = 4.0 * PI * hb * hb;
+    let s = 0.5 * (a + b + g);
+    let sin_s = sin(s);
+    let sin_sa = sin(s - a);
+    let sin_sb = sin(s - b);
+    let sin_sg = sin(s - g);
+    let theta_light = 2.0 * atan(sqrt(max(sin_sa * sin_sg / (sin_s * sin_sb), vec4<f32>(0.0))));
+    let theta_blocker = 2.0 * atan(sqrt(max(sin_sb * sin_sg / (sin_s * sin_sa), vec4<f32>(0.0))));
+    let t = tan(0.5 * s) * tan(0.5 * (s - a)) * tan(0.5 * (s - b)) * tan(0.5 * (s - g));
+    let excess = 4.0 * atan(sqrt(max(t, vec4<f32>(0.0))));
+    let lens = 4.0 * theta_light * ha * ha + 4.0 * hb * hb * theta_blocker - 2.0 * excess;
+    var hidden = clamp(lens / light_area, vec4<f32>(0.0), vec4<f32>(1.0));
+    hidden = select(hidden, min(vec4<f32>(blocker_area) / light_area, vec4<f32>(1.0)), g + b <= a);
+    hidden = select(hidden, vec4<f32>(1.0), g + a <= vec4<f32>(b));
+    return select(hidden, vec4<f32>(0.0), (g >= a + b) | vec4<bool>(b <= 0.0));
+}
+
+// The share of each light's disc the blocker hides, fade included (0 for lights it is
+// beyond).
+fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f32) -> vec4<f32> {
+    let sin_a = disc_sines(batch, half_footprint, cap.distance);
+    let cos_separation = cos_to_lights(cap.direction, batch);
+    let sin_separation = sqrt(max(
+        vec4<f32>(1.0) - cos_separation * cos_separation, vec4<f32>(0.0)));
+    let separation = atan2(sin_separation, cos_separation);
+    let hidden = cap.horizon * hidden_fractions(asin(sin_a), asin(cap.ratio), separation);
+    let beyond = vec4<f32>(cap.distance - radius) >= batch.distance;
+    return select(hidden, vec4<f32>(0.0), beyond | vec4<bool>(!cap.counts));
+}
+
+// No blocker past the cheap pass's list (the list did not overflow).
+const NO_OVERFLOW: u32 = 0xffffffffu;
+
+// false: the frame has at most four exact-path lights, and the second half of each
+// batch is left out of the pipeline. Set at pipeline creation (render::compiled_paths).
+override EXACT_WIDE: bool = true;
+
+// Whether a blocker group, seen `distance` away toward `direction` with every sphere
+// within `extent` of its centre, can hide any of a batch's lights: its bounding sphere
+// meets some light's cone (cos γ > cos(α + β) with sin β = extent/distance, α at its
+// widest for the group's nearest sphere).
+fn group_may_cut(batch: ExactBatch, direction: vec3<f32>, distance: f32, extent: f32, half_footprint: f32) -> bool {
+    if distance <= extent {
+        return true;
+    }
+    let sin_a = disc_sines(batch, half_footprint, distance - extent);
+    let cos_a = sqrt(vec4<f32>(1.0) - sin_a * sin_a);
+    let sin_g = extent / distance;
+    let cos_g = sqrt(max(1.0 - sin_g * sin_g, 0.0));
+    return any(cos_to_lights(direction, batch) > cos_a * cos_g - sin_a * sin_g);
+}
+
+// The cheap tests of one blocker against a batch's lights: which discs it surely covers
+// whole (added to `covered`) and which it may cut partly.
+struct CutTests {
+    covered: vec4<bool>,
+    cuts: vec4<bool>,
+};
+
+fn cut_tests(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f32, covered: vec4<bool>) -> CutTests {
+    let sin_a = disc_sines(batch, half_footprint, cap.distance);
+    // cos a = √(1 − x), x = sin² a, bounded without a square root: 1 − x/2 − x²/2 below
+    // it, 1 − x/2 above. The tests then list a sphere that might cut a disc and call a
+    // disc covered only when it surely is; the lens loop decides exactly.
+    let x = sin_a * sin_a;
+    let cos_a_high = vec4<f32>(1.0) - 0.5 * x;
+    let cos_a_low = cos_a_high - 0.5 * x * x;
+    let cos_separation = cos_to_lights(cap.direction, batch);
+    let nearer = vec4<f32>(cap.distance - radius) < batch.distance;
+    // Separation below a + b (the caps meet), and below b − a (the blocker's cap holds
+    // the whole disc).
+    let meets = cos_separation > cos_a_low * cap.cos_b - sin_a * cap.ratio;
+    let holds = (vec4<f32>(cap.ratio) >= sin_a) & (cos_separation >= cos_a_high * cap.cos_b + sin_a * cap.ratio);
+    let counts = vec4<bool>(cap.counts) & nearer & !covered;
+    let now_covered = covered | (counts & holds & vec4<bool>(cap.horizon >= 1.0));
+    return CutTests(now_covered, counts & meets & !now_covered);
+}
+
+// The visibility of each light of an eight-light batch (lo, and hi when EXACT_WIDE).
+struct ExactVisibility {
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+};
+
+// Visibility of each light of the batch from p with normal n (the f32 twin of
+// penumbra::light_visibility).
+fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch) -> ExactVisibility {
+    let half_footprint = 0.5 * pixel_footprint(p);
+    // Lights a blocker hides wholly (visibility 0).
+    var covered_lo = vec4<bool>(false);
+    var covered_hi = vec4<bool>(false);
+    // Blockers that cut some disc partly: up to eight indices, the rest from overflow_from.
+    var listed_low = vec4<u32>(0u);
+    var listed_high = vec4<u32>(0u);
+    var listed = 0u;
+    var overflow_from = NO_OVERFLOW;
+    for (var g = 0u; g < shadow.group_count; g++) {
+        let group = groups[g];
+        let to_group = group.center_extent.xyz - p;
+        let group_distance2 = dot(to_group, to_group);
+        if group_distance2 > group.influence_m * group.influence_m
+            || dot(to_group, n) + group.center_extent.w <= 0.0 {
+            continue;
+        }
+        let group_distance = sqrt(group_distance2);
+        let direction = to_group / group_distance;
+        let extent = group.center_extent.w;
+        var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
+        if EXACT_WIDE {
+            may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
+        }
+        if !may_cut {
+            continue;
+        }
+        for (var i = group.first; i < group.first + group.count; i++) {
+            let b = blockers[i].center_radius;
+            let cap = blocker_cap(b, p, n);
+            let tests_lo = cut_tests(cap, b.w, lo, half_footprint, covered_lo);
+            covered_lo = tests_lo.covered;
+            var cuts = any(tests_lo.cuts);
+            if EXACT_WIDE {
+                let tests_hi = cut_tests(cap, b.w, hi, half_footprint, covered_hi);
+                covered_hi = tests_hi.covered;
+                cuts = cuts || any(tests_hi.cuts);
+            }
+            let write = vec4<bool>(cuts && overflow_from == NO_OVERFLOW);
+            let slot = vec4<u32>(listed);
+            listed_low = select(listed_low, vec4<u32>(i), write & (slot == vec4<u32>(0u, 1u, 2u, 3u)));
+            listed_high = select(listed_high, vec4<u32>(i), write & (slot == vec4<u32>(4u, 5u, 6u, 7u)));
+            if cuts && overflow_from == NO_OVERFLOW {
+                if listed == 8u {
+                    overflow_from = i;
+                } else {
+                    listed += 1u;
+                }
+            }
+        }
+    }
+    // The listed blockers, then, for a crowded receiver (more than eight cutting
+    // blockers), every blocker from the first unlisted one on: one loop, as lavapipe runs
+    // the body of even an empty loop once.
+    var unlisted = 0u;
+    if overflow_from != NO_OVERFLOW {
+        unlisted = shadow.blocker_count - overflow_from;
+    }
+    var log_lo = vec4<f32>(0.0);
+    var log_hi = vec4<f32>(0.0);
+    for (var k = 0u; k < listed + unlisted; k++) {
+        var i = overflow_from + (k - listed);
+        if k < 4u {
+            i = listed_low[k];
+        } else if k < listed {
+            i = listed_high[k & 3u];
+        }
+        let b = blockers[i].center_radius;
+        let cap = blocker_cap(b, p, n);
+        let hidden_lo = hidden_by(cap, b.w, lo, half_footprint);
+        covered_lo = covered_lo | (hidden_lo >= vec4<f32>(1.0));
+        log_lo += log(max(vec4<f32>(1.0) - hidden_lo, vec4<f32>(1e-30)));
+        if EXACT_WIDE {
+            let hidden_hi = hidden_by(cap, b.w, hi, half_footprint);
+            covered_hi = covered_hi | (hidden_hi >= vec4<f32>(1.0));
+            log_hi += log(max(vec4<f32>(1.0) - hidden_hi, vec4<f32>(1e-30)));
+        }
+    }
+    return ExactVisibility(select(exp(log_lo), vec4<f32>(0.0), covered_lo), select(exp(log_hi), vec4<f32>(0.0), covered_hi));
+}
