@@ -1,13 +1,13 @@
 // Log-SH soft shadows (Ren et al. 2006), per pixel. Included after common.wgsl,
 // scene.wgsl and the generated SH module of the chosen order and exponentiation method
-// (src/render/wgsl_sh.rs), and terrain.wgsl. render::cpu is the f64 reference of exactly
-// this shading:
+// (src/render/wgsl_sh.rs), and terrain.wgsl; exact_lights.wgsl follows. render::cpu is
+// the f64 reference of exactly this shading:
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
 //       + the terrain's log-visibility (terrain.wgsl)
 //   G = exp*(F)                                                     (visibility SH)
 //   L = emissive + environment · ⟨G, cos⟩ + Σ_lights direct · clamp(mean of G over the
 //       light's cap, 0, 1) (the default separate BRDF; the log and product variants
-//       below carry the BRDF in the SH), or, for lights small enough for the exact path,
+//       below carry the BRDF in the SH), or, for lights on the exact path,
 //       direct · Π_blockers (1 − share of the light's disc the blocker hides) · share of
 //       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
@@ -163,8 +163,8 @@ fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 
 // Radiance of surface s lit through the lobes' SH by the lights before
 // frame.first_exact_light; the lights from there on take the exact path instead, eight
-// at a time: their exact visibility (times the share above the terrain's horizon) times their
-// unshadowed radiance.
+// at a time: their exact visibility (times the share above the terrain's horizon) times
+// their unshadowed radiance.
 fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     var radiance = s.emissive + environment_through(s, lobes);
     for (var i = 0u; i < frame.first_exact_light; i++) {

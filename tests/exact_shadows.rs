@@ -1,4 +1,4 @@
-//! The exact shadow path for small lights (`lightpaint::penumbra`, `exact_light_visibility`
+//! The exact shadow path for small lights (`lightpaint::penumbra`, `exact_batch_visibility`
 //! in logsh.wgsl) on the GPU: parity with the f64 CPU reference on the sample scenes with
 //! every light exact, and a ball over a plane under a sphere light whose penumbra, pixel by
 //! pixel, is the visible share of the light computed here by integration over its disc.
@@ -12,9 +12,36 @@ use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::penumbra::{LightDisc, light_visibility};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image, render_logsh_image,
+    GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image,
+    render_logsh_image,
 };
 use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
+
+/// A white Lambertian floor `size_m` wide at y = 0 under `lights`.
+fn white_floor(size_m: f32, lights: Vec<Light>) -> Scene {
+    Scene {
+        objects: vec![shapes::plane(size_m, 4, 1.0).into_object("floor")],
+        materials: vec![Material {
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        lights,
+        ..Scene::default()
+    }
+}
+
+/// The GPU frame agrees with the f64 CPU shading of the same surfaces: at least 99.5 %
+/// of pixels within 1/255 (hard shadow edges may fall on the other side of a pixel
+/// centre in f32).
+fn assert_gpu_matches_cpu(gpu: &GpuContext, frame: &ShadowFrame, what: &str) {
+    let gpu_image = render_logsh_image(gpu, frame, 1).expect("GPU frame");
+    let cpu_image = render_cpu_image(gpu, frame).expect("CPU frame");
+    let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
+    eprintln!("{what}: {:.3} % within 1/255, worst {worst}/255", 100.0 * within);
+    assert!(within >= 0.995, "{what}: {:.3} % within 1/255", 100.0 * within);
+}
 
 /// Share of the pixels whose channels lie within `tolerance`/255 of the other image, and
 /// the largest difference.
@@ -77,15 +104,7 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
                 width: 240,
                 height: 135,
             };
-            let gpu_image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
-            let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
-            let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
-            eprintln!(
-                "{path}, {what}: {:.3} % within 1/255, worst {worst}/255",
-                100.0 * within
-            );
-            // Hard shadow edges may fall on the other side of a pixel centre in f32.
-            assert!(within >= 0.995, "{path}, {what}: {:.3} % within 1/255", 100.0 * within);
+            assert_gpu_matches_cpu(&gpu, &frame, &format!("{path}, {what}"));
         }
     }
 }
@@ -128,17 +147,7 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
         Vec3::new(0.0, 6.0, 0.0),
         30.0,
     ));
-    let scene = Scene {
-        objects: vec![shapes::plane(4.0, 4, 1.0).into_object("floor")],
-        materials: vec![Material {
-            base_color: Vec4::ONE,
-            metallic: 0.0,
-            specular: 0.0,
-            ..Material::default()
-        }],
-        lights,
-        ..Scene::default()
-    };
+    let scene = white_floor(4.0, lights);
     // Thirty 6 cm balls 10 cm apart, 0.8 m up: under them a light's disc meets many.
     let blockers: Vec<Sphere> = (0..30)
         .map(|k| Sphere {
@@ -169,11 +178,7 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
         width: 160,
         height: 160,
     };
-    let gpu_image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
-    let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
-    let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
-    eprintln!("{:.3} % within 1/255, worst {worst}/255", 100.0 * within);
-    assert!(within >= 0.995, "{:.3} % within 1/255", 100.0 * within);
+    assert_gpu_matches_cpu(&gpu, &frame, "ten lights over a crowd");
     // The crowd is there: under its middle, the largest sphere light's disc meets more
     // than eight balls.
     let under = DVec3::new(0.0, 0.0, 0.0);
@@ -199,15 +204,9 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
 fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
     let Some(gpu) = common::gpu() else { return };
     let light_position = DVec3::new(0.0, 3.0, 0.0);
-    let scene = Scene {
-        objects: vec![shapes::plane(6.0, 4, 1.0).into_object("floor")],
-        materials: vec![Material {
-            base_color: Vec4::ONE,
-            metallic: 0.0,
-            specular: 0.0,
-            ..Material::default()
-        }],
-        lights: vec![Light {
+    let scene = white_floor(
+        6.0,
+        vec![Light {
             name: "globe".into(),
             kind: LightKind::Sphere { radius_m: 0.5 },
             color: Vec3::ONE,
@@ -216,8 +215,7 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
             direction: Vec3::NEG_Y,
             range: None,
         }],
-        ..Scene::default()
-    };
+    );
     let ball = Sphere {
         center: Vec3::new(0.0, 1.0, 0.0),
         radius_m: 0.3,

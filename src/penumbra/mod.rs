@@ -10,7 +10,7 @@
 //! The blockers skipped are the SH path's ([`Sphere::cap_from`]): those that contain the
 //! receiver, those with r/d under `min_cap_ratio`, and those below the tangent plane,
 //! faded by the same smoothstep; and, as depth now matters, those wholly beyond the
-//! light. `shaders/logsh.wgsl` (`exact_light_visibility`) is the f32 twin. Given the width
+//! light. `shaders/exact_lights.wgsl` (`exact_batch_visibility`) is the f32 twin. Given the width
 //! of a pixel at the receiver, hard edges (point lights, and lights narrower than a pixel's
 //! worth of angle) are anti-aliased by widening the light's disc to it, per blocker.
 

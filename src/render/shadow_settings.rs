@@ -281,25 +281,26 @@ pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     }
 }
 
-/// Which shading paths a log-SH pipeline compiles in (logsh.wgsl's EXACT_LIGHT_PATH and
-/// SH_VISIBILITY): lavapipe runs the code of both sides of a branch at every pixel whether
-/// taken or not, so code that no light of the frame needs is left out.
+/// Which shading code a log-SH pipeline compiles in (the override constants
+/// EXACT_LIGHT_PATH, EXACT_WIDE, SH_VISIBILITY and TERRAIN_SHADOWS): lavapipe runs the code
+/// of both sides of a branch at every pixel whether taken or not, so code that the frame
+/// does not need is left out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CompiledPaths {
-    /// Some light is on the exact path.
+    /// Some light is on the exact path (EXACT_LIGHT_PATH).
     pub exact: bool,
     /// More than four lights are: the exact path takes them eight at a time rather than
     /// four (EXACT_WIDE).
     pub exact_wide: bool,
     /// The visibility SH are read: some light is on the SH path, or an environment lights
-    /// the scene.
+    /// the scene (SH_VISIBILITY).
     pub harmonics: bool,
     /// The scene has a terrain (TERRAIN_SHADOWS).
     pub terrain: bool,
 }
 
 impl CompiledPaths {
-    /// Both paths (a frame any light can be drawn with).
+    /// Every path (a pipeline any frame can be drawn with).
     pub const ALL: CompiledPaths = CompiledPaths {
         exact: true,
         exact_wide: true,
@@ -442,58 +443,49 @@ mod tests {
     fn pipelines_compile_only_the_paths_the_lights_take() {
         use crate::scene::LightKind;
         let points = [light(LightKind::Point, 1.0), light(LightKind::Directional, 1.0)];
-        let with_sphere = [points[0].clone(), light(LightKind::Sphere { radius_m: 0.1 }, 1.0)];
-        let sphere_only = [with_sphere[1].clone()];
+        let sphere = light(LightKind::Sphere { radius_m: 0.1 }, 1.0);
+        let one_sphere = std::slice::from_ref(&sphere);
+        let with_sphere = [points[0].clone(), sphere.clone()];
+        let five_spheres = vec![sphere.clone(); 5];
+        let (auto, exact, harmonics) = (LightPaths::Auto, LightPaths::Exact, LightPaths::Harmonics);
+        let origin = glam::Vec3::ZERO;
         // 0.1 m at 1 m is 5.7°; at 0.11 m the light is 65° wide, above Auto's 40°.
-        let near_sphere_centre = glam::Vec3::new(0.0, 0.89, 0.0);
-        let paths = |light_paths| ShadowSettings {
-            light_paths,
-            ..ShadowSettings::default()
-        };
-        let compiled = |settings: &ShadowSettings, lights: &[crate::scene::Light], centre, has_environment| {
+        let near_sphere = glam::Vec3::new(0.0, 0.89, 0.0);
+        // (exact, exact_wide, harmonics) for these paths, budget, lights, centre and sky.
+        let compiled = |light_paths, exact_light_budget, lights: &[crate::scene::Light], centre, has_environment| {
+            let settings = ShadowSettings {
+                light_paths,
+                exact_light_budget,
+                ..ShadowSettings::default()
+            };
             let lighting = SceneLighting {
                 has_environment,
                 has_terrain: false,
             };
-            let CompiledPaths { exact, harmonics, .. } = compiled_paths(settings, lights, centre, lighting);
-            (exact, harmonics)
+            let paths = compiled_paths(&settings, lights, centre, lighting);
+            (paths.exact, paths.exact_wide, paths.harmonics)
         };
-        let origin = glam::Vec3::ZERO;
-        // Auto: point-like lights stay on the SH, small sized ones go exact.
+        // Auto: point-like lights stay on the SH, small sized ones go exact, four at most
+        // unless the budget allows more.
+        assert_eq!(compiled(auto, 4, &points, origin, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &with_sphere, origin, false), (true, false, true));
+        assert_eq!(compiled(auto, 4, one_sphere, origin, false), (true, false, false));
+        assert_eq!(compiled(auto, 4, one_sphere, origin, true), (true, false, true));
+        assert_eq!(compiled(auto, 4, one_sphere, near_sphere, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &five_spheres, origin, false), (true, false, true));
+        assert_eq!(compiled(auto, 8, &five_spheres, origin, false), (true, true, false));
+        assert_eq!(compiled(auto, 0, &with_sphere, origin, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &[], origin, false), (false, false, false));
+        assert_eq!(compiled(exact, 0, &points, origin, false), (true, false, false));
         assert_eq!(
-            compiled(&paths(LightPaths::Auto), &points, origin, false),
-            (false, true)
+            compiled(harmonics, 4, &with_sphere, origin, false),
+            (false, false, true)
         );
-        assert_eq!(
-            compiled(&paths(LightPaths::Auto), &with_sphere, origin, false),
-            (true, true)
-        );
-        assert_eq!(
-            compiled(&paths(LightPaths::Auto), &sphere_only, origin, false),
-            (true, false)
-        );
-        assert_eq!(
-            compiled(&paths(LightPaths::Auto), &sphere_only, origin, true),
-            (true, true)
-        );
-        assert_eq!(
-            compiled(&paths(LightPaths::Auto), &sphere_only, near_sphere_centre, false),
-            (false, true)
-        );
-        assert_eq!(
-            compiled(&paths(LightPaths::Exact), &points, origin, false),
-            (true, false)
-        );
-        assert_eq!(
-            compiled(&paths(LightPaths::Harmonics), &with_sphere, origin, false),
-            (false, true)
-        );
-        assert_eq!(compiled(&paths(LightPaths::Auto), &[], origin, false), (false, false));
-        let no_budget = ShadowSettings {
-            exact_light_budget: 0,
-            ..paths(LightPaths::Auto)
+        let terrain = SceneLighting {
+            has_environment: false,
+            has_terrain: true,
         };
-        assert_eq!(compiled(&no_budget, &with_sphere, origin, false), (false, true));
+        assert!(compiled_paths(&ShadowSettings::default(), &[], origin, terrain).terrain);
     }
 
     #[test]
