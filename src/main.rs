@@ -139,8 +139,9 @@ struct RenderArgs {
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     light_paths: Option<LightPaths>,
-    /// Under --light-paths auto, at most this many lights go the exact way (the brightest
-    /// sphere and area lights at the scene's centre, 0-64); default: the project's, or 4.
+    /// Under --light-paths auto, at most this many lights go the exact way (sphere and area
+    /// lights, those whose shadows fall on most of the scene first, 0-64); default: the
+    /// project's, or 4.
     #[arg(long)]
     exact_lights: Option<u32>,
     /// How the BRDF meets the visibility: separate (each light's exact BRDF times its

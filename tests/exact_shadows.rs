@@ -83,8 +83,8 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
             light_paths: LightPaths::Auto,
             ..document.settings.shadows.every_pixel()
         };
-        // A budget of one exact light: the brightest sphere light goes exact, the others
-        // stay on the SH, on the GPU and the CPU alike.
+        // A budget of one exact light: the sphere light whose shadows matter most goes
+        // exact, the others stay on the SH, on the GPU and the CPU alike.
         let one_exact = ShadowSettings {
             exact_light_budget: 1,
             ..auto

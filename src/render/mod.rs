@@ -13,6 +13,7 @@ mod gpu_scene;
 mod gpu_terrain;
 pub mod gpu_types;
 pub mod heat_map;
+mod light_paths;
 pub mod logsh;
 mod offscreen;
 pub mod paint_estimate;
@@ -30,15 +31,15 @@ pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit}
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
+pub use light_paths::{CompiledPaths, LightPathContext, SceneLighting, compiled_paths, light_paths_at, shading_lights};
 pub use offscreen::{
     RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, read_target_image, render_cpu_image, render_image,
     render_logsh_image, shade_surfaces,
 };
 pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{
-    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, CompiledPaths, LightPaths, MAX_EXACT_LIGHT_BUDGET,
-    MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, SceneLighting, ShadowSettings, TerrainShading, compiled_paths,
-    light_paths_at, parse_exp_method, shading_lights,
+    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, LightPaths, MAX_EXACT_LIGHT_BUDGET, MAX_TERRAIN_AZIMUTHS,
+    MAX_TERRAIN_LEVELS, ShadowSettings, TerrainShading, parse_exp_method,
 };
 
 /// Settings that change how a frame looks, not what the scene is.

@@ -115,10 +115,15 @@ pub struct ShadowFrame<'a> {
 }
 
 impl ShadowFrame<'_> {
-    /// The scene's lights as this frame shades them (`render::shading_lights`, about the
-    /// scene's centre).
+    /// The scene's lights as this frame shades them (`render::shading_lights`).
     pub fn shading_lights(&self) -> Vec<GpuLight> {
-        super::shading_lights(&self.scene.lights, self.shadows, self.scene.bounds().center())
+        super::shading_lights(&self.scene.lights, self.shadows, &self.light_path_context())
+    }
+
+    /// What the choice of each light's shadow path looks at: this frame's scene and
+    /// blockers.
+    pub fn light_path_context(&self) -> super::LightPathContext {
+        super::LightPathContext::of_scene(self.scene, self.blockers)
     }
 
     fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
@@ -160,7 +165,7 @@ impl<'a> ShadowRenderer<'a> {
         let paths = super::compiled_paths(
             frame.shadows,
             &frame.scene.lights,
-            frame.scene.bounds().center(),
+            &frame.light_path_context(),
             super::SceneLighting::of(frame.scene),
         );
         let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, paths);

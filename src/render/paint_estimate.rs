@@ -29,7 +29,8 @@ pub struct DirectEstimate<'a> {
 impl<'a> DirectEstimate<'a> {
     pub fn new(scene: &'a Scene, blockers: Vec<Sphere>, settings: ShadowSettings) -> DirectEstimate<'a> {
         // Unit intensities, each light on the shadow path the frame gives it.
-        let shading = super::shading_lights(&scene.lights, &settings, scene.bounds().center());
+        let context = super::LightPathContext::of_scene(scene, &blockers);
+        let shading = super::shading_lights(&scene.lights, &settings, &context);
         let unit_lights = scene
             .lights
             .iter()

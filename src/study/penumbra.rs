@@ -284,7 +284,8 @@ pub(super) fn compare(
     blockers: &[Sphere],
     camera: &Camera,
 ) -> PenumbraRow {
-    let lights = crate::render::shading_lights(&scene.lights, shadows, scene.bounds().center());
+    let context = crate::render::LightPathContext::of_scene(scene, blockers);
+    let lights = crate::render::shading_lights(&scene.lights, shadows, &context);
     let environment = environment_irradiance(scene.environment.as_ref());
     let inputs = ShadingInputs {
         lights: &lights,

@@ -1001,15 +1001,11 @@ impl eframe::App for EditorApp {
                             _ => None,
                         };
                         let (pivot, distance) = (viewport.orbit.target, viewport.orbit.distance);
-                        let exact: Vec<bool> = crate::render::light_paths_at(
-                            &document.scene.lights,
-                            pivot,
-                            &document.settings.shadows,
-                            viewport.scene_centre(),
-                        )
-                        .into_iter()
-                        .map(|(exact, _)| exact)
-                        .collect();
+                        let exact: Vec<bool> = viewport
+                            .light_paths_at(&document.scene.lights, pivot, &document.settings.shadows)
+                            .into_iter()
+                            .map(|(exact, _)| exact)
+                            .collect();
                         let lights = GizmoLights {
                             lights: &document.scene.lights,
                             selected,

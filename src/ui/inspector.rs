@@ -51,12 +51,17 @@ impl EditorApp {
             return (LightEdit::default(), delete);
         };
         let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
-        let centre = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.scene_centre());
         match self.selection {
             Some(Selection::Light(index)) if index < document.scene.lights.len() => {
-                let (exact, angle_deg) =
-                    crate::render::light_paths_at(&document.scene.lights, pivot, &document.settings.shadows, centre)
-                        [index];
+                let (lights, shadows) = (&document.scene.lights, &document.settings.shadows);
+                let paths = match &self.viewport {
+                    Some(viewport) => viewport.light_paths_at(lights, pivot, shadows),
+                    None => {
+                        let context = crate::render::LightPathContext::at(document.scene.bounds().center());
+                        crate::render::light_paths_at(lights, pivot, shadows, &context)
+                    }
+                };
+                let (exact, angle_deg) = paths[index];
                 let light = &mut document.scene.lights[index];
                 ui.heading(format!("Light: {}", light.name));
                 let distance = light.position.distance(pivot).max(0.1);

@@ -63,9 +63,10 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
                 .text("exact lights at most"),
             )
             .on_hover_text(
-                "Auto sends at most this many sphere and area lights the exact way, the \
-                 brightest at the scene's centre first; each costs a pass over the blockers \
-                 per pixel. The others stay on the SH.",
+                "Auto sends at most this many sphere and area lights the exact way, those \
+                 whose shadows fall on most of the scene first (times their brightness); \
+                 every eight cost a pass over the blockers per pixel. The others stay on \
+                 the SH.",
             );
         }
         egui::ComboBox::from_label("exponentiation")

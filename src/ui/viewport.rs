@@ -12,8 +12,8 @@ use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
 use crate::render::reduced_shading::LowResolutionTargets;
 use crate::render::{
-    BakedIndirect, CompiledPaths, GpuScene, RenderSettings, RenderTarget, SceneLighting, ScenePipeline, ShadowSettings,
-    compiled_paths,
+    BakedIndirect, CompiledPaths, GpuScene, LightPathContext, RenderSettings, RenderTarget, SceneLighting,
+    ScenePipeline, ShadowSettings, compiled_paths,
 };
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
@@ -58,8 +58,9 @@ pub struct Viewport {
     /// The scene's lights as last uploaded: whether any can take the exact shadow path
     /// decides what the pipeline compiles.
     lights: Vec<Light>,
-    /// The scene's centre, about which the budget of exact lights is chosen.
-    scene_centre: glam::Vec3,
+    /// What the choice of each light's shadow path looks at (the scene's centre, some of
+    /// its surface points, the blockers).
+    path_context: LightPathContext,
     /// Whether an environment or a terrain is there (each compiles in shading code).
     lighting: SceneLighting,
     target: Option<RenderTarget>,
@@ -106,9 +107,9 @@ impl Viewport {
         } else {
             ShadowSettings::default()
         };
-        let scene_centre = scene.bounds().center();
+        let path_context = LightPathContext::of_scene(scene, blockers);
         let lighting = SceneLighting::of(scene);
-        let paths = compiled_paths(&settings, &scene.lights, scene_centre, lighting);
+        let paths = compiled_paths(&settings, &scene.lights, &path_context, lighting);
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT, paths);
         let gpu_blockers = GpuBlockers::upload(
             device,
@@ -133,7 +134,7 @@ impl Viewport {
             },
             compiling: None,
             lights: scene.lights.clone(),
-            scene_centre,
+            path_context,
             lighting,
             target: None,
             texture_id: None,
@@ -146,16 +147,18 @@ impl Viewport {
         viewport
     }
 
-    /// The scene's centre, about which the budget of exact lights is chosen.
-    pub fn scene_centre(&self) -> glam::Vec3 {
-        self.scene_centre
+    /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
+    /// its angular radius seen from `point` in degrees (`render::light_paths_at` with the
+    /// viewport's scene and blockers).
+    pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
+        crate::render::light_paths_at(lights, point, settings, &self.path_context)
     }
 
     /// Writes the lights on the paths the drawn settings give them. Until a pipeline with
     /// every path they need is compiled, a light whose path the drawn pipeline lacks takes
     /// the other one.
     fn write_lights(&mut self, render_state: &egui_wgpu::RenderState) {
-        let mut lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, self.scene_centre);
+        let mut lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, &self.path_context);
         let compiled = self.shadows.pipeline.paths;
         for light in &mut lights {
             if !compiled.exact {
@@ -183,7 +186,7 @@ impl Viewport {
 
     /// The paths `settings` need for the viewport's lights and environment.
     fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
-        compiled_paths(settings, &self.lights, self.scene_centre, self.lighting)
+        compiled_paths(settings, &self.lights, &self.path_context, self.lighting)
     }
 
     fn recompile_if_paths_changed(&mut self, render_state: &egui_wgpu::RenderState) {
@@ -301,6 +304,10 @@ impl Viewport {
             blockers,
             &self.shadows.settings,
         );
+        // Which blockers matter can change which lights go exact.
+        self.path_context.blockers = blockers.to_vec();
+        self.write_lights(render_state);
+        self.recompile_if_paths_changed(render_state);
         self.rendered = None;
     }
 
