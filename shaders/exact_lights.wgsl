@@ -5,9 +5,9 @@
 //
 // Shaped for lavapipe, which runs every statement of a branch at every pixel whether
 // taken or not, and every loop at least once: lights go eight at a time (a vec4 lane
-// each, in two halves), so each blocker is loaded and measured once per eight lights; the cheap cone test
-// of every blocker only lists the few that cut a disc, and the lens (the costly
-// trigonometry) runs in a second loop over that list alone.
+// each, in two halves), so each blocker is loaded and measured once per eight lights;
+// cheap tests of every blocker only list the few that may cut a disc, and the lens (the
+// costly trigonometry) runs in a second loop over that list alone.
 
 // Four exact-path lights seen from one receiver, one per lane (half of an eight-light
 // batch); unused lanes have distance 0, so that every blocker counts as beyond them.

@@ -21,6 +21,11 @@ use crate::scene::{Light, Scene};
 /// light is dragged.
 pub const MAX_RECEIVERS: usize = 128;
 
+/// Most receiver–blocker tests weighing one light: with many blockers, fewer receivers
+/// (at least [`MIN_RECEIVERS`]) are looked at, so the choice stays interactive.
+const MAX_TESTS_PER_LIGHT: usize = 100_000;
+const MIN_RECEIVERS: usize = 16;
+
 /// What Auto's choice of exact lights looks at besides the lights: the scene's centre,
 /// where each light's size and brightness are taken, and, to weigh the blockers that
 /// matter, a spread of the scene's surface points and the blockers.
@@ -75,8 +80,10 @@ impl LightPathContext {
         if self.receivers.is_empty() {
             return 1.0;
         }
-        let shadowed = self
-            .receivers
+        let affordable = (MAX_TESTS_PER_LIGHT / self.blockers.len().max(1)).max(MIN_RECEIVERS);
+        let stride = self.receivers.len().div_ceil(affordable).max(1);
+        let receivers: Vec<&(Vec3, Vec3)> = self.receivers.iter().step_by(stride).collect();
+        let shadowed = receivers
             .iter()
             .filter(|(p, n)| {
                 let (p, n) = (p.as_dvec3(), n.as_dvec3());
@@ -93,7 +100,7 @@ impl LightPathContext {
                 })
             })
             .count();
-        shadowed as f64 / self.receivers.len() as f64
+        shadowed as f64 / receivers.len() as f64
     }
 }
 
@@ -222,7 +229,13 @@ pub fn light_paths_at(
     settings: &ShadowSettings,
     context: &LightPathContext,
 ) -> Vec<(bool, f64)> {
-    shading_lights(lights, settings, context)
+    paths_and_sizes_at(&shading_lights(lights, settings, context), point)
+}
+
+/// For lights as the shaders take them: whether each is on the exact path, and its
+/// angular radius seen from `point` in degrees.
+pub fn paths_and_sizes_at(lights: &[GpuLight], point: Vec3) -> Vec<(bool, f64)> {
+    lights
         .iter()
         .map(|light| {
             let inc = super::cpu::incidence(light, point.as_dvec3());

@@ -31,7 +31,9 @@ pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit}
 pub use context::{GpuContext, describe_adapter};
 pub use gpu_scene::GpuScene;
 pub use gpu_types::GpuFrame;
-pub use light_paths::{CompiledPaths, LightPathContext, SceneLighting, compiled_paths, light_paths_at, shading_lights};
+pub use light_paths::{
+    CompiledPaths, LightPathContext, SceneLighting, compiled_paths, light_paths_at, paths_and_sizes_at, shading_lights,
+};
 pub use offscreen::{
     RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, read_target_image, render_cpu_image, render_image,
     render_logsh_image, shade_surfaces,

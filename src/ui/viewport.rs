@@ -38,6 +38,13 @@ struct Compiling {
     handle: std::thread::JoinHandle<LogShPipeline>,
 }
 
+/// Each light's shadow path as chosen for `lights` under `settings`.
+struct PathChoice {
+    lights: Vec<Light>,
+    settings: ShadowSettings,
+    shaded: Vec<crate::render::gpu_types::GpuLight>,
+}
+
 /// What the texture shows, to skip redundant renders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Shown {
@@ -61,6 +68,8 @@ pub struct Viewport {
     /// What the choice of each light's shadow path looks at (the scene's centre, some of
     /// its surface points, the blockers).
     path_context: LightPathContext,
+    /// The last choice the UI asked for ([`Self::light_paths_at`]).
+    path_choice: std::cell::RefCell<Option<PathChoice>>,
     /// Whether an environment or a terrain is there (each compiles in shading code).
     lighting: SceneLighting,
     target: Option<RenderTarget>,
@@ -135,6 +144,7 @@ impl Viewport {
             compiling: None,
             lights: scene.lights.clone(),
             path_context,
+            path_choice: std::cell::RefCell::new(None),
             lighting,
             target: None,
             texture_id: None,
@@ -150,8 +160,23 @@ impl Viewport {
     /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
     /// its angular radius seen from `point` in degrees (`render::light_paths_at` with the
     /// viewport's scene and blockers).
+    /// The choice is kept until the lights, the settings or the blockers change: the UI
+    /// asks every frame, and weighing the blockers that matter is not free.
     pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
-        crate::render::light_paths_at(lights, point, settings, &self.path_context)
+        let mut cache = self.path_choice.borrow_mut();
+        let fresh = cache
+            .as_ref()
+            .is_some_and(|c| c.lights == lights && c.settings == *settings);
+        if !fresh {
+            *cache = Some(PathChoice {
+                lights: lights.to_vec(),
+                settings: *settings,
+                shaded: crate::render::shading_lights(lights, settings, &self.path_context),
+            });
+        }
+        cache
+            .as_ref()
+            .map_or_else(Vec::new, |c| crate::render::paths_and_sizes_at(&c.shaded, point))
     }
 
     /// Writes the lights on the paths the drawn settings give them. Until a pipeline with
@@ -306,6 +331,7 @@ impl Viewport {
         );
         // Which blockers matter can change which lights go exact.
         self.path_context.blockers = blockers.to_vec();
+        self.path_choice.replace(None);
         self.write_lights(render_state);
         self.recompile_if_paths_changed(render_state);
         self.rendered = None;
