@@ -454,3 +454,29 @@ fn terrain_is_added_saved_and_removed_in_the_inspector() {
     let scene = &harness.state().document().expect("document").scene;
     assert!(scene.terrain.is_none() && scene.objects.len() == objects);
 }
+
+/// Opening the terrain sample changes nothing: the terrain panel's editors show the
+/// project's terrain without writing it back (a colour round trip through the picker once
+/// marked the document changed and rebuilt the terrain on the first frame).
+#[test]
+fn opening_the_terrain_sample_leaves_it_unchanged() {
+    if common::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let project = lightpaint::samples::Sample::Terrain.write(dir.path()).unwrap();
+    let mut harness = common::editor::editor_on(project);
+    for _ in 0..3 {
+        harness.run();
+    }
+    assert!(
+        harness.state().document().expect("document").scene.terrain.is_some(),
+        "the terrain is there"
+    );
+    assert!(
+        !harness.state().has_unsaved_changes(),
+        "a freshly opened terrain project has no changes"
+    );
+    assert!(harness.query_all_by_label_contains("terrain updated").next().is_none());
+}

@@ -69,7 +69,12 @@ pub fn terrain_section(ui: &mut egui::Ui, scene: &Scene, editing: &mut Option<Te
     .on_hover_text("World height of a full-scale (white) sample.");
     ui.horizontal(|ui| {
         ui.label("colour");
-        ui.color_edit_button_rgb(&mut spec.color);
+        // The picker round-trips the colour through HSVA, which moves its last bits: only a
+        // change by the user is written back (else opening a project would edit it).
+        let mut color = spec.color;
+        if ui.color_edit_button_rgb(&mut color).changed() {
+            spec.color = color;
+        }
     });
     // Applied once the drag or the typing ends: each change rebuilds the mesh and marches
     // the terrain's surface cache.
