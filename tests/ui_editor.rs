@@ -4,7 +4,8 @@
 mod common;
 
 use common::editor::{
-    drag_through, editor_on, editor_on_sample_copy, mean_luma_near, scroll_and_click, viewport_pixels_differing,
+    drag_through, editor_on, editor_on_sample_copy, editor_on_written_sample, mean_luma_near, scroll_and_click,
+    viewport_pixels_differing,
 };
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -202,13 +203,9 @@ fn a_background_bake_keeps_the_editor_responsive_and_feeds_the_strokes() {
 /// rendered image, and Ctrl+Z restores the intensities and the image exactly.
 #[test]
 fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
-    if common::no_gpu_wanted() {
-        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+    let Some((_dir, _project, mut harness)) = editor_on_written_sample(lightpaint::samples::Sample::Studio) else {
         return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let project = lightpaint::samples::Sample::Studio.write(dir.path()).unwrap();
-    let mut harness = editor_on(project);
+    };
     harness.run();
     let before_lights = harness.state().light_intensities();
     let before = harness.render().expect("render");
@@ -460,13 +457,9 @@ fn terrain_is_added_saved_and_removed_in_the_inspector() {
 /// marked the document changed and rebuilt the terrain on the first frame).
 #[test]
 fn opening_the_terrain_sample_leaves_it_unchanged() {
-    if common::no_gpu_wanted() {
-        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+    let Some((_dir, _project, mut harness)) = editor_on_written_sample(lightpaint::samples::Sample::Terrain) else {
         return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let project = lightpaint::samples::Sample::Terrain.write(dir.path()).unwrap();
-    let mut harness = common::editor::editor_on(project);
+    };
     for _ in 0..3 {
         harness.run();
     }

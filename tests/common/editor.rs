@@ -34,6 +34,21 @@ pub fn drag_through(harness: &mut Harness<'static, EditorApp>, path: &[egui::Pos
     harness.run();
 }
 
+/// The editor on a fresh copy of one of the bundled samples (None when the run wants no
+/// GPU: see `common::gpu`), with the copy's directory and project file.
+pub fn editor_on_written_sample(
+    sample: lightpaint::samples::Sample,
+) -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
+    if super::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", super::NO_GPU_ENV);
+        return None;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let project = sample.write(dir.path()).unwrap();
+    let harness = editor_on(project.clone());
+    Some((dir, project, harness))
+}
+
 pub fn editor_on_sample_copy() -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
     if super::no_gpu_wanted() {
         eprintln!("UI test not run: {}=1", super::NO_GPU_ENV);
