@@ -148,14 +148,8 @@ impl SceneLighting {
     }
 }
 
-/// The paths a frame of `lights` needs under `settings` (see [`shading_lights`]).
-pub fn compiled_paths(
-    settings: &ShadowSettings,
-    lights: &[Light],
-    context: &LightPathContext,
-    lighting: SceneLighting,
-) -> CompiledPaths {
-    let shaded = shading_lights(lights, settings, context);
+/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths.
+pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting) -> CompiledPaths {
     let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
     CompiledPaths {
         exact: exact_count > 0,
@@ -283,7 +277,10 @@ mod tests {
                 has_environment,
                 has_terrain: false,
             };
-            let paths = compiled_paths(&settings, lights, &LightPathContext::at(centre), lighting);
+            let paths = compiled_paths(
+                &shading_lights(lights, &settings, &LightPathContext::at(centre)),
+                lighting,
+            );
             (paths.exact, paths.exact_wide, paths.harmonics)
         };
         // Auto: point-like lights stay on the SH, small sized ones go exact, four at most
@@ -306,8 +303,7 @@ mod tests {
             has_environment: false,
             has_terrain: true,
         };
-        let context = LightPathContext::at(origin);
-        assert!(compiled_paths(&ShadowSettings::default(), &[], &context, terrain).terrain);
+        assert!(compiled_paths(&[], terrain).terrain);
     }
 
     #[test]

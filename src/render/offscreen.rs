@@ -115,15 +115,11 @@ pub struct ShadowFrame<'a> {
 }
 
 impl ShadowFrame<'_> {
-    /// The scene's lights as this frame shades them (`render::shading_lights`).
+    /// The scene's lights as this frame shades them (`render::shading_lights`, weighing
+    /// this frame's scene and blockers).
     pub fn shading_lights(&self) -> Vec<GpuLight> {
-        super::shading_lights(&self.scene.lights, self.shadows, &self.light_path_context())
-    }
-
-    /// What the choice of each light's shadow path looks at: this frame's scene and
-    /// blockers.
-    pub fn light_path_context(&self) -> super::LightPathContext {
-        super::LightPathContext::of_scene(self.scene, self.blockers)
+        let context = super::LightPathContext::of_scene(self.scene, self.blockers);
+        super::shading_lights(&self.scene.lights, self.shadows, &context)
     }
 
     fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
@@ -162,15 +158,11 @@ impl<'a> ShadowRenderer<'a> {
     pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
         let layouts = SceneLayouts::new(&gpu.device);
-        let paths = super::compiled_paths(
-            frame.shadows,
-            &frame.scene.lights,
-            &frame.light_path_context(),
-            super::SceneLighting::of(frame.scene),
-        );
+        let lights = frame.shading_lights();
+        let paths = super::compiled_paths(&lights, super::SceneLighting::of(frame.scene));
         let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, paths);
         let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
-        gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &frame.shading_lights());
+        gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &lights);
         gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);
         let blockers = GpuBlockers::upload(
             &gpu.device,

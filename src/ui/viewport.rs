@@ -118,7 +118,10 @@ impl Viewport {
         };
         let path_context = LightPathContext::of_scene(scene, blockers);
         let lighting = SceneLighting::of(scene);
-        let paths = compiled_paths(&settings, &scene.lights, &path_context, lighting);
+        let paths = compiled_paths(
+            &crate::render::shading_lights(&scene.lights, &settings, &path_context),
+            lighting,
+        );
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT, paths);
         let gpu_blockers = GpuBlockers::upload(
             device,
@@ -211,7 +214,10 @@ impl Viewport {
 
     /// The paths `settings` need for the viewport's lights and environment.
     fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
-        compiled_paths(settings, &self.lights, &self.path_context, self.lighting)
+        compiled_paths(
+            &crate::render::shading_lights(&self.lights, settings, &self.path_context),
+            self.lighting,
+        )
     }
 
     fn recompile_if_paths_changed(&mut self, render_state: &egui_wgpu::RenderState) {
