@@ -11,8 +11,8 @@
 // material edges stay sharp at full resolution while only the smooth lighting is
 // interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes)
 // are discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
-// pixel done here moves its depth a few steps nearer, so the depth test leaves only the
-// discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
+// pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
+// depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
 // pixel the full shading on a software GPU, which runs both sides of a divergent
 // branch.) Multisampled targets use fs_upsample, where such pixels take the
 // best-matching sample nearby: lavapipe tests their depth after the fragment shader, so
@@ -125,20 +125,16 @@ fn fs_upsample(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @loc
     return upsampled(in, front_facing, true).color;
 }
 
-struct MarkedPixel {
-    @location(0) color: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-};
-
-// Upsampling into a single-sampled target, leaving the unmatched pixels to fs_logsh.
+// Upsampling into a single-sampled target, leaving the unmatched pixels to fs_logsh. Its
+// pipeline moves the depth of every pixel it writes a few steps nearer (a constant depth
+// bias, src/render/logsh.rs), so the fs_logsh pass (depth test ≤) skips those pixels while
+// fragments behind them still fail. No frag_depth here: a shader writing depth has
+// lavapipe test depth after the shader, which would upsample every hidden fragment too.
 @fragment
-fn fs_upsample_marking(in: VertexOut, @builtin(front_facing) front_facing: bool) -> MarkedPixel {
+fn fs_upsample_marking(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let pixel = upsampled(in, front_facing, false);
     if !pixel.matched {
         discard;
     }
-    // Eight float steps nearer than its own depth: the fs_logsh pass (depth test ≤) then
-    // skips this pixel, while fragments behind it still fail against it.
-    let nearer = bitcast<f32>(max(bitcast<u32>(in.clip.z), 8u) - 8u);
-    return MarkedPixel(pixel.color, nearer);
+    return pixel.color;
 }

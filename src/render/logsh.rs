@@ -354,6 +354,23 @@ struct Variant {
     paths: CompiledPaths,
 }
 
+/// The upsampling that leaves unmatched pixels to a full shading pass marks the pixels it
+/// writes by moving their depth this many depth steps nearer (see reduced_shading.wgsl):
+/// a constant bias, so its shader need not write depth, which would have lavapipe test
+/// depth only after running it on every hidden fragment as well.
+const MARKED_DEPTH_STEPS: i32 = 8;
+
+fn depth_bias(stage: Stage, samples: u32) -> wgpu::DepthBiasState {
+    match stage {
+        Stage::Upsample(_) if shades_unmatched_exactly(samples) => wgpu::DepthBiasState {
+            constant: -MARKED_DEPTH_STEPS,
+            slope_scale: 0.0,
+            clamp: 0.0,
+        },
+        _ => wgpu::DepthBiasState::default(),
+    }
+}
+
 fn scene_pipeline(
     device: &wgpu::Device,
     layouts: &SceneLayouts,
@@ -446,7 +463,10 @@ fn scene_pipeline(
             buffers: &buffers,
         },
         primitive: two_sided_triangles(),
-        depth_stencil: Some(depth_test(depth_write, compare)),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            bias: depth_bias(stage, samples),
+            ..depth_test(depth_write, compare)
+        }),
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()
