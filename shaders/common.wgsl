@@ -10,6 +10,12 @@ const LIGHT_DIRECTIONAL: u32 = 2u;
 // One-sided Lambertian emitter: intensity_rgb is luminance × area, falling as cos θ.
 const LIGHT_AREA: u32 = 3u;
 
+// How many lights, blockers and blocker groups the uniform arrays of scene.wgsl and
+// logsh.wgsl hold (64 KiB each at most, wgpu's default limit; render::gpu_types has the
+// Rust side). Frames with more also read the rest from storage buffers.
+const UNIFORM_LIGHT_CAPACITY: u32 = 682u;
+const UNIFORM_BLOCKER_CAPACITY: u32 = 2048u;
+
 // Per-frame constants.
 struct Frame {
     view_proj: mat4x4<f32>,

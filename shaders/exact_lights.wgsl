@@ -160,7 +160,7 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
     var listed = 0u;
     var overflow_from = NO_OVERFLOW;
     for (var g = 0u; g < shadow.group_count; g++) {
-        let group = groups[g];
+        let group = group_at(g);
         let to_group = group.center_extent.xyz - p;
         let group_distance2 = dot(to_group, to_group);
         if group_distance2 > group.influence_m * group.influence_m
@@ -178,7 +178,7 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
             continue;
         }
         for (var i = group.first; i < group.first + group.count; i++) {
-            let b = blockers[i].center_radius;
+            let b = blocker_at(i);
             let cap = blocker_cap(b, p, n);
             let tests_lo = cut_tests(cap, b.w, lo, half_footprint, covered_lo);
             covered_lo = tests_lo.covered;
@@ -217,7 +217,7 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
         } else if k < listed {
             i = listed_high[k & 3u];
         }
-        let b = blockers[i].center_radius;
+        let b = blocker_at(i);
         let cap = blocker_cap(b, p, n);
         let hidden_lo = hidden_by(cap, b.w, lo, half_footprint);
         covered_lo = covered_lo | (hidden_lo >= vec4<f32>(1.0));

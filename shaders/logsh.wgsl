@@ -14,8 +14,43 @@
 // (design.md §4b: never shade through an order-n triple product of light × cosine).
 
 @group(2) @binding(0) var<uniform> shadow: ShadowParams;
-@group(2) @binding(1) var<storage, read> blockers: array<Blocker>;
-@group(2) @binding(2) var<storage, read> groups: array<BlockerGroup>;
+// The blockers and their groups, read through blocker_at and group_at: the first
+// UNIFORM_BLOCKER_CAPACITY from uniform arrays, the rest (when there are more) from
+// every_blocker and every_group (see `lights` in scene.wgsl for why).
+@group(2) @binding(1) var<uniform> blockers: array<Blocker, UNIFORM_BLOCKER_CAPACITY>;
+@group(2) @binding(2) var<uniform> groups: array<BlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
+@group(2) @binding(5) var<storage, read> every_blocker: array<Blocker>;
+@group(2) @binding(6) var<storage, read> every_group: array<BlockerGroup>;
+
+// false: the frame has at most UNIFORM_BLOCKER_CAPACITY blockers (and so as many groups),
+// and every_blocker and every_group are never read (render::compiled_paths). Blockers
+// past the capacity then cast no shadow.
+override BLOCKER_OVERFLOW: bool = true;
+
+// Blocker i's centre (xyz) and radius (w).
+fn blocker_at(i: u32) -> vec4<f32> {
+    if BLOCKER_OVERFLOW {
+        if i >= UNIFORM_BLOCKER_CAPACITY {
+            return every_blocker[i].center_radius;
+        }
+    }
+    // Radius 0 past the capacity: too small in the sky to matter.
+    return blockers[min(i, UNIFORM_BLOCKER_CAPACITY - 1u)].center_radius
+        * select(vec4<f32>(1.0), vec4<f32>(0.0), i >= UNIFORM_BLOCKER_CAPACITY);
+}
+
+// Blocker group g.
+fn group_at(g: u32) -> BlockerGroup {
+    if BLOCKER_OVERFLOW {
+        if g >= UNIFORM_BLOCKER_CAPACITY {
+            return every_group[g];
+        }
+    }
+    var group = groups[min(g, UNIFORM_BLOCKER_CAPACITY - 1u)];
+    // Empty past the capacity.
+    group.count = select(group.count, 0u, g >= UNIFORM_BLOCKER_CAPACITY);
+    return group;
+}
 
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
@@ -36,7 +71,7 @@ override SH_VISIBILITY: bool = true;
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
     for (var g = 0u; g < shadow.group_count; g++) {
-        let group = groups[g];
+        let group = group_at(g);
         let to_group = group.center_extent.xyz - p;
         // Conservative group tests (see blocker_groups.rs): every sphere of a skipped group
         // would be skipped by the tests below.
@@ -45,7 +80,7 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
             continue;
         }
         for (var i = group.first; i < group.first + group.count; i++) {
-            f = add_blocker(f, blockers[i].center_radius, p, n);
+            f = add_blocker(f, blocker_at(i), p, n);
         }
     }
     return sh_sum(f, terrain_log_visibility(p));
@@ -168,7 +203,7 @@ fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     var radiance = s.emissive + environment_through(s, lobes);
     for (var i = 0u; i < frame.first_exact_light; i++) {
-        radiance += light_through(s, lobes, incidence(lights[i], s.position));
+        radiance += light_through(s, lobes, incidence(light_at(i), s.position));
     }
     if EXACT_LIGHT_PATH {
         for (var first = frame.first_exact_light; first < frame.light_count; first += select(4u, 8u, EXACT_WIDE)) {
@@ -232,7 +267,7 @@ struct ExactLight {
 
 fn exact_light(s: Surface, index: u32) -> ExactLight {
     let exists = index < frame.light_count;
-    let inc = incidence(lights[min(index, frame.light_count - 1u)], s.position);
+    let inc = incidence(light_at(min(index, frame.light_count - 1u)), s.position);
     let unshadowed = select(vec3<f32>(0.0), direct_radiance(s, inc), exists)
         * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
     let lit = any(unshadowed != vec3<f32>(0.0));

@@ -6,7 +6,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     let s = surface(in, front_facing);
     var radiance = s.emissive + environment_radiance(s);
     for (var i = 0u; i < frame.light_count; i++) {
-        radiance += direct_radiance(s, incidence(lights[i], s.position));
+        radiance += direct_radiance(s, incidence(light_at(i), s.position));
     }
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }

@@ -6,7 +6,12 @@
 // where E_l is the light's irradiance on a plane facing it and ρ the mirrored view vector.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<storage, read> lights: array<Light>;
+// The lights, read through light_at: the first UNIFORM_LIGHT_CAPACITY from a uniform
+// array, the rest (when there are more) from every_light. lavapipe gathers a uniform
+// array's values in registers, but reads a storage buffer lane by lane through memory,
+// which made the light loop cost several times more.
+@group(0) @binding(1) var<uniform> lights: array<Light, UNIFORM_LIGHT_CAPACITY>;
+@group(0) @binding(3) var<storage, read> every_light: array<Light>;
 // Baked indirect irradiance (linear RGB, 3 floats per vertex) of every object's vertices,
 // one object after another; zeros when there is none. A draw's first instance is its
 // object's first vertex here (render::gpu_scene).
@@ -15,6 +20,23 @@
 @group(1) @binding(0) var<uniform> material: Material;
 @group(1) @binding(1) var base_color_texture: texture_2d<f32>;
 @group(1) @binding(2) var base_color_sampler: sampler;
+
+// false: the frame has at most UNIFORM_LIGHT_CAPACITY lights, and every_light is never
+// read (render::compiled_paths; set at pipeline creation). Lights past the capacity then
+// shade nothing.
+override LIGHT_OVERFLOW: bool = true;
+
+// Light i of the frame (i < frame.light_count).
+fn light_at(i: u32) -> Light {
+    if LIGHT_OVERFLOW {
+        if i >= UNIFORM_LIGHT_CAPACITY {
+            return every_light[i];
+        }
+    }
+    var light = lights[min(i, UNIFORM_LIGHT_CAPACITY - 1u)];
+    light.intensity_rgb *= select(1.0, 0.0, i >= UNIFORM_LIGHT_CAPACITY);
+    return light;
+}
 
 struct VertexIn {
     @location(0) position: vec3<f32>,

@@ -322,3 +322,91 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
         assert!(share > 0.97, "{brdf:?}: {share}");
     }
 }
+
+/// A frame with more lights and blockers than the shaders' uniform arrays hold reads the
+/// rest from storage buffers (LIGHT_OVERFLOW, BLOCKER_OVERFLOW): the GPU still matches the
+/// CPU reference, which knows no such limit. The two sphere lights go last (the exact
+/// path's lights are uploaded after the SH path's), past the light capacity.
+#[test]
+fn lights_and_blockers_past_the_uniform_capacities_match_the_cpu_reference() {
+    use lightpaint::render::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+    use lightpaint::scene::{Light, LightKind, Material, shapes};
+    let Some(gpu) = common::gpu() else { return };
+    let light = |kind, position: Vec3, intensity| Light {
+        name: "light".into(),
+        kind,
+        color: Vec3::ONE,
+        intensity,
+        position,
+        direction: Vec3::NEG_Y,
+        range: None,
+    };
+    let dim_count = UNIFORM_LIGHT_CAPACITY + 20;
+    let mut lights: Vec<Light> = (0..dim_count)
+        .map(|k| {
+            let turn = k as f32 * 2.4;
+            let reach = 1.5 * (k as f32 / dim_count as f32).sqrt();
+            let position = Vec3::new(reach * turn.cos(), 2.5, reach * turn.sin());
+            light(LightKind::Point, position, 6.0 / dim_count as f32)
+        })
+        .collect();
+    lights.push(light(
+        LightKind::Sphere { radius_m: 0.2 },
+        Vec3::new(1.0, 3.0, 0.5),
+        6.0,
+    ));
+    lights.push(light(
+        LightKind::Sphere { radius_m: 0.1 },
+        Vec3::new(-0.8, 2.5, -0.6),
+        4.0,
+    ));
+    let scene = Scene {
+        objects: vec![shapes::plane(4.0, 4, 1.0).into_object("floor")],
+        materials: vec![Material {
+            base_color: glam::Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        lights,
+        ..Scene::default()
+    };
+    // A 46 × 46 canopy of 4 cm balls 0.7 m up: more blockers than the uniform array holds.
+    let side = 46;
+    let blockers: Vec<Sphere> = (0..side * side)
+        .map(|k| Sphere {
+            center: Vec3::new(
+                -1.35 + 0.06 * (k % side) as f32,
+                0.7 + 0.05 * ((k * 7) % 5) as f32,
+                -1.35 + 0.06 * (k / side) as f32,
+            ),
+            radius_m: 0.025,
+        })
+        .collect();
+    assert!(blockers.len() > UNIFORM_BLOCKER_CAPACITY);
+    let camera = Camera {
+        position: Vec3::new(0.0, 4.5, 0.01),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 45f32.to_radians(),
+        znear: 0.1,
+        zfar: None,
+    };
+    let settings = RenderSettings::default();
+    let shadows = ShadowSettings::default().every_pixel();
+    let frame = ShadowFrame {
+        baked_indirect: None,
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        width: 80,
+        height: 60,
+    };
+    let lights = frame.shading_lights();
+    let paths =
+        lightpaint::render::compiled_paths(&lights, lightpaint::render::SceneLighting::of(&scene), blockers.len());
+    assert!(paths.light_overflow && paths.blocker_overflow && paths.exact);
+    assert_parity(&gpu, "past-the-uniform-capacities", &frame);
+}

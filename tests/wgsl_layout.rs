@@ -106,6 +106,18 @@ fn light_kind_tags_match_wgsl() {
 }
 
 #[test]
+fn uniform_array_capacities_match_wgsl() {
+    use lightpaint::render::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+    for (name, value) in [
+        ("UNIFORM_LIGHT_CAPACITY", UNIFORM_LIGHT_CAPACITY),
+        ("UNIFORM_BLOCKER_CAPACITY", UNIFORM_BLOCKER_CAPACITY),
+    ] {
+        let line = format!("const {name}: u32 = {value}u;");
+        assert!(shaders::COMMON.contains(&line), "common.wgsl lacks `{line}`");
+    }
+}
+
+#[test]
 fn shadow_params_match_wgsl() {
     assert_twin(
         "ShadowParams",

@@ -2,13 +2,12 @@
 //! group 2 of logsh.wgsl and terrain.wgsl, shared by the shading pass and the per-vertex
 //! compute pass.
 
-use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
 use super::ShadowSettings;
 use super::blocker_groups::group_blockers;
 use super::gpu_terrain::GpuTerrain;
-use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams};
+use super::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams, UNIFORM_BLOCKER_CAPACITY};
 use super::pipeline::numbered_entries;
 use crate::blockers::Sphere;
 use crate::terrain::HeightField;
@@ -119,35 +118,42 @@ fn storage_bind_group(
     groups: &[GpuBlockerGroup],
     terrain: &GpuTerrain,
 ) -> wgpu::BindGroup {
-    // Storage bindings may not be empty: pad with a zero-radius sphere / empty group.
-    let storage = |label, bytes: &[u8]| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        })
-    };
-    let sphere_buffer = if spheres.is_empty() {
-        storage("blockers", bytemuck::bytes_of(&GpuBlocker::zeroed()))
-    } else {
-        storage("blockers", bytemuck::cast_slice(spheres))
-    };
-    let group_buffer = if groups.is_empty() {
-        storage("blocker groups", bytemuck::bytes_of(&GpuBlockerGroup::zeroed()))
-    } else {
-        storage("blocker groups", bytemuck::cast_slice(groups))
-    };
+    let [blockers, every_blocker] = uniform_and_storage(device, "blockers", spheres);
+    let [groups, every_group] = uniform_and_storage(device, "blocker groups", groups);
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow"),
         layout,
         entries: &numbered_entries([
             params.as_entire_binding(),
-            sphere_buffer.as_entire_binding(),
-            group_buffer.as_entire_binding(),
+            blockers.as_entire_binding(),
+            groups.as_entire_binding(),
             terrain.params.as_entire_binding(),
             terrain.heights.as_entire_binding(),
+            every_blocker.as_entire_binding(),
+            every_group.as_entire_binding(),
         ]),
     })
+}
+
+/// The buffers logsh.wgsl reads `items` through: the first [`UNIFORM_BLOCKER_CAPACITY`] in
+/// a uniform buffer of that many (zero-filled), and all of them in a storage buffer (one
+/// zeroed item when there are none: a binding may not be empty).
+fn uniform_and_storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, items: &[T]) -> [wgpu::Buffer; 2] {
+    let mut first = vec![T::zeroed(); UNIFORM_BLOCKER_CAPACITY];
+    let shown = items.len().min(UNIFORM_BLOCKER_CAPACITY);
+    first[..shown].copy_from_slice(&items[..shown]);
+    let every = if items.is_empty() { &first[..1] } else { items };
+    let buffer = |contents: &[T], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(contents),
+            usage,
+        })
+    };
+    [
+        buffer(&first, wgpu::BufferUsages::UNIFORM),
+        buffer(every, wgpu::BufferUsages::STORAGE),
+    ]
 }
 
 /// The bind group layout of [`GpuBlockers`].
@@ -166,10 +172,12 @@ pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         label: Some("shadow"),
         entries: &[
             entry(0, wgpu::BufferBindingType::Uniform),
-            entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
-            entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(1, wgpu::BufferBindingType::Uniform),
+            entry(2, wgpu::BufferBindingType::Uniform),
             entry(3, wgpu::BufferBindingType::Uniform),
             entry(4, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(6, wgpu::BufferBindingType::Storage { read_only: true }),
         ],
     })
 }

@@ -5,7 +5,7 @@
 use wgpu::util::DeviceExt;
 
 use super::BakedIndirect;
-use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance};
+use super::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance};
 use super::pipeline::{SceneLayouts, numbered_entries};
 use crate::scene::{Camera, Environment, Scene, TextureImage};
 
@@ -28,8 +28,7 @@ pub struct GpuScene {
     pub objects: Vec<GpuObject>,
     pub material_bind_groups: Vec<wgpu::BindGroup>,
     frame_buffer: wgpu::Buffer,
-    light_buffer: wgpu::Buffer,
-    light_capacity: usize,
+    lights: LightBuffers,
     /// Baked indirect irradiance, linear RGB per vertex of every object (zeros: none).
     indirect_buffer: wgpu::Buffer,
     pub frame_bind_group: wgpu::BindGroup,
@@ -129,15 +128,13 @@ impl GpuScene {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let light_capacity = scene.lights.len().max(1);
-        let light_buffer = create_light_buffer(device, light_capacity);
-        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &light_buffer, &indirect_buffer);
+        let lights = LightBuffers::new(device, scene.lights.len());
+        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &lights, &indirect_buffer);
         let mut gpu_scene = GpuScene {
             objects,
             material_bind_groups,
             frame_buffer,
-            light_buffer,
-            light_capacity,
+            lights,
             indirect_buffer,
             frame_bind_group,
             light_count: 0,
@@ -158,7 +155,7 @@ impl GpuScene {
         layouts: &SceneLayouts,
         per_vertex: &wgpu::Buffer,
     ) -> wgpu::BindGroup {
-        frame_bind_group(device, layouts, &self.frame_buffer, &self.light_buffer, per_vertex)
+        frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, per_vertex)
     }
 
     /// Vertices of every uploaded object together.
@@ -182,21 +179,13 @@ impl GpuScene {
         layouts: &SceneLayouts,
         lights: &[GpuLight],
     ) {
-        if lights.len() > self.light_capacity {
-            self.light_capacity = lights.len().next_power_of_two();
-            self.light_buffer = create_light_buffer(device, self.light_capacity);
-            self.frame_bind_group = frame_bind_group(
-                device,
-                layouts,
-                &self.frame_buffer,
-                &self.light_buffer,
-                &self.indirect_buffer,
-            );
+        if lights.len() > self.lights.every_capacity {
+            self.lights = LightBuffers::new(device, lights.len().next_power_of_two());
+            self.frame_bind_group =
+                frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, &self.indirect_buffer);
         }
         let (ordered, first_exact_light) = super::gpu_types::exact_lights_last(lights);
-        if !ordered.is_empty() {
-            queue.write_buffer(&self.light_buffer, 0, bytemuck::cast_slice(&ordered));
-        }
+        self.lights.write(queue, &ordered);
         self.light_count = ordered.len();
         self.first_exact_light = first_exact_light;
     }
@@ -240,20 +229,49 @@ impl GpuScene {
     }
 }
 
-fn create_light_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("lights"),
-        size: (capacity * std::mem::size_of::<GpuLight>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
+/// The lights as scene.wgsl reads them: the first [`UNIFORM_LIGHT_CAPACITY`] in a uniform
+/// buffer of that many, and every light in a storage buffer (read past the capacity).
+struct LightBuffers {
+    uniform: wgpu::Buffer,
+    every: wgpu::Buffer,
+    /// Lights `every` holds.
+    every_capacity: usize,
+}
+
+impl LightBuffers {
+    fn new(device: &wgpu::Device, every_capacity: usize) -> LightBuffers {
+        let every_capacity = every_capacity.max(1);
+        let buffer = |label, count: usize, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (count * std::mem::size_of::<GpuLight>()) as u64,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        LightBuffers {
+            uniform: buffer("lights", UNIFORM_LIGHT_CAPACITY, wgpu::BufferUsages::UNIFORM),
+            every: buffer("every light", every_capacity, wgpu::BufferUsages::STORAGE),
+            every_capacity,
+        }
+    }
+
+    /// Writes `lights` (at most the capacity `every` was made with).
+    fn write(&self, queue: &wgpu::Queue, lights: &[GpuLight]) {
+        if lights.is_empty() {
+            return;
+        }
+        let first = &lights[..lights.len().min(UNIFORM_LIGHT_CAPACITY)];
+        queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(first));
+        queue.write_buffer(&self.every, 0, bytemuck::cast_slice(lights));
+    }
 }
 
 fn frame_bind_group(
     device: &wgpu::Device,
     layouts: &SceneLayouts,
     frame: &wgpu::Buffer,
-    lights: &wgpu::Buffer,
+    lights: &LightBuffers,
     indirect: &wgpu::Buffer,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -261,8 +279,9 @@ fn frame_bind_group(
         layout: &layouts.frame,
         entries: &numbered_entries([
             frame.as_entire_binding(),
-            lights.as_entire_binding(),
+            lights.uniform.as_entire_binding(),
             indirect.as_entire_binding(),
+            lights.every.as_entire_binding(),
         ]),
     })
 }

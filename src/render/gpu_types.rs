@@ -13,6 +13,22 @@ pub const LIGHT_SPOT: u32 = 1;
 pub const LIGHT_DIRECTIONAL: u32 = 2;
 pub const LIGHT_AREA: u32 = 3;
 
+/// How many lights the uniform array `lights` of scene.wgsl holds (WGSL
+/// `UNIFORM_LIGHT_CAPACITY`): as many as fit in wgpu's default 64 KiB uniform binding.
+/// lavapipe reads a uniform array several times faster than a storage buffer; a frame with
+/// more lights also reads the rest from a storage buffer (`LIGHT_OVERFLOW`).
+pub const UNIFORM_LIGHT_CAPACITY: usize = 682;
+
+/// How many blockers and blocker groups the uniform arrays `blockers` and `groups` of
+/// logsh.wgsl hold (WGSL `UNIFORM_BLOCKER_CAPACITY`); as [`UNIFORM_LIGHT_CAPACITY`], with
+/// `BLOCKER_OVERFLOW`. Groups never outnumber blockers, so one capacity serves both.
+pub const UNIFORM_BLOCKER_CAPACITY: usize = 2048;
+
+/// wgpu's default `max_uniform_buffer_binding_size`.
+const MAX_UNIFORM_BINDING_BYTES: usize = 64 << 10;
+const _: () = assert!(UNIFORM_LIGHT_CAPACITY * std::mem::size_of::<GpuLight>() <= MAX_UNIFORM_BINDING_BYTES);
+const _: () = assert!(UNIFORM_BLOCKER_CAPACITY * std::mem::size_of::<GpuBlockerGroup>() <= MAX_UNIFORM_BINDING_BYTES);
+
 /// Vertex buffer element: position, normal (world space) and UV set 0.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

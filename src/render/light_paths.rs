@@ -11,7 +11,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::gpu_types::GpuLight;
+use super::gpu_types::{GpuLight, UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
 use super::{LightPaths, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Light, Scene};
@@ -105,9 +105,9 @@ impl LightPathContext {
 }
 
 /// Which shading code a log-SH pipeline compiles in (the override constants
-/// EXACT_LIGHT_PATH, EXACT_WIDE, SH_VISIBILITY and TERRAIN_SHADOWS): lavapipe runs the code
-/// of both sides of a branch at every pixel whether taken or not, so code that the frame
-/// does not need is left out.
+/// EXACT_LIGHT_PATH, EXACT_WIDE, SH_VISIBILITY, TERRAIN_SHADOWS, LIGHT_OVERFLOW and
+/// BLOCKER_OVERFLOW): lavapipe runs the code of both sides of a branch at every pixel
+/// whether taken or not, so code that the frame does not need is left out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CompiledPaths {
     /// Some light is on the exact path (EXACT_LIGHT_PATH).
@@ -120,6 +120,11 @@ pub struct CompiledPaths {
     pub harmonics: bool,
     /// The scene has a terrain (TERRAIN_SHADOWS).
     pub terrain: bool,
+    /// More lights than the shaders' uniform array holds: the rest are read from a storage
+    /// buffer (LIGHT_OVERFLOW; [`UNIFORM_LIGHT_CAPACITY`]).
+    pub light_overflow: bool,
+    /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
+    pub blocker_overflow: bool,
 }
 
 impl CompiledPaths {
@@ -129,6 +134,8 @@ impl CompiledPaths {
         exact_wide: true,
         harmonics: true,
         terrain: true,
+        light_overflow: true,
+        blocker_overflow: true,
     };
 }
 
@@ -148,14 +155,17 @@ impl SceneLighting {
     }
 }
 
-/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths.
-pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting) -> CompiledPaths {
+/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
+/// and `blocker_count` blockers.
+pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
     let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
     CompiledPaths {
         exact: exact_count > 0,
         exact_wide: exact_count > 4,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.exact_path == 0),
         terrain: lighting.has_terrain,
+        light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
+        blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
     }
 }
 
@@ -280,6 +290,7 @@ mod tests {
             let paths = compiled_paths(
                 &shading_lights(lights, &settings, &LightPathContext::at(centre)),
                 lighting,
+                0,
             );
             (paths.exact, paths.exact_wide, paths.harmonics)
         };
@@ -303,7 +314,24 @@ mod tests {
             has_environment: false,
             has_terrain: true,
         };
-        assert!(compiled_paths(&[], terrain).terrain);
+        assert!(compiled_paths(&[], terrain, 0).terrain);
+    }
+
+    #[test]
+    fn storage_buffers_are_read_only_past_the_uniform_capacities() {
+        let lighting = SceneLighting {
+            has_environment: false,
+            has_terrain: false,
+        };
+        let lights = |n| vec![GpuLight::new(&light(crate::scene::LightKind::Point, 1.0)); n];
+        let at_capacity = compiled_paths(&lights(UNIFORM_LIGHT_CAPACITY), lighting, UNIFORM_BLOCKER_CAPACITY);
+        assert!(!at_capacity.light_overflow && !at_capacity.blocker_overflow);
+        let past = compiled_paths(
+            &lights(UNIFORM_LIGHT_CAPACITY + 1),
+            lighting,
+            UNIFORM_BLOCKER_CAPACITY + 1,
+        );
+        assert!(past.light_overflow && past.blocker_overflow);
     }
 
     #[test]

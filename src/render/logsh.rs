@@ -105,7 +105,7 @@ impl LogShPipeline {
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
             (
-                PerVertexCompute::new(device, &module, &shadow_layout, settings.order),
+                PerVertexCompute::new(device, &module, &shadow_layout, settings.order, &path_constants(paths)),
                 make(Stage::ShadePerVertex(settings.order)),
             )
         });
@@ -339,6 +339,8 @@ pub fn surface_pipelines(
                         exact_wide: false,
                         harmonics: false,
                         terrain: false,
+                        light_overflow: false,
+                        blocker_overflow: false,
                     },
                 },
             )
@@ -352,6 +354,19 @@ struct Variant {
     samples: u32,
     /// The shading paths compiled in (logsh.wgsl's EXACT_LIGHT_PATH and SH_VISIBILITY).
     paths: CompiledPaths,
+}
+
+/// The override constants that compile `paths` in (see [`CompiledPaths`]).
+fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
+    let flag = |on: bool| f64::from(u8::from(on));
+    vec![
+        ("EXACT_LIGHT_PATH", flag(paths.exact)),
+        ("EXACT_WIDE", flag(paths.exact_wide)),
+        ("SH_VISIBILITY", flag(paths.harmonics)),
+        ("TERRAIN_SHADOWS", flag(paths.terrain)),
+        ("LIGHT_OVERFLOW", flag(paths.light_overflow)),
+        ("BLOCKER_OVERFLOW", flag(paths.blocker_overflow)),
+    ]
 }
 
 /// The upsampling that leaves unmatched pixels to a full shading pass marks the pixels it
@@ -444,12 +459,7 @@ fn scene_pipeline(
             wgpu::CompareFunction::Less,
         ),
     };
-    let mut constants: Vec<(&str, f64)> = vec![
-        ("EXACT_LIGHT_PATH", f64::from(u8::from(variant.paths.exact))),
-        ("EXACT_WIDE", f64::from(u8::from(variant.paths.exact_wide))),
-        ("SH_VISIBILITY", f64::from(u8::from(variant.paths.harmonics))),
-        ("TERRAIN_SHADOWS", f64::from(u8::from(variant.paths.terrain))),
-    ];
+    let mut constants = path_constants(variant.paths);
     if let Stage::Surface(channel, name) = stage {
         constants.push((name, channel as f64));
     }

@@ -159,7 +159,7 @@ impl<'a> ShadowRenderer<'a> {
         frame.check(gpu)?;
         let layouts = SceneLayouts::new(&gpu.device);
         let lights = frame.shading_lights();
-        let paths = super::compiled_paths(&lights, super::SceneLighting::of(frame.scene));
+        let paths = super::compiled_paths(&lights, super::SceneLighting::of(frame.scene), frame.blockers.len());
         let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, paths);
         let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
         gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &lights);

@@ -21,6 +21,7 @@ impl PerVertexCompute {
         module: &wgpu::ShaderModule,
         shadow_layout: &wgpu::BindGroupLayout,
         order: usize,
+        constants: &[(&str, f64)],
     ) -> PerVertexCompute {
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
             binding,
@@ -60,7 +61,10 @@ impl PerVertexCompute {
             layout: Some(&layout),
             module,
             entry_point: Some("cs_vertex_visibility"),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             cache: None,
         });
         PerVertexCompute {

@@ -39,14 +39,15 @@ impl SceneLayouts {
             label: Some("frame"),
             entries: &[
                 entry(0, both, buffer(wgpu::BufferBindingType::Uniform)),
-                entry(
-                    1,
-                    fragment,
-                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
-                ),
+                entry(1, fragment, buffer(wgpu::BufferBindingType::Uniform)),
                 entry(
                     2,
                     wgpu::ShaderStages::VERTEX,
+                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
+                ),
+                entry(
+                    3,
+                    fragment,
                     buffer(wgpu::BufferBindingType::Storage { read_only: true }),
                 ),
             ],

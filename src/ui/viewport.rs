@@ -121,6 +121,7 @@ impl Viewport {
         let paths = compiled_paths(
             &crate::render::shading_lights(&scene.lights, &settings, &path_context),
             lighting,
+            blockers.len(),
         );
         let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT, paths);
         let gpu_blockers = GpuBlockers::upload(
@@ -217,6 +218,7 @@ impl Viewport {
         compiled_paths(
             &crate::render::shading_lights(&self.lights, settings, &self.path_context),
             self.lighting,
+            self.path_context.blockers.len(),
         )
     }
 
