@@ -73,6 +73,12 @@ fn transform_vertex(v: VertexIn) -> VertexOut {
     return out;
 }
 
+// The fragment stage of a depth pre-pass into a pass with a colour target it leaves alone
+// (its pipeline writes no channel): nothing to compute, where running fs_surface would
+// sample the material's texture at every fragment for nothing.
+@fragment
+fn fs_depth_only() {}
+
 // Irradiance (per unit area facing the light), the unit direction toward the light, and
 // the sine of the half-angle of the cap the light subtends (0 for point-like lights).
 struct Incidence {

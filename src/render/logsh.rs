@@ -434,7 +434,7 @@ fn scene_pipeline(
     });
     let shaded = color(super::pipeline::COLOR_FORMAT);
     let (entry_point, targets, depth_write, compare) = match stage {
-        Stage::DepthOnly => ("fs_surface", vec![depth_only], true, wgpu::CompareFunction::Less),
+        Stage::DepthOnly => ("fs_depth_only", vec![depth_only], true, wgpu::CompareFunction::Less),
         Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         // Marks the pixels it did by moving their depth nearer (see reduced_shading.wgsl).

@@ -79,7 +79,10 @@ impl SceneLayouts {
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            anisotropy_clamp: 8,
+            // Trilinear, not anisotropic: lavapipe's anisotropic filter loops over a weight
+            // table per sample and cost the studio's default frame 12 % (87 against 99 ms,
+            // 2026-12-02), for floor textures a little sharper at grazing angles.
+            anisotropy_clamp: 1,
             ..Default::default()
         });
         SceneLayouts {
