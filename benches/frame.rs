@@ -19,7 +19,8 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    GpuContext, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces, shade_surfaces,
+    AntiAliasing, GpuContext, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
+    shade_surfaces,
 };
 use lightpaint::scene::{Camera, Scene};
 use lightpaint::sh::ExpMethod;
@@ -90,7 +91,7 @@ fn time_frame(
     gpu: &GpuContext,
     frame: &ShadowFrame,
 ) {
-    let renderer = ShadowRenderer::new(gpu, frame, 4).expect("renderer");
+    let renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::default()).expect("renderer");
     renderer.draw_and_wait().expect("warm-up frame");
     c.throughput(Throughput::Elements(
         (WIDTH * HEIGHT) as u64 * frame.blockers.len().max(1) as u64,

@@ -20,17 +20,18 @@ studio=projects/studio/studio.lightpaint
 sample=projects/sample/sample.lightpaint
 echo "| configuration | $frames frames after a warm-up |"
 echo "|---|---|"
-row "studio, defaults (order 4, HYB, 48 fitted spheres, 1 in 2×2 shaded), MSAA 4" "$studio"
-row "studio, defaults, MSAA 1" "$studio" --msaa 1
-row "studio, every pixel shaded, MSAA 4" "$studio" --shading-downsample 1
-row "studio, every pixel shaded, MSAA 1" "$studio" --shading-downsample 1 --msaa 1
-row "studio, 1 in 4×4 shaded, MSAA 4" "$studio" --shading-downsample 4
-row "studio, 1 in 4×4 shaded, MSAA 1" "$studio" --shading-downsample 4 --msaa 1
-row "studio, per vertex, MSAA 1" "$studio" --per-vertex --msaa 1
-row "studio, order 2, DC, MSAA 1" "$studio" --order 2 --exp dc --msaa 1
-row "studio, order 8, HYB, MSAA 1" "$studio" --order 8 --msaa 1
-row "studio, 400 spheres (fitted), MSAA 1" "$studio" --blockers 400 --msaa 1
-row "studio, log-BRDF, MSAA 1" "$studio" --brdf log --msaa 1
-row "studio, product BRDF, MSAA 1" "$studio" --brdf product --msaa 1
-row "sample, defaults (19 fitted spheres), MSAA 4" "$sample"
-row "sample, every pixel shaded, MSAA 4" "$sample" --shading-downsample 1
+row "studio, defaults (order 4, HYB, 48 fitted spheres, 1 in 3×3 shaded, edge filter)" "$studio"
+row "studio, defaults without antialiasing" "$studio" --aa none
+row "studio, defaults with 4× MSAA" "$studio" --aa msaa
+row "studio, 1 in 2×2 shaded" "$studio" --shading-downsample 2
+row "studio, 1 in 4×4 shaded" "$studio" --shading-downsample 4
+row "studio, every pixel shaded" "$studio" --shading-downsample 1
+row "studio, every pixel shaded, 4× MSAA" "$studio" --shading-downsample 1 --aa msaa
+row "studio, per vertex" "$studio" --per-vertex
+row "studio, order 2, DC" "$studio" --order 2 --exp dc
+row "studio, order 8, HYB" "$studio" --order 8
+row "studio, 400 spheres (fitted)" "$studio" --blockers 400
+row "studio, log-BRDF" "$studio" --brdf log
+row "studio, product BRDF" "$studio" --brdf product
+row "sample, defaults (19 fitted spheres)" "$sample"
+row "sample, every pixel shaded" "$sample" --shading-downsample 1

@@ -142,7 +142,7 @@ fn lobes_from_log_visibility(s: Surface, f: Sh) -> LobeVisibility {
         let carried = specular_carried(s);
         var specular_log = f;
         if carried {
-            specular_log = sh_add_zonal(f, sh_log_phong_lobe_zh(s.phong_exponent, shadow.ln_epsilon), 1.0, mirrored_view(s));
+            specular_log = sh_add_zonal(f, sh_log_phong_lobe_zh(s.phong_exponent, shadow.ln_epsilon), 1.0, s.mirrored_view);
         }
         return LobeVisibility(diffuse, sh_exp(specular_log), carried);
     }
@@ -156,7 +156,7 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
         let carried = specular_carried(s);
         var specular = g;
         if carried {
-            specular = sh_times_lobe(g, sh_add_zonal(sh_zero(), sh_phong_lobe_zh(s.phong_exponent), 1.0, mirrored_view(s)));
+            specular = sh_times_lobe(g, sh_add_zonal(sh_zero(), sh_phong_lobe_zh(s.phong_exponent), 1.0, s.mirrored_view));
         }
         return LobeVisibility(diffuse, specular, carried);
     }

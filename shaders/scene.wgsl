@@ -141,6 +141,9 @@ struct Surface {
     // Light leaving the surface that no shadow or light sample changes: emission plus the
     // baked indirect light reflected diffusely, k_d/π · E_indirect.
     emissive: vec3<f32>,
+    // The view direction mirrored about the normal, the Phong lobe's axis (computed once
+    // here rather than per light: the shader compiler does not hoist it out of the loop).
+    mirrored_view: vec3<f32>,
 };
 
 fn surface(in: VertexOut, front_facing: bool) -> Surface {
@@ -160,6 +163,7 @@ fn surface(in: VertexOut, front_facing: bool) -> Surface {
     s.k_s = mix(vec3<f32>(dielectric_specular), base.rgb, metallic);
     s.phong_exponent = material.params.z;
     s.emissive = material.emissive.rgb + s.k_d / PI * max(in.indirect_irradiance, vec3<f32>(0.0));
+    s.mirrored_view = reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);
     return s;
 }
 
@@ -169,11 +173,6 @@ fn pixel_footprint(p: vec3<f32>) -> f32 {
     return distance(frame.camera_position.xyz, p) * frame.pixel_angle_rad;
 }
 
-// The view direction mirrored about s's normal, the Phong lobe's axis.
-fn mirrored_view(s: Surface) -> vec3<f32> {
-    return reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);
-}
-
 // A light's unshadowed diffuse and glossy factors, n·l/π and (r+1)/(2π)·max(ρ·l, 0)^r
 // (both 0 when the light is below the horizon).
 fn direct_lobes(s: Surface, inc: Incidence) -> vec2<f32> {
@@ -181,7 +180,7 @@ fn direct_lobes(s: Surface, inc: Incidence) -> vec2<f32> {
     if n_dot_l <= 0.0 {
         return vec2<f32>(0.0);
     }
-    let cos_mirror = max(dot(mirrored_view(s), inc.to_light), 1e-8);
+    let cos_mirror = max(dot(s.mirrored_view, inc.to_light), 1e-8);
     // exp2(r·log2 c) rather than pow: equals 1 at r = 0 even where c underflows.
     let glossy = (s.phong_exponent + 1.0) / (2.0 * PI) * exp2(s.phong_exponent * log2(cos_mirror));
     return vec2<f32>(n_dot_l / PI, glossy);

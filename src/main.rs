@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 use lightpaint::blockers::{SphereBudget, fit_scene};
 use lightpaint::project::{Document, ProjectError};
 use lightpaint::render::{
-    BakedIndirect, BrdfShading, GpuContext, LightPaths, RenderError, ShadowFrame, ShadowRenderer, ShadowSettings,
-    parse_exp_method, render_cpu_image, render_image, render_logsh_image,
+    AntiAliasing, BakedIndirect, BrdfShading, GpuContext, LightPaths, RenderError, ShadowFrame, ShadowRenderer,
+    ShadowSettings, parse_exp_method, render_cpu_image, render_image, render_logsh_image,
 };
 use lightpaint::scene::SceneError;
 use lightpaint::sh::ExpMethod;
@@ -162,9 +162,11 @@ struct RenderArgs {
     /// pixel's surface (1 shades every pixel; 1–4); default: the project's, or 2.
     #[arg(long, conflicts_with = "cpu")]
     shading_downsample: Option<u32>,
-    /// Samples per pixel on the GPU: 4 (multisampled edges) or 1.
-    #[arg(long, default_value_t = 4, value_parser = parse_msaa)]
-    msaa: u32,
+    /// Antialiasing of log-SH frames: filter (one sample per pixel, then an edge filter),
+    /// msaa (4 samples per pixel) or none (one sample at each pixel centre, as --cpu
+    /// shades). --no-shadows frames are multisampled.
+    #[arg(long, default_value = "filter", value_parser = parse_anti_aliasing)]
+    aa: AntiAliasing,
     /// Also time this many more GPU frames (after one warm-up) and print ms per frame.
     #[arg(long, default_value_t = 0, conflicts_with_all = ["cpu", "no_shadows"])]
     time_frames: u32,
@@ -201,11 +203,12 @@ fn parse_light_paths(text: &str) -> Result<LightPaths, String> {
     }
 }
 
-fn parse_msaa(text: &str) -> Result<u32, String> {
+fn parse_anti_aliasing(text: &str) -> Result<AntiAliasing, String> {
     match text.trim() {
-        "1" => Ok(1),
-        "4" => Ok(4),
-        _ => Err(format!("expected 1 or 4 samples per pixel, got '{text}'")),
+        "filter" => Ok(AntiAliasing::EdgeFilter),
+        "msaa" => Ok(AntiAliasing::Multisample),
+        "none" => Ok(AntiAliasing::None),
+        other => Err(format!("'{other}' is not one of filter, msaa, none")),
     }
 }
 
@@ -445,7 +448,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         )
     } else {
         (
-            render_logsh_image(&gpu, &frame, args.msaa)?,
+            render_logsh_image(&gpu, &frame, args.aa)?,
             format!(
                 "log-SH, {}{}",
                 describe(&shadows, blockers.len(), &document.scene),
@@ -455,7 +458,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     };
     let elapsed = started.elapsed();
     if args.time_frames > 0 && !no_shadows {
-        time_frames(&gpu, &frame, args.time_frames, args.msaa)?;
+        time_frames(&gpu, &frame, args.time_frames, args.aa)?;
     }
     image.save(&args.output).map_err(|source| CliError::WriteImage {
         path: args.output.clone(),
@@ -567,8 +570,8 @@ fn render_reference_png(
 }
 
 /// Draws `count` frames after a warm-up and prints the mean and best time per frame.
-fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, samples: u32) -> Result<(), CliError> {
-    let renderer = ShadowRenderer::new(gpu, frame, samples)?;
+fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
+    let renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
     renderer.draw_and_wait()?;
     let mut times_ms = Vec::with_capacity(count as usize);
     for _ in 0..count {

@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 
 use glam::{Affine3A, Vec3, Vec4};
 use lightpaint::render::{
-    BakedIndirect, RenderSettings, ShadowFrame, ShadowSettings, render_cpu_image, render_logsh_image,
+    AntiAliasing, BakedIndirect, RenderSettings, ShadowFrame, ShadowSettings, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::{Camera, Material, Scene, shapes};
 
@@ -66,7 +66,7 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         width: 64,
         height: 32,
     };
-    let gpu_image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
+    let gpu_image = render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("GPU frame");
     let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
     // A white Lambertian surface reflects k_d/π·E: 2/π red on the left, 0.5/π blue on the right.
     let expected = |e: f64| common::expected_8bit(e / PI, 0.0);
@@ -90,7 +90,7 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         baked_indirect: None,
         ..frame
     };
-    let dark = render_logsh_image(&gpu, &without, 1).expect("GPU frame");
+    let dark = render_logsh_image(&gpu, &without, AntiAliasing::None).expect("GPU frame");
     assert_eq!(dark.get_pixel(20, 16)[0], 0, "no light, no indirect: black");
 }
 
@@ -109,7 +109,7 @@ fn render_adds_the_baked_indirect_light_of_a_baked_project() {
         let output = dir.path().join(name);
         let mut args: Vec<std::ffi::OsString> = vec!["render".into(), project.clone().into(), "-o".into()];
         args.push(output.clone().into());
-        args.extend(["--width", "160", "--height", "90", "--msaa", "1"].map(Into::into));
+        args.extend(["--width", "160", "--height", "90", "--aa", "none"].map(Into::into));
         args.extend(extra.iter().map(Into::into));
         let arg_refs: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_os_str()).collect();
         let out = common::run_lightpaint(&arg_refs);

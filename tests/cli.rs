@@ -211,7 +211,7 @@ fn render_rejects_bad_shadow_settings_with_exit_code_2() {
         &["--exp", "fast"][..],
         &["--order", "8", "--per-vertex"][..],
         &["--blockers", "many"][..],
-        &["--msaa", "2"][..],
+        &["--aa", "4x"][..],
     ] {
         let mut all: Vec<&OsStr> = vec![
             OsStr::new("render"),

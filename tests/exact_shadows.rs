@@ -12,8 +12,8 @@ use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::penumbra::{LightDisc, light_visibility};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_cpu_image,
-    render_logsh_image,
+    AntiAliasing, GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
+    render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
 
@@ -36,7 +36,7 @@ fn white_floor(size_m: f32, lights: Vec<Light>) -> Scene {
 /// of pixels within 1/255 (hard shadow edges may fall on the other side of a pixel
 /// centre in f32).
 fn assert_gpu_matches_cpu(gpu: &GpuContext, frame: &ShadowFrame, what: &str) {
-    let gpu_image = render_logsh_image(gpu, frame, 1).expect("GPU frame");
+    let gpu_image = render_logsh_image(gpu, frame, AntiAliasing::None).expect("GPU frame");
     let cpu_image = render_cpu_image(gpu, frame).expect("CPU frame");
     let (within, worst) = agreement(&gpu_image, &cpu_image, 1);
     eprintln!("{what}: {:.3} % within 1/255, worst {worst}/255", 100.0 * within);
@@ -245,7 +245,7 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
         width,
         height,
     };
-    let image = render_logsh_image(&gpu, &frame, 1).expect("GPU frame");
+    let image = render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("GPU frame");
     let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
     let row = height / 2;
     let mut checked = 0;

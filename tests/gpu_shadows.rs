@@ -8,8 +8,8 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    BrdfShading, CompiledPaths, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
-    render_cpu_image, render_logsh_image,
+    AntiAliasing, BrdfShading, CompiledPaths, GpuContext, RenderSettings, ShadowFrame, ShadowSettings,
+    capture_surfaces, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene};
@@ -46,7 +46,7 @@ fn open(relative: &str) -> (Scene, Camera, RenderSettings) {
 }
 
 fn assert_parity(gpu: &GpuContext, name: &str, frame: &ShadowFrame) {
-    let gpu_image = render_logsh_image(gpu, frame, 1).expect("GPU render");
+    let gpu_image = render_logsh_image(gpu, frame, AntiAliasing::None).expect("GPU render");
     let cpu_image = render_cpu_image(gpu, frame).expect("CPU render");
     save_for_review(&format!("{name}-gpu"), &gpu_image);
     save_for_review(&format!("{name}-cpu"), &cpu_image);
@@ -181,7 +181,7 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
             width,
             height,
         };
-        render_logsh_image(&gpu, &frame, 1).expect("render")
+        render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("render")
     };
     let lit = render(&[]);
     let shadowed = render(&[ball]);
@@ -307,7 +307,7 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
             width: 240,
             height: 135,
         };
-        render_logsh_image(&gpu, &frame, 1).expect("render")
+        render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("render")
     };
     for brdf in [BrdfShading::Separate, BrdfShading::Product] {
         let (per_pixel, per_vertex) = (render(false, brdf), render(true, brdf));

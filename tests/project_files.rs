@@ -236,6 +236,10 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
     };
     // Formats before 8 had no budget of exact lights: any number could go exact.
     every_pixel.exact_light_budget = lightpaint::render::MAX_EXACT_LIGHT_BUDGET;
+    // The format-7 fixture saved the shading resolution of its day, one pixel in 2 × 2.
+    if version == 7 {
+        every_pixel.shading_downsample = 2;
+    }
     let expected = if version < 4 {
         lightpaint::render::RenderSettings {
             baked_indirect: false,
@@ -316,13 +320,13 @@ fn a_format_5_project_opens_with_every_object_shown() {
     assert!(document.scene.terrain.is_none());
 }
 
-/// Format 6 shaded every pixel, and keeps doing so; today's projects shade one in 2 × 2.
+/// Format 6 shaded every pixel, and keeps doing so; today's projects shade one in 3 × 3.
 #[test]
 fn a_format_6_project_opens_shading_every_pixel() {
     let document = open_old_fixture(6);
     assert_eq!(document.settings.shadows.shading_downsample, 1);
     let current = lightpaint::project::Document::open(&sample_project()).expect("sample");
-    assert_eq!(current.settings.shadows.shading_downsample, 2);
+    assert_eq!(current.settings.shadows.shading_downsample, 3);
 }
 
 /// Format 7 shaded each light's exact BRDF through its visibility, as the default does.

@@ -7,7 +7,7 @@ mod common;
 use glam::{Vec2, Vec3};
 use lightpaint::blockers::{Sphere, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{GpuContext, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::render::{AntiAliasing, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene, TextureImage};
 
@@ -60,13 +60,13 @@ fn full_and_reduced(
             width,
             height,
         };
-        render_logsh_image(gpu, &frame, samples).expect("render")
+        render_logsh_image(gpu, &frame, AntiAliasing::with_samples(samples)).expect("render")
     };
     (render(1), render(downsample))
 }
 
 #[test]
-fn shading_one_pixel_in_four_looks_like_shading_every_pixel_on_the_samples() {
+fn shading_one_pixel_per_block_looks_like_shading_every_pixel_on_the_samples() {
     let Some(gpu) = common::gpu() else { return };
     for (name, project) in [
         ("sample", "projects/sample/sample.lightpaint"),
@@ -77,27 +77,31 @@ fn shading_one_pixel_in_four_looks_like_shading_every_pixel_on_the_samples() {
             .camera
             .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
         let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
-        for samples in [1, 4] {
+        // 2 × 2 blocks with and without multisampling, and the default 3 × 3.
+        for (downsample, samples) in [(2, 1), (2, 4), (3, 1)] {
             let (full, reduced) = full_and_reduced(
                 &gpu,
                 &document.scene,
                 &camera,
                 &document.settings,
                 &blockers,
-                2,
+                downsample,
                 samples,
                 [480, 270],
             );
-            let label = format!("{name}, {samples} sample(s) per pixel");
+            let label = format!("{name}, 1 in {downsample}², {samples} sample(s) per pixel");
             save_for_review(&format!("{name}-msaa{samples}-every-pixel"), &full);
-            save_for_review(&format!("{name}-msaa{samples}-one-in-four"), &reduced);
+            save_for_review(
+                &format!("{name}-msaa{samples}-one-in-{downsample}x{downsample}"),
+                &reduced,
+            );
             let (within_2, within_8, worst) = agreement(&reduced, &full);
             eprintln!(
                 "{label}: {:.3} % within 2/255, {:.3} % within 8/255, worst {worst}/255",
                 100.0 * within_2,
                 100.0 * within_8
             );
-            // What differs lies where the lighting changes within a 2 × 2 block: specular
+            // What differs lies where the lighting changes within a block: specular
             // highlights (interpolated, slightly blurred) and the rims of curved objects.
             assert!(
                 within_2 >= 0.975,

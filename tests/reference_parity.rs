@@ -8,7 +8,7 @@ mod common;
 
 use glam::{Vec3, Vec4};
 use lightpaint::reference::{ReferenceSettings, render_reference};
-use lightpaint::render::{RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::render::{AntiAliasing, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
 use lightpaint::scene::{Camera, Environment, Light, LightKind, Material, Scene, shapes};
 
 const WIDTH: u32 = 96;
@@ -100,7 +100,7 @@ fn assert_direct_parity(name: &str, scene: &Scene, camera: &Camera, orders: &[us
             width: WIDTH,
             height: HEIGHT,
         };
-        let real_time = render_logsh_image(&gpu, &frame, 4).expect("GPU render");
+        let real_time = render_logsh_image(&gpu, &frame, AntiAliasing::Multisample).expect("GPU render");
         let _ = real_time.save(dir.join(format!("{name}-order{order}.png")));
         let (mean, p99) = differences(&real_time, &reference_image);
         eprintln!("{name}, order {order}: mean difference {mean:.2}/255, 99th percentile {p99}/255");

@@ -11,7 +11,7 @@ use lightpaint::project::Document;
 use lightpaint::render::cpu::{ShadingInputs, SurfacePoint, shadowed_radiance};
 use lightpaint::render::gpu_types::GpuLight;
 use lightpaint::render::{
-    LightPaths, ShadowFrame, ShadowSettings, TerrainShading, render_cpu_image, render_logsh_image,
+    AntiAliasing, LightPaths, ShadowFrame, ShadowSettings, TerrainShading, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::{Light, LightKind, Scene, TerrainSource, TerrainSpec};
 use lightpaint::terrain::{HeightField, HeightPyramid, TerrainShadow};
@@ -46,7 +46,7 @@ fn gpu_and_cpu(
         width: 240,
         height: 135,
     };
-    let gpu_image = render_logsh_image(gpu, &frame, 1).expect("GPU frame");
+    let gpu_image = render_logsh_image(gpu, &frame, AntiAliasing::None).expect("GPU frame");
     let cpu_image = render_cpu_image(gpu, &frame).expect("CPU frame");
     agreement(&gpu_image, &cpu_image, 2)
 }

@@ -22,6 +22,11 @@ fn raster_module_validates() {
 }
 
 #[test]
+fn edge_filter_module_validates() {
+    validate("edge filter", shaders::EDGE_FILTER);
+}
+
+#[test]
 fn heat_map_module_validates() {
     validate("heat map", &shaders::heat_map_source());
 }

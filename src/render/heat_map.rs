@@ -4,7 +4,8 @@
 
 use wgpu::util::DeviceExt;
 
-use super::pipeline::{RenderTarget, SceneLayouts, draw_meshes, mesh_pipeline};
+use super::pipeline::{SceneLayouts, draw_meshes, mesh_pipeline};
+use super::target::RenderTarget;
 use super::{GpuScene, shaders};
 
 /// The heat colours from cold to hot, sRGB: near-black blue, purple, red, orange, pale

@@ -9,8 +9,9 @@ pub use super::gpu_blockers::{GpuBlockers, shadow_layout};
 use super::gpu_scene::{GpuObject, GpuScene};
 use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
-use super::pipeline::{RenderTarget, SceneLayouts, depth_test, two_sided_triangles};
+use super::pipeline::{SceneLayouts, depth_test, two_sided_triangles};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
+use super::target::RenderTarget;
 use super::{BrdfShading, CompiledPaths, ShadowSettings, shaders, wgsl_sh};
 use crate::sh::ExpMethod;
 
@@ -250,6 +251,8 @@ impl LogShPipeline {
                 draw_objects(&mut pass, scene);
             }
         }
+        drop(pass);
+        target.finish(encoder);
     }
 }
 

@@ -8,6 +8,7 @@ mod color;
 mod context;
 pub mod cpu;
 pub mod cpu_lobes;
+mod edge_filter;
 mod gpu_blockers;
 mod gpu_scene;
 mod gpu_terrain;
@@ -22,6 +23,7 @@ mod pipeline;
 pub mod reduced_shading;
 pub mod shaders;
 mod shadow_settings;
+mod target;
 pub mod wgsl_lobes;
 pub mod wgsl_sh;
 pub mod wgsl_terrain;
@@ -35,14 +37,15 @@ pub use light_paths::{
     CompiledPaths, LightPathContext, SceneLighting, compiled_paths, light_paths_at, paths_and_sizes_at, shading_lights,
 };
 pub use offscreen::{
-    RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, read_target_image, render_cpu_image, render_image,
-    render_logsh_image, shade_surfaces,
+    RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, filter_edges, read_target_image, render_cpu_image,
+    render_image, render_logsh_image, shade_surfaces,
 };
-pub use pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, ScenePipeline};
+pub use pipeline::{COLOR_FORMAT, SAMPLE_COUNT, ScenePipeline};
 pub use shadow_settings::{
     AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, LightPaths, MAX_EXACT_LIGHT_BUDGET, MAX_TERRAIN_AZIMUTHS,
     MAX_TERRAIN_LEVELS, ShadowSettings, TerrainShading, parse_exp_method,
 };
+pub use target::{AntiAliasing, RenderTarget};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -10,8 +10,9 @@ use super::logsh::{
     GpuBlockers, LogShPipeline, SURFACE_FORMAT, Shading, draw_objects, shadow_layout, surface_pipelines,
 };
 use super::per_vertex::VertexVisibility;
-use super::pipeline::{COLOR_FORMAT, RenderTarget, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
+use super::pipeline::{COLOR_FORMAT, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
 use super::reduced_shading::LowResolutionTargets;
+use super::target::{AntiAliasing, RenderTarget};
 use super::{BakedIndirect, GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
@@ -132,13 +133,13 @@ impl ShadowFrame<'_> {
     }
 }
 
-/// Renders a frame with log-SH shadows on the GPU, with `samples` (1 or 4) per pixel.
+/// Renders a frame with log-SH shadows on the GPU, antialiased as `anti_aliasing` says.
 pub fn render_logsh_image(
     gpu: &GpuContext,
     frame: &ShadowFrame,
-    samples: u32,
+    anti_aliasing: AntiAliasing,
 ) -> Result<image::RgbaImage, RenderError> {
-    ShadowRenderer::new(gpu, frame, samples)?.read_image()
+    ShadowRenderer::new(gpu, frame, anti_aliasing)?.read_image()
 }
 
 /// Everything a log-SH frame needs, uploaded once, so frames can be drawn repeatedly
@@ -155,8 +156,13 @@ pub struct ShadowRenderer<'a> {
 }
 
 impl<'a> ShadowRenderer<'a> {
-    pub fn new(gpu: &'a GpuContext, frame: &ShadowFrame, samples: u32) -> Result<ShadowRenderer<'a>, RenderError> {
+    pub fn new(
+        gpu: &'a GpuContext,
+        frame: &ShadowFrame,
+        anti_aliasing: AntiAliasing,
+    ) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
+        let samples = anti_aliasing.samples();
         let layouts = SceneLayouts::new(&gpu.device);
         let lights = frame.shading_lights();
         let paths = super::compiled_paths(&lights, super::SceneLighting::of(frame.scene), frame.blockers.len());
@@ -172,7 +178,7 @@ impl<'a> ShadowRenderer<'a> {
             frame.scene.terrain.as_ref().map(|t| &t.field),
             frame.shadows,
         );
-        let target = RenderTarget::with_samples(&gpu.device, frame.width, frame.height, samples);
+        let target = RenderTarget::with_anti_aliasing(&gpu.device, frame.width, frame.height, anti_aliasing);
         gpu_scene.write_frame(
             &gpu.queue,
             frame.camera,
@@ -347,6 +353,17 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         .collect();
     image::RgbaImage::from_raw(frame.width, frame.height, pixels)
         .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
+}
+
+/// `image` (sRGB-encoded, as rendered) through the edge filter of
+/// [`AntiAliasing::EdgeFilter`] frames.
+pub fn filter_edges(gpu: &GpuContext, image: &image::RgbaImage) -> Result<image::RgbaImage, RenderError> {
+    check_size(gpu, image.width(), image.height())?;
+    let target = RenderTarget::with_anti_aliasing(&gpu.device, image.width(), image.height(), AntiAliasing::EdgeFilter);
+    target.write_unfiltered(&gpu.queue, image.as_raw());
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    target.finish(&mut encoder);
+    read_color(gpu, encoder, &target)
 }
 
 fn read_color(

@@ -3,13 +3,14 @@
 use super::gpu_scene::GpuScene;
 use super::gpu_types::GpuVertex;
 use super::shaders;
+use super::target::RenderTarget;
 
 /// Colour format of every render target: linear shader output, sRGB-encoded on store.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Storage format of the resolved image: the same bytes as [`COLOR_FORMAT`], read raw.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Multisampling for smooth silhouettes.
+/// Samples per pixel of multisampled targets ([`super::AntiAliasing::Multisample`]).
 pub const SAMPLE_COUNT: u32 = 4;
 
 /// Bind group layouts and the shared sampler.
@@ -152,6 +153,8 @@ pub fn draw_meshes(
     pass.set_pipeline(pipeline);
     pass.set_bind_group(0, frame_group, &[]);
     super::logsh::draw_objects(&mut pass, scene);
+    drop(pass);
+    target.finish(encoder);
 }
 
 /// A pipeline drawing the scene's meshes with scene.wgsl's vertex stage and `fragment`
@@ -218,107 +221,6 @@ pub(super) fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::D
         depth_compare: Some(compare),
         stencil: Default::default(),
         bias: Default::default(),
-    }
-}
-
-/// Where a frame is drawn: a colour and depth buffer (multisampled and resolved into a
-/// single-sampled texture when `samples` > 1) whose texture holds sRGB-encoded bytes. The
-/// shader writes it through an sRGB view (the hardware encodes); egui and the PNG readback
-/// see the plain bytes, which is what egui expects of a user texture (gamma-space
-/// `Rgba8Unorm`).
-pub struct RenderTarget {
-    pub width: u32,
-    pub height: u32,
-    pub samples: u32,
-    pub color: wgpu::Texture,
-    /// sRGB view: the resolve target (or the attachment itself without multisampling).
-    pub color_view: wgpu::TextureView,
-    /// `Rgba8Unorm` view of the same bytes, for egui.
-    pub display_view: wgpu::TextureView,
-    msaa_view: Option<wgpu::TextureView>,
-    depth_view: wgpu::TextureView,
-}
-
-impl RenderTarget {
-    /// A target with [`SAMPLE_COUNT`] samples per pixel.
-    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> RenderTarget {
-        RenderTarget::with_samples(device, width, height, SAMPLE_COUNT)
-    }
-
-    /// A target with `samples` (1 or [`SAMPLE_COUNT`]) samples per pixel. One sample shades
-    /// exactly the pixel centres, as the CPU reference does.
-    pub fn with_samples(device: &wgpu::Device, width: u32, height: u32, samples: u32) -> RenderTarget {
-        let size = wgpu::Extent3d {
-            width: width.max(1),
-            height: height.max(1),
-            depth_or_array_layers: 1,
-        };
-        let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: samples,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats,
-            })
-        };
-        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let color = texture(
-            "colour",
-            DISPLAY_FORMAT,
-            1,
-            attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
-            &[COLOR_FORMAT],
-        );
-        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-        let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
-        let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
-        RenderTarget {
-            width: size.width,
-            height: size.height,
-            samples,
-            color_view: color.create_view(&wgpu::TextureViewDescriptor {
-                format: Some(COLOR_FORMAT),
-                ..Default::default()
-            }),
-            display_view: view(&color),
-            msaa_view,
-            depth_view: view(&depth),
-            color,
-        }
-    }
-
-    /// The colour attachment, cleared to `background` (linear RGB).
-    pub fn color_attachment(&self, background_linear: [f64; 3]) -> wgpu::RenderPassColorAttachment<'_> {
-        let [r, g, b] = background_linear;
-        let (view, resolve_target, store) = match &self.msaa_view {
-            Some(msaa) => (msaa, Some(&self.color_view), wgpu::StoreOp::Discard),
-            None => (&self.color_view, None, wgpu::StoreOp::Store),
-        };
-        wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
-                store,
-            },
-        }
-    }
-
-    /// The depth attachment, cleared to the far plane.
-    pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        wgpu::RenderPassDepthStencilAttachment {
-            view: &self.depth_view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Discard,
-            }),
-            stencil_ops: None,
-        }
     }
 }
 

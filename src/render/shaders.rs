@@ -16,6 +16,8 @@ pub const TERRAIN: &str = include_str!("../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../shaders/reduced_shading.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../shaders/heat_map.wgsl");
+/// Standalone: it reads a finished frame, not the scene.
+pub const EDGE_FILTER: &str = include_str!("../../shaders/edge_filter.wgsl");
 
 /// The shared prelude, then `body`.
 pub fn with_common(body: &str) -> String {

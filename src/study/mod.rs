@@ -27,7 +27,7 @@ use crate::project::{Document, ProjectError};
 use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
 use crate::render::cpu::SurfacePoint;
 use crate::render::{
-    BakedIndirect, GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer,
+    AntiAliasing, BakedIndirect, GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer,
     ShadowSettings, capture_surfaces, shade_surfaces,
 };
 use crate::samples::Sample;
@@ -480,7 +480,7 @@ impl SceneStudy<'_> {
             let image = shade_surfaces(&self.surfaces, &frame)?;
             return Ok((image, started.elapsed().as_secs_f64() * 1000.0, blockers.len()));
         }
-        let renderer = ShadowRenderer::new(self.gpu, &frame, 1)?;
+        let renderer = ShadowRenderer::new(self.gpu, &frame, AntiAliasing::None)?;
         let image = renderer.read_image()?;
         let ms = mean_frame_ms(self.frames, || renderer.draw_and_wait())?;
         Ok((image, ms, blockers.len()))

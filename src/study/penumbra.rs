@@ -23,7 +23,7 @@ use crate::reference::{ProgressiveRender, SurfaceHit};
 use crate::render::cpu::{self, ShadingInputs, SurfacePoint};
 use crate::render::gpu_types::environment_irradiance;
 use crate::render::{
-    GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
+    AntiAliasing, GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
 };
 use crate::scene::{Camera, Environment, Light, LightKind, Material, Scene, luminance, shapes};
 
@@ -360,7 +360,7 @@ fn frame_ms(
         width: size,
         height: size,
     };
-    let renderer = ShadowRenderer::new(gpu, &frame, 1)?;
+    let renderer = ShadowRenderer::new(gpu, &frame, AntiAliasing::None)?;
     renderer.draw_and_wait()?;
     super::mean_frame_ms(frames, || renderer.draw_and_wait())
 }

@@ -11,8 +11,8 @@ use glam::{DVec3, Vec3};
 use crate::blockers::Sphere;
 use crate::render::cpu::{self, ShadingInputs};
 use crate::render::{
-    GpuContext, RenderError, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces, render_logsh_image,
-    shade_surfaces,
+    AntiAliasing, GpuContext, RenderError, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
+    render_logsh_image, shade_surfaces,
 };
 use crate::scene::{Camera, Light, LightKind, Material, Scene, shapes};
 use crate::sh::ExpMethod;
@@ -176,7 +176,7 @@ pub fn measure(
         result.above_unshadowed += usize::from(!shadowed.cmple(bound).all());
     }
     let cpu_image = shade_surfaces(&surfaces, &frame)?;
-    let gpu_image = render_logsh_image(gpu, &frame, 1)?;
+    let gpu_image = render_logsh_image(gpu, &frame, AntiAliasing::None)?;
     let differences: Vec<u8> = gpu_image
         .pixels()
         .zip(cpu_image.pixels())

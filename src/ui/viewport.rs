@@ -12,8 +12,8 @@ use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
 use crate::render::reduced_shading::LowResolutionTargets;
 use crate::render::{
-    BakedIndirect, CompiledPaths, GpuScene, LightPathContext, RenderSettings, RenderTarget, SceneLighting,
-    ScenePipeline, ShadowSettings, compiled_paths,
+    AntiAliasing, BakedIndirect, CompiledPaths, GpuScene, LightPathContext, RenderSettings, RenderTarget,
+    SceneLighting, ScenePipeline, ShadowSettings, compiled_paths,
 };
 use crate::scene::{Environment, Light, OrbitCamera, Scene};
 
@@ -99,6 +99,10 @@ pub fn screen_point(view: &crate::paint::View, rect: egui::Rect, p: glam::Vec3) 
 /// Radians of orbit per point of mouse drag.
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
+/// How the viewport smooths edges: the edge filter, a few milliseconds on lavapipe where
+/// multisampling doubles the frame time.
+const ANTI_ALIASING: AntiAliasing = AntiAliasing::EdgeFilter;
+
 impl Viewport {
     /// A viewport on `scene`, seen from `orbit` or, without one, from the scene's camera.
     pub fn new(
@@ -109,7 +113,7 @@ impl Viewport {
         shadows: &ShadowSettings,
     ) -> Viewport {
         let (device, queue) = (&render_state.device, &render_state.queue);
-        let pipeline = ScenePipeline::new(device);
+        let pipeline = ScenePipeline::with_samples(device, ANTI_ALIASING.samples());
         let gpu_scene = GpuScene::upload(device, queue, &pipeline.layouts, scene);
         let settings = if shadows.gpu_problems().is_empty() {
             *shadows
@@ -123,7 +127,7 @@ impl Viewport {
             lighting,
             blockers.len(),
         );
-        let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, crate::render::SAMPLE_COUNT, paths);
+        let logsh = LogShPipeline::new(device, &pipeline.layouts, &settings, ANTI_ALIASING.samples(), paths);
         let gpu_blockers = GpuBlockers::upload(
             device,
             queue,
@@ -133,7 +137,7 @@ impl Viewport {
             &settings,
         );
         let visibility = logsh.vertex_visibility(device, &gpu_scene);
-        let heat_map = HeatMapPipeline::new(device, &pipeline.layouts, crate::render::SAMPLE_COUNT);
+        let heat_map = HeatMapPipeline::new(device, &pipeline.layouts, ANTI_ALIASING.samples());
         let mut viewport = Viewport {
             pipeline,
             heat_map,
@@ -284,7 +288,7 @@ impl Viewport {
                 // An older compile still finishes on its thread; its result is dropped.
                 let (device, layouts) = (render_state.device.clone(), self.pipeline.layouts.clone());
                 let handle = std::thread::spawn(move || {
-                    LogShPipeline::new(&device, &layouts, &settings, crate::render::SAMPLE_COUNT, paths)
+                    LogShPipeline::new(&device, &layouts, &settings, ANTI_ALIASING.samples(), paths)
                 });
                 self.compiling = Some(Compiling {
                     settings,
@@ -494,7 +498,7 @@ impl Viewport {
         let device = &render_state.device;
         let resized = self.target.as_ref().is_none_or(|t| [t.width, t.height] != size);
         if resized {
-            let target = RenderTarget::new(device, size[0], size[1]);
+            let target = RenderTarget::with_anti_aliasing(device, size[0], size[1], ANTI_ALIASING);
             let mut renderer = render_state.renderer.write();
             match self.texture_id {
                 Some(id) => renderer.update_egui_texture_from_wgpu_texture(

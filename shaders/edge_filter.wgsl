@@ -1,0 +1,167 @@
+// Edge antialiasing of a single-sample frame (src/render/edge_filter.rs), after the
+// idea of FXAA (Lottes 2009): a pixel on a contrast edge takes the image sampled a
+// fraction of a pixel across the edge. The fraction grows toward the end of the edge's run
+// nearer the pixel (a staircase step of a slanted edge gets the coverage a multisampled
+// edge would), and a pixel much unlike its 3 × 3 neighbourhood (a one-pixel-wide feature)
+// is blended at least by how much it stands out. Works on the stored sRGB-encoded values,
+// which are close to perceived lightness.
+//
+// Two draws of a full-screen triangle: fs_keep_flat copies the pixels without contrast
+// and marks them in the depth buffer, discarding the rest; fs_edge_filter then runs only
+// on those (its depth test rejects the marked ones before the shader). On a software GPU,
+// which runs both sides of a branch at every pixel, a single draw would pay the edge
+// search at every pixel.
+
+// The frame as drawn, read raw (sRGB-encoded values).
+@group(0) @binding(0) var frame_image: texture_2d<f32>;
+// Bilinear, clamped at the border.
+@group(0) @binding(1) var frame_sampler: sampler;
+
+// Contrast (in encoded luma) below which a pixel is left alone: an absolute floor for
+// dark regions, and a share of the neighbourhood's brightest luma.
+const EDGE_CONTRAST_FLOOR: f32 = 0.0312;
+const EDGE_CONTRAST_SHARE: f32 = 0.125;
+// How much of the one-pixel-feature blend applies (1: all of it).
+const SUBPIXEL_BLEND: f32 = 0.75;
+// Steps of the search along an edge for its ends, and their lengths in pixels (the later
+// ones longer: an end found far away needs no exact position).
+const EDGE_SEARCH_STEPS: u32 = 8u;
+
+fn edge_search_step_px(i: u32) -> f32 {
+    return select(1.0, select(2.0, 4.0, i >= 6u), i >= 4u);
+}
+
+// A triangle covering the viewport at depth 0: no overdraw, no vertex buffer.
+@vertex
+fn vs_full_screen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+
+fn luma(color: vec3<f32>) -> f32 {
+    return dot(color, vec3<f32>(0.299, 0.587, 0.114));
+}
+
+fn luma_at_pixel(pixel: vec2<i32>) -> f32 {
+    let last = vec2<i32>(textureDimensions(frame_image)) - vec2<i32>(1);
+    return luma(textureLoad(frame_image, clamp(pixel, vec2<i32>(0), last), 0).rgb);
+}
+
+fn luma_at_uv(uv: vec2<f32>) -> f32 {
+    return luma(textureSampleLevel(frame_image, frame_sampler, uv, 0.0).rgb);
+}
+
+// The luma of a pixel's four edge neighbours (north, south, east, west; y grows down).
+struct Cross {
+    n: f32,
+    s: f32,
+    e: f32,
+    w: f32,
+};
+
+fn cross_at(pixel: vec2<i32>) -> Cross {
+    return Cross(
+        luma_at_pixel(pixel + vec2<i32>(0, -1)),
+        luma_at_pixel(pixel + vec2<i32>(0, 1)),
+        luma_at_pixel(pixel + vec2<i32>(1, 0)),
+        luma_at_pixel(pixel + vec2<i32>(-1, 0)),
+    );
+}
+
+// Luma range over the pixel (luma m) and its cross.
+fn contrast_of(m: f32, c: Cross) -> f32 {
+    return max(m, max(max(c.n, c.s), max(c.e, c.w))) - min(m, min(min(c.n, c.s), min(c.e, c.w)));
+}
+
+fn is_edge(m: f32, c: Cross) -> bool {
+    let highest = max(m, max(max(c.n, c.s), max(c.e, c.w)));
+    return contrast_of(m, c) >= max(EDGE_CONTRAST_FLOOR, highest * EDGE_CONTRAST_SHARE);
+}
+
+// First draw: a pixel without contrast keeps its colour (and its depth, written 0, keeps
+// fs_edge_filter away); a pixel on an edge is discarded, for fs_edge_filter.
+@fragment
+fn fs_keep_flat(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let pixel = vec2<i32>(position.xy);
+    let centre = textureLoad(frame_image, pixel, 0);
+    if is_edge(luma(centre.rgb), cross_at(pixel)) {
+        discard;
+    }
+    return centre;
+}
+
+// Second draw, at the pixels on an edge.
+@fragment
+fn fs_edge_filter(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let size = vec2<f32>(textureDimensions(frame_image));
+    let texel = 1.0 / size;
+    let pixel = vec2<i32>(position.xy);
+    let uv = position.xy * texel;
+    let m = luma(textureLoad(frame_image, pixel, 0).rgb);
+    let around = cross_at(pixel);
+    let n = around.n;
+    let s = around.s;
+    let e = around.e;
+    let w = around.w;
+    let contrast = contrast_of(m, around);
+
+    let nw = luma_at_pixel(pixel + vec2<i32>(-1, -1));
+    let ne = luma_at_pixel(pixel + vec2<i32>(1, -1));
+    let sw = luma_at_pixel(pixel + vec2<i32>(-1, 1));
+    let se = luma_at_pixel(pixel + vec2<i32>(1, 1));
+    // A horizontal edge changes luma along y: compare second differences across rows and
+    // across columns.
+    let across_rows = abs(nw + sw - 2.0 * w) + 2.0 * abs(n + s - 2.0 * m) + abs(ne + se - 2.0 * e);
+    let across_columns = abs(nw + ne - 2.0 * n) + 2.0 * abs(w + e - 2.0 * m) + abs(sw + se - 2.0 * s);
+    let horizontal = across_rows >= across_columns;
+
+    // The side of the edge with the steeper change, and one pixel toward it.
+    let before = select(w, n, horizontal);
+    let after = select(e, s, horizontal);
+    let toward_before = abs(before - m) >= abs(after - m);
+    let side_luma = select(after, before, toward_before);
+    let across_px = select(1.0, -1.0, toward_before);
+    let across = select(vec2<f32>(across_px * texel.x, 0.0), vec2<f32>(0.0, across_px * texel.y), horizontal);
+    let along = select(vec2<f32>(0.0, texel.y), vec2<f32>(texel.x, 0.0), horizontal);
+    // Half-way between the pixel and its neighbour across the edge, the edge's luma.
+    let edge_luma = 0.5 * (m + side_luma);
+    let gradient = 0.25 * max(abs(before - m), abs(after - m));
+    let start = uv + 0.5 * across;
+
+    // Walk along the edge both ways until its luma leaves the edge's (an end of the run).
+    var back = start - along;
+    var forth = start + along;
+    var back_delta = luma_at_uv(back) - edge_luma;
+    var forth_delta = luma_at_uv(forth) - edge_luma;
+    var back_done = abs(back_delta) >= gradient;
+    var forth_done = abs(forth_delta) >= gradient;
+    for (var i = 0u; i < EDGE_SEARCH_STEPS && !(back_done && forth_done); i++) {
+        let stride = along * edge_search_step_px(i);
+        if !back_done {
+            back -= stride;
+            back_delta = luma_at_uv(back) - edge_luma;
+            back_done = abs(back_delta) >= gradient;
+        }
+        if !forth_done {
+            forth += stride;
+            forth_delta = luma_at_uv(forth) - edge_luma;
+            forth_done = abs(forth_delta) >= gradient;
+        }
+    }
+    let to_back = select(uv.y - back.y, uv.x - back.x, horizontal);
+    let to_forth = select(forth.y - uv.y, forth.x - uv.x, horizontal);
+    let nearer_back = to_back < to_forth;
+    let run = max(to_back + to_forth, 1e-6);
+    // Only where the nearer end turns the way that makes this pixel part of the step.
+    let end_delta = select(forth_delta, back_delta, nearer_back);
+    let turns_right = (end_delta < 0.0) != (m < edge_luma);
+    let run_offset = select(0.0, 0.5 - min(to_back, to_forth) / run, turns_right);
+
+    let neighbourhood = (2.0 * (n + s + e + w) + nw + ne + sw + se) / 12.0;
+    let stand_out = clamp(abs(neighbourhood - m) / max(contrast, 1e-6), 0.0, 1.0);
+    let smooth_out = (3.0 - 2.0 * stand_out) * stand_out * stand_out;
+    let subpixel_offset = smooth_out * smooth_out * SUBPIXEL_BLEND;
+
+    let offset = max(run_offset, subpixel_offset);
+    return textureSampleLevel(frame_image, frame_sampler, uv + offset * across, 0.0);
+}
