@@ -18,19 +18,36 @@
 // best-matching sample nearby: lavapipe tests their depth after the fragment shader, so
 // a fs_logsh pass would shade every fragment in full.
 
+// Two images, so that the upsampling reads each sample with two texel fetches (on
+// lavapipe the fetches were most of its cost).
 struct LowResolutionSample {
-    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1.
+    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1 where a surface was
+    // shaded (the clear value 0 elsewhere).
     @location(0) lighting: vec4<f32>,
-    // xyz: world position (metres); w = 1 where a surface was shaded.
-    @location(1) position: vec4<f32>,
-    // xyz: the unit shading normal.
-    @location(2) normal: vec4<f32>,
+    // xyz: the bits of the world position (metres, f32); w: the unit shading normal,
+    // octahedral, two snorm16.
+    @location(1) surface: vec4<u32>,
 };
 
 @group(3) @binding(0) var<uniform> upsample: UpsampleParams;
 @group(3) @binding(1) var low_lighting: texture_2d<f32>;
-@group(3) @binding(2) var low_position: texture_2d<f32>;
-@group(3) @binding(3) var low_normal: texture_2d<f32>;
+@group(3) @binding(2) var low_surface: texture_2d<u32>;
+
+// The octahedral map of a unit vector into [-1, 1]²: the upper half projected onto the
+// octahedron |x| + |y| + |z| = 1, the lower half folded over its diagonals.
+fn octahedral_from_unit(n: vec3<f32>) -> vec2<f32> {
+    let p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    let signs = select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
+    return select(p, (vec2<f32>(1.0) - abs(p.yx)) * signs, n.z < 0.0);
+}
+
+fn unit_from_octahedral(e: vec2<f32>) -> vec3<f32> {
+    var n = vec3<f32>(e, 1.0 - abs(e.x) - abs(e.y));
+    let fold = max(-n.z, 0.0);
+    n.x += select(fold, -fold, n.x >= 0.0);
+    n.y += select(fold, -fold, n.y >= 0.0);
+    return normalize(n);
+}
 
 // What divides out of a surface's shading per channel: k_d + k_s, kept above 1e-3 so a
 // black material divides safely (what it reflects is as small).
@@ -49,8 +66,7 @@ fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> Low
     let lighting = min(frame.exposure * radiance / reflectance(s), vec3<f32>(MAX_LIGHTING));
     var out: LowResolutionSample;
     out.lighting = vec4<f32>(lighting, 1.0);
-    out.position = vec4<f32>(s.position, 1.0);
-    out.normal = vec4<f32>(s.normal, 0.0);
+    out.surface = vec4<u32>(bitcast<vec3<u32>>(s.position), pack2x16snorm(octahedral_from_unit(s.normal)));
     return out;
 }
 
@@ -66,7 +82,8 @@ struct Upsampled {
 };
 
 // `ring`: also look at the ring of 12 samples around the 2 × 2 nearest for the best match
-// of a pixel they do not match.
+// of a pixel they do not match (without it, such a pixel's colour is left undefined: the
+// caller discards it). A constant at each call, so the compiler drops the unused half.
 fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     let s = surface(in, front_facing);
     let last = vec2<i32>(textureDimensions(low_lighting)) - vec2<i32>(1);
@@ -86,23 +103,28 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     for (var k = 0u; k < side * side; k++) {
         let step = vec2<i32>(i32(k % side), i32(k / side)) + vec2<i32>(first);
         let texel = clamp(vec2<i32>(corner) + step, vec2<i32>(0), last);
-        let position = textureLoad(low_position, texel, 0);
-        let normal = textureLoad(low_normal, texel, 0).xyz;
-        let sample = textureLoad(low_lighting, texel, 0).rgb;
-        let off_plane = dot(position.xyz - s.position, s.normal) / tolerance_m;
+        let lit = textureLoad(low_lighting, texel, 0);
+        let sample = lit.rgb;
+        let shaded = lit.a > 0.5;
+        let packed = textureLoad(low_surface, texel, 0);
+        let position = bitcast<vec3<f32>>(packed.xyz);
+        let normal = unit_from_octahedral(unpack2x16snorm(packed.w));
+        let off_plane = dot(position - s.position, s.normal) / tolerance_m;
         // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
         // lighting of the rim of a curved object changes fast with its normal).
         let facing2 = pow2(max(dot(normal, s.normal), 0.0));
         let facing16 = pow2(pow2(pow2(facing2)));
-        // 0 where the low-resolution pixel saw no surface (position.w = 0).
-        let geometry = select(0.0, exp(-off_plane * off_plane) * facing16, position.w > 0.5);
+        // 0 where the low-resolution pixel saw no surface.
+        let geometry = select(0.0, exp(-off_plane * off_plane) * facing16, shaded);
         // Any surface beats none, the nearer the better, when no sample matches (a sliver
         // such as the top face of a wall takes its neighbour's light rather than none).
-        let distance2 = dot(vec2<f32>(step) - t, vec2<f32>(step) - t);
-        let score = geometry + select(0.0, 1e-3 / (1.0 + distance2), position.w > 0.5);
-        let better = score > best_match;
-        best_match = select(best_match, score, better);
-        best_lighting = select(best_lighting, sample, better);
+        if ring {
+            let distance2 = dot(vec2<f32>(step) - t, vec2<f32>(step) - t);
+            let score = geometry + select(0.0, 1e-3 / (1.0 + distance2), shaded);
+            let better = score > best_match;
+            best_match = select(best_match, score, better);
+            best_lighting = select(best_lighting, sample, better);
+        }
         // Bilinear weights of the 2 × 2 nearest samples; the ring around them only stands
         // in for the best match.
         let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
@@ -111,7 +133,7 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
         matched += weight;
     }
     let matches = matched >= upsample.min_matched_weight;
-    if !matches {
+    if ring && !matches {
         lighting = best_lighting;
         matched = 1.0;
     }

@@ -14,13 +14,10 @@ use wgpu::util::DeviceExt;
 use super::gpu_types::GpuUpsampleParams;
 use super::pipeline::{DEPTH_FORMAT, numbered_entries};
 
-/// Formats of fs_shade_low's targets: lighting, position, normal (see reduced_shading.wgsl).
-/// 32 bytes a sample, the most wgpu's default limits allow across attachments.
-pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 3] = [
-    wgpu::TextureFormat::Rgba16Float,
-    wgpu::TextureFormat::Rgba32Float,
-    wgpu::TextureFormat::Rgba16Float,
-];
+/// Formats of fs_shade_low's targets: lighting, and position with the packed normal (see
+/// reduced_shading.wgsl). 24 bytes a sample, read with two texel fetches.
+pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 2] =
+    [wgpu::TextureFormat::Rgba16Float, wgpu::TextureFormat::Rgba32Uint];
 
 /// Largest shading downsampling factor d (one shaded sample per d × d pixels).
 pub const MAX_SHADING_DOWNSAMPLE: u32 = 4;
@@ -43,11 +40,11 @@ pub fn low_resolution_size(width: u32, height: u32, downsample: u32) -> [u32; 2]
 
 /// The bind group layout through which fs_upsample reads the low-resolution samples.
 pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let texture = |binding| wgpu::BindGroupLayoutEntry {
+    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            sample_type,
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },
@@ -66,9 +63,8 @@ pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 },
                 count: None,
             },
-            texture(1),
-            texture(2),
-            texture(3),
+            texture(1, wgpu::TextureSampleType::Float { filterable: false }),
+            texture(2, wgpu::TextureSampleType::Uint),
         ],
     })
 }
@@ -80,7 +76,7 @@ pub struct LowResolutionTargets {
     pub full_size: [u32; 2],
     pub downsample: u32,
     pub size: [u32; 2],
-    views: [wgpu::TextureView; 3],
+    views: [wgpu::TextureView; 2],
     depth: wgpu::TextureView,
     pub(crate) bind_group: wgpu::BindGroup,
 }
@@ -115,12 +111,8 @@ impl LowResolutionTargets {
                 .create_view(&Default::default())
         };
         let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-        let labels = [
-            "low-resolution lighting",
-            "low-resolution position",
-            "low-resolution normal",
-        ];
-        let views = [0, 1, 2].map(|i| texture(labels[i], LOW_RESOLUTION_FORMATS[i], sampled));
+        let labels = ["low-resolution lighting", "low-resolution surface"];
+        let views = [0, 1].map(|i| texture(labels[i], LOW_RESOLUTION_FORMATS[i], sampled));
         let depth = texture(
             "low-resolution depth",
             DEPTH_FORMAT,
@@ -146,7 +138,6 @@ impl LowResolutionTargets {
                 params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[0]),
                 wgpu::BindingResource::TextureView(&views[1]),
-                wgpu::BindingResource::TextureView(&views[2]),
             ]),
         });
         LowResolutionTargets {
@@ -184,7 +175,7 @@ impl LowResolutionTargets {
         }
     }
 
-    /// The three sample attachments, cleared (position w = 0 marks "no surface").
+    /// The sample attachments, cleared (lighting a = 0 marks "no surface").
     pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
         self.views
             .iter()
