@@ -329,18 +329,10 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
 /// path's lights are uploaded after the SH path's), past the light capacity.
 #[test]
 fn lights_and_blockers_past_the_uniform_capacities_match_the_cpu_reference() {
+    use common::scenes::white_light as light;
     use lightpaint::render::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     use lightpaint::scene::{Light, LightKind, Material, shapes};
     let Some(gpu) = common::gpu() else { return };
-    let light = |kind, position: Vec3, intensity| Light {
-        name: "light".into(),
-        kind,
-        color: Vec3::ONE,
-        intensity,
-        position,
-        direction: Vec3::NEG_Y,
-        range: None,
-    };
     let dim_count = UNIFORM_LIGHT_CAPACITY + 20;
     let mut lights: Vec<Light> = (0..dim_count)
         .map(|k| {

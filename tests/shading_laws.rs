@@ -10,7 +10,7 @@ use lightpaint::blockers::Sphere;
 use lightpaint::render::cpu::{self, ShadingInputs, SurfacePoint};
 use lightpaint::render::gpu_types::GpuLight;
 use lightpaint::render::{BrdfShading, LightPaths, ShadowSettings};
-use lightpaint::scene::{Light, LightKind};
+use lightpaint::scene::LightKind;
 use lightpaint::sh::ExpMethod;
 
 fn white_floor_point(position: DVec3) -> SurfacePoint {
@@ -25,15 +25,7 @@ fn white_floor_point(position: DVec3) -> SurfacePoint {
 }
 
 fn light(kind: LightKind, position: Vec3, intensity: f32) -> GpuLight {
-    GpuLight::new(&Light {
-        name: "light".into(),
-        kind,
-        color: Vec3::ONE,
-        intensity,
-        position,
-        direction: Vec3::NEG_Y,
-        range: None,
-    })
+    GpuLight::new(&common::scenes::white_light(kind, position, intensity))
 }
 
 /// The log-SH path for every light (these laws are the SH shading's; the exact path for

@@ -83,3 +83,16 @@ pub fn day_and_night() -> Vec<u8> {
     document["scene"] = serde_json::json!(1);
     lightpaint::scene::gltf_write::glb_bytes(&document, &b.bin())
 }
+
+/// A white light of `kind` at `position` aiming straight down, without a range.
+pub fn white_light(kind: lightpaint::scene::LightKind, position: Vec3, intensity: f32) -> lightpaint::scene::Light {
+    lightpaint::scene::Light {
+        name: "light".into(),
+        kind,
+        color: Vec3::ONE,
+        intensity,
+        position,
+        direction: Vec3::NEG_Y,
+        range: None,
+    }
+}
