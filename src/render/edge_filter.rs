@@ -3,49 +3,26 @@
 //! blending each pixel on a contrast edge with its neighbour across the edge by how far
 //! along the edge's staircase step it lies. The pass draws twice: the pixels without
 //! contrast are copied and marked in a depth buffer, so that the costly edge search runs
-//! only at the others. On lavapipe it costs a few milliseconds where
-//! 4× multisampling costs the reduced-resolution shading most of its gain: lavapipe runs a
-//! multisampled pass's fragment shader even where the depth test has rejected every sample,
-//! and the upsampling must search wider for the pixels it cannot match.
+//! only at the others. On lavapipe it costs a few milliseconds where 4× multisampling
+//! costs the reduced-resolution shading most of its gain: lavapipe runs a multisampled
+//! pass's fragment shader even where the depth test has rejected every sample, and the
+//! upsampling must search wider for the pixels it cannot match.
 
 use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, depth_test, numbered_entries};
 use super::shaders;
 
-/// The intermediate image a frame is drawn into and the pass that filters it into the
-/// target's colour.
-pub struct EdgeFilterPass {
-    /// The intermediate image (sRGB-encoded bytes).
-    pub(super) image: wgpu::Texture,
-    /// sRGB view of it: the frame's colour attachment.
-    pub(super) attachment_view: wgpu::TextureView,
-    /// Marks the pixels fs_keep_flat copied (depth 0).
-    depth_view: wgpu::TextureView,
+/// The edge filter's pipelines, compiled once and shared by the targets that use them
+/// (the viewport makes a new target whenever its size changes).
+#[derive(Clone)]
+pub struct EdgeFilter {
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
     keep_flat: wgpu::RenderPipeline,
     filter_edges: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
 }
 
-impl EdgeFilterPass {
-    /// An intermediate image of `size` (width, height) and the filter reading it.
-    pub fn new(device: &wgpu::Device, size: wgpu::Extent3d) -> EdgeFilterPass {
-        let image = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("unfiltered frame"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DISPLAY_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[COLOR_FORMAT],
-        });
-        let attachment_view = image.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(COLOR_FORMAT),
-            ..Default::default()
-        });
-        // The filter reads and writes the stored (sRGB-encoded) values as they are.
-        let raw_view = image.create_view(&Default::default());
+impl EdgeFilter {
+    pub fn new(device: &wgpu::Device) -> EdgeFilter {
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("edge filter"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -72,14 +49,6 @@ impl EdgeFilterPass {
                     count: None,
                 },
             ],
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("edge filter"),
-            layout: &layout,
-            entries: &numbered_entries([
-                wgpu::BindingResource::TextureView(&raw_view),
-                wgpu::BindingResource::Sampler(&sampler),
-            ]),
         });
         let module = shaders::create_module(device, "edge filter", shaders::EDGE_FILTER);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -116,23 +85,77 @@ impl EdgeFilterPass {
                 cache: None,
             })
         };
-        let depth = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("edge filter marks"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
+        EdgeFilter {
+            keep_flat: pipeline("fs_keep_flat", true, wgpu::CompareFunction::Always),
+            filter_edges: pipeline("fs_edge_filter", false, wgpu::CompareFunction::Less),
+            layout,
+            sampler,
+        }
+    }
+}
+
+/// The intermediate image a frame is drawn into and the pass that filters it into the
+/// target's colour.
+pub struct EdgeFilterPass {
+    /// The intermediate image (sRGB-encoded bytes).
+    pub(super) image: wgpu::Texture,
+    /// sRGB view of it: the frame's colour attachment.
+    pub(super) attachment_view: wgpu::TextureView,
+    /// Marks the pixels fs_keep_flat copied (depth 0).
+    depth_view: wgpu::TextureView,
+    bind_group: wgpu::BindGroup,
+    filter: EdgeFilter,
+}
+
+impl EdgeFilterPass {
+    /// An intermediate image of `size` (width, height) and `filter` reading it.
+    pub fn new(device: &wgpu::Device, size: wgpu::Extent3d, filter: &EdgeFilter) -> EdgeFilterPass {
+        let texture = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        let image = texture(
+            "unfiltered frame",
+            DISPLAY_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST,
+            &[COLOR_FORMAT],
+        );
+        let attachment_view = image.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(COLOR_FORMAT),
+            ..Default::default()
         });
+        // The filter reads and writes the stored (sRGB-encoded) values as they are.
+        let raw_view = image.create_view(&Default::default());
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("edge filter"),
+            layout: &filter.layout,
+            entries: &numbered_entries([
+                wgpu::BindingResource::TextureView(&raw_view),
+                wgpu::BindingResource::Sampler(&filter.sampler),
+            ]),
+        });
+        let depth = texture(
+            "edge filter marks",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            &[],
+        );
         EdgeFilterPass {
             image,
             attachment_view,
             depth_view: depth.create_view(&Default::default()),
-            keep_flat: pipeline("fs_keep_flat", true, wgpu::CompareFunction::Always),
-            filter_edges: pipeline("fs_edge_filter", false, wgpu::CompareFunction::Less),
             bind_group,
+            filter: filter.clone(),
         }
     }
 
@@ -162,7 +185,7 @@ impl EdgeFilterPass {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.bind_group, &[]);
-        for pipeline in [&self.keep_flat, &self.filter_edges] {
+        for pipeline in [&self.filter.keep_flat, &self.filter.filter_edges] {
             pass.set_pipeline(pipeline);
             pass.draw(0..3, 0..1);
         }

@@ -8,7 +8,7 @@ mod color;
 mod context;
 pub mod cpu;
 pub mod cpu_lobes;
-mod edge_filter;
+pub mod edge_filter;
 mod gpu_blockers;
 mod gpu_scene;
 mod gpu_terrain;

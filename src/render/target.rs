@@ -1,7 +1,7 @@
 //! Where a frame is drawn ([`RenderTarget`]) and how its edges are antialiased
 //! ([`AntiAliasing`]).
 
-use super::edge_filter::EdgeFilterPass;
+use super::edge_filter::{EdgeFilter, EdgeFilterPass};
 use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, SAMPLE_COUNT};
 
 /// How a frame's silhouettes and other edges are smoothed.
@@ -66,14 +66,32 @@ impl RenderTarget {
         RenderTarget::with_anti_aliasing(device, width, height, AntiAliasing::with_samples(samples))
     }
 
-    /// A target antialiased the way `anti_aliasing` says.
+    /// A target antialiased the way `anti_aliasing` says (an edge filter compiles its
+    /// pipelines: [`Self::with_edge_filter`] shares them between targets).
     pub fn with_anti_aliasing(
         device: &wgpu::Device,
         width: u32,
         height: u32,
         anti_aliasing: AntiAliasing,
     ) -> RenderTarget {
-        let samples = anti_aliasing.samples();
+        match anti_aliasing {
+            AntiAliasing::EdgeFilter => RenderTarget::with_edge_filter(device, width, height, &EdgeFilter::new(device)),
+            _ => RenderTarget::build(device, width, height, anti_aliasing.samples(), None),
+        }
+    }
+
+    /// A single-sampled target antialiased by `filter`'s pipelines.
+    pub fn with_edge_filter(device: &wgpu::Device, width: u32, height: u32, filter: &EdgeFilter) -> RenderTarget {
+        RenderTarget::build(device, width, height, 1, Some(filter))
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        samples: u32,
+        edge_filter: Option<&EdgeFilter>,
+    ) -> RenderTarget {
         let size = wgpu::Extent3d {
             width: width.max(1),
             height: height.max(1),
@@ -101,7 +119,7 @@ impl RenderTarget {
         );
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
-        let edge_filter = (anti_aliasing == AntiAliasing::EdgeFilter).then(|| EdgeFilterPass::new(device, size));
+        let edge_filter = edge_filter.map(|filter| EdgeFilterPass::new(device, size, filter));
         let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
         RenderTarget {
             width: size.width,

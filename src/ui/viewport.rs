@@ -7,6 +7,7 @@
 //! stays fluid on a software GPU; the full frame follows as soon as the camera rests.
 
 use crate::blockers::Sphere;
+use crate::render::edge_filter::EdgeFilter;
 use crate::render::heat_map::HeatMapPipeline;
 use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
@@ -58,6 +59,9 @@ pub struct Viewport {
     pipeline: ScenePipeline,
     /// Draws the importance heat map instead of the shading while it has values.
     heat_map: HeatMapPipeline,
+    /// The edge filter's pipelines, for each new target (the size changes as the camera
+    /// moves and stops).
+    edge_filter: EdgeFilter,
     gpu_scene: GpuScene,
     shadows: Shadows,
     /// The pipeline being compiled for the settings asked for last, if any.
@@ -99,8 +103,9 @@ pub fn screen_point(view: &crate::paint::View, rect: egui::Rect, p: glam::Vec3) 
 /// Radians of orbit per point of mouse drag.
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
-/// How the viewport smooths edges: the edge filter, a few milliseconds on lavapipe where
-/// multisampling doubles the frame time.
+/// How the viewport smooths edges: the edge filter (its pipelines in
+/// [`Viewport::edge_filter`]), a few milliseconds on lavapipe where multisampling doubles
+/// the frame time.
 const ANTI_ALIASING: AntiAliasing = AntiAliasing::EdgeFilter;
 
 impl Viewport {
@@ -141,6 +146,7 @@ impl Viewport {
         let mut viewport = Viewport {
             pipeline,
             heat_map,
+            edge_filter: EdgeFilter::new(device),
             gpu_scene,
             shadows: Shadows {
                 settings,
@@ -498,7 +504,7 @@ impl Viewport {
         let device = &render_state.device;
         let resized = self.target.as_ref().is_none_or(|t| [t.width, t.height] != size);
         if resized {
-            let target = RenderTarget::with_anti_aliasing(device, size[0], size[1], ANTI_ALIASING);
+            let target = RenderTarget::with_edge_filter(device, size[0], size[1], &self.edge_filter);
             let mut renderer = render_state.renderer.write();
             match self.texture_id {
                 Some(id) => renderer.update_egui_texture_from_wgpu_texture(
