@@ -159,7 +159,7 @@ struct RenderArgs {
     #[arg(long, conflicts_with = "cpu")]
     per_vertex: bool,
     /// Shade one pixel in every d × d and upsample the rest from the samples on each
-    /// pixel's surface (1 shades every pixel; 1–4); default: the project's, or 2.
+    /// pixel's surface (1 shades every pixel; 1–4); default: the project's, or 3.
     #[arg(long, conflicts_with = "cpu")]
     shading_downsample: Option<u32>,
     /// Antialiasing of log-SH frames: filter (one sample per pixel, then an edge filter),
