@@ -137,6 +137,16 @@ impl CompiledPaths {
         light_overflow: true,
         blocker_overflow: true,
     };
+
+    /// No optional path (a pipeline that shades no light).
+    pub const NONE: CompiledPaths = CompiledPaths {
+        exact: false,
+        exact_wide: false,
+        harmonics: false,
+        terrain: false,
+        light_overflow: false,
+        blocker_overflow: false,
+    };
 }
 
 /// What a frame lights a scene with, besides its lights.

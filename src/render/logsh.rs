@@ -337,14 +337,7 @@ pub fn surface_pipelines(
                 // fs_surface shades no light.
                 Variant {
                     samples: 1,
-                    paths: CompiledPaths {
-                        exact: false,
-                        exact_wide: false,
-                        harmonics: false,
-                        terrain: false,
-                        light_overflow: false,
-                        blocker_overflow: false,
-                    },
+                    paths: CompiledPaths::NONE,
                 },
             )
         })
@@ -355,7 +348,7 @@ pub fn surface_pipelines(
 #[derive(Clone, Copy)]
 struct Variant {
     samples: u32,
-    /// The shading paths compiled in (logsh.wgsl's EXACT_LIGHT_PATH and SH_VISIBILITY).
+    /// The shading paths compiled in ([`path_constants`]).
     paths: CompiledPaths,
 }
 

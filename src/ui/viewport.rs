@@ -8,6 +8,7 @@
 
 use crate::blockers::Sphere;
 use crate::render::edge_filter::EdgeFilter;
+use crate::render::gpu_types::GpuLight;
 use crate::render::heat_map::HeatMapPipeline;
 use crate::render::logsh::{GpuBlockers, LogShPipeline, Shading};
 use crate::render::per_vertex::VertexVisibility;
@@ -43,7 +44,7 @@ struct Compiling {
 struct PathChoice {
     lights: Vec<Light>,
     settings: ShadowSettings,
-    shaded: Vec<crate::render::gpu_types::GpuLight>,
+    shaded: Vec<GpuLight>,
 }
 
 /// What the texture shows, to skip redundant renders.
@@ -72,7 +73,7 @@ pub struct Viewport {
     /// What the choice of each light's shadow path looks at (the scene's centre, some of
     /// its surface points, the blockers).
     path_context: LightPathContext,
-    /// The last choice the UI asked for ([`Self::light_paths_at`]).
+    /// The last choice of the lights' paths ([`Self::shaded_lights`]).
     path_choice: std::cell::RefCell<Option<PathChoice>>,
     /// Whether an environment or a terrain is there (each compiles in shading code).
     lighting: SceneLighting,
@@ -174,30 +175,36 @@ impl Viewport {
     /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
     /// its angular radius seen from `point` in degrees (`render::light_paths_at` with the
     /// viewport's scene and blockers).
-    /// The choice is kept until the lights, the settings or the blockers change: the UI
-    /// asks every frame, and weighing the blockers that matter is not free.
     pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
+        crate::render::paths_and_sizes_at(&self.shaded_lights(lights, settings), point)
+    }
+
+    /// `lights` on the shadow paths `settings` give them (`render::shading_lights` with
+    /// the viewport's scene and blockers). The last choice is kept until the lights, the
+    /// settings or the blockers change: the UI asks every frame, a light edit asks again
+    /// to upload and to check the pipeline, and weighing the blockers that matter is not
+    /// free.
+    fn shaded_lights(&self, lights: &[Light], settings: &ShadowSettings) -> Vec<GpuLight> {
         let mut cache = self.path_choice.borrow_mut();
-        let fresh = cache
-            .as_ref()
-            .is_some_and(|c| c.lights == lights && c.settings == *settings);
-        if !fresh {
-            *cache = Some(PathChoice {
-                lights: lights.to_vec(),
-                settings: *settings,
-                shaded: crate::render::shading_lights(lights, settings, &self.path_context),
-            });
+        match cache.as_ref() {
+            Some(choice) if choice.lights == lights && choice.settings == *settings => choice.shaded.clone(),
+            _ => {
+                let shaded = crate::render::shading_lights(lights, settings, &self.path_context);
+                *cache = Some(PathChoice {
+                    lights: lights.to_vec(),
+                    settings: *settings,
+                    shaded: shaded.clone(),
+                });
+                shaded
+            }
         }
-        cache
-            .as_ref()
-            .map_or_else(Vec::new, |c| crate::render::paths_and_sizes_at(&c.shaded, point))
     }
 
     /// Writes the lights on the paths the drawn settings give them. Until a pipeline with
     /// every path they need is compiled, a light whose path the drawn pipeline lacks takes
     /// the other one.
     fn write_lights(&mut self, render_state: &egui_wgpu::RenderState) {
-        let mut lights = crate::render::shading_lights(&self.lights, &self.shadows.settings, &self.path_context);
+        let mut lights = self.shaded_lights(&self.lights, &self.shadows.settings);
         let compiled = self.shadows.pipeline.paths;
         for light in &mut lights {
             if !compiled.exact {
@@ -226,7 +233,7 @@ impl Viewport {
     /// The paths `settings` need for the viewport's lights and environment.
     fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
         compiled_paths(
-            &crate::render::shading_lights(&self.lights, settings, &self.path_context),
+            &self.shaded_lights(&self.lights, settings),
             self.lighting,
             self.path_context.blockers.len(),
         )
