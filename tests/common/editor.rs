@@ -49,16 +49,9 @@ pub fn editor_on_written_sample(
     Some((dir, project, harness))
 }
 
+/// The editor on a fresh copy of the sample project.
 pub fn editor_on_sample_copy() -> Option<(tempfile::TempDir, std::path::PathBuf, Harness<'static, EditorApp>)> {
-    if super::no_gpu_wanted() {
-        eprintln!("UI test not run: {}=1", super::NO_GPU_ENV);
-        return None;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    lightpaint::samples::write_sample_project(dir.path()).unwrap();
-    let project = dir.path().join("sample.lightpaint");
-    let harness = editor_on(project.clone());
-    Some((dir, project, harness))
+    editor_on_written_sample(lightpaint::samples::Sample::Sample)
 }
 
 /// Mean Rec. 709 luma (0–255) of `image`'s pixels within `radius` points of `centre`.
