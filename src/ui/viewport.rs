@@ -105,8 +105,8 @@ pub fn screen_point(view: &crate::paint::View, rect: egui::Rect, p: glam::Vec3) 
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
 /// How the viewport smooths edges: the edge filter (its pipelines in
-/// [`Viewport::edge_filter`]), a few milliseconds on lavapipe where multisampling doubles
-/// the frame time.
+/// [`Viewport::edge_filter`]), a few milliseconds on lavapipe where multisampling more
+/// than doubles the frame time.
 const ANTI_ALIASING: AntiAliasing = AntiAliasing::EdgeFilter;
 
 impl Viewport {
