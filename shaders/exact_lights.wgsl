@@ -6,8 +6,10 @@
 // Shaped for lavapipe, which runs every statement of a branch at every pixel whether
 // taken or not, and every loop at least once: lights go eight at a time (a vec4 lane
 // each, in two halves), so each blocker is loaded and measured once per eight lights;
-// cheap tests of every blocker only list the few that may cut a disc, and the lens (the
-// costly trigonometry) runs in a second loop over that list alone.
+// cheap tests of every blocker only list the few that may cut a disc, and the lens (three
+// arctangents per light) runs in a second loop over that list alone. Visibilities multiply
+// directly (the f64 twin sums logarithms): a product of factors in [0, 1] underflows only
+// for a light all but hidden, whose visibility is then 0 either way.
 
 // Four exact-path lights seen from one receiver, one per lane (half of an eight-light
 // batch); unused lanes have distance 0, so that every blocker counts as beyond them.
@@ -54,41 +56,46 @@ fn disc_sines(batch: ExactBatch, half_footprint: f32, distance: f32) -> vec4<f32
     return min(max(batch.sin_light, vec4<f32>(half_footprint / distance)), vec4<f32>(1.0));
 }
 
-// The share (0–1) of a cap of angular radius a hidden by a cap of angular radius b whose
-// centre is g away, for four lights at once (src/penumbra/cap_overlap.rs, the f64 twin):
-// the lens of the two caps, 2θ_L(1 − cos a) + 2θ_B(1 − cos b) − 2E, from half-angle
-// formulas and L'Huilier's theorem so that tiny caps keep their digits, over the light's
-// 2π(1 − cos a). Lanes outside the general case take their closed forms by select.
-fn hidden_fractions(a: vec4<f32>, b: f32, g: vec4<f32>) -> vec4<f32> {
-    let ha = sin(0.5 * a);
-    let light_area = 4.0 * PI * ha * ha;
-    let hb = sin(0.5 * b);
-    let blocker_area = 4.0 * PI * hb * hb;
-    let s = 0.5 * (a + b + g);
-    let sin_s = sin(s);
-    let sin_sa = sin(s - a);
-    let sin_sb = sin(s - b);
-    let sin_sg = sin(s - g);
-    let theta_light = 2.0 * atan(sqrt(max(sin_sa * sin_sg / (sin_s * sin_sb), vec4<f32>(0.0))));
-    let theta_blocker = 2.0 * atan(sqrt(max(sin_sb * sin_sg / (sin_s * sin_sa), vec4<f32>(0.0))));
-    let t = tan(0.5 * s) * tan(0.5 * (s - a)) * tan(0.5 * (s - b)) * tan(0.5 * (s - g));
-    let excess = 4.0 * atan(sqrt(max(t, vec4<f32>(0.0))));
-    let lens = 4.0 * theta_light * ha * ha + 4.0 * hb * hb * theta_blocker - 2.0 * excess;
-    var hidden = clamp(lens / light_area, vec4<f32>(0.0), vec4<f32>(1.0));
-    hidden = select(hidden, min(vec4<f32>(blocker_area) / light_area, vec4<f32>(1.0)), g + b <= a);
-    hidden = select(hidden, vec4<f32>(1.0), g + a <= vec4<f32>(b));
-    return select(hidden, vec4<f32>(0.0), (g >= a + b) | vec4<bool>(b <= 0.0));
+// The share (0–1) of a light's disc hidden by a blocker's cap, for four lights at once
+// (src/penumbra/cap_overlap.rs is the f64 twin, by another formula). The lens where the
+// caps meet is 2θ_L·v_a + 2θ_B·v_b − 2E (cap sectors minus the two triangles of the
+// centres and a crossing point, E their spherical excess) over the disc's 2π·v_a, every
+// term from the versines v = 1 − cos of the three sides (light radius a, blocker radius
+// b, separation g), so nothing cancels for tiny discs and no angle is ever taken:
+// - the triangle's volume det = L·(B × X), det² = v_a(2(v_b + v_g) − v_a − 2v_b·v_g)
+//   − (v_b − v_g)² (the Gram determinant written in versines);
+// - θ_L = atan2(det, cos b − cos a·cos g) (the law of cosines' numerator, again in
+//   versines), θ_B likewise;
+// - tan(E/2) = det / (1 + cos a + cos b + cos g) (Van Oosterom and Strackee).
+// Where the circles do not cross (det² ≤ 0) the caps are apart or one holds the other.
+fn hidden_fractions(sin_a: vec4<f32>, cap: BlockerCap, v_g: vec4<f32>) -> vec4<f32> {
+    let cos_a = sqrt(max(vec4<f32>(1.0) - sin_a * sin_a, vec4<f32>(0.0)));
+    let v_a = sin_a * sin_a / (vec4<f32>(1.0) + cos_a);
+    let v_b = cap.ratio * cap.ratio / (1.0 + cap.cos_b);
+    let det2 = v_a * (2.0 * (v_b + v_g) - v_a - 2.0 * v_b * v_g) - (v_b - v_g) * (v_b - v_g);
+    let det = sqrt(max(det2, vec4<f32>(0.0)));
+    let theta_light = atan2(det, v_a + v_g - v_a * v_g - v_b);
+    let theta_blocker = atan2(det, v_b + v_g - v_b * v_g - v_a);
+    let excess = 2.0 * atan2(det, vec4<f32>(4.0) - v_a - v_b - v_g);
+    let lens = 2.0 * theta_light * v_a + 2.0 * theta_blocker * v_b - 2.0 * excess;
+    let crossing = clamp(lens / (2.0 * PI * v_a), vec4<f32>(0.0), vec4<f32>(1.0));
+    // Without a crossing, cos g lies beyond cos(a ± b), on either side of cos a·cos b.
+    let nested = v_g < v_a + v_b - v_a * v_b;
+    let inside_blocker = vec4<f32>(cap.ratio) >= sin_a;
+    let whole = select(vec4<f32>(0.0), select(min(v_b / v_a, vec4<f32>(1.0)), vec4<f32>(1.0), inside_blocker), nested);
+    return select(crossing, whole, det2 <= vec4<f32>(0.0));
 }
 
 // The share of each light's disc the blocker hides, fade included (0 for lights it is
 // beyond).
 fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f32) -> vec4<f32> {
     let sin_a = disc_sines(batch, half_footprint, cap.distance);
-    let cos_separation = cos_to_lights(cap.direction, batch);
-    let sin_separation = sqrt(max(
-        vec4<f32>(1.0) - cos_separation * cos_separation, vec4<f32>(0.0)));
-    let separation = atan2(sin_separation, cos_separation);
-    let hidden = cap.horizon * hidden_fractions(asin(sin_a), asin(cap.ratio), separation);
+    // 1 − cos g as half the squared chord, which keeps its digits for tiny separations.
+    let chord_x = cap.direction.x - batch.to_light_x;
+    let chord_y = cap.direction.y - batch.to_light_y;
+    let chord_z = cap.direction.z - batch.to_light_z;
+    let v_g = 0.5 * (chord_x * chord_x + chord_y * chord_y + chord_z * chord_z);
+    let hidden = cap.horizon * hidden_fractions(sin_a, cap, v_g);
     let beyond = vec4<f32>(cap.distance - radius) >= batch.distance;
     return select(hidden, vec4<f32>(0.0), beyond | vec4<bool>(!cap.counts));
 }
@@ -208,8 +215,8 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
     if overflow_from != NO_OVERFLOW {
         unlisted = shadow.blocker_count - overflow_from;
     }
-    var log_lo = vec4<f32>(0.0);
-    var log_hi = vec4<f32>(0.0);
+    var visible_lo = vec4<f32>(1.0);
+    var visible_hi = vec4<f32>(1.0);
     for (var k = 0u; k < listed + unlisted; k++) {
         var i = overflow_from + (k - listed);
         if k < 4u {
@@ -220,13 +227,11 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
         let b = blocker_at(i);
         let cap = blocker_cap(b, p, n);
         let hidden_lo = hidden_by(cap, b.w, lo, half_footprint);
-        covered_lo = covered_lo | (hidden_lo >= vec4<f32>(1.0));
-        log_lo += log(max(vec4<f32>(1.0) - hidden_lo, vec4<f32>(1e-30)));
+        visible_lo *= vec4<f32>(1.0) - hidden_lo;
         if EXACT_WIDE {
             let hidden_hi = hidden_by(cap, b.w, hi, half_footprint);
-            covered_hi = covered_hi | (hidden_hi >= vec4<f32>(1.0));
-            log_hi += log(max(vec4<f32>(1.0) - hidden_hi, vec4<f32>(1e-30)));
+            visible_hi *= vec4<f32>(1.0) - hidden_hi;
         }
     }
-    return ExactVisibility(select(exp(log_lo), vec4<f32>(0.0), covered_lo), select(exp(log_hi), vec4<f32>(0.0), covered_hi));
+    return ExactVisibility(select(visible_lo, vec4<f32>(0.0), covered_lo), select(visible_hi, vec4<f32>(0.0), covered_hi));
 }

@@ -10,6 +10,9 @@
 //! triangles (E their spherical excess). The angles come from the half-angle formulas and
 //! E from L'Huilier's theorem, all in terms of the sides, so nothing cancels for tiny caps
 //! (the law-of-cosines form loses every digit in f32 below a fraction of a degree).
+//! `shaders/exact_lights.wgsl` computes the same lens by another route, cheaper in f32:
+//! the law of cosines and the triangle's volume written in versines 1 − cos x, with
+//! three arctangents and no angle.
 //! The share is Ω / (2π(1 − cos α)), with 1 − cos x written 2 sin²(x/2).
 
 use std::f64::consts::PI;
