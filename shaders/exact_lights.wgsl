@@ -100,9 +100,6 @@ fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
     return select(hidden, vec4<f32>(0.0), beyond | vec4<bool>(!cap.counts));
 }
 
-// No blocker past the cheap pass's list (the list did not overflow).
-const NO_OVERFLOW: u32 = 0xffffffffu;
-
 // false: the frame has at most four exact-path lights, and the second half of each
 // batch is left out of the pipeline. Set at pipeline creation (render::compiled_paths).
 override EXACT_WIDE: bool = true;
@@ -120,6 +117,31 @@ fn group_may_cut(batch: ExactBatch, direction: vec3<f32>, distance: f32, extent:
     let sin_g = extent / distance;
     let cos_g = sqrt(max(1.0 - sin_g * sin_g, 0.0));
     return any(cos_to_lights(direction, batch) > cos_a * cos_g - sin_a * sin_g);
+}
+
+// The groups chunk..chunk + WALK_GROUPS − 1 (as BlockerWalk bits) with a sphere that may
+// cut one of the batch's discs: within influence, not wholly below the tangent plane,
+// and meeting some light's cone.
+fn groups_that_may_cut(chunk: u32, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> u32 {
+    var passing = 0u;
+    for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
+        let group = group_at(g);
+        let to_group = group.center_extent.xyz - p;
+        let group_distance2 = dot(to_group, to_group);
+        let group_distance = sqrt(group_distance2);
+        let direction = to_group / max(group_distance, 1e-30);
+        let extent = group.center_extent.w;
+        var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
+        if EXACT_WIDE {
+            may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
+        }
+        let near = group_distance2 <= group.influence_m * group.influence_m;
+        let above = dot(to_group, n) + extent > 0.0;
+        if near && above && may_cut && group.count > 0u {
+            passing |= 1u << (g - chunk);
+        }
+    }
+    return passing;
 }
 
 // The cheap tests of one blocker against a batch's lights: which discs it surely covers
@@ -148,6 +170,59 @@ fn cut_tests(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
     return CutTests(now_covered, counts & meets & !now_covered);
 }
 
+// No entry past the cut list's eight (the list did not overflow).
+const NO_OVERFLOW: u32 = 0xffffffffu;
+
+// Batch halves per blocker in a CutList's entries.
+fn batch_halves() -> u32 {
+    return select(1u, 2u, EXACT_WIDE);
+}
+
+// The (blocker, batch half) pairs whose lens the second loop measures, in increasing
+// order of entry = batch_halves() · blocker + half (0 lo, 1 hi): a blocker usually cuts
+// the disc of one light, so its lens is measured for that light's half alone. Up to
+// eight entries, then every entry from overflow_from on.
+struct CutList {
+    low: vec4<u32>,
+    high: vec4<u32>,
+    count: u32,
+    overflow_from: u32,
+};
+
+fn add_cut(list: ptr<function, CutList>, entry: u32, cuts: bool) {
+    let add = cuts && (*list).overflow_from == NO_OVERFLOW;
+    let slot = vec4<u32>((*list).count);
+    (*list).low = select((*list).low, vec4<u32>(entry), vec4<bool>(add) & (slot == vec4<u32>(0u, 1u, 2u, 3u)));
+    (*list).high = select((*list).high, vec4<u32>(entry), vec4<bool>(add) & (slot == vec4<u32>(4u, 5u, 6u, 7u)));
+    if add {
+        if (*list).count == 8u {
+            (*list).overflow_from = entry;
+        } else {
+            (*list).count += 1u;
+        }
+    }
+}
+
+// The list's k-th entry, counting on past the eighth through the overflow range.
+fn cut_entry(list: CutList, k: u32) -> u32 {
+    if k < 4u {
+        return list.low[k];
+    }
+    if k < list.count {
+        return list.high[k & 3u];
+    }
+    return list.overflow_from + (k - list.count);
+}
+
+// How many entries the lens loop walks: the listed ones, and for a crowded receiver
+// (more than eight cuts) every entry from the first unlisted one on.
+fn cut_entries(list: CutList) -> u32 {
+    if list.overflow_from == NO_OVERFLOW {
+        return list.count;
+    }
+    return list.count + batch_halves() * shadow.blocker_count - list.overflow_from;
+}
+
 // The visibility of each light of an eight-light batch (lo, and hi when EXACT_WIDE).
 struct ExactVisibility {
     lo: vec4<f32>,
@@ -161,77 +236,43 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
     // Lights a blocker hides wholly (visibility 0).
     var covered_lo = vec4<bool>(false);
     var covered_hi = vec4<bool>(false);
-    // Blockers that cut some disc partly: up to eight indices, the rest from overflow_from.
-    var listed_low = vec4<u32>(0u);
-    var listed_high = vec4<u32>(0u);
-    var listed = 0u;
-    var overflow_from = NO_OVERFLOW;
-    for (var g = 0u; g < shadow.group_count; g++) {
-        let group = group_at(g);
-        let to_group = group.center_extent.xyz - p;
-        let group_distance2 = dot(to_group, to_group);
-        if group_distance2 > group.influence_m * group.influence_m
-            || dot(to_group, n) + group.center_extent.w <= 0.0 {
-            continue;
-        }
-        let group_distance = sqrt(group_distance2);
-        let direction = to_group / group_distance;
-        let extent = group.center_extent.w;
-        var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
-        if EXACT_WIDE {
-            may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
-        }
-        if !may_cut {
-            continue;
-        }
-        for (var i = group.first; i < group.first + group.count; i++) {
+    var list = CutList(vec4<u32>(0u), vec4<u32>(0u), 0u, NO_OVERFLOW);
+    for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
+        var walk = blocker_walk(chunk, groups_that_may_cut(chunk, p, n, lo, hi, half_footprint));
+        loop {
+            let i = walk_next(&walk);
+            if i == WALK_DONE {
+                break;
+            }
             let b = blocker_at(i);
             let cap = blocker_cap(b, p, n);
             let tests_lo = cut_tests(cap, b.w, lo, half_footprint, covered_lo);
             covered_lo = tests_lo.covered;
-            var cuts = any(tests_lo.cuts);
+            add_cut(&list, batch_halves() * i, any(tests_lo.cuts));
             if EXACT_WIDE {
                 let tests_hi = cut_tests(cap, b.w, hi, half_footprint, covered_hi);
                 covered_hi = tests_hi.covered;
-                cuts = cuts || any(tests_hi.cuts);
-            }
-            let write = vec4<bool>(cuts && overflow_from == NO_OVERFLOW);
-            let slot = vec4<u32>(listed);
-            listed_low = select(listed_low, vec4<u32>(i), write & (slot == vec4<u32>(0u, 1u, 2u, 3u)));
-            listed_high = select(listed_high, vec4<u32>(i), write & (slot == vec4<u32>(4u, 5u, 6u, 7u)));
-            if cuts && overflow_from == NO_OVERFLOW {
-                if listed == 8u {
-                    overflow_from = i;
-                } else {
-                    listed += 1u;
-                }
+                add_cut(&list, 2u * i + 1u, any(tests_hi.cuts));
             }
         }
     }
-    // The listed blockers, then, for a crowded receiver (more than eight cutting
-    // blockers), every blocker from the first unlisted one on: one loop, as lavapipe runs
-    // the body of even an empty loop once.
-    var unlisted = 0u;
-    if overflow_from != NO_OVERFLOW {
-        unlisted = shadow.blocker_count - overflow_from;
-    }
+    // One loop over every entry, as lavapipe runs the body of even an empty loop once.
     var visible_lo = vec4<f32>(1.0);
     var visible_hi = vec4<f32>(1.0);
-    for (var k = 0u; k < listed + unlisted; k++) {
-        var i = overflow_from + (k - listed);
-        if k < 4u {
-            i = listed_low[k];
-        } else if k < listed {
-            i = listed_high[k & 3u];
-        }
-        let b = blocker_at(i);
-        let cap = blocker_cap(b, p, n);
-        let hidden_lo = hidden_by(cap, b.w, lo, half_footprint);
-        visible_lo *= vec4<f32>(1.0) - hidden_lo;
-        if EXACT_WIDE {
-            let hidden_hi = hidden_by(cap, b.w, hi, half_footprint);
-            visible_hi *= vec4<f32>(1.0) - hidden_hi;
-        }
+    for (var k = 0u; k < cut_entries(list); k++) {
+        let entry = cut_entry(list, k);
+        let upper = EXACT_WIDE && (entry & 1u) == 1u;
+        let batch = ExactBatch(
+            select(lo.to_light_x, hi.to_light_x, upper),
+            select(lo.to_light_y, hi.to_light_y, upper),
+            select(lo.to_light_z, hi.to_light_z, upper),
+            select(lo.sin_light, hi.sin_light, upper),
+            select(lo.distance, hi.distance, upper),
+        );
+        let b = blocker_at(entry / batch_halves());
+        let visible = vec4<f32>(1.0) - hidden_by(blocker_cap(b, p, n), b.w, batch, half_footprint);
+        visible_lo *= select(visible, vec4<f32>(1.0), upper);
+        visible_hi *= select(vec4<f32>(1.0), visible, upper);
     }
     return ExactVisibility(select(visible_lo, vec4<f32>(0.0), covered_lo), select(visible_hi, vec4<f32>(0.0), covered_hi));
 }

@@ -54,6 +54,43 @@ fn group_at(g: u32) -> BlockerGroup {
     return group;
 }
 
+// The blockers of chosen groups, one per call of walk_next, so that one flat loop visits
+// them: lavapipe runs a loop's body at least once even when no pixel enters it, so a
+// loop over the blockers nested in a loop over the groups pays one blocker's work for
+// every group a receiver skips. `passing` holds bit k for group first_group + k (groups
+// with at least one blocker).
+struct BlockerWalk {
+    first_group: u32,
+    passing: u32,
+    next: u32,
+    end: u32,
+};
+
+// No blocker left to walk.
+const WALK_DONE: u32 = 0xffffffffu;
+
+fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
+    return BlockerWalk(first_group, passing, 0u, 0u);
+}
+
+// The index of the walk's next blocker, or WALK_DONE.
+fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
+    if (*walk).next == (*walk).end {
+        if (*walk).passing == 0u {
+            return WALK_DONE;
+        }
+        let group = group_at((*walk).first_group + firstTrailingBit((*walk).passing));
+        (*walk).passing &= (*walk).passing - 1u;
+        (*walk).next = group.first;
+        (*walk).end = group.first + group.count;
+    }
+    (*walk).next += 1u;
+    return (*walk).next - 1u;
+}
+
+// Groups per BlockerWalk (the bits of `passing`).
+const WALK_GROUPS: u32 = 32u;
+
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
