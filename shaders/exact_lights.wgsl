@@ -120,24 +120,20 @@ fn group_may_cut(batch: ExactBatch, direction: vec3<f32>, distance: f32, extent:
 }
 
 // The groups chunk..chunk + WALK_GROUPS − 1 (as BlockerWalk bits) with a sphere that may
-// cut one of the batch's discs: within influence, not wholly below the tangent plane,
-// and meeting some light's cone.
+// cut one of the batch's discs: in reach (group_in_reach) and meeting some light's cone.
 fn groups_that_may_cut(chunk: u32, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> u32 {
     var passing = 0u;
     for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
         let group = group_at(g);
         let to_group = group.center_extent.xyz - p;
-        let group_distance2 = dot(to_group, to_group);
-        let group_distance = sqrt(group_distance2);
+        let group_distance = sqrt(dot(to_group, to_group));
         let direction = to_group / max(group_distance, 1e-30);
         let extent = group.center_extent.w;
         var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
         if EXACT_WIDE {
             may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
         }
-        let near = group_distance2 <= group.influence_m * group.influence_m;
-        let above = dot(to_group, n) + extent > 0.0;
-        if near && above && may_cut && group.count > 0u {
+        if may_cut && group_in_reach(group, p, n) {
             passing |= 1u << (g - chunk);
         }
     }

@@ -109,20 +109,37 @@ override SH_VISIBILITY: bool = true;
 // are faded by smoothstep(−1, 1, (c − p)·n / r).
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
-    for (var g = 0u; g < shadow.group_count; g++) {
-        let group = group_at(g);
-        let to_group = group.center_extent.xyz - p;
-        // Conservative group tests (see blocker_groups.rs): every sphere of a skipped group
-        // would be skipped by the tests below.
-        if dot(to_group, to_group) > group.influence_m * group.influence_m
-            || dot(to_group, n) + group.center_extent.w <= 0.0 {
-            continue;
-        }
-        for (var i = group.first; i < group.first + group.count; i++) {
+    for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
+        var walk = blocker_walk(chunk, groups_in_reach(chunk, p, n));
+        loop {
+            let i = walk_next(&walk);
+            if i == WALK_DONE {
+                break;
+            }
             f = add_blocker(f, blocker_at(i), p, n);
         }
     }
     return sh_sum(f, terrain_log_visibility(p));
+}
+
+// Conservative group tests (see blocker_groups.rs): every sphere of a group out of reach
+// would be skipped by add_blocker's tests (beyond its influence, or wholly below the
+// tangent plane). Empty groups are out of reach too.
+fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
+    let to_group = group.center_extent.xyz - p;
+    return dot(to_group, to_group) <= group.influence_m * group.influence_m
+        && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
+}
+
+// The groups chunk..chunk + WALK_GROUPS − 1 in reach of p (as BlockerWalk bits).
+fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>) -> u32 {
+    var passing = 0u;
+    for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
+        if group_in_reach(group_at(g), p, n) {
+            passing |= 1u << (g - chunk);
+        }
+    }
+    return passing;
 }
 
 fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
