@@ -146,9 +146,15 @@ struct Surface {
     mirrored_view: vec3<f32>,
 };
 
+// false: the pipeline draws only untextured materials and samples no base colour
+// texture (lavapipe samples it at every pixel whether a material has one or not, and a
+// trilinear sample is much of what the upsampling costs a pixel). Set at pipeline
+// creation (src/render/logsh.rs).
+override BASE_COLOR_TEXTURE: bool = true;
+
 fn surface(in: VertexOut, front_facing: bool) -> Surface {
     var base = material.base_color;
-    if material.params.w > 0.5 {
+    if BASE_COLOR_TEXTURE && material.params.w > 0.5 {
         base *= textureSample(base_color_texture, base_color_sampler, in.uv);
     }
     let metallic = material.params.x;

@@ -16,6 +16,8 @@ pub struct GpuObject {
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
     pub material: usize,
+    /// Whether its material samples a base colour texture.
+    pub textured: bool,
     /// Where this object's vertices start in the baked indirect light buffer.
     pub first_vertex: u32,
     /// Index of the object in [`Scene::objects`] (objects without triangles are not uploaded).
@@ -54,6 +56,7 @@ impl GpuScene {
                         uv: object.uvs[i].to_array(),
                     })
                     .collect();
+                let material = object.material.min(scene.materials.len().saturating_sub(1));
                 let object_first_vertex = first_vertex;
                 first_vertex += vertices.len() as u32;
                 GpuObject {
@@ -69,7 +72,12 @@ impl GpuScene {
                     }),
                     vertex_count: vertices.len() as u32,
                     index_count: object.indices.len() as u32,
-                    material: object.material.min(scene.materials.len().saturating_sub(1)),
+                    material,
+                    textured: scene
+                        .materials
+                        .get(material)
+                        .and_then(|m| m.base_color_texture)
+                        .is_some_and(|t| t < scene.textures.len()),
                     first_vertex: object_first_vertex,
                     source,
                     hidden: false,

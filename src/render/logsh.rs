@@ -66,7 +66,34 @@ struct ReducedShadingPipelines {
     low_resolution_layout: wgpu::BindGroupLayout,
     low_depth: wgpu::RenderPipeline,
     shade_low: wgpu::RenderPipeline,
-    upsample: wgpu::RenderPipeline,
+    /// The upsampling, for objects with a base colour texture and for the others.
+    upsample: ByTexture,
+}
+
+/// A pipeline for textured objects and its twin for untextured ones, compiled without the
+/// texture sample (BASE_COLOR_TEXTURE in scene.wgsl).
+struct ByTexture {
+    textured: wgpu::RenderPipeline,
+    untextured: wgpu::RenderPipeline,
+}
+
+impl ByTexture {
+    fn new(make: impl Fn(bool) -> wgpu::RenderPipeline) -> ByTexture {
+        ByTexture {
+            textured: make(true),
+            untextured: make(false),
+        }
+    }
+
+    /// Draws every visible object with the pipeline for its material.
+    fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+        for textured in [true, false] {
+            pass.set_pipeline(if textured { &self.textured } else { &self.untextured });
+            for object in scene.objects.iter().filter(|o| !o.hidden && o.textured == textured) {
+                draw_object(pass, scene, object);
+            }
+        }
+    }
 }
 
 /// What a pipeline's fragment stage is for.
@@ -102,7 +129,11 @@ impl LogShPipeline {
         let shadow_layout = shadow_layout(device);
         let source = shaders::logsh_source(settings.order, settings.exp, settings.brdf);
         let module = shaders::create_module(device, "log-SH shadows", &source);
-        let variant = Variant { samples, paths };
+        let variant = Variant {
+            samples,
+            paths,
+            textured: true,
+        };
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
             (
@@ -118,14 +149,16 @@ impl LogShPipeline {
                 downsample: settings.shading_downsample,
                 low_depth: low(Stage::LowDepthOnly),
                 shade_low: low(Stage::ShadeLow),
-                upsample: scene_pipeline(
-                    device,
-                    layouts,
-                    &shadow_layout,
-                    &module,
-                    Stage::Upsample(&low_resolution_layout),
-                    variant,
-                ),
+                upsample: ByTexture::new(|textured| {
+                    scene_pipeline(
+                        device,
+                        layouts,
+                        &shadow_layout,
+                        &module,
+                        Stage::Upsample(&low_resolution_layout),
+                        Variant { textured, ..variant },
+                    )
+                }),
                 low_resolution_layout,
             }
         });
@@ -237,9 +270,8 @@ impl LogShPipeline {
                 }
             }
             (None, Some((low, pipelines))) => {
-                pass.set_pipeline(&pipelines.upsample);
                 pass.set_bind_group(3, &low.bind_group, &[]);
-                draw_objects(&mut pass, scene);
+                pipelines.upsample.draw_objects(&mut pass, scene);
                 // The pixels the upsampling left (it moved the others' depth nearer).
                 if shades_unmatched_exactly(self.samples) {
                     pass.set_pipeline(&self.shade);
@@ -338,6 +370,7 @@ pub fn surface_pipelines(
                 Variant {
                     samples: 1,
                     paths: CompiledPaths::NONE,
+                    textured: true,
                 },
             )
         })
@@ -350,6 +383,8 @@ struct Variant {
     samples: u32,
     /// The shading paths compiled in ([`path_constants`]).
     paths: CompiledPaths,
+    /// false: compiled without the base colour texture, for untextured objects.
+    textured: bool,
 }
 
 /// The override constants that compile `paths` in (see [`CompiledPaths`]).
@@ -458,6 +493,9 @@ fn scene_pipeline(
     let mut constants = path_constants(variant.paths);
     if let Stage::Surface(channel, name) = stage {
         constants.push((name, channel as f64));
+    }
+    if !variant.textured {
+        constants.push(("BASE_COLOR_TEXTURE", 0.0));
     }
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(entry_point),
