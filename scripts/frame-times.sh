@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Times log-SH frames at 960×540 on this machine's GPU with `lightpaint render
 # --time-frames`, for the table in docs/performance.md. Run it on an otherwise idle machine.
+# REPEAT=n: only the studio's defaults, n runs back to back (how much one row varies).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/system-packages.sh
@@ -20,6 +21,12 @@ studio=projects/studio/studio.lightpaint
 sample=projects/sample/sample.lightpaint
 echo "| configuration | $frames frames after a warm-up |"
 echo "|---|---|"
+if [[ -n "${REPEAT:-}" ]]; then
+    for _ in $(seq "$REPEAT"); do
+        row "studio, defaults" "$studio"
+    done
+    exit 0
+fi
 row "studio, defaults (order 4, HYB, 48 fitted spheres, 1 in 3×3 shaded, edge filter)" "$studio"
 row "studio, defaults without antialiasing" "$studio" --aa none
 row "studio, defaults with 4× MSAA" "$studio" --aa msaa

@@ -193,3 +193,28 @@ fn a_file_with_several_scenes_opens_its_default_and_shows_another_on_request() {
         "{message}"
     );
 }
+
+#[test]
+fn double_sided_is_read_per_material_and_decides_back_face_culling() {
+    let (mut b, mesh) = triangle_builder();
+    b.add_material(&MaterialSpec::plain("one side", [0.8, 0.8, 0.8], 0.5));
+    b.add_material(&MaterialSpec::plain("both sides", [0.8, 0.8, 0.8], 0.5));
+    b.add_mesh_node("tri", mesh, Vec3::ZERO, Quat::IDENTITY, Vec3::ONE);
+    let load = |double_sided: bool| {
+        let (_dir, path) = write_gltf(&b, |doc| {
+            doc["materials"][1]["doubleSided"] = serde_json::json!(double_sided);
+            doc["meshes"][0]["primitives"][0]["material"] = serde_json::json!(1);
+        });
+        Scene::load(&path).expect("loads")
+    };
+    let single = load(false);
+    assert!(!single.materials[0].double_sided, "glTF's default is single-sided");
+    assert!(!single.materials[1].double_sided);
+    assert!(single.every_material_single_sided());
+    let double = load(true);
+    assert!(double.materials[1].double_sided);
+    assert!(
+        !double.every_material_single_sided(),
+        "the drawn object's material has two sides"
+    );
+}

@@ -125,6 +125,11 @@ pub struct CompiledPaths {
     pub light_overflow: bool,
     /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
     pub blocker_overflow: bool,
+    /// Back faces are culled: every material of the scene is single-sided. Not code but
+    /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent
+    /// a tenth of the studio's default frame on the back faces it rasterised only for
+    /// the depth test to reject them.
+    pub cull_back_faces: bool,
 }
 
 impl CompiledPaths {
@@ -136,6 +141,7 @@ impl CompiledPaths {
         terrain: true,
         light_overflow: true,
         blocker_overflow: true,
+        cull_back_faces: false,
     };
 
     /// No optional path (a pipeline that shades no light).
@@ -146,6 +152,7 @@ impl CompiledPaths {
         terrain: false,
         light_overflow: false,
         blocker_overflow: false,
+        cull_back_faces: false,
     };
 }
 
@@ -154,6 +161,9 @@ impl CompiledPaths {
 pub struct SceneLighting {
     pub has_environment: bool,
     pub has_terrain: bool,
+    /// Every material is single-sided: back faces are culled
+    /// ([`Scene::every_material_single_sided`]).
+    pub single_sided: bool,
 }
 
 impl SceneLighting {
@@ -161,6 +171,7 @@ impl SceneLighting {
         SceneLighting {
             has_environment: scene.environment.is_some(),
             has_terrain: scene.terrain.is_some(),
+            single_sided: scene.every_material_single_sided(),
         }
     }
 }
@@ -176,6 +187,7 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         terrain: lighting.has_terrain,
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
+        cull_back_faces: lighting.single_sided,
     }
 }
 
@@ -296,6 +308,7 @@ mod tests {
             let lighting = SceneLighting {
                 has_environment,
                 has_terrain: false,
+                single_sided: false,
             };
             let paths = compiled_paths(
                 &shading_lights(lights, &settings, &LightPathContext::at(centre)),
@@ -323,8 +336,15 @@ mod tests {
         let terrain = SceneLighting {
             has_environment: false,
             has_terrain: true,
+            single_sided: false,
         };
         assert!(compiled_paths(&[], terrain, 0).terrain);
+        let single_sided = SceneLighting {
+            single_sided: true,
+            ..terrain
+        };
+        assert!(compiled_paths(&[], single_sided, 0).cull_back_faces);
+        assert!(!compiled_paths(&[], terrain, 0).cull_back_faces);
     }
 
     #[test]
@@ -332,6 +352,7 @@ mod tests {
         let lighting = SceneLighting {
             has_environment: false,
             has_terrain: false,
+            single_sided: false,
         };
         let lights = |n| vec![GpuLight::new(&light(crate::scene::LightKind::Point, 1.0)); n];
         let at_capacity = compiled_paths(&lights(UNIFORM_LIGHT_CAPACITY), lighting, UNIFORM_BLOCKER_CAPACITY);

@@ -9,7 +9,7 @@ pub use super::gpu_blockers::{GpuBlockers, shadow_layout};
 use super::gpu_scene::{GpuObject, GpuScene};
 use super::gpu_types::GpuVertex;
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
-use super::pipeline::{SceneLayouts, depth_test, two_sided_triangles};
+use super::pipeline::{SceneLayouts, depth_test, scene_triangles};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
 use super::target::RenderTarget;
 use super::{BrdfShading, CompiledPaths, ShadowSettings, shaders, wgsl_sh};
@@ -349,11 +349,14 @@ pub const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float
 pub const SURFACE_CHANNELS: u32 = 5;
 
 /// One pipeline per surface channel (see fs_surface), each writing that property of every
-/// visible pixel into an [`SURFACE_FORMAT`] target with one sample, all from one module.
+/// visible pixel into an [`SURFACE_FORMAT`] target with one sample, all from one module;
+/// `cull_back_faces` as the shading pipelines of the same scene
+/// ([`crate::scene::Scene::every_material_single_sided`]).
 pub fn surface_pipelines(
     device: &wgpu::Device,
     layouts: &SceneLayouts,
     shadow_layout: &wgpu::BindGroupLayout,
+    cull_back_faces: bool,
 ) -> Vec<wgpu::RenderPipeline> {
     // Any order and method: fs_surface uses no SH.
     let source = shaders::logsh_source(2, ExpMethod::Dc, BrdfShading::Separate);
@@ -366,10 +369,13 @@ pub fn surface_pipelines(
                 shadow_layout,
                 &module,
                 Stage::Surface(channel, "SURFACE_CHANNEL"),
-                // fs_surface shades no light.
+                // fs_surface shades no light; it sees the faces the shading passes see.
                 Variant {
                     samples: 1,
-                    paths: CompiledPaths::NONE,
+                    paths: CompiledPaths {
+                        cull_back_faces,
+                        ..CompiledPaths::NONE
+                    },
                     textured: true,
                 },
             )
@@ -506,7 +512,7 @@ fn scene_pipeline(
             compilation_options: Default::default(),
             buffers: &buffers,
         },
-        primitive: two_sided_triangles(),
+        primitive: scene_triangles(variant.paths.cull_back_faces),
         depth_stencil: Some(wgpu::DepthStencilState {
             bias: depth_bias(stage, samples),
             ..depth_test(depth_write, compare)

@@ -247,7 +247,7 @@ pub fn capture_surfaces(
     let shadows = shadow_layout(&gpu.device);
     let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], None, &ShadowSettings::default());
     let mut channels: Vec<Vec<[f32; 4]>> = Vec::with_capacity(5);
-    for pipeline in surface_pipelines(&gpu.device, &layouts, &shadows) {
+    for pipeline in surface_pipelines(&gpu.device, &layouts, &shadows, scene.every_material_single_sided()) {
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("surface channel"),
             size: wgpu::Extent3d {

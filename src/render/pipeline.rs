@@ -181,7 +181,8 @@ pub fn mesh_pipeline(
             compilation_options: Default::default(),
             buffers: &[Some(GpuVertex::layout())],
         },
-        primitive: two_sided_triangles(),
+        // The preview without shadows draws both faces of every mesh.
+        primitive: scene_triangles(false),
         depth_stencil: Some(depth_test(true, wgpu::CompareFunction::Less)),
         multisample: wgpu::MultisampleState {
             count: samples,
@@ -202,13 +203,14 @@ pub fn mesh_pipeline(
     })
 }
 
-/// Triangle lists, counter-clockwise front faces, both sides drawn: glTF meshes are often
-/// open (planes, cards).
-pub(super) fn two_sided_triangles() -> wgpu::PrimitiveState {
+/// Triangle lists, counter-clockwise front faces (glTF's winding); back faces culled when
+/// `cull_back_faces` (every material single-sided), else drawn, with the shading normal
+/// turned toward the viewer (glTF meshes are often open: planes, cards).
+pub(super) fn scene_triangles(cull_back_faces: bool) -> wgpu::PrimitiveState {
     wgpu::PrimitiveState {
         topology: wgpu::PrimitiveTopology::TriangleList,
         front_face: wgpu::FrontFace::Ccw,
-        cull_mode: None,
+        cull_mode: cull_back_faces.then_some(wgpu::Face::Back),
         ..Default::default()
     }
 }

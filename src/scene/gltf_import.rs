@@ -241,12 +241,14 @@ impl Importer<'_> {
                 roughness: pbr.roughness_factor().clamp(0.0, 1.0),
                 specular: material.specular().map_or(1.0, |s| s.specular_factor().clamp(0.0, 1.0)),
                 emissive: Vec3::from(material.emissive_factor()) * emissive_strength,
+                double_sided: material.double_sided(),
             };
             if !converted.base_color.is_finite() || !converted.emissive.is_finite() {
                 let name = converted.name.clone();
                 self.warn(format!("material '{name}' has non-finite colours; using the default"));
                 self.scene.materials.push(Material {
                     name,
+                    double_sided: material.double_sided(),
                     ..Material::default()
                 });
             } else {

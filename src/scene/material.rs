@@ -15,6 +15,10 @@ pub struct Material {
     pub specular: f32,
     /// Linear RGB emitted radiance factor (times KHR_materials_emissive_strength).
     pub emissive: Vec3,
+    /// glTF `doubleSided`: both faces are seen. When every material of a scene is
+    /// single-sided the renderer culls back faces, as glTF asks (see
+    /// [`super::Scene::every_material_single_sided`]).
+    pub double_sided: bool,
 }
 
 impl Default for Material {
@@ -28,6 +32,9 @@ impl Default for Material {
             roughness: 1.0,
             specular: 1.0,
             emissive: Vec3::ZERO,
+            // glTF's default material is single-sided; the glTF importer says so per
+            // material. Materials made in code keep both faces (planes seen from below).
+            double_sided: true,
         }
     }
 }

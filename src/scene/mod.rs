@@ -93,6 +93,15 @@ impl Scene {
         self.objects.iter().map(|o| o.indices.len() / 3).sum()
     }
 
+    /// Whether every object with triangles has a single-sided material (glTF
+    /// `doubleSided` false), so that the renderer may cull back faces: it culls for all
+    /// objects or none, as the cull mode is fixed per pipeline. False for a scene without
+    /// triangles; an object whose material index is out of range counts as double-sided.
+    pub fn every_material_single_sided(&self) -> bool {
+        let mut drawn = self.objects.iter().filter(|o| !o.indices.is_empty()).peekable();
+        drawn.peek().is_some() && drawn.all(|o| self.materials.get(o.material).is_some_and(|m| !m.double_sided))
+    }
+
     /// Every light's intensity, in light order: the state painting changes.
     pub fn light_intensities(&self) -> Vec<f32> {
         self.lights.iter().map(|l| l.intensity).collect()
