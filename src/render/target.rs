@@ -14,7 +14,7 @@ pub enum AntiAliasing {
     #[default]
     EdgeFilter,
     /// [`SAMPLE_COUNT`] samples per pixel, resolved: exact coverage of geometric edges, at
-    /// 2.5 times the frame time on lavapipe (docs/performance.md).
+    /// more than twice the frame time on lavapipe (docs/performance.md).
     Multisample,
 }
 
