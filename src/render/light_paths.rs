@@ -176,13 +176,18 @@ impl SceneLighting {
     }
 }
 
+/// Exact-path lights per half of the shaders' eight-light batch: one `vec4` lane each
+/// (`ExactBatch` in exact_lights.wgsl). A frame with more needs the wide batch
+/// (EXACT_WIDE).
+const EXACT_LIGHTS_PER_HALF_BATCH: usize = 4;
+
 /// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
 /// and `blocker_count` blockers.
 pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
     let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
     CompiledPaths {
         exact: exact_count > 0,
-        exact_wide: exact_count > 4,
+        exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.exact_path == 0),
         terrain: lighting.has_terrain,
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
