@@ -143,3 +143,42 @@ impl Scene {
         self.camera.clone().unwrap_or_else(|| Camera::framing(&self.bounds()))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one_side() -> Material {
+        Material {
+            double_sided: false,
+            ..Material::default()
+        }
+    }
+
+    #[test]
+    fn back_faces_are_culled_only_when_every_drawn_object_is_single_sided() {
+        let floor = || shapes::plane(1.0, 1, 1.0).into_object("floor");
+        let scene = |objects: Vec<MeshObject>, materials: Vec<Material>| Scene {
+            objects,
+            materials,
+            ..Scene::default()
+        };
+        assert!(
+            !scene(vec![], vec![one_side()]).every_material_single_sided(),
+            "nothing drawn"
+        );
+        assert!(scene(vec![floor()], vec![one_side()]).every_material_single_sided());
+        let mut second = floor();
+        second.material = 1;
+        assert!(
+            !scene(vec![floor(), second.clone()], vec![one_side(), Material::default()]).every_material_single_sided()
+        );
+        assert!(
+            !scene(vec![floor(), second.clone()], vec![one_side()]).every_material_single_sided(),
+            "material out of range"
+        );
+        // An object without triangles is not drawn, whatever its material.
+        second.indices.clear();
+        assert!(scene(vec![floor(), second], vec![one_side(), Material::default()]).every_material_single_sided());
+    }
+}
