@@ -17,6 +17,8 @@ pub struct Hit {
     pub triangle: usize,
     /// Barycentric weights of the triangle's three vertices at the hit point.
     pub barycentric: Vec3,
+    /// The ray met the triangle's front (counter-clockwise, glTF's winding) side.
+    pub front_facing: bool,
 }
 
 /// The scene's triangles (degenerate ones left out) and their BVH.
@@ -95,17 +97,30 @@ impl SceneBvh {
             object: object as usize,
             triangle: triangle as usize,
             barycentric: barycentric(tri, point),
+            front_facing: (tri.v1 - tri.v0).cross(tri.v2 - tri.v0).dot(Vec3A::from(direction)) < 0.0,
         })
     }
 
     /// The nearest hit along the ray that is not on one of the objects `ignored` lists.
     pub fn closest_hit_ignoring(&self, origin: Vec3, direction: Vec3, t_max: f32, ignored: &[u32]) -> Option<Hit> {
+        self.closest_hit_where(origin, direction, t_max, |hit| !ignored.contains(&(hit.object as u32)))
+    }
+
+    /// The nearest hit along the ray that `keep` accepts (surfaces it rejects are seen
+    /// through).
+    pub fn closest_hit_where(
+        &self,
+        origin: Vec3,
+        direction: Vec3,
+        t_max: f32,
+        keep: impl Fn(&Hit) -> bool,
+    ) -> Option<Hit> {
         let mut t_min = 0.0;
-        // Each round steps past one ignored surface; a bounded number keeps a ray grazing
-        // many coplanar ignored triangles from looping for long.
+        // Each round steps past one rejected surface; a bounded number keeps a ray grazing
+        // many coplanar rejected triangles from looping for long.
         for _ in 0..64 {
             let hit = self.closest_hit(origin, direction, t_min, t_max)?;
-            if !ignored.contains(&(hit.object as u32)) {
+            if keep(&hit) {
                 return Some(hit);
             }
             t_min = hit.distance_m + 1e-4 * hit.distance_m.max(1.0);
@@ -285,5 +300,28 @@ mod tests {
     fn an_empty_scene_occludes_nothing() {
         let bvh = SceneBvh::build(&Scene::default());
         assert!(!bvh.occluded(Vec3::ZERO, Vec3::Y, 0.0, f32::INFINITY));
+    }
+
+    #[test]
+    fn hits_know_which_side_they_met_and_rejected_surfaces_are_seen_through() {
+        // Both quads face up (+y: counter-clockwise seen from above).
+        let scene = Scene {
+            objects: vec![quad_at_height(1.0), quad_at_height(0.0)],
+            ..Default::default()
+        };
+        let bvh = SceneBvh::build(&scene);
+        let (above, below) = (Vec3::new(0.3, 3.0, -0.2), Vec3::new(0.3, -1.0, -0.2));
+        let from_above = bvh.closest_hit(above, Vec3::NEG_Y, 0.0, 10.0).expect("hit");
+        assert!(from_above.front_facing && from_above.object == 0);
+        let from_below = bvh.closest_hit(below, Vec3::Y, 0.0, 10.0).expect("hit");
+        assert!(!from_below.front_facing && from_below.object == 1);
+        // Front faces only: from below every surface is a back face.
+        assert!(
+            bvh.closest_hit_where(below, Vec3::Y, 10.0, |hit| hit.front_facing)
+                .is_none()
+        );
+        // Seeing through the upper quad reaches the lower one.
+        let through = bvh.closest_hit_where(above, Vec3::NEG_Y, 10.0, |hit| hit.object != 0);
+        assert_eq!(through.map(|hit| hit.object), Some(1));
     }
 }

@@ -316,8 +316,12 @@ impl EditorApp {
             return;
         };
         let hidden: Vec<u32> = document.hidden_objects.iter().map(|&o| o as u32).collect();
+        // What the viewport draws: not hidden objects, nor back faces where it culls them.
+        let culls_back_faces = document.scene.every_material_single_sided();
         let bvh = painting.picking_bvh(&document.scene);
-        let hit = bvh.closest_hit_ignoring(origin, direction, f32::INFINITY, &hidden);
+        let hit = bvh.closest_hit_where(origin, direction, f32::INFINITY, |hit| {
+            !hidden.contains(&(hit.object as u32)) && (hit.front_facing || !culls_back_faces)
+        });
         self.selection = hit.map(|hit| Selection::Object(hit.object));
         if let Some(object) = hit.and_then(|hit| document.scene.objects.get(hit.object)) {
             self.message = format!("selected {}", object.name);
