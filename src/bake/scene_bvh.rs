@@ -235,13 +235,17 @@ mod tests {
         }
     }
 
+    /// The BVH of a scene made of `objects` alone.
+    fn bvh_of(objects: Vec<MeshObject>) -> SceneBvh {
+        SceneBvh::build(&Scene {
+            objects,
+            ..Default::default()
+        })
+    }
+
     #[test]
     fn a_quad_blocks_rays_through_it_and_only_those() {
-        let scene = Scene {
-            objects: vec![quad_at_height(1.0)],
-            ..Default::default()
-        };
-        let bvh = SceneBvh::build(&scene);
+        let bvh = bvh_of(vec![quad_at_height(1.0)]);
         assert_eq!(bvh.triangle_count(), 2);
         // Off the quad's diagonal: a ray along a shared edge may slip between the triangles.
         let below = Vec3::new(0.3, 0.0, -0.2);
@@ -256,17 +260,13 @@ mod tests {
 
     #[test]
     fn closest_hits_name_the_triangle_and_where_on_it() {
-        let scene = Scene {
-            objects: vec![quad_at_height(1.0), quad_at_height(2.0)],
-            ..Default::default()
-        };
-        let bvh = SceneBvh::build(&scene);
+        let bvh = bvh_of(vec![quad_at_height(1.0), quad_at_height(2.0)]);
         let hit = bvh
             .closest_hit(Vec3::new(0.5, 0.0, -0.5), Vec3::Y, 0.0, 10.0)
             .expect("hit");
         assert_eq!(hit.object, 0);
         assert!((hit.distance_m - 1.0).abs() < 1e-5);
-        let object = &scene.objects[0];
+        let object = quad_at_height(1.0);
         let corners = [0, 1, 2].map(|k| object.positions[object.indices[3 * hit.triangle + k] as usize]);
         let p = corners[0] * hit.barycentric.x + corners[1] * hit.barycentric.y + corners[2] * hit.barycentric.z;
         assert!((p - Vec3::new(0.5, 1.0, -0.5)).length() < 1e-5, "{p}");
@@ -285,11 +285,7 @@ mod tests {
         let plate = crate::scene::shapes::plane(1.0, 2, 1.0)
             .transformed(glam::Affine3A::from_translation(Vec3::Y))
             .into_object("plate");
-        let scene = Scene {
-            objects: vec![plate],
-            ..Default::default()
-        };
-        let bvh = SceneBvh::build(&scene);
+        let bvh = bvh_of(vec![plate]);
         for x in [0.0f32, -0.0] {
             let direction = Vec3::new(x, -0.995_037_2, -0.099_503_72);
             assert!(bvh.occluded(Vec3::new(0.0, 5.0, 0.0), direction, 0.0, 6.0), "x = {x:?}");
@@ -305,11 +301,7 @@ mod tests {
     #[test]
     fn hits_know_which_side_they_met_and_rejected_surfaces_are_seen_through() {
         // Both quads face up (+y: counter-clockwise seen from above).
-        let scene = Scene {
-            objects: vec![quad_at_height(1.0), quad_at_height(0.0)],
-            ..Default::default()
-        };
-        let bvh = SceneBvh::build(&scene);
+        let bvh = bvh_of(vec![quad_at_height(1.0), quad_at_height(0.0)]);
         let (above, below) = (Vec3::new(0.3, 3.0, -0.2), Vec3::new(0.3, -1.0, -0.2));
         let from_above = bvh.closest_hit(above, Vec3::NEG_Y, 0.0, 10.0).expect("hit");
         assert!(from_above.front_facing && from_above.object == 0);
