@@ -8,7 +8,7 @@
 //! pass's fragment shader even where the depth test has rejected every sample, and the
 //! upsampling must search wider for the pixels it cannot match.
 
-use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, depth_test, numbered_entries};
+use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, depth_test, frame_texture, numbered_entries};
 use super::shaders;
 
 /// The edge filter's pipelines, compiled once and shared by the targets that use them
@@ -111,16 +111,7 @@ impl EdgeFilterPass {
     /// An intermediate image of `size` (width, height) and `filter` reading it.
     pub fn new(device: &wgpu::Device, size: wgpu::Extent3d, filter: &EdgeFilter) -> EdgeFilterPass {
         let texture = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats,
-            })
+            frame_texture(device, label, size, format, 1, usage, view_formats)
         };
         let image = texture(
             "unfiltered frame",

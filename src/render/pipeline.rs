@@ -226,6 +226,29 @@ pub(super) fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::D
     }
 }
 
+/// A 2-D texture of one mip level, `samples` per texel: what frames are drawn into and
+/// read from (render targets, the edge filter's image, the low-resolution samples).
+pub(super) fn frame_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: wgpu::Extent3d,
+    format: wgpu::TextureFormat,
+    samples: u32,
+    usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size,
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats,
+    })
+}
+
 /// Bind group entries binding each of `resources` at its position (0, 1, …), the order
 /// in which the shaders and the layout declare them.
 pub(super) fn numbered_entries<'a, const N: usize>(

@@ -12,7 +12,7 @@
 use wgpu::util::DeviceExt;
 
 use super::gpu_types::GpuUpsampleParams;
-use super::pipeline::{DEPTH_FORMAT, numbered_entries};
+use super::pipeline::{DEPTH_FORMAT, frame_texture, numbered_entries};
 
 /// Formats of fs_shade_low's targets: lighting, and position with the packed normal (see
 /// reduced_shading.wgsl). 24 bytes a sample, read with two texel fetches.
@@ -97,18 +97,7 @@ impl LowResolutionTargets {
             depth_or_array_layers: 1,
         };
         let texture = |label, format, usage| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: extent,
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
+            frame_texture(device, label, extent, format, 1, usage, &[]).create_view(&Default::default())
         };
         let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let labels = ["low-resolution lighting", "low-resolution surface"];

@@ -56,9 +56,9 @@ pub const MAX_EXACT_LIGHT_BUDGET: u32 = 64;
 
 /// A third of the resolution along each side: a ninth of the shading cost (the studio's
 /// frame at 64 ms against 84 ms for one pixel in 2 × 2 on lavapipe, 2026-12-02), and the
-/// log-SH lighting it interpolates is smooth where the upsampling interpolates it: 99.1 %
-/// of the studio's pixels within 2/255 of shading every pixel, against 99.3 % at 2 × 2
-/// (see docs/performance.md).
+/// log-SH lighting it interpolates is smooth where the upsampling interpolates it: 98.6 %
+/// of the studio's pixels within 2/255 of shading every pixel, as at 2 × 2 (480×270,
+/// `cargo nextest run --test reduced_shading --no-capture`; docs/performance.md).
 fn default_shading_downsample() -> u32 {
     3
 }

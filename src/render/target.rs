@@ -2,7 +2,7 @@
 //! ([`AntiAliasing`]).
 
 use super::edge_filter::{EdgeFilter, EdgeFilterPass};
-use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, SAMPLE_COUNT};
+use super::pipeline::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, SAMPLE_COUNT, frame_texture};
 
 /// How a frame's silhouettes and other edges are smoothed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -98,16 +98,7 @@ impl RenderTarget {
             depth_or_array_layers: 1,
         };
         let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: samples,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats,
-            })
+            frame_texture(device, label, size, format, samples, usage, view_formats)
         };
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
         let color = texture(
