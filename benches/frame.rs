@@ -18,12 +18,10 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{
-    AntiAliasing, GpuContext, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
-    shade_surfaces,
-};
+use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, capture_surfaces, shade_surfaces};
 use lightpaint::scene::{Camera, Scene};
 use lightpaint::sh::ExpMethod;
+use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 const WIDTH: u32 = 960;
 const HEIGHT: u32 = 540;
@@ -91,7 +89,7 @@ fn time_frame(
     gpu: &GpuContext,
     frame: &ShadowFrame,
 ) {
-    let renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::default()).expect("renderer");
+    let mut renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::default()).expect("renderer");
     renderer.draw_and_wait().expect("warm-up frame");
     c.throughput(Throughput::Elements(
         (WIDTH * HEIGHT) as u64 * frame.blockers.len().max(1) as u64,

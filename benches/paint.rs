@@ -15,9 +15,9 @@ use lightpaint::blockers::{BlockerSettings, fit_scene};
 use lightpaint::paint::{
     BakedTransfer, Brush, BrushKind, PaintSettings, Painter, StrokeRecord, Transfer, View, ViewRecord,
 };
-use lightpaint::render::ShadowSettings;
-use lightpaint::render::paint_estimate::DirectEstimate;
 use lightpaint::scene::{Camera, Scene, parse_gltf};
+use lightpaint::shading::ShadowSettings;
+use lightpaint::shading::paint_estimate::DirectEstimate;
 
 fn stroke(scene: &Scene) -> StrokeRecord {
     let eye = Vec3::new(0.0, 14.0, 18.0);

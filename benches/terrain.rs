@@ -11,7 +11,8 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use lightpaint::blockers::{BlockerSettings, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, ShadowSettings, TerrainShading};
+use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer};
+use lightpaint::shading::{ShadowSettings, TerrainShading};
 use lightpaint::terrain::{HeightPyramid, TerrainShadow};
 
 const PROJECT: &str = "projects/terrain/terrain.lightpaint";
@@ -47,7 +48,7 @@ fn terrain(c: &mut Criterion) {
                 width: 480,
                 height: 270,
             };
-            let renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::None).expect("renderer");
+            let mut renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::None).expect("renderer");
             renderer.draw_and_wait().expect("warm-up frame");
             group.bench_function(BenchmarkId::new(format!("levels-{pyramid_levels}"), azimuths), |b| {
                 b.iter(|| renderer.draw_and_wait().expect("frame"))

@@ -1,6 +1,6 @@
-// Shared WGSL: the structs mirrored by Rust twins in src/render/gpu_types.rs (layouts
+// Shared WGSL: the structs mirrored by Rust twins in src/shading/gpu_types.rs (layouts
 // asserted by tests), and the colour pipeline of docs/architecture.md. Included first by
-// every shader module (see src/render/shaders.rs); never copied.
+// every shader module (see src/shading/wgsl/mod.rs); never copied.
 
 const PI: f32 = 3.14159265358979;
 
@@ -30,7 +30,7 @@ struct Frame {
     // decides per light for the frame; the upload puts them last).
     first_exact_light: u32,
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
-    // axes, polar axis +z (design.md §3).
+    // axes, polar axis +z (shading-model.md §3).
     environment_irradiance: array<vec4<f32>, 9>,
 };
 
@@ -59,14 +59,14 @@ struct Light {
 
 // Parameters of the log-SH shadow pass (logsh.wgsl).
 struct ShadowParams {
-    // ln ε: the log-visibility of a blocked direction (design.md §4).
+    // ln ε: the log-visibility of a blocked direction (shading-model.md §4).
     ln_epsilon: f32,
     // Blockers whose sin(cap half-angle) = r/d is below this are skipped (too far to matter).
     min_cap_ratio: f32,
     blocker_count: u32,
     // 1: scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     ratio_attenuation: u32,
-    // Number of BlockerGroups (src/render/blocker_groups.rs).
+    // Number of BlockerGroups (src/shading/blocker_groups.rs).
     group_count: u32,
     _pad0: u32,
     _pad1: u32,
@@ -84,7 +84,7 @@ struct UpsampleParams {
     min_matched_weight: f32,
 };
 
-// A height-field terrain for terrain.wgsl (src/render/gpu_terrain.rs fills it).
+// A height-field terrain for terrain.wgsl (src/render/resources/terrain.rs fills it).
 struct TerrainParams {
     // 0: the scene has no terrain.
     present: u32,

@@ -1,4 +1,4 @@
-// Edge antialiasing of a single-sample frame (src/render/edge_filter.rs), after the
+// Edge antialiasing of a single-sample frame (src/render/target/edge_filter.rs), after the
 // idea of FXAA (Lottes 2009): a pixel on a contrast edge takes the image sampled a
 // fraction of a pixel across the edge. The fraction grows toward the end of the edge's run
 // nearer the pixel (a staircase step of a slanted edge gets the coverage a multisampled

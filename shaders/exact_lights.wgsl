@@ -101,7 +101,7 @@ fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
 }
 
 // false: the frame has at most four exact-path lights, and the second half of each
-// batch is left out of the pipeline. Set at pipeline creation (render::compiled_paths).
+// batch is left out of the pipeline. Set at pipeline creation (shading::compiled_paths).
 override EXACT_WIDE: bool = true;
 
 // Whether a blocker group, seen `distance` away toward `direction` with every sphere

@@ -1,6 +1,6 @@
 // Log-SH soft shadows (Ren et al. 2006), per pixel. Included after common.wgsl,
 // scene.wgsl and the generated SH module of the chosen order and exponentiation method
-// (src/render/wgsl_sh.rs), and terrain.wgsl; exact_lights.wgsl follows. render::cpu is
+// (src/shading/wgsl/sh.rs), and terrain.wgsl; exact_lights.wgsl follows. shading::cpu is
 // the f64 reference of exactly this shading:
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
 //       + the terrain's log-visibility (terrain.wgsl)
@@ -11,7 +11,7 @@
 //       direct · Π_blockers (1 − share of the light's disc the blocker hides) · share of
 //       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
-// (design.md §4b: never shade through an order-n triple product of light × cosine).
+// (shading-model.md §4b: never shade through an order-n triple product of light × cosine).
 
 @group(2) @binding(0) var<uniform> shadow: ShadowParams;
 // The blockers and their groups, read through blocker_at and group_at: the first
@@ -23,7 +23,7 @@
 @group(2) @binding(6) var<storage, read> every_group: array<BlockerGroup>;
 
 // false: the frame has at most UNIFORM_BLOCKER_CAPACITY blockers (and so as many groups),
-// and every_blocker and every_group are never read (render::compiled_paths). Blockers
+// and every_blocker and every_group are never read (shading::compiled_paths). Blockers
 // past the capacity then cast no shadow.
 override BLOCKER_OVERFLOW: bool = true;
 
@@ -91,12 +91,12 @@ fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
 // Groups per BlockerWalk (the bits of `passing`).
 const WALK_GROUPS: u32 = 32u;
 
-// Which surface property fs_surface writes (set by surface_pipeline in src/render/logsh.rs).
+// Which surface property fs_surface writes (set by surface_pipeline in src/render/passes/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
 
 // false: no light of the frame is on the exact path, which is then left out of the
 // pipeline (lavapipe runs the code of both sides of a branch at every pixel, taken or
-// not). Set at pipeline creation (src/render/logsh.rs, render::compiled_paths).
+// not). Set at pipeline creation (src/render/passes/logsh.rs, shading::compiled_paths).
 override EXACT_LIGHT_PATH: bool = true;
 
 // false: no light is on the SH path and no environment lights the scene, so the
@@ -166,14 +166,14 @@ fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'
-// BrdfShading by src/render/wgsl_lobes.rs; render::cpu_lobes is the f64 twin):
+// BrdfShading by src/shading/wgsl/lobes.rs; shading::cpu::lobes is the f64 twin):
 //   separate: each light's exact unshadowed BRDF times the visibility G = exp*(F)
 //             averaged over the light;
 //   log:      the diffuse and Phong lobes' logs added to F before exponentiating, one
 //             exponentiation per lobe (Ren et al. 2006);
 //   product:  G times each lobe by the SH product.
 // In log and product each lobe's SH averaged over the light is clamped to [0, unshadowed]
-// (design.md §4b); lobes sharper than the order carries stay out of the SH and are
+// (shading-model.md §4b); lobes sharper than the order carries stay out of the SH and are
 // shaded as in separate.
 const BRDF_SEPARATE: u32 = 0u;
 const BRDF_LOG: u32 = 1u;

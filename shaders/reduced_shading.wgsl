@@ -1,4 +1,4 @@
-// Reduced-resolution shading (src/render/reduced_shading.rs): a low-resolution pass shades
+// Reduced-resolution shading (src/render/passes/reduced_shading.rs): a low-resolution pass shades
 // one pixel in every d × d block with the full log-SH shading of logsh.wgsl and keeps the
 // surface it shaded; the full-resolution pass draws the meshes again and, per pixel,
 // blends the low-resolution samples that lie on its own surface (a joint bilateral
@@ -149,7 +149,7 @@ fn fs_upsample(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @loc
 
 // Upsampling into a single-sampled target, leaving the unmatched pixels to fs_logsh. Its
 // pipeline moves the depth of every pixel it writes a few steps nearer (a constant depth
-// bias, src/render/logsh.rs), so the fs_logsh pass (depth test ≤) skips those pixels while
+// bias, src/render/passes/logsh.rs), so the fs_logsh pass (depth test ≤) skips those pixels while
 // fragments behind them still fail. No frag_depth here: a shader writing depth has
 // lavapipe test depth after the shader, which would upsample every hidden fragment too.
 @fragment

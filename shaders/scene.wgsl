@@ -22,7 +22,7 @@
 @group(1) @binding(2) var base_color_sampler: sampler;
 
 // false: the frame has at most UNIFORM_LIGHT_CAPACITY lights, and every_light is never
-// read (render::compiled_paths; set at pipeline creation). Lights past the capacity then
+// read (shading::compiled_paths; set at pipeline creation). Lights past the capacity then
 // shade nothing.
 override LIGHT_OVERFLOW: bool = true;
 
@@ -149,7 +149,7 @@ struct Surface {
 // false: the pipeline draws only untextured materials and samples no base colour
 // texture (lavapipe samples it at every pixel whether a material has one or not, and a
 // trilinear sample is much of what the upsampling costs a pixel). Set at pipeline
-// creation (src/render/logsh.rs).
+// creation (src/render/passes/logsh.rs).
 override BASE_COLOR_TEXTURE: bool = true;
 
 fn surface(in: VertexOut, front_facing: bool) -> Surface {

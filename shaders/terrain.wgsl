@@ -1,6 +1,6 @@
 // Height-field terrain shadows in log-SH (Giraud & Nowrouzezahrai 2015), the f32 twin of
 // src/terrain/visibility.rs. Included after the generated SH and terrain modules
-// (src/render/wgsl_sh.rs, wgsl_terrain.rs) and before logsh.wgsl:
+// (src/shading/wgsl/sh.rs, terrain.rs) and before logsh.wgsl:
 //   F_terrain(p) = ln ε · R · Σ_k Rot_z(M_lin·[v̄(σ_k); v̄(σ_{k+1})], ϕ_k)
 // with σ_k the horizon along azimuth ϕ_k = 2πk/W, marched over the prefiltered height
 // pyramid, and R the turn from the terrain frame (polar axis world +y) to world axes.
@@ -11,7 +11,7 @@
 @group(2) @binding(4) var<storage, read> terrain_heights: array<f32>;
 
 // false: the frame has no terrain, and its code is left out of the pipeline (lavapipe
-// runs every branch at every pixel). Set at pipeline creation (render::compiled_paths).
+// runs every branch at every pixel). Set at pipeline creation (shading::compiled_paths).
 override TERRAIN_SHADOWS: bool = true;
 
 // log2(2^(1/4) − 1): sample i is read from level round(i/4 + this) (terrain::March).

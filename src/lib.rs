@@ -2,8 +2,9 @@
 //!
 //! The crate is organised by domain (see `docs/architecture.md`):
 //! - [`scene`]: meshes, materials, lights and cameras; glTF import and validation.
-//! - [`render`]: wgpu device, GPU buffers mirroring the WGSL structs, pipelines, offscreen
-//!   targets.
+//! - [`shading`]: the shading model without wgpu: settings, light paths, the WGSL sources
+//!   and their Rust struct twins, the f64 twin of the shaders.
+//! - [`render`]: wgpu only: device, the scene's GPU resources, passes, offscreen targets.
 //! - [`ui`]: the eframe editor shell.
 //! - [`samples`]: the generator of the bundled sample scene.
 
@@ -19,6 +20,7 @@ pub mod render;
 pub mod samples;
 pub mod scene;
 pub mod sh;
+pub mod shading;
 pub mod study;
 pub mod terrain;
 pub mod ui;

@@ -5,8 +5,9 @@
 mod common;
 
 use glam::{Vec3, Vec4};
-use lightpaint::render::{AntiAliasing, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::render::{AntiAliasing, ShadowFrame, render_logsh_image};
 use lightpaint::scene::{Camera, LightKind, Material, Scene, shapes};
+use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 /// A white 4 m floor at y = 0, lit from above and from below by point lights.
 fn floor(double_sided: bool) -> Scene {

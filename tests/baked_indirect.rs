@@ -8,10 +8,9 @@ mod common;
 use std::f64::consts::PI;
 
 use glam::{Affine3A, Vec3, Vec4};
-use lightpaint::render::{
-    AntiAliasing, BakedIndirect, RenderSettings, ShadowFrame, ShadowSettings, render_cpu_image, render_logsh_image,
-};
+use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
 use lightpaint::scene::{Camera, Material, Scene, shapes};
+use lightpaint::shading::{BakedIndirect, RenderSettings, ShadowSettings};
 
 /// Two white Lambertian 1 m squares side by side (x < 0 and x > 0) seen from straight
 /// above with −x on the left of the image, no lights, and before them an object with no

@@ -97,7 +97,7 @@ fn a_slanted_edge_moves_toward_its_pixel_coverage() {
                     continue;
                 }
                 // The filter blends the stored (sRGB-encoded) values: compare there.
-                let encoded = 255.0 * lightpaint::render::linear_to_srgb(truth);
+                let encoded = 255.0 * lightpaint::shading::linear_to_srgb(truth);
                 before += (original - encoded).abs();
                 after += (smoothed - encoded).abs();
                 pixels += 1;

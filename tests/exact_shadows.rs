@@ -12,10 +12,10 @@ use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::penumbra::{LightDisc, light_visibility};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    AntiAliasing, GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
-    render_cpu_image, render_logsh_image,
+    AntiAliasing, GpuContext, ShadowFrame, capture_surfaces, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
+use lightpaint::shading::{LightPaths, RenderSettings, ShadowSettings};
 
 /// A white Lambertian floor `size_m` wide at y = 0 under `lights`.
 fn white_floor(size_m: f32, lights: Vec<Light>) -> Scene {

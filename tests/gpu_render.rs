@@ -7,9 +7,10 @@ mod common;
 use std::f64::consts::PI;
 
 use glam::Vec3;
-use lightpaint::render::{RenderSettings, render_image};
+use lightpaint::render::render_image;
 use lightpaint::scene::Scene;
 use lightpaint::scene::gltf_write::LightSpec;
+use lightpaint::shading::RenderSettings;
 
 fn load_glb(bytes: &[u8]) -> (tempfile::TempDir, Scene) {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -8,12 +8,12 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    AntiAliasing, BrdfShading, CompiledPaths, GpuContext, RenderSettings, ShadowFrame, ShadowSettings,
-    capture_surfaces, render_cpu_image, render_logsh_image,
+    AntiAliasing, GpuContext, ShadowFrame, capture_surfaces, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene};
 use lightpaint::sh::ExpMethod;
+use lightpaint::shading::{BrdfShading, CompiledPaths, RenderSettings, ShadowSettings};
 
 /// Share of pixels whose channels all lie within 1/255 of the reference, and the largest
 /// channel difference.
@@ -137,7 +137,7 @@ fn the_brdf_in_the_sh_matches_the_cpu_reference() {
             let shadows = ShadowSettings {
                 brdf,
                 order,
-                light_paths: lightpaint::render::LightPaths::Harmonics,
+                light_paths: lightpaint::shading::LightPaths::Harmonics,
                 ..ShadowSettings::default().every_pixel()
             };
             sample.assert_parity(&gpu, &format!("{brdf:?}-{order}"), &shadows, 160, 90);
@@ -166,7 +166,7 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     };
     // The SH path's law (the exact path for small lights is tested below).
     let shadows = ShadowSettings {
-        light_paths: lightpaint::render::LightPaths::Harmonics,
+        light_paths: lightpaint::shading::LightPaths::Harmonics,
         ..ShadowSettings::default().every_pixel()
     };
     let (width, height) = (101, 101);
@@ -220,9 +220,10 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
 /// computes there (f32 against f64).
 #[test]
 fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
-    use lightpaint::render::cpu;
-    use lightpaint::render::logsh::{GpuBlockers, LogShPipeline};
+    use lightpaint::render::passes::logsh::LogShPipeline;
+    use lightpaint::render::resources::GpuBlockers;
     use lightpaint::render::{GpuScene, ScenePipeline};
+    use lightpaint::shading::cpu;
     let Some(gpu) = common::gpu() else { return };
     let (scene, _, _) = open("projects/studio/studio.lightpaint");
     let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
@@ -330,8 +331,8 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
 #[test]
 fn lights_and_blockers_past_the_uniform_capacities_match_the_cpu_reference() {
     use common::scenes::white_light as light;
-    use lightpaint::render::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     use lightpaint::scene::{Light, LightKind, Material, shapes};
+    use lightpaint::shading::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     let Some(gpu) = common::gpu() else { return };
     let dim_count = UNIFORM_LIGHT_CAPACITY + 20;
     let mut lights: Vec<Light> = (0..dim_count)
@@ -398,7 +399,7 @@ fn lights_and_blockers_past_the_uniform_capacities_match_the_cpu_reference() {
     };
     let lights = frame.shading_lights();
     let paths =
-        lightpaint::render::compiled_paths(&lights, lightpaint::render::SceneLighting::of(&scene), blockers.len());
+        lightpaint::shading::compiled_paths(&lights, lightpaint::shading::SceneLighting::of(&scene), blockers.len());
     assert!(paths.light_overflow && paths.blocker_overflow && paths.exact);
     assert_parity(&gpu, "past-the-uniform-capacities", &frame);
 }

@@ -235,22 +235,22 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
         current.settings.shadows
     };
     // Formats before 8 had no budget of exact lights: any number could go exact.
-    every_pixel.exact_light_budget = lightpaint::render::MAX_EXACT_LIGHT_BUDGET;
+    every_pixel.exact_light_budget = lightpaint::shading::MAX_EXACT_LIGHT_BUDGET;
     // The format-7 fixture saved the shading resolution of its day, one pixel in 2 × 2.
     if version == 7 {
         every_pixel.shading_downsample = 2;
     }
     let expected = if version < 4 {
-        lightpaint::render::RenderSettings {
+        lightpaint::shading::RenderSettings {
             baked_indirect: false,
-            shadows: lightpaint::render::ShadowSettings {
-                light_paths: lightpaint::render::LightPaths::Harmonics,
+            shadows: lightpaint::shading::ShadowSettings {
+                light_paths: lightpaint::shading::LightPaths::Harmonics,
                 ..every_pixel
             },
             ..current.settings
         }
     } else {
-        lightpaint::render::RenderSettings {
+        lightpaint::shading::RenderSettings {
             shadows: every_pixel,
             ..current.settings
         }
@@ -270,10 +270,10 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
 #[test]
 fn a_format_1_project_opens_and_saves_as_the_current_format() {
     let document = open_old_fixture(1);
-    let format_2_shadows = lightpaint::render::ShadowSettings {
-        light_paths: lightpaint::render::LightPaths::Harmonics,
-        exact_light_budget: lightpaint::render::MAX_EXACT_LIGHT_BUDGET,
-        ..lightpaint::render::ShadowSettings::default().every_pixel()
+    let format_2_shadows = lightpaint::shading::ShadowSettings {
+        light_paths: lightpaint::shading::LightPaths::Harmonics,
+        exact_light_budget: lightpaint::shading::MAX_EXACT_LIGHT_BUDGET,
+        ..lightpaint::shading::ShadowSettings::default().every_pixel()
     };
     assert_eq!(document.settings.shadows, format_2_shadows);
     assert_eq!(
@@ -308,7 +308,7 @@ fn a_format_4_project_opens_without_terrain() {
     assert!(document.scene.terrain.is_none());
     assert_eq!(
         document.settings.shadows.terrain,
-        lightpaint::render::TerrainShading::default()
+        lightpaint::shading::TerrainShading::default()
     );
 }
 
@@ -335,7 +335,7 @@ fn a_format_7_project_opens_with_the_brdf_outside_the_sh() {
     let document = open_old_fixture(7);
     assert_eq!(
         document.settings.shadows.brdf,
-        lightpaint::render::BrdfShading::Separate
+        lightpaint::shading::BrdfShading::Separate
     );
     assert_eq!(document.settings.shadows.shading_downsample, 2);
 }
@@ -345,7 +345,7 @@ fn a_format_7_project_opens_with_the_brdf_outside_the_sh() {
 fn the_brdf_variant_is_saved_and_reopened() {
     let dir = tempfile::tempdir().expect("temp dir");
     let mut document = lightpaint::project::Document::open(&sample_project()).expect("sample");
-    for brdf in lightpaint::render::BrdfShading::ALL {
+    for brdf in lightpaint::shading::BrdfShading::ALL {
         document.settings.shadows.brdf = brdf;
         let saved = dir.path().join("brdf.lightpaint");
         document.save(&saved).expect("save");

@@ -1,4 +1,4 @@
-//! Reduced-resolution shading (`render::reduced_shading`, on lavapipe in CI) against
+//! Reduced-resolution shading (`render::passes::reduced_shading`, on lavapipe in CI) against
 //! shading every pixel: on the sample scenes the frames look alike, and texture detail
 //! finer than the shading blocks survives because only the lighting is interpolated.
 
@@ -7,9 +7,10 @@ mod common;
 use glam::{Vec2, Vec3};
 use lightpaint::blockers::{Sphere, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, GpuContext, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, render_logsh_image};
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene, TextureImage};
+use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 /// Shares of pixels whose channels all lie within 2/255 and within 8/255 of `full`, and
 /// the largest channel difference.

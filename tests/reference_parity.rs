@@ -8,8 +8,9 @@ mod common;
 
 use glam::{Vec3, Vec4};
 use lightpaint::reference::{ReferenceSettings, render_reference};
-use lightpaint::render::{AntiAliasing, RenderSettings, ShadowFrame, ShadowSettings, render_logsh_image};
+use lightpaint::render::{AntiAliasing, ShadowFrame, render_logsh_image};
 use lightpaint::scene::{Camera, Environment, Light, LightKind, Material, Scene, shapes};
+use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 const WIDTH: u32 = 96;
 const HEIGHT: u32 = 64;

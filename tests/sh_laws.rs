@@ -1,5 +1,5 @@
 //! Laws of the SH module that hold for all inputs, checked with proptest through the
-//! public API of design.md §5.
+//! public API of docs/shading-model.md §5.
 
 use std::f64::consts::PI;
 

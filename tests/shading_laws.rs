@@ -1,5 +1,5 @@
 //! Laws of the log-SH shading that hold independently of how it is implemented, checked on
-//! the f64 reference (`render::cpu`); `gpu_shadows.rs` checks the GPU against it.
+//! the f64 reference (`shading::cpu`); `gpu_shadows.rs` checks the GPU against it.
 
 mod common;
 
@@ -7,11 +7,11 @@ use std::f64::consts::PI;
 
 use glam::{DVec3, Vec3};
 use lightpaint::blockers::Sphere;
-use lightpaint::render::cpu::{self, ShadingInputs, SurfacePoint};
-use lightpaint::render::gpu_types::GpuLight;
-use lightpaint::render::{BrdfShading, LightPaths, ShadowSettings};
 use lightpaint::scene::LightKind;
 use lightpaint::sh::ExpMethod;
+use lightpaint::shading::cpu::{self, ShadingInputs, SurfacePoint};
+use lightpaint::shading::gpu_types::GpuLight;
+use lightpaint::shading::{BrdfShading, LightPaths, ShadowSettings};
 
 fn white_floor_point(position: DVec3) -> SurfacePoint {
     SurfacePoint {
@@ -173,7 +173,7 @@ fn white_furnace_shades_to_one() {
     // A uniform environment of radiance 1 on a white Lambertian surface: L = 1, whatever
     // the normal, at every order (the environment's order-3 irradiance is exact here).
     let environment = lightpaint::scene::Environment::uniform([1.0; 3]);
-    let irradiance = lightpaint::render::gpu_types::environment_irradiance(Some(&environment));
+    let irradiance = lightpaint::shading::gpu_types::environment_irradiance(Some(&environment));
     for normal in [DVec3::Y, DVec3::new(1.0, 1.0, 0.0).normalize(), DVec3::NEG_Z] {
         let p = SurfacePoint {
             normal,

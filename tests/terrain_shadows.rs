@@ -8,12 +8,11 @@ mod common;
 use glam::{DVec3, Vec3};
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::cpu::{ShadingInputs, SurfacePoint, shadowed_radiance};
-use lightpaint::render::gpu_types::GpuLight;
-use lightpaint::render::{
-    AntiAliasing, LightPaths, ShadowFrame, ShadowSettings, TerrainShading, render_cpu_image, render_logsh_image,
-};
+use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
 use lightpaint::scene::{Light, LightKind, Scene, TerrainSource, TerrainSpec};
+use lightpaint::shading::cpu::{ShadingInputs, SurfacePoint, shadowed_radiance};
+use lightpaint::shading::gpu_types::GpuLight;
+use lightpaint::shading::{LightPaths, ShadowSettings, TerrainShading};
 use lightpaint::terrain::{HeightField, HeightPyramid, TerrainShadow};
 
 const TERRAIN_PROJECT: &str = "projects/terrain/terrain.lightpaint";
@@ -35,7 +34,7 @@ fn gpu_and_cpu(
     shadows: &ShadowSettings,
     blockers: &[Sphere],
 ) -> f64 {
-    let settings = lightpaint::render::RenderSettings::default();
+    let settings = lightpaint::shading::RenderSettings::default();
     let frame = ShadowFrame {
         scene,
         camera,

@@ -6,6 +6,7 @@
 mod common;
 
 use common::editor::{drag_through, editor_on, viewport_pixels_differing};
+use common::snapshot::assert_looks_as_reviewed;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use lightpaint::project::Document;
@@ -420,11 +421,13 @@ fn selected_light_and_heat_map_look_as_reviewed() {
     harness.get_by_label("Rim left — spot").click();
     harness.run();
     park_pointer(&mut harness);
-    harness.snapshot("editor_light_selected");
+    let image = harness.render().expect("the editor renders");
+    assert_looks_as_reviewed(&image, "editor_light_selected");
     harness.get_by_label("heat map of where it reaches").click();
     harness.run();
     park_pointer(&mut harness);
-    harness.snapshot("editor_heat_map");
+    let image = harness.render().expect("the editor renders");
+    assert_looks_as_reviewed(&image, "editor_heat_map");
 }
 
 /// A new SH order compiles its shaders in the background: the editor keeps drawing the
@@ -518,4 +521,38 @@ fn lights_are_added_and_deleted_with_undo() {
     park_pointer(&mut harness);
     let undone = harness.render().expect("render");
     assert_eq!(viewport_pixels_differing(&before, &undone, viewport, ppp), 0);
+}
+
+/// The editor and `lightpaint render` draw through the same renderer: the viewport of a
+/// project and `render` of the same project at the viewport's size give the same pixels.
+#[test]
+fn the_editor_and_render_draw_the_same_pixels() {
+    for sample in [Sample::Sample, Sample::Studio] {
+        let Some((dir, project, mut harness)) = editor_on_copy(sample) else {
+            return;
+        };
+        let exported = dir.path().join("viewport.png");
+        harness.state_mut().export_png(&exported);
+        harness.run();
+        let viewport = image::open(&exported).expect("the viewport was exported").to_rgba8();
+        let rendered = dir.path().join("render.png");
+        let output = common::run_lightpaint(&[
+            "render".as_ref(),
+            project.as_os_str(),
+            "-o".as_ref(),
+            rendered.as_os_str(),
+            "--width".as_ref(),
+            viewport.width().to_string().as_ref(),
+            "--height".as_ref(),
+            viewport.height().to_string().as_ref(),
+        ]);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let rendered = image::open(&rendered).expect("render wrote a PNG").to_rgba8();
+        assert_eq!(rendered.dimensions(), viewport.dimensions());
+        let differing = viewport.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            differing, 0,
+            "{sample:?}: {differing} pixels differ between the editor and render"
+        );
+    }
 }

@@ -3,10 +3,10 @@
 
 use std::mem::{offset_of, size_of};
 
-use lightpaint::render::gpu_types::{
+use lightpaint::shading::gpu_types::{
     GpuBlocker, GpuBlockerGroup, GpuFrame, GpuLight, GpuMaterial, GpuShadowParams, GpuTerrainParams, GpuUpsampleParams,
 };
-use lightpaint::render::shaders;
+use lightpaint::shading::wgsl;
 
 /// (size, [(member name, offset)]) of a WGSL struct, as naga lays it out.
 fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
@@ -34,7 +34,7 @@ fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
 }
 
 fn assert_twin(name: &str, rust_size: usize, rust_offsets: &[(&str, usize)]) {
-    let (size, members) = wgsl_layout(&shaders::raster_source(), name);
+    let (size, members) = wgsl_layout(&wgsl::raster_source(), name);
     assert_eq!(size as usize, rust_size, "size of {name}");
     let wgsl_public: Vec<(String, u32)> = members.into_iter().filter(|(n, _)| !n.starts_with('_')).collect();
     assert_eq!(wgsl_public.len(), rust_offsets.len(), "{name}: fields {wgsl_public:?}");
@@ -93,7 +93,7 @@ fn material_matches_wgsl() {
 
 #[test]
 fn light_kind_tags_match_wgsl() {
-    use lightpaint::render::gpu_types::{LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+    use lightpaint::shading::gpu_types::{LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
     for (name, value) in [
         ("LIGHT_AREA", LIGHT_AREA),
         ("LIGHT_POINT", LIGHT_POINT),
@@ -101,19 +101,19 @@ fn light_kind_tags_match_wgsl() {
         ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
     ] {
         let line = format!("const {name}: u32 = {value}u;");
-        assert!(shaders::COMMON.contains(&line), "common.wgsl lacks `{line}`");
+        assert!(wgsl::COMMON.contains(&line), "common.wgsl lacks `{line}`");
     }
 }
 
 #[test]
 fn uniform_array_capacities_match_wgsl() {
-    use lightpaint::render::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+    use lightpaint::shading::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     for (name, value) in [
         ("UNIFORM_LIGHT_CAPACITY", UNIFORM_LIGHT_CAPACITY),
         ("UNIFORM_BLOCKER_CAPACITY", UNIFORM_BLOCKER_CAPACITY),
     ] {
         let line = format!("const {name}: u32 = {value}u;");
-        assert!(shaders::COMMON.contains(&line), "common.wgsl lacks `{line}`");
+        assert!(wgsl::COMMON.contains(&line), "common.wgsl lacks `{line}`");
     }
 }
 

@@ -2,8 +2,8 @@
 //! the raster module and the log-SH module at every real-time order and exponentiation
 //! method, and with each BRDF-in-SH variant.
 
-use lightpaint::render::{BrdfShading, shaders};
 use lightpaint::sh::ExpMethod;
+use lightpaint::shading::{BrdfShading, wgsl};
 
 fn validate(label: &str, source: &str) {
     let module =
@@ -18,17 +18,17 @@ fn validate(label: &str, source: &str) {
 
 #[test]
 fn raster_module_validates() {
-    validate("raster", &shaders::raster_source());
+    validate("raster", &wgsl::raster_source());
 }
 
 #[test]
 fn edge_filter_module_validates() {
-    validate("edge filter", shaders::EDGE_FILTER);
+    validate("edge filter", wgsl::EDGE_FILTER);
 }
 
 #[test]
 fn heat_map_module_validates() {
-    validate("heat map", &shaders::heat_map_source());
+    validate("heat map", &wgsl::heat_map_source());
 }
 
 #[test]
@@ -37,7 +37,7 @@ fn logsh_modules_validate_at_every_order_and_method() {
         for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {
             validate(
                 &format!("logsh order {order} {method:?}"),
-                &shaders::logsh_source(order, method, BrdfShading::Separate),
+                &wgsl::logsh_source(order, method, BrdfShading::Separate),
             );
         }
     }
@@ -50,7 +50,7 @@ fn logsh_modules_validate_with_the_brdf_in_the_sh_at_every_order() {
             for method in [ExpMethod::Hyb, ExpMethod::Ps(6)] {
                 validate(
                     &format!("logsh order {order} {method:?} {brdf:?}"),
-                    &shaders::logsh_source(order, method, brdf),
+                    &wgsl::logsh_source(order, method, brdf),
                 );
             }
         }

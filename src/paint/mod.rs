@@ -1,4 +1,4 @@
-//! The painting engine (Rozon 2009, design.md §4 "Light painting"): brushes, picking,
+//! The painting engine (Rozon 2009, shading-model.md §4 "Light painting"): brushes, picking,
 //! per-light stroke importance from the transfer (baked maps or the direct estimate),
 //! selection and modification strategies, constraints, a global non-negative solve, and
 //! an undo/redo history of replayable strokes. No GPU or UI code: the editor, the CLI and

@@ -5,7 +5,7 @@
 //!
 //! Two sources implement [`Transfer`]: [`BakedTransfer`] from the baked importance maps
 //! (direct and indirect light, exact visibility), and the renderer's direct-only estimate
-//! from the real-time log-SH visibility (`render::paint_estimate`), used before a bake.
+//! from the real-time log-SH visibility (`shading::paint_estimate`), used before a bake.
 
 use glam::Vec3;
 
@@ -148,7 +148,7 @@ mod tests {
     /// A white Lambertian floor 2 m under a point light. The map holds E·y(d) (E = cos θ/d²
     /// is not applied: E_facing = 1/d²), so ⟨I, cos⁺/π⟩ is, by Funk–Hecke, the order-4
     /// truncation of cos⁺/π at d: Σ_l z_l·√((2l+1)/4π)·P_l(cos θ)/d², with the clamped
-    /// cosine ZH [0.282095, 0.325735, 0.157696, 0] of design.md §4.
+    /// cosine ZH [0.282095, 0.325735, 0.157696, 0] of shading-model.md §4.
     #[test]
     fn a_lambertian_floor_under_a_point_light_has_the_closed_form_transfer() {
         let scene = Scene::lambert_floor_under_point_light(4, Vec3::new(0.0, 2.0, 0.0), 1.0);

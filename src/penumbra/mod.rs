@@ -1,4 +1,4 @@
-//! Shadows beyond the SH band limit (design.md §4b): for a light that subtends a small
+//! Shadows beyond the SH band limit (shading-model.md §4b): for a light that subtends a small
 //! angle, its visibility from a receiver is computed per light, exactly for each sphere
 //! blocker — the share of the light's disc the blocker's cap hides ([`hidden_fraction`]) —
 //! and combined over blockers in log space, ln V = Σ_b ln(1 − f_b) (blockers are taken as

@@ -5,12 +5,11 @@ use std::path::{Path, PathBuf};
 
 use super::atomic::write_atomically;
 use super::error::ProjectError;
-use super::file::{
-    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, PaintingState, ProjectFile, SceneReference,
-    read_project_file,
-};
-use crate::render::RenderSettings;
+use super::file::{EnvironmentReference, PROJECT_EXTENSION, ProjectFile, SceneReference, read_project_file};
+use super::migrate::FORMAT_VERSION;
+use super::painting_state::PaintingState;
 use crate::scene::{Environment, OrbitCamera, Scene};
+use crate::shading::RenderSettings;
 
 #[derive(Debug, Clone)]
 pub struct Document {
@@ -41,6 +40,12 @@ pub fn is_project_path(path: &Path) -> bool {
 }
 
 impl Document {
+    /// The camera the document is viewed from: the project's saved one, else the scene's
+    /// initial orbit. The editor, `render`, `paint` and the study all look through it.
+    pub fn view(&self) -> crate::scene::OrbitCamera {
+        self.camera.unwrap_or_else(|| self.scene.initial_orbit())
+    }
+
     /// Opens a project file or, for .gltf/.glb, a new document on that scene.
     pub fn open(path: &Path) -> Result<Document, ProjectError> {
         if is_project_path(path) {

@@ -8,12 +8,10 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::error::{Problem, ProjectError};
-use crate::paint::{Brush, PaintSettings, StrokeRecord};
-use crate::render::RenderSettings;
+use super::migrate::FORMAT_VERSION;
+use super::painting_state::PaintingState;
 use crate::scene::{Light, OrbitCamera, TerrainSpec};
-
-/// The format this build writes and the newest it reads.
-pub const FORMAT_VERSION: u64 = 8;
+use crate::shading::RenderSettings;
 
 /// Extension of project files.
 pub const PROJECT_EXTENSION: &str = "lightpaint";
@@ -47,16 +45,6 @@ pub struct ProjectFile {
     /// replace the glTF's names.
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub object_names: std::collections::BTreeMap<usize, String>,
-}
-
-/// The painting state a project restores: the applied strokes (oldest first, replayable)
-/// and the brush and strategies the artist had chosen.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct PaintingState {
-    pub strokes: Vec<StrokeRecord>,
-    pub brush: Option<Brush>,
-    pub settings: PaintSettings,
 }
 
 /// An environment light: an equirectangular HDR image, scaled and turned about +y.

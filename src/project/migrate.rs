@@ -1,4 +1,4 @@
-//! Migrations of older project formats to [`super::FORMAT_VERSION`], one step per version,
+//! Migrations of older project formats to [`FORMAT_VERSION`], one step per version,
 //! applied to the parsed JSON before it is read into [`super::ProjectFile`].
 //!
 //! Format history:
@@ -31,10 +31,13 @@
 
 use serde_json::Value;
 
+/// The format this build writes and the newest it reads: the one the migrations lead to.
+pub const FORMAT_VERSION: u64 = 8;
+
 /// Brings `value`, a project of format `version` (1 ≤ version ≤ current), to the current
 /// format, one step at a time.
 pub fn to_current(mut value: Value, version: u64) -> Value {
-    debug_assert!((1..=super::FORMAT_VERSION).contains(&version));
+    debug_assert!((1..=FORMAT_VERSION).contains(&version));
     if version < 2 {
         value = v1_to_v2(value);
     }
@@ -61,7 +64,7 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
 
 fn v7_to_v8(mut value: Value) -> Value {
     // Format 7 had no budget: every small light could go exact.
-    let unlimited = crate::render::MAX_EXACT_LIGHT_BUDGET;
+    let unlimited = crate::shading::MAX_EXACT_LIGHT_BUDGET;
     set_shadow_setting(&mut value, "exact_light_budget", Value::from(unlimited));
     set_format(&mut value, 8);
     value
@@ -121,7 +124,7 @@ fn v3_to_v4(mut value: Value) -> Value {
 
 fn v2_to_v3(mut value: Value) -> Value {
     if let Some(object) = value.as_object_mut() {
-        let painting = serde_json::to_value(super::file::PaintingState::default()).unwrap_or(Value::Null);
+        let painting = serde_json::to_value(super::painting_state::PaintingState::default()).unwrap_or(Value::Null);
         object.entry("painting").or_insert(painting);
         object.insert("format_version".into(), Value::from(3));
     }
@@ -129,7 +132,7 @@ fn v2_to_v3(mut value: Value) -> Value {
 }
 
 fn v1_to_v2(mut value: Value) -> Value {
-    let defaults = serde_json::to_value(crate::render::RenderSettings::default()).unwrap_or(Value::Null);
+    let defaults = serde_json::to_value(crate::shading::RenderSettings::default()).unwrap_or(Value::Null);
     if let (Some(render), Some(defaults)) = (
         value.get_mut("render").and_then(Value::as_object_mut),
         defaults.as_object(),
@@ -157,11 +160,11 @@ mod tests {
         });
         let v2 = v1_to_v2(v1);
         assert_eq!(v2["format_version"], 2);
-        let render: crate::render::RenderSettings =
+        let render: crate::shading::RenderSettings =
             serde_json::from_value(v2["render"].clone()).expect("format 2 render settings");
         assert_eq!(render.exposure_ev, 0.5);
         assert_eq!(render.background_srgb8, [1, 2, 3]);
-        assert_eq!(render.shadows, crate::render::ShadowSettings::default());
+        assert_eq!(render.shadows, crate::shading::ShadowSettings::default());
         assert_eq!(render.blockers, crate::blockers::BlockerSettings::default());
         assert_eq!(render.viewport_resolution_scale, 1.0);
     }

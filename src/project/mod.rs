@@ -7,12 +7,14 @@ mod document;
 mod error;
 mod file;
 mod migrate;
+mod painting_state;
 pub mod sphere_cache;
 
 pub use atomic::{backup_path, replace_atomically, write_atomically, write_atomically_with};
 pub use document::{Document, is_project_path};
 pub use error::{Problem, ProjectError};
 pub use file::{
-    EnvironmentReference, FORMAT_VERSION, PROJECT_EXTENSION, PaintingState, ProjectFile, SceneReference, parse_project,
-    read_project_file,
+    EnvironmentReference, PROJECT_EXTENSION, ProjectFile, SceneReference, parse_project, read_project_file,
 };
+pub use migrate::FORMAT_VERSION;
+pub use painting_state::PaintingState;

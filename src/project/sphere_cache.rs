@@ -64,6 +64,15 @@ pub fn save(path: &Path, scene: &Scene, settings: &BlockerSettings, blockers: &S
     super::replace_atomically(path, &bytes)
 }
 
+/// The sphere fit cached beside `project` when it is fresh, else a new fit — without
+/// writing a cache (what `render` and `paint` use: the same blockers the editor draws).
+pub fn cached_or_fitted(scene: &Scene, settings: &BlockerSettings, project: Option<&Path>) -> SceneBlockers {
+    project
+        .map(cache_path)
+        .and_then(|p| load(&p, scene, settings))
+        .unwrap_or_else(|| fit_scene(scene, settings))
+}
+
 /// The sphere fit of `scene`: read from the cache of `project` when it is fresh, else
 /// fitted and (for a project) written there. A cache that cannot be written is left out
 /// silently: the fit itself is all the caller needs.

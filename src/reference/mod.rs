@@ -78,7 +78,7 @@ impl ReferenceImage {
             .iter()
             .zip(&self.coverage)
             .flat_map(|(radiance, &coverage)| {
-                let shaded = crate::render::display_srgb8(*radiance, exposure_ev);
+                let shaded = crate::shading::display_srgb8(*radiance, exposure_ev);
                 let blend = |k: usize| {
                     (shaded[k] as f64 * coverage + background_srgb8[k] as f64 * (1.0 - coverage)).round() as u8
                 };

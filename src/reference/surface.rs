@@ -6,8 +6,8 @@
 use glam::{DVec3, Vec2, Vec3};
 
 use crate::bake::scene_bvh::Hit;
-use crate::render::srgb_to_linear;
 use crate::scene::{Material, Reflectance, Scene, TextureImage};
+use crate::shading::srgb_to_linear;
 
 /// A point where a ray met a surface.
 #[derive(Debug, Clone, Copy, PartialEq)]

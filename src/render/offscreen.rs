@@ -4,18 +4,19 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::cpu::{self, ShadingInputs, SurfacePoint};
-use super::gpu_types::{GpuLight, environment_irradiance};
-use super::logsh::{
-    GpuBlockers, LogShPipeline, SURFACE_FORMAT, Shading, draw_objects, shadow_layout, surface_pipelines,
-};
-use super::per_vertex::VertexVisibility;
-use super::pipeline::{COLOR_FORMAT, SAMPLE_COUNT, SceneLayouts, ScenePipeline};
-use super::reduced_shading::LowResolutionTargets;
+use super::descriptors::SAMPLE_COUNT;
+use super::passes::logsh::{SURFACE_FORMAT, surface_pipelines};
+use super::passes::raster::ScenePipeline;
+use super::readback::{read_target_image, read_texture};
+use super::renderer::{Compilation, FrameQuality, SceneRenderer};
+use super::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_objects, shadow_layout};
 use super::target::{AntiAliasing, RenderTarget};
-use super::{BakedIndirect, GpuContext, GpuScene, RenderError, RenderSettings, ShadowSettings};
+use super::{GpuContext, RenderError};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
+use crate::shading::cpu::{self, ShadingInputs, SurfacePoint};
+use crate::shading::gpu_types::{GpuLight, environment_irradiance};
+use crate::shading::{BakedIndirect, RenderSettings, ShadowSettings};
 
 /// Largest image side accepted by the renderers (lavapipe's 2D texture limit).
 pub const MAX_IMAGE_SIDE: u32 = 16384;
@@ -116,11 +117,11 @@ pub struct ShadowFrame<'a> {
 }
 
 impl ShadowFrame<'_> {
-    /// The scene's lights as this frame shades them (`render::shading_lights`, weighing
+    /// The scene's lights as this frame shades them (`shading::shading_lights`, weighing
     /// this frame's scene and blockers).
     pub fn shading_lights(&self) -> Vec<GpuLight> {
-        let context = super::LightPathContext::of_scene(self.scene, self.blockers);
-        super::shading_lights(&self.scene.lights, self.shadows, &context)
+        let context = crate::shading::LightPathContext::of_scene(self.scene, self.blockers);
+        crate::shading::shading_lights(&self.scene.lights, self.shadows, &context)
     }
 
     fn check(&self, gpu: &GpuContext) -> Result<(), RenderError> {
@@ -142,17 +143,14 @@ pub fn render_logsh_image(
     ShadowRenderer::new(gpu, frame, anti_aliasing)?.read_image()
 }
 
-/// Everything a log-SH frame needs, uploaded once, so frames can be drawn repeatedly
-/// (benchmarks, the study).
+/// A log-SH frame, set up once in the [`SceneRenderer`] the editor draws with too, so it
+/// can be drawn repeatedly (benchmarks, the study, `render --time-frames`).
 pub struct ShadowRenderer<'a> {
     gpu: &'a GpuContext,
-    pipeline: LogShPipeline,
-    gpu_scene: GpuScene,
-    blockers: GpuBlockers,
-    visibility: Option<VertexVisibility>,
-    low_resolution: Option<LowResolutionTargets>,
-    target: RenderTarget,
-    background: [f64; 3],
+    renderer: SceneRenderer,
+    camera: Camera,
+    size: [u32; 2],
+    settings: RenderSettings,
 }
 
 impl<'a> ShadowRenderer<'a> {
@@ -162,68 +160,50 @@ impl<'a> ShadowRenderer<'a> {
         anti_aliasing: AntiAliasing,
     ) -> Result<ShadowRenderer<'a>, RenderError> {
         frame.check(gpu)?;
-        let samples = anti_aliasing.samples();
-        let layouts = SceneLayouts::new(&gpu.device);
-        let lights = frame.shading_lights();
-        let paths = super::compiled_paths(&lights, super::SceneLighting::of(frame.scene), frame.blockers.len());
-        let pipeline = LogShPipeline::new(&gpu.device, &layouts, frame.shadows, samples, paths);
-        let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, frame.scene);
-        gpu_scene.update_lights(&gpu.device, &gpu.queue, &layouts, &lights);
-        gpu_scene.set_baked_indirect(&gpu.queue, frame.baked_indirect);
-        let blockers = GpuBlockers::upload(
+        let mut renderer = SceneRenderer::new(
             &gpu.device,
             &gpu.queue,
-            &pipeline.shadow_layout,
+            frame.scene,
             frame.blockers,
-            frame.scene.terrain.as_ref().map(|t| &t.field),
             frame.shadows,
+            anti_aliasing,
+            Compilation::Blocking,
         );
-        let target = RenderTarget::with_anti_aliasing(&gpu.device, frame.width, frame.height, anti_aliasing);
-        gpu_scene.write_frame(
-            &gpu.queue,
-            frame.camera,
-            [frame.width, frame.height],
-            frame.settings.exposure_ev,
-        );
-        let visibility = if frame.shadows.per_vertex {
-            pipeline.vertex_visibility(&gpu.device, &gpu_scene)
-        } else {
-            None
+        renderer.set_baked_indirect(frame.baked_indirect);
+        let settings = RenderSettings {
+            shadows: *frame.shadows,
+            ..*frame.settings
         };
-        let low_resolution = pipeline.low_resolution_targets(&gpu.device, [target.width, target.height], None);
         Ok(ShadowRenderer {
             gpu,
-            pipeline,
-            gpu_scene,
-            blockers,
-            visibility,
-            low_resolution,
-            target,
-            background: frame.settings.background_linear(),
+            renderer,
+            camera: frame.camera.clone(),
+            size: [frame.width, frame.height],
+            settings,
         })
     }
 
-    fn encode_frame(&self) -> wgpu::CommandEncoder {
-        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        self.pipeline.draw(
-            &mut encoder,
-            &self.target,
-            &self.gpu_scene,
-            &self.blockers,
-            self.background,
-            Shading::first_of(self.visibility.as_ref(), self.low_resolution.as_ref()),
-        );
-        encoder
+    fn draw(&mut self) {
+        self.renderer
+            .render(&self.camera, self.size, &self.settings, FrameQuality::default());
     }
 
     /// Draws one frame and reads it back.
-    pub fn read_image(&self) -> Result<image::RgbaImage, RenderError> {
-        read_color(self.gpu, self.encode_frame(), &self.target)
+    pub fn read_image(&mut self) -> Result<image::RgbaImage, RenderError> {
+        self.draw();
+        self.renderer
+            .read_image()
+            .unwrap_or_else(|| Err(RenderError::Readback("no frame was drawn".into())))
     }
 
     /// Draws one frame and waits until the GPU has finished it.
-    pub fn draw_and_wait(&self) -> Result<(), RenderError> {
-        submit_and_wait(self.gpu, self.encode_frame())
+    pub fn draw_and_wait(&mut self) -> Result<(), RenderError> {
+        self.draw();
+        self.gpu
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| RenderError::Readback(e.to_string()))
     }
 }
 
@@ -329,7 +309,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         .scene
         .terrain
         .as_ref()
-        .map(|t| super::gpu_terrain::terrain_shadow(&t.field, frame.shadows));
+        .map(|t| crate::shading::terrain::terrain_shadow(&t.field, frame.shadows));
     let inputs = ShadingInputs {
         lights: &lights,
         environment_irradiance: &environment,
@@ -337,7 +317,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         terrain: terrain.as_ref(),
         settings: frame.shadows,
         eye: frame.camera.position.as_dvec3(),
-        pixel_angle_rad: super::gpu_types::pixel_angle_rad(frame.camera, frame.height),
+        pixel_angle_rad: crate::shading::gpu_types::pixel_angle_rad(frame.camera, frame.height),
     };
     let exposure = frame.settings.exposure_ev as f64;
     let background = frame.settings.background_srgb8;
@@ -345,7 +325,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         .par_iter()
         .flat_map_iter(|surface| {
             let rgb = match surface {
-                Some(s) => super::display_srgb8(cpu::shadowed_radiance(s, &inputs), exposure),
+                Some(s) => crate::shading::display_srgb8(cpu::shadowed_radiance(s, &inputs), exposure),
                 None => background,
             };
             [rgb[0], rgb[1], rgb[2], 255]
@@ -372,78 +352,4 @@ fn read_color(
     target: &RenderTarget,
 ) -> Result<image::RgbaImage, RenderError> {
     read_target_image(&gpu.device, &gpu.queue, encoder, target)
-}
-
-/// Submits `encoder` and reads `target`'s displayed (resolved, sRGB) colour back as an
-/// image — what the editor's viewport shows, for exporting it.
-pub fn read_target_image(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    encoder: wgpu::CommandEncoder,
-    target: &RenderTarget,
-) -> Result<image::RgbaImage, RenderError> {
-    debug_assert_eq!(COLOR_FORMAT.block_copy_size(None), Some(4));
-    let pixels = read_texture(device, queue, encoder, &target.color, 4, target.width, target.height)?;
-    image::RgbaImage::from_raw(target.width, target.height, pixels)
-        .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
-}
-
-/// Submits `encoder` plus a copy of `texture` to the CPU (rows padded to wgpu's 256-byte
-/// alignment on the way, unpadded here) and returns its bytes.
-fn read_texture(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    mut encoder: wgpu::CommandEncoder,
-    texture: &wgpu::Texture,
-    bytes_per_pixel: u32,
-    width: u32,
-    height: u32,
-) -> Result<Vec<u8>, RenderError> {
-    let row_bytes = bytes_per_pixel * width;
-    let padded_row_bytes = row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: (padded_row_bytes * height) as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded_row_bytes),
-                rows_per_image: Some(height),
-            },
-        },
-        wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-    );
-    queue.submit([encoder.finish()]);
-
-    let (sender, receiver) = std::sync::mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |result| {
-        let _ = sender.send(result);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let mapped = buffer
-        .get_mapped_range(..)
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let mut bytes = Vec::with_capacity((row_bytes * height) as usize);
-    for row in mapped.chunks_exact(padded_row_bytes as usize) {
-        bytes.extend_from_slice(&row[..row_bytes as usize]);
-    }
-    drop(mapped);
-    buffer.unmap();
-    Ok(bytes)
 }

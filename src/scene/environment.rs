@@ -1,5 +1,5 @@
 //! Environment lighting from an equirectangular HDR image, kept as order-3 SH of radiance
-//! (9 RGB coefficients, world axes, design.md conventions) — enough for diffuse light,
+//! (9 RGB coefficients, world axes, shading-model.md conventions) — enough for diffuse light,
 //! whose clamped-cosine filter leaves under 1 % of the energy above band 2.
 
 use std::f64::consts::PI;

@@ -1,6 +1,6 @@
 //! The scene model: what the renderer, the bake and the painting engine all read.
 //!
-//! Conventions (design.md §3): world space is glTF's (right-handed, +y up, metres);
+//! Conventions (shading-model.md §3): world space is glTF's (right-handed, +y up, metres);
 //! colours are linear RGB; light units follow KHR_lights_punctual (point and spot lights in
 //! candela, directional lights in lux).
 
@@ -141,6 +141,15 @@ impl Scene {
     /// The camera to open the scene with: the glTF camera, or one framing the bounds.
     pub fn initial_camera(&self) -> Camera {
         self.camera.clone().unwrap_or_else(|| Camera::framing(&self.bounds()))
+    }
+
+    /// The orbit camera matching [`Self::initial_camera`], pivoting at the distance of
+    /// the scene's centre: what the editor and the CLI view a project without a saved
+    /// camera from.
+    pub fn initial_orbit(&self) -> OrbitCamera {
+        let camera = self.initial_camera();
+        let pivot = (self.bounds().center() - camera.position).length().max(0.1);
+        OrbitCamera::from_camera(&camera, pivot)
     }
 }
 

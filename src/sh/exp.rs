@@ -33,7 +33,7 @@ pub fn hyb_threshold(order: usize) -> f64 {
 }
 
 /// How to exponentiate an SH vector; see the module documentation.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum ExpMethod {
     Dc,
     Ol,

@@ -4,7 +4,7 @@
 //!
 //! The lobe of normalised Phong exponent r about its axis is f(t) = (r+1)/(2π) · t^r for
 //! t = cos θ > 0 and 0 below; r = 1 is the diffuse lobe cos θ/π. Its log lobe follows
-//! design.md §4: ln max(f(t), ε), so ln ε where the lobe is below ε (the whole lower
+//! shading-model.md §4: ln max(f(t), ε), so ln ε where the lobe is below ε (the whole lower
 //! hemisphere). Both are projected through the monomial moments m_k = ∫₋₁¹ g(t) t^k dt,
 //! which have closed forms for any real r, and the monomial coefficients a_lk of the
 //! Legendre polynomials: z_l = 2π √((2l+1)/(4π)) Σ_k a_lk m_k. The shaders evaluate the
@@ -64,7 +64,7 @@ pub fn phong_lobe_zh(order: usize, exponent: f64) -> Vec<f64> {
     zh_from_moments(order, &moments)
 }
 
-/// ZH of ln max((r+1)/(2π) · cos^r θ, ε) on the upper hemisphere and ln ε below (design.md
+/// ZH of ln max((r+1)/(2π) · cos^r θ, ε) on the upper hemisphere and ln ε below (shading-model.md
 /// §4's log-BRDF; r = 1 is its diffuse ln max(cos θ/π, ε)). With the peak P = (r+1)/(2π),
 /// q = min(ln(ε/P), 0) and the kink t₀ = e^{q/r} where the lobe meets ε:
 /// m_k = ln ε ∫₋₁^{t₀} t^k + ln P ∫_{t₀}^1 t^k + r ∫_{t₀}^1 t^k ln t
@@ -98,7 +98,7 @@ fn log_lobe_moments(order: usize, exponent: f64, epsilon: f64) -> Vec<f64> {
 pub const LOG_LOBE_MIN_EXPONENT: f64 = 1e-6;
 
 /// The sharpest Phong exponent an order's SH carry without visibly blurring the highlight:
-/// (order/2)², which matches the measured captures of ../shared/papers (order 4 resolves
+/// (order/2)², which matches Ren et al. 2006's observation that low orders carry only broad lobes (order 4 resolves
 /// exponents up to about 4, order 8 up to about 16). Sharper lobes keep their exact
 /// per-light specular, through the visibility averaged over the light.
 pub fn max_carried_phong_exponent(order: usize) -> f64 {

@@ -98,7 +98,7 @@ pub fn rotate_zh(zh: &[f64], dir: DVec3) -> Vec<f64> {
     out
 }
 
-/// Log-visibility of spherical blockers seen from one receiver (design.md §4): the sum over
+/// Log-visibility of spherical blockers seen from one receiver (shading-model.md §4): the sum over
 /// caps (unit direction to the blocker's centre, half-angle in radians) of ln ε times the
 /// cap's indicator ZH rotated to that direction.
 pub fn log_visibility(order: usize, caps: &[(DVec3, f64)], epsilon: f64) -> Vec<f64> {

@@ -6,8 +6,8 @@
 //! reference, with and without the bake's indirect light.
 
 use crate::blockers::SphereBudget;
-use crate::render::{BrdfShading, ShadowSettings};
 use crate::sh::ExpMethod;
+use crate::shading::{BrdfShading, ShadowSettings};
 
 /// One point of the grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,13 +41,13 @@ impl Knobs {
         if s.per_vertex {
             label.push_str("-vertex");
         }
-        if s.brdf != crate::render::BrdfShading::Separate {
+        if s.brdf != crate::shading::BrdfShading::Separate {
             label.push_str(&format!("-{}-brdf", s.brdf.name()));
         }
         if let SphereBudget::Total(n) = self.blockers {
             label.push_str(&format!("-s{n}"));
         }
-        if s.terrain != crate::render::TerrainShading::default() {
+        if s.terrain != crate::shading::TerrainShading::default() {
             label.push_str(&format!("-w{}-l{}", s.terrain.azimuths, s.terrain.pyramid_levels));
         }
         match self.lighting {

@@ -7,7 +7,7 @@
 //!   11 × 11 Gaussian window (σ = 1.5) and C1 = (0.01)², C2 = (0.03)²;
 //! - shadow RMSE: the RMSE over the pixels a mask marks as shadowed.
 
-use crate::render::srgb_to_linear;
+use crate::shading::srgb_to_linear;
 
 /// A display image as decoded linear values in [0, 1], row-major RGB.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,7 +86,7 @@ fn luma(image: &DisplayImage) -> Vec<f64> {
     image
         .luminance()
         .into_iter()
-        .map(crate::render::linear_to_srgb)
+        .map(crate::shading::linear_to_srgb)
         .collect()
 }
 

@@ -25,13 +25,14 @@ use std::time::Instant;
 use crate::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use crate::project::{Document, ProjectError};
 use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
-use crate::render::cpu::SurfacePoint;
 use crate::render::{
-    AntiAliasing, BakedIndirect, GpuContext, RasterRenderer, RenderError, RenderSettings, ShadowFrame, ShadowRenderer,
-    ShadowSettings, capture_surfaces, shade_surfaces,
+    AntiAliasing, GpuContext, RasterRenderer, RenderError, ShadowFrame, ShadowRenderer, capture_surfaces,
+    shade_surfaces,
 };
 use crate::samples::Sample;
 use crate::scene::{Camera, Scene};
+use crate::shading::cpu::SurfacePoint;
+use crate::shading::{BakedIndirect, RenderSettings, ShadowSettings};
 use grid::{Knobs, Lighting, knob_grid};
 use metrics::{DisplayImage, ImageErrors, image_errors};
 
@@ -157,7 +158,7 @@ pub struct StudyResults {
     /// Small lights over mesh blockers: the exact path's error by sphere budget.
     pub sphere_fit: Vec<sphere_fit::SphereFitRow>,
     /// ms per frame of 8 small lights and 50 blockers, by path, at `cost_size`² pixels.
-    pub eight_light_cost: Vec<(crate::render::LightPaths, f64)>,
+    pub eight_light_cost: Vec<(crate::shading::LightPaths, f64)>,
     pub cost_size: u32,
     pub stability_size: (u32, u32),
 }
@@ -193,10 +194,7 @@ pub fn run_study(
     };
     for sample in options.scenes() {
         let document = Document::open(&sample.write(scratch.path())?)?;
-        let camera = document
-            .camera
-            .map(|c| c.camera())
-            .unwrap_or_else(|| document.scene.initial_camera());
+        let camera = document.view().camera();
         let scene_study = SceneStudy {
             gpu,
             name: sample.name(),
@@ -417,7 +415,7 @@ impl SceneStudy<'_> {
     /// shading of the captured surfaces with no blockers (G = 1, the raster pass's
     /// shading exactly).
     fn unshadowed(&self) -> Result<image::RgbaImage, StudyError> {
-        let shadows = crate::render::ShadowSettings::default();
+        let shadows = crate::shading::ShadowSettings::default();
         let frame = ShadowFrame {
             baked_indirect: None,
             scene: self.scene,
@@ -480,7 +478,7 @@ impl SceneStudy<'_> {
             let image = shade_surfaces(&self.surfaces, &frame)?;
             return Ok((image, started.elapsed().as_secs_f64() * 1000.0, blockers.len()));
         }
-        let renderer = ShadowRenderer::new(self.gpu, &frame, AntiAliasing::None)?;
+        let mut renderer = ShadowRenderer::new(self.gpu, &frame, AntiAliasing::None)?;
         let image = renderer.read_image()?;
         let ms = mean_frame_ms(self.frames, || renderer.draw_and_wait())?;
         Ok((image, ms, blockers.len()))
@@ -488,7 +486,7 @@ impl SceneStudy<'_> {
 }
 
 /// Mean milliseconds of `frames` (at least one) calls of `draw`.
-fn mean_frame_ms(frames: u32, draw: impl Fn() -> Result<(), RenderError>) -> Result<f64, StudyError> {
+fn mean_frame_ms(frames: u32, mut draw: impl FnMut() -> Result<(), RenderError>) -> Result<f64, StudyError> {
     let started = Instant::now();
     for _ in 0..frames.max(1) {
         draw()?;

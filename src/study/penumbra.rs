@@ -20,12 +20,11 @@ use rayon::prelude::*;
 use super::StudyError;
 use crate::blockers::Sphere;
 use crate::reference::{ProgressiveRender, SurfaceHit};
-use crate::render::cpu::{self, ShadingInputs, SurfacePoint};
-use crate::render::gpu_types::environment_irradiance;
-use crate::render::{
-    AntiAliasing, GpuContext, LightPaths, RenderSettings, ShadowFrame, ShadowRenderer, ShadowSettings, capture_surfaces,
-};
+use crate::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, capture_surfaces};
 use crate::scene::{Camera, Environment, Light, LightKind, Material, Scene, luminance, shapes};
+use crate::shading::cpu::{self, ShadingInputs, SurfacePoint};
+use crate::shading::gpu_types::environment_irradiance;
+use crate::shading::{LightPaths, RenderSettings, ShadowSettings};
 
 /// Light radii measured (degrees, at the floor's centre).
 pub const LIGHT_HALF_ANGLES_DEG: [f64; 5] = [1.0, 5.0, 15.0, 40.0, 60.0];
@@ -284,8 +283,8 @@ pub(super) fn compare(
     blockers: &[Sphere],
     camera: &Camera,
 ) -> PenumbraRow {
-    let context = crate::render::LightPathContext::of_scene(scene, blockers);
-    let lights = crate::render::shading_lights(&scene.lights, shadows, &context);
+    let context = crate::shading::LightPathContext::of_scene(scene, blockers);
+    let lights = crate::shading::shading_lights(&scene.lights, shadows, &context);
     let environment = environment_irradiance(scene.environment.as_ref());
     let inputs = ShadingInputs {
         lights: &lights,
@@ -360,7 +359,7 @@ fn frame_ms(
         width: size,
         height: size,
     };
-    let renderer = ShadowRenderer::new(gpu, &frame, AntiAliasing::None)?;
+    let mut renderer = ShadowRenderer::new(gpu, &frame, AntiAliasing::None)?;
     renderer.draw_and_wait()?;
     super::mean_frame_ms(frames, || renderer.draw_and_wait())
 }

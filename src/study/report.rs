@@ -152,9 +152,9 @@ fn penumbra_markdown(results: &StudyResults) -> String {
             "| {} | {} | {} | {:.4} | {} | {:.3} | {:.1} | {:.4} |",
             r.light,
             match r.path {
-                crate::render::LightPaths::Exact => "exact",
-                crate::render::LightPaths::Harmonics => "SH",
-                crate::render::LightPaths::Auto => "auto",
+                crate::shading::LightPaths::Exact => "exact",
+                crate::shading::LightPaths::Harmonics => "SH",
+                crate::shading::LightPaths::Auto => "auto",
             },
             r.penumbra_pixels,
             r.penumbra_rms,
@@ -236,7 +236,7 @@ fn scene_names(results: &StudyResults) -> Vec<String> {
 /// Side-by-side images are written for the defaults, the baseline and each method at the
 /// default order.
 pub fn wants_side_by_side(knobs: &Knobs) -> bool {
-    let defaults = crate::render::ShadowSettings::default();
+    let defaults = crate::shading::ShadowSettings::default();
     match knobs.shadows {
         None => true,
         Some(s) => {
@@ -371,7 +371,7 @@ fn draw_pareto(results: &StudyResults, scenes: &[String], pixels: &mut [u8], siz
             .map_err(|e| e.to_string())?;
         for (name, exp) in LEGEND {
             let knobs = Knobs {
-                shadows: exp.map(|exp| crate::render::ShadowSettings {
+                shadows: exp.map(|exp| crate::shading::ShadowSettings {
                     exp,
                     ..Default::default()
                 }),

@@ -12,8 +12,9 @@ use glam::{Affine3A, Quat, Vec3};
 use super::StudyError;
 use super::penumbra::{References, compare, floor_scene, overhead_camera, size_and_spp, sphere_light};
 use crate::blockers::{BlockerSettings, SphereBudget, fit_scene};
-use crate::render::{GpuContext, LightPaths, ShadowSettings, capture_surfaces};
+use crate::render::{GpuContext, capture_surfaces};
 use crate::scene::{MeshObject, shapes};
+use crate::shading::{LightPaths, ShadowSettings};
 
 /// The light measured: small enough that the SH path cannot draw its penumbra (§4b).
 pub const LIGHT_HALF_ANGLE_DEG: f64 = 5.0;

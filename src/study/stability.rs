@@ -9,13 +9,13 @@
 use glam::{DVec3, Vec3};
 
 use crate::blockers::Sphere;
-use crate::render::cpu::{self, ShadingInputs};
 use crate::render::{
-    AntiAliasing, GpuContext, RenderError, RenderSettings, ShadowFrame, ShadowSettings, capture_surfaces,
-    render_logsh_image, shade_surfaces,
+    AntiAliasing, GpuContext, RenderError, ShadowFrame, capture_surfaces, render_logsh_image, shade_surfaces,
 };
 use crate::scene::{Camera, Light, LightKind, Material, Scene, shapes};
 use crate::sh::ExpMethod;
+use crate::shading::cpu::{self, ShadingInputs};
+use crate::shading::{RenderSettings, ShadowSettings};
 
 /// One extreme: a floor, its light, the blockers and the shadow settings.
 pub struct StabilityCase {
@@ -148,7 +148,7 @@ pub fn measure(
         terrain: None,
         settings: &case.shadows,
         eye: case.camera.position.as_dvec3(),
-        pixel_angle_rad: crate::render::gpu_types::pixel_angle_rad(&case.camera, height),
+        pixel_angle_rad: crate::shading::gpu_types::pixel_angle_rad(&case.camera, height),
     };
     let unlit = ShadingInputs {
         blockers: &[],

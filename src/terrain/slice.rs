@@ -4,7 +4,7 @@
 //! Along one azimuth, the directions from zenith angle π/2 − σ down to the nadir are
 //! blocked by a horizon of elevation σ. In z = cos θ that is the interval [−1, sin σ], and
 //! its coefficients in the orthonormal basis P̂_l(z) = √((2l+1)/2)·P_l(z) of [−1, 1] are
-//! v̄_l(σ) = ∫_{−1}^{sin σ} P̂_l(z) dz. For order 4 (design.md §4):
+//! v̄_l(σ) = ∫_{−1}^{sin σ} P̂_l(z) dz. For order 4 (shading-model.md §4):
 //! v̄(σ) = [(sin σ + 1)/√2, −3cos²σ/(2√6), −5 sin σ cos²σ/(2√10), 7cos²σ(5cos²σ − 4)/(8√14)].
 
 use crate::sh::legendre_derivative;
@@ -48,7 +48,7 @@ mod tests {
     use super::*;
     use crate::sh::gauss_legendre;
 
-    /// The order-4 closed form printed in design.md §4, written out independently.
+    /// The order-4 closed form printed in shading-model.md §4, written out independently.
     fn printed_closed_form(sigma: f64) -> [f64; 4] {
         let (s, c) = sigma.sin_cos();
         let c2 = c * c;

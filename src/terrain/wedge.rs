@@ -120,7 +120,7 @@ mod tests {
     #[test]
     fn constant_horizon_gives_the_zonal_slice_times_root_two_pi() {
         // Every azimuth at the same σ: the wedge sum is zonal with m = 0 entries
-        // √(2π)·v̄_l(σ), for W = 8 and 16 (design.md §4).
+        // √(2π)·v̄_l(σ), for W = 8 and 16 (shading-model.md §4).
         for azimuths in [8, 16] {
             let op = WedgeOperator::new(4, azimuths);
             for sigma in [-0.7f64, 0.0, 0.3, 1.2] {
@@ -143,7 +143,7 @@ mod tests {
 
     #[test]
     fn flat_ground_log_zh_matches_the_printed_values() {
-        // ε = 0.1, all horizons at 0: [−4.0812, 3.5344, 0, −1.3497] (design.md §4).
+        // ε = 0.1, all horizons at 0: [−4.0812, 3.5344, 0, −1.3497] (shading-model.md §4).
         let op = WedgeOperator::new(4, 8);
         let log_slice: Vec<f64> = slice_vector(4, 0.0).iter().map(|v| 0.1f64.ln() * v).collect();
         let sum = op.sum_wedges(&vec![log_slice; 8]);

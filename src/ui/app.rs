@@ -34,6 +34,13 @@ pub struct EditorOptions {
 /// wait for it before they look at the window.
 pub const FIRST_FRAME_LINE: &str = "lightpaint: first frame drawn";
 
+/// Which way through the history a step is carried out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Direction {
+    Undo,
+    Redo,
+}
+
 pub struct EditorApp {
     pub(super) document: Option<Document>,
     /// The project as last opened or saved, to tell whether there are unsaved changes.
@@ -70,8 +77,6 @@ pub struct EditorApp {
     pub(super) lights_moved: bool,
     /// Recent files and view choices, kept between runs.
     pub(super) preferences: Preferences,
-    /// The window's wgpu device and queue (None without an adapter).
-    pub(super) render_state: Option<egui_wgpu::RenderState>,
     /// What the viewport's heat map shows (None: no heat map) and the value its
     /// brightest colour stands for (cd/m²).
     pub(super) heat_map: Option<(HeatMapKey, f32)>,
@@ -87,7 +92,7 @@ pub(super) struct HeatMapKey {
     placement: [u8; 32],
     intensity: f32,
     baked: bool,
-    shadows: crate::render::ShadowSettings,
+    shadows: crate::shading::ShadowSettings,
     blockers: BlockerSettings,
 }
 
@@ -121,7 +126,6 @@ impl EditorApp {
             solo_light: None,
             lights_moved: false,
             preferences: Preferences::load(cc.storage),
-            render_state: cc.wgpu_render_state.clone(),
             heat_map: None,
             history: History::default(),
         };
@@ -394,7 +398,7 @@ impl EditorApp {
     }
 
     /// The open document's render settings, to change them as the inspector does.
-    pub fn render_settings_mut(&mut self) -> Option<&mut crate::render::RenderSettings> {
+    pub fn render_settings_mut(&mut self) -> Option<&mut crate::shading::RenderSettings> {
         self.document.as_mut().map(|d| &mut d.settings)
     }
 
@@ -447,11 +451,11 @@ impl EditorApp {
         if wanted.as_ref() == self.heat_map.as_ref().map(|(key, _)| key) {
             return;
         }
-        let (Some(viewport), Some(rs)) = (&mut self.viewport, &self.render_state) else {
+        let Some(viewport) = &mut self.viewport else {
             return;
         };
         let (Some(key), Some(document), Some(painting)) = (wanted, &self.document, &self.painting) else {
-            viewport.set_heat_map(rs, None);
+            viewport.set_heat_map(None);
             self.heat_map = None;
             return;
         };
@@ -461,8 +465,8 @@ impl EditorApp {
         let values =
             crate::paint::light_reach::light_reach_per_vertex(&document.scene, transfer.as_ref(), key.light, eye);
         let all: Vec<f32> = values.iter().flatten().copied().collect();
-        let scale = crate::render::heat_map::heat_scale(&all);
-        viewport.set_heat_map(rs, Some((&values, scale)));
+        let scale = crate::render::passes::heat_map::heat_scale(&all);
+        viewport.set_heat_map(Some((&values, scale)));
         self.heat_map = Some((key, scale));
     }
 
@@ -474,8 +478,8 @@ impl EditorApp {
     /// Sends the displayed lights to the viewport.
     fn upload_lights(&mut self) {
         let lights = self.displayed_lights();
-        if let (Some(viewport), Some(rs)) = (&mut self.viewport, &self.render_state) {
-            viewport.set_lights(rs, &lights);
+        if let Some(viewport) = &mut self.viewport {
+            viewport.set_lights(&lights);
         }
     }
 
@@ -507,8 +511,8 @@ impl EditorApp {
 
     /// Gives the viewport the baked indirect light of the current lights, when the
     /// setting is on and maps baked for this geometry exist (none otherwise).
-    fn refresh_baked_indirect(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        let (Some(document), Some(viewport), Some(rs)) = (&self.document, &mut self.viewport, render_state) else {
+    fn refresh_baked_indirect(&mut self) {
+        let (Some(document), Some(viewport)) = (&self.document, &mut self.viewport) else {
             return;
         };
         let maps = document
@@ -516,8 +520,8 @@ impl EditorApp {
             .baked_indirect
             .then(|| self.painting.as_ref()?.maps_for(&document.scene))
             .flatten();
-        let indirect = maps.map(|maps| crate::render::BakedIndirect::from_maps(&document.scene, maps));
-        viewport.set_baked_indirect(rs, indirect.as_ref());
+        let indirect = maps.map(|maps| crate::shading::BakedIndirect::from_maps(&document.scene, maps));
+        viewport.set_baked_indirect(indirect.as_ref());
         self.indirect_stale = false;
     }
 
@@ -628,7 +632,7 @@ impl EditorApp {
     }
 
     /// Applies a stroke painted in the viewport with the current tool and brush.
-    pub fn paint_stroke(&mut self, stroke: &FinishedStroke, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn paint_stroke(&mut self, stroke: &FinishedStroke) {
         let (Some(document), Some(painting), Some(viewport)) = (&mut self.document, &mut self.painting, &self.viewport)
         else {
             return;
@@ -647,23 +651,23 @@ impl EditorApp {
                 self.history.resettle(&document.scene.lights);
             }
             self.message = report.message;
-            self.lights_changed(render_state);
+            self.lights_changed();
         }
     }
 
     /// Undoes the last stroke or light edit (Ctrl+Z).
-    pub fn undo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn undo(&mut self) {
         if let Some(document) = &self.document {
             self.history.settle(&document.scene.lights);
         }
         let step = self.history.undo();
-        self.message = self.carry_out(step, "undid", "nothing to undo", render_state);
+        self.message = self.carry_out(step, Direction::Undo);
     }
 
     /// Redoes the last undone stroke or light edit (Ctrl+Shift+Z or Ctrl+Y).
-    pub fn redo(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn redo(&mut self) {
         let step = self.history.redo();
-        self.message = self.carry_out(step, "redid", "nothing to redo", render_state);
+        self.message = self.carry_out(step, Direction::Redo);
     }
 
     /// Whether Edit ▸ Undo and Redo have anything to do.
@@ -676,22 +680,19 @@ impl EditorApp {
     }
 
     /// Carries out an undo or redo step; the message to show.
-    fn carry_out(
-        &mut self,
-        step: Option<Step>,
-        verb: &str,
-        nothing: &str,
-        render_state: Option<&egui_wgpu::RenderState>,
-    ) -> String {
+    fn carry_out(&mut self, step: Option<Step>, direction: Direction) -> String {
+        let (verb, nothing) = match direction {
+            Direction::Undo => ("undid", "nothing to undo"),
+            Direction::Redo => ("redid", "nothing to redo"),
+        };
         let (Some(document), Some(painting), Some(step)) = (&mut self.document, &mut self.painting, step) else {
             return nothing.to_string();
         };
         let message = match step {
             Step::Stroke => {
-                let done = if verb == "undid" {
-                    painting.undo(&mut document.scene)
-                } else {
-                    painting.redo(&mut document.scene)
+                let done = match direction {
+                    Direction::Undo => painting.undo(&mut document.scene),
+                    Direction::Redo => painting.redo(&mut document.scene),
                 };
                 if done {
                     format!("{verb} the stroke")
@@ -710,7 +711,7 @@ impl EditorApp {
         };
         self.history.resettle(&document.scene.lights);
         self.indirect_stale = true;
-        self.lights_changed(render_state);
+        self.lights_changed();
         message
     }
 
@@ -722,12 +723,12 @@ impl EditorApp {
         }
     }
 
-    fn lights_changed(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+    fn lights_changed(&mut self) {
         if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
             document.painting = painting.state();
         }
         self.upload_lights();
-        self.refresh_baked_indirect(render_state);
+        self.refresh_baked_indirect();
     }
 
     /// Saves the document to `path` (a project file), recording the current camera.
@@ -913,10 +914,10 @@ impl EditorApp {
                 self.set_tool(tool);
             }
             if undo_key {
-                self.undo(render_state);
+                self.undo();
             }
             if redo_key {
-                self.redo(render_state);
+                self.redo();
             }
         }
         if frame_key && !typing {
@@ -981,7 +982,7 @@ impl eframe::App for EditorApp {
         self.rebake_moved_lights(&ctx);
         self.refresh_heat_map();
         if self.indirect_stale {
-            self.refresh_baked_indirect(render_state.as_ref());
+            self.refresh_baked_indirect();
         }
         let brush_radius = match self.painting.as_ref() {
             Some(p) if p.tool != Tool::Navigate => Some(p.brush.radius_px),
@@ -1028,7 +1029,7 @@ impl eframe::App for EditorApp {
             }
         });
         if let Some(stroke) = finished {
-            self.paint_stroke(&stroke, render_state.as_ref());
+            self.paint_stroke(&stroke);
         }
         if let Some(index) = gizmo.select {
             self.selection = Some(Selection::Light(index));

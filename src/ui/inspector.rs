@@ -21,7 +21,7 @@ impl EditorApp {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 (light_edit, delete) = self.selection_section(ui);
                 action = self.painting_and_lights(ui, &mut light_edit);
-                self.render_sections(ui, render_state);
+                self.render_sections(ui);
                 self.terrain_section(ui, render_state);
             });
         });
@@ -32,8 +32,8 @@ impl EditorApp {
             self.delete_light(index);
         }
         match action {
-            Some(PaintAction::Undo) => self.undo(render_state),
-            Some(PaintAction::Redo) => self.redo(render_state),
+            Some(PaintAction::Undo) => self.undo(),
+            Some(PaintAction::Redo) => self.redo(),
             Some(PaintAction::StartBake) => {
                 if let (Some(document), Some(painting)) = (&self.document, &mut self.painting) {
                     painting.start_bake(&document.scene, document.project_path.as_deref());
@@ -57,8 +57,8 @@ impl EditorApp {
                 let paths = match &self.viewport {
                     Some(viewport) => viewport.light_paths_at(lights, pivot, shadows),
                     None => {
-                        let context = crate::render::LightPathContext::at(document.scene.bounds().center());
-                        crate::render::light_paths_at(lights, pivot, shadows, &context)
+                        let context = crate::shading::LightPathContext::at(document.scene.bounds().center());
+                        crate::shading::light_paths_at(lights, pivot, shadows, &context)
                     }
                 };
                 let (exact, angle_deg) = paths[index];
@@ -140,7 +140,7 @@ impl EditorApp {
     }
 
     /// Render settings, shadows and the environment.
-    fn render_sections(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    fn render_sections(&mut self, ui: &mut egui::Ui) {
         let Some(document) = &mut self.document else { return };
         egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
             self.indirect_stale |= render_settings(ui, &mut document.settings);
@@ -156,12 +156,12 @@ impl EditorApp {
         if document.settings.blockers != self.fitted_with
             && document.settings.blockers.problems().is_empty()
             && !ui.input(|i| i.pointer.any_down())
-            && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state)
+            && let Some(viewport) = &mut self.viewport
         {
             let project = document.project_path.as_deref();
             self.blockers = sphere_cache::fit_with_cache(&document.scene, &document.settings.blockers, project);
             self.fitted_with = document.settings.blockers;
-            viewport.set_blockers(rs, &self.blockers.spheres());
+            viewport.set_blockers(&self.blockers.spheres());
         }
         if let Some(environment) = &mut document.scene.environment {
             egui::CollapsingHeader::new("Environment")
@@ -184,8 +184,8 @@ impl EditorApp {
                     let rotation =
                         egui::Slider::new(&mut environment.rotation_rad, -half_turn..=half_turn).text("rotation (rad)");
                     changed |= ui.add(rotation).changed();
-                    if changed && let (Some(viewport), Some(rs)) = (&mut self.viewport, render_state) {
-                        viewport.set_environment(rs, Some(environment));
+                    if changed && let Some(viewport) = &mut self.viewport {
+                        viewport.set_environment(Some(environment));
                     }
                 });
         }
@@ -207,7 +207,7 @@ impl EditorApp {
 
 /// Exposure, background, viewport resolution and baked indirect light; true if the
 /// baked indirect setting changed.
-fn render_settings(ui: &mut egui::Ui, settings: &mut crate::render::RenderSettings) -> bool {
+fn render_settings(ui: &mut egui::Ui, settings: &mut crate::shading::RenderSettings) -> bool {
     ui.add(egui::Slider::new(&mut settings.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
     ui.horizontal(|ui| {
         ui.label("background");

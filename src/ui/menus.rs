@@ -16,13 +16,13 @@ impl EditorApp {
                 ui.menu_button("Edit", |ui| {
                     let (can_undo, can_redo) = (self.can_undo(), self.can_redo());
                     if ui.add_enabled(can_undo, egui::Button::new("Undo (Ctrl+Z)")).clicked() {
-                        self.undo(render_state);
+                        self.undo();
                     }
                     if ui
                         .add_enabled(can_redo, egui::Button::new("Redo (Ctrl+Shift+Z)"))
                         .clicked()
                     {
-                        self.redo(render_state);
+                        self.redo();
                     }
                 });
                 ui.menu_button("View", |ui| {
@@ -144,10 +144,10 @@ impl EditorApp {
     /// Writes the image the viewport shows to `path` as PNG (atomically: a failed export
     /// leaves an existing file as it was).
     pub fn export_png(&mut self, path: &Path) {
-        let (Some(viewport), Some(rs)) = (&self.viewport, &self.render_state) else {
+        let Some(viewport) = &self.viewport else {
             return self.report_error("nothing to export: no scene is shown".to_string());
         };
-        let image = match viewport.read_image(rs) {
+        let image = match viewport.read_image() {
             Some(Ok(image)) => image,
             Some(Err(e)) => return self.report_error(format!("could not read the render back: {e}")),
             None => return self.report_error("nothing to export yet: the viewport has not drawn".to_string()),

@@ -19,9 +19,9 @@ use crate::paint::{
 };
 use crate::project::bake_cache::light_hash;
 use crate::project::{Document, PaintingState};
-use crate::render::ShadowSettings;
-use crate::render::paint_estimate::DirectEstimate;
 use crate::scene::{Camera, Scene};
+use crate::shading::ShadowSettings;
+use crate::shading::paint_estimate::DirectEstimate;
 
 /// What the left mouse button does in the viewport.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

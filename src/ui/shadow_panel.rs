@@ -3,9 +3,9 @@
 //! and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
-use crate::render::{BrdfShading, LightPaths, RenderSettings};
 use crate::scene::Scene;
 use crate::sh::ExpMethod;
+use crate::shading::{BrdfShading, LightPaths, RenderSettings};
 
 /// Draws the section and edits the shadow and blocker settings in place; the viewport and
 /// the blocker fit follow the settings.
@@ -27,7 +27,7 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             ui.end_row();
             ui.checkbox(&mut settings.ratio_attenuation, "ratio attenuation r/d");
             ui.end_row();
-            let per_vertex_fits = crate::render::wgsl_sh::supports_per_vertex(settings.order);
+            let per_vertex_fits = crate::shading::wgsl::sh::supports_per_vertex(settings.order);
             // The log-BRDF exponentiates per pixel (ShadowSettings::problems).
             ui.add_enabled_ui(per_vertex_fits && settings.brdf != BrdfShading::Log, |ui| {
                 ui.checkbox(&mut settings.per_vertex, "per vertex").on_hover_text(
@@ -58,7 +58,7 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             ui.add(
                 egui::Slider::new(
                     &mut settings.exact_light_budget,
-                    0..=crate::render::MAX_EXACT_LIGHT_BUDGET,
+                    0..=crate::shading::MAX_EXACT_LIGHT_BUDGET,
                 )
                 .text("exact lights at most"),
             )
@@ -97,7 +97,7 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
         egui::ComboBox::from_label("shaded pixels")
             .selected_text(downsample_label(settings.shading_downsample))
             .show_ui(ui, |ui| {
-                for d in 1..=crate::render::reduced_shading::MAX_SHADING_DOWNSAMPLE {
+                for d in 1..=crate::shading::MAX_SHADING_DOWNSAMPLE {
                     ui.selectable_value(&mut settings.shading_downsample, d, downsample_label(d));
                 }
             })
@@ -122,12 +122,12 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
         if scene.terrain.is_some() {
             let terrain = &mut settings.terrain;
             ui.add(
-                egui::Slider::new(&mut terrain.azimuths, 3..=crate::render::MAX_TERRAIN_AZIMUTHS)
+                egui::Slider::new(&mut terrain.azimuths, 3..=crate::shading::MAX_TERRAIN_AZIMUTHS)
                     .text("terrain azimuths"),
             )
             .on_hover_text("Horizon directions marched per pixel (W): more removes banding, costs linearly.");
             ui.add(
-                egui::Slider::new(&mut terrain.pyramid_levels, 1..=crate::render::MAX_TERRAIN_LEVELS)
+                egui::Slider::new(&mut terrain.pyramid_levels, 1..=crate::shading::MAX_TERRAIN_LEVELS)
                     .text("terrain pyramid levels"),
             )
             .on_hover_text("Far terrain is read from prefiltered coarser levels; 1 samples the finest only.");

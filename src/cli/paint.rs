@@ -1,0 +1,105 @@
+//! `lightpaint paint`: scripted strokes applied to a project, saved with their log.
+
+use std::path::Path;
+
+use lightpaint::project::{Document, sphere_cache};
+
+use super::CliError;
+
+/// `paint`: the transfer comes from a bake with `bounces`, or (None) from the direct-only
+/// log-SH estimate.
+pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> Result<(), CliError> {
+    use lightpaint::paint::{BakedTransfer, Painter, Transfer, View, ViewRecord, script::Script};
+    if !lightpaint::project::is_project_path(output) {
+        return Err(CliError::Usage(format!(
+            "{}: the output must be a project file (.lightpaint)",
+            output.display()
+        )));
+    }
+    let mut document = Document::open(file)?;
+    for warning in &document.warnings {
+        eprintln!("warning: {}: {warning}", file.display());
+    }
+    let script = Script::load(strokes)?;
+    let camera = document.view().camera();
+    let fallback = ViewRecord::of(&View {
+        camera,
+        width_px: 1280,
+        height_px: 720,
+    });
+    let records = script.records(strokes, fallback)?;
+    let started = std::time::Instant::now();
+    let scene = &document.scene;
+    let maps = bounces.map(|bounces| {
+        use lightpaint::project::bake_cache::{self, BakeKey, CacheLookup};
+        let settings = lightpaint::bake::BakeSettings {
+            bounces,
+            ..Default::default()
+        };
+        let key = BakeKey::of(scene, &settings);
+        let cached = document
+            .project_path
+            .as_deref()
+            .map(|p| bake_cache::load(&bake_cache::cache_path(p), &key));
+        let maps = match cached {
+            Some(CacheLookup::Fresh(maps)) => {
+                say!("read the bake cache of {}", file.display());
+                maps
+            }
+            _ => lightpaint::bake::bake_maps(scene, &settings),
+        };
+        if let Err(e) = bake_cache::save(&bake_cache::cache_path(output), &key, &maps) {
+            eprintln!("warning: {}: cannot write the bake cache: {e}", output.display());
+        }
+        maps
+    });
+    let project = document.project_path.as_deref();
+    let estimate_blockers = || sphere_cache::cached_or_fitted(scene, &document.settings.blockers, project).spheres();
+    let transfer: Box<dyn Transfer> = match &maps {
+        Some(maps) => Box::new(BakedTransfer::new(scene, maps)),
+        None => Box::new(lightpaint::shading::paint_estimate::DirectEstimate::new(
+            scene,
+            estimate_blockers(),
+            document.settings.shadows,
+        )),
+    };
+    let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(scene);
+    say!(
+        "{} the transfer of {} lights in {:.0} ms",
+        if maps.is_some() {
+            "baked"
+        } else {
+            "estimated (direct light, log-SH shadows)"
+        },
+        scene.lights.len(),
+        started.elapsed().as_secs_f64() * 1000.0
+    );
+    let mut intensities = scene.light_intensities();
+    let mut painter = Painter::new();
+    {
+        let transfer = transfer.as_ref();
+        for (k, record) in records.into_iter().enumerate() {
+            let started = std::time::Instant::now();
+            let report = painter.paint(scene, &bvh, transfer, &mut intensities, record);
+            let names: Vec<&str> = report.selected.iter().map(|&i| scene.lights[i].name.as_str()).collect();
+            say!(
+                "stroke {k}: {:?}, {} vertices, lights [{}]: {} ({:.1} ms)",
+                report.outcome,
+                report.hit_vertices,
+                names.join(", "),
+                report.message,
+                started.elapsed().as_secs_f64() * 1000.0
+            );
+        }
+    }
+    drop(transfer);
+    document.scene.set_light_intensities(&intensities);
+    document.painting.strokes.extend(painter.log().cloned());
+    document.save(output)?;
+    say!(
+        "wrote {} ({} strokes in its log)",
+        output.display(),
+        document.painting.strokes.len()
+    );
+    Ok(())
+}

@@ -1,0 +1,277 @@
+//! `lightpaint render`: a project or scene rendered offscreen — log-SH on the GPU, the f64
+//! CPU twin, the raster without shadows, or the reference path tracer — into a PNG.
+
+use std::path::Path;
+
+use lightpaint::project::{Document, sphere_cache};
+use lightpaint::render::{
+    AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
+};
+use lightpaint::shading::{BakedIndirect, ShadowSettings};
+
+use super::CliError;
+use super::args::RenderArgs;
+
+pub fn render(args: &RenderArgs) -> Result<(), CliError> {
+    let document = Document::open(&args.file)?;
+    for warning in &document.warnings {
+        eprintln!("warning: {}: {warning}", args.file.display());
+    }
+    let mut settings = document.settings;
+    if let Some(exposure) = args.exposure {
+        settings.exposure_ev = exposure;
+    }
+    if let Some(background) = args.background {
+        settings.background_srgb8 = background;
+    }
+    let camera = document.view().camera();
+    if args.reference {
+        let reference = lightpaint::reference::ReferenceSettings {
+            samples_per_pixel: args.spp,
+            bounces: args.bounces,
+            seed: args.seed,
+        };
+        return render_reference_png(&args.file, &document, &camera, &settings, &reference, args);
+    }
+    let gpu = GpuContext::headless()?;
+    let mut shadows = settings.shadows;
+    shadows.order = args.order.unwrap_or(shadows.order);
+    shadows.exp = args.exp.unwrap_or(shadows.exp);
+    shadows.epsilon = args.eps.unwrap_or(shadows.epsilon);
+    shadows.ratio_attenuation |= args.ratio_attenuation;
+    shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
+    shadows.brdf = args.brdf.unwrap_or(shadows.brdf);
+    shadows.exact_light_budget = args.exact_lights.unwrap_or(shadows.exact_light_budget);
+    shadows.terrain.azimuths = args.terrain_azimuths.unwrap_or(shadows.terrain.azimuths);
+    shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
+    // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
+    shadows.per_vertex = (shadows.per_vertex || args.per_vertex) && !args.cpu;
+    shadows.shading_downsample = match args.cpu {
+        true => 1,
+        false => args.shading_downsample.unwrap_or(shadows.shading_downsample),
+    };
+    let no_shadows = args.no_shadows || !shadows.enabled;
+    let problems = if args.cpu {
+        shadows.problems()
+    } else {
+        shadows.gpu_problems()
+    };
+    if !no_shadows && !problems.is_empty() {
+        return Err(CliError::Usage(problems.join("; ")));
+    }
+    let mut blocker_settings = settings.blockers;
+    if let Some(budget) = args.blockers {
+        blocker_settings.budget = budget;
+    }
+    let fitted = std::time::Instant::now();
+    let blockers = if no_shadows {
+        Vec::new()
+    } else {
+        let project = document.project_path.as_deref();
+        let fit = sphere_cache::cached_or_fitted(&document.scene, &blocker_settings, project);
+        for line in fit.report(&document.scene) {
+            log::info!("blockers: {line}");
+        }
+        fit.spheres()
+    };
+    let fit_ms = fitted.elapsed().as_secs_f64() * 1000.0;
+    let indirect = if settings.baked_indirect && !args.no_baked_indirect {
+        baked_indirect(&document)
+    } else {
+        None
+    };
+    let frame = ShadowFrame {
+        baked_indirect: indirect.as_ref(),
+        scene: &document.scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        width: args.width,
+        height: args.height,
+    };
+    let started = std::time::Instant::now();
+    let (image, renderer) = if no_shadows {
+        (
+            render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?,
+            "raster, no shadows".to_string(),
+        )
+    } else if args.cpu {
+        (
+            render_cpu_image(&gpu, &frame)?,
+            format!(
+                "CPU f64 reference, {}{}",
+                describe(&shadows, blockers.len(), &document.scene),
+                describe_indirect(&indirect)
+            ),
+        )
+    } else {
+        (
+            render_logsh_image(&gpu, &frame, args.aa)?,
+            format!(
+                "log-SH, {}{}",
+                describe(&shadows, blockers.len(), &document.scene),
+                describe_indirect(&indirect)
+            ),
+        )
+    };
+    let elapsed = started.elapsed();
+    if args.time_frames > 0 && !no_shadows {
+        time_frames(&gpu, &frame, args.time_frames, args.aa)?;
+    }
+    image.save(&args.output).map_err(|source| CliError::WriteImage {
+        path: args.output.clone(),
+        source,
+    })?;
+    say!(
+        "rendered {} ({}×{}, {renderer}) with {} in {:.0} ms (sphere fit {fit_ms:.0} ms) → {}",
+        args.file.display(),
+        args.width,
+        args.height,
+        gpu.adapter_summary(),
+        elapsed.as_secs_f64() * 1000.0,
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// `render --reference`: the path tracer, with a progress bar over its passes.
+fn render_reference_png(
+    file: &Path,
+    document: &Document,
+    camera: &lightpaint::scene::Camera,
+    settings: &lightpaint::shading::RenderSettings,
+    reference: &lightpaint::reference::ReferenceSettings,
+    args: &RenderArgs,
+) -> Result<(), CliError> {
+    if args.width == 0 || args.height == 0 || args.width > 16_384 || args.height > 16_384 {
+        return Err(CliError::Usage(format!(
+            "a reference image must be 1–16384 pixels on each side, not {}×{}",
+            args.width, args.height
+        )));
+    }
+    let started = std::time::Instant::now();
+    let bar = indicatif::ProgressBar::new(reference.samples_per_pixel as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} samples per pixel, {eta} left")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let image = lightpaint::reference::render_reference(
+        &document.scene,
+        camera,
+        args.width,
+        args.height,
+        reference,
+        |passes| bar.set_position(passes as u64),
+    );
+    bar.finish_and_clear();
+    let elapsed = started.elapsed().as_secs_f64();
+    image
+        .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
+        .save(&args.output)
+        .map_err(|source| CliError::WriteImage {
+            path: args.output.clone(),
+            source,
+        })?;
+    if image.discarded_samples > 0 {
+        eprintln!(
+            "warning: {}: {} samples were not finite and were left out",
+            file.display(),
+            image.discarded_samples
+        );
+    }
+    let mode = if reference.bounces == 0 {
+        "direct light".to_string()
+    } else {
+        format!("{} bounces", reference.bounces)
+    };
+    say!(
+        "rendered {} ({}×{}, reference path tracer, {} spp, {mode}, seed {}) in {elapsed:.1} s, {:.2} M rays/s → {}",
+        file.display(),
+        args.width,
+        args.height,
+        reference.samples_per_pixel,
+        reference.seed,
+        image.rays_cast as f64 / elapsed.max(1e-9) / 1e6,
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// Draws `count` frames after a warm-up and prints the mean and best time per frame.
+fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
+    let mut renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
+    renderer.draw_and_wait()?;
+    let mut times_ms = Vec::with_capacity(count as usize);
+    for _ in 0..count {
+        let started = std::time::Instant::now();
+        renderer.draw_and_wait()?;
+        times_ms.push(started.elapsed().as_secs_f64() * 1000.0);
+    }
+    let mean = times_ms.iter().sum::<f64>() / times_ms.len() as f64;
+    let best = times_ms.iter().copied().fold(f64::INFINITY, f64::min);
+    say!(
+        "{count} frames: mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
+        1000.0 / mean
+    );
+    Ok(())
+}
+
+/// The baked indirect light of a project from its bake cache, if it has a usable one
+/// (a stale or unreadable cache is reported and left out; `lightpaint bake` rebuilds it).
+fn baked_indirect(document: &Document) -> Option<BakedIndirect> {
+    use lightpaint::project::bake_cache::{self, CacheLookup};
+    let project = document.project_path.as_ref()?;
+    let path = bake_cache::cache_path(project);
+    match bake_cache::load_for_scene(&path, &document.scene) {
+        CacheLookup::Fresh(maps) => Some(BakedIndirect::from_maps(&document.scene, &maps)),
+        CacheLookup::LightsChanged { maps, lights } => {
+            eprintln!(
+                "warning: {}: {} light(s) moved since the bake; their indirect light is left out (run `lightpaint bake`)",
+                path.display(),
+                lights.len()
+            );
+            Some(BakedIndirect::from_maps(&document.scene, &maps))
+        }
+        CacheLookup::Missing => None,
+        CacheLookup::Unusable(reason) => {
+            eprintln!("warning: no baked indirect light: {reason} (run `lightpaint bake`)");
+            None
+        }
+    }
+}
+
+fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
+    if indirect.is_some() {
+        ", baked indirect light"
+    } else {
+        ""
+    }
+}
+
+fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::scene::Scene) -> String {
+    let terrain = if scene.terrain.is_some() {
+        format!(
+            ", terrain W {} × {} levels",
+            shadows.terrain.azimuths, shadows.terrain.pyramid_levels
+        )
+    } else {
+        String::new()
+    };
+    let resolution = if shadows.per_vertex {
+        ", per vertex".to_string()
+    } else if shadows.shading_downsample > 1 {
+        let d = shadows.shading_downsample;
+        format!(", shaded 1 in {d}×{d} pixels")
+    } else {
+        String::new()
+    };
+    format!(
+        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths, {} BRDF",
+        shadows.order,
+        shadows.exp,
+        shadows.epsilon,
+        shadows.light_paths,
+        shadows.brdf.name()
+    )
+}

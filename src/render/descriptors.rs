@@ -1,0 +1,77 @@
+//! The formats and descriptor pieces every pass shares: target formats, the scene's
+//! triangle and depth states, frame textures, numbered bind group entries, shader modules.
+
+/// Colour format of every render target: linear shader output, sRGB-encoded on store.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Storage format of the resolved image: the same bytes as [`COLOR_FORMAT`], read raw.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Samples per pixel of multisampled targets ([`super::AntiAliasing::Multisample`]).
+pub const SAMPLE_COUNT: u32 = 4;
+
+/// Triangle lists, counter-clockwise front faces (glTF's winding); back faces culled when
+/// `cull_back_faces` (every material single-sided), else drawn, with the shading normal
+/// turned toward the viewer (glTF meshes are often open: planes, cards).
+pub fn scene_triangles(cull_back_faces: bool) -> wgpu::PrimitiveState {
+    wgpu::PrimitiveState {
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        front_face: wgpu::FrontFace::Ccw,
+        cull_mode: cull_back_faces.then_some(wgpu::Face::Back),
+        ..Default::default()
+    }
+}
+
+/// A [`DEPTH_FORMAT`] depth test with `compare`, writing depth if `write`.
+pub fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// A 2-D texture of one mip level, `samples` per texel: what frames are drawn into and
+/// read from (render targets, the edge filter's image, the low-resolution samples).
+pub fn frame_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: wgpu::Extent3d,
+    format: wgpu::TextureFormat,
+    samples: u32,
+    usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size,
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats,
+    })
+}
+
+/// Bind group entries binding each of `resources` at its position (0, 1, …), the order
+/// in which the shaders and the layout declare them.
+pub fn numbered_entries<'a, const N: usize>(
+    resources: [wgpu::BindingResource<'a>; N],
+) -> [wgpu::BindGroupEntry<'a>; N] {
+    let mut binding = 0;
+    resources.map(|resource| {
+        let entry = wgpu::BindGroupEntry { binding, resource };
+        binding += 1;
+        entry
+    })
+}
+
+/// A shader module from WGSL `source` (assembled by `shading::wgsl`).
+pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}

@@ -1,0 +1,9 @@
+//! The passes that draw a frame: the raster preview without shadows (`raster`), the
+//! log-SH shading with its reduced-resolution (`reduced_shading`) and per-vertex
+//! (`per_vertex`) forms (`logsh`), and the importance heat map (`heat_map`).
+
+pub mod heat_map;
+pub mod logsh;
+pub mod per_vertex;
+pub mod raster;
+pub mod reduced_shading;

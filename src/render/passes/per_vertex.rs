@@ -1,0 +1,139 @@
+//! Plumbing of per-vertex log-SH shading (shaders/logsh_per_vertex.wgsl): a compute pass
+//! writes each vertex's visibility SH into a buffer per object, which the shading pass
+//! binds as a second vertex buffer.
+
+use crate::render::descriptors::numbered_entries;
+use crate::render::resources::GpuScene;
+use crate::shading::wgsl::sh as wgsl_sh;
+
+/// The compute pipeline and the bind group layout of its per-object buffers (group 3).
+pub struct PerVertexCompute {
+    pub pipeline: wgpu::ComputePipeline,
+    object_layout: wgpu::BindGroupLayout,
+    empty_group: wgpu::BindGroup,
+    /// Bytes of one vertex's visibility SH.
+    pub stride: u64,
+}
+
+impl PerVertexCompute {
+    pub fn new(
+        device: &wgpu::Device,
+        module: &wgpu::ShaderModule,
+        shadow_layout: &wgpu::BindGroupLayout,
+        order: usize,
+        constants: &[(&str, f64)],
+    ) -> PerVertexCompute {
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("per-vertex object"),
+            entries: &[storage(0, true), storage(1, false)],
+        });
+        let empty_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("empty"),
+            entries: &[],
+        });
+        let empty_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("empty"),
+            layout: &empty_layout,
+            entries: &[],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("per-vertex visibility"),
+            bind_group_layouts: &[
+                Some(&empty_layout),
+                Some(&empty_layout),
+                Some(shadow_layout),
+                Some(&object_layout),
+            ],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("per-vertex visibility"),
+            layout: Some(&layout),
+            module,
+            entry_point: Some("cs_vertex_visibility"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        PerVertexCompute {
+            pipeline,
+            object_layout,
+            empty_group,
+            stride: 16 * wgsl_sh::vec4_count(order) as u64,
+        }
+    }
+
+    /// Computes every vertex's visibility into `visibility` (bind group 2 = the blockers).
+    pub fn run(&self, encoder: &mut wgpu::CommandEncoder, blockers: &wgpu::BindGroup, visibility: &VertexVisibility) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("per-vertex visibility"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.empty_group, &[]);
+        pass.set_bind_group(1, &self.empty_group, &[]);
+        pass.set_bind_group(2, blockers, &[]);
+        for (bind_group, vertex_count) in visibility.bind_groups.iter().zip(&visibility.vertex_counts) {
+            pass.set_bind_group(3, bind_group, &[]);
+            pass.dispatch_workgroups(vertex_count.div_ceil(64), 1, 1);
+        }
+    }
+
+    /// The vertex buffer layout of the visibility attributes (locations 4…).
+    pub fn attributes(order: usize) -> Vec<wgpu::VertexAttribute> {
+        (0..wgsl_sh::vec4_count(order))
+            .map(|v| wgpu::VertexAttribute {
+                format: wgpu::VertexFormat::Float32x4,
+                offset: 16 * v as u64,
+                shader_location: 4 + v as u32,
+            })
+            .collect()
+    }
+}
+
+/// The visibility SH of every vertex of a [`GpuScene`], one buffer per object.
+pub struct VertexVisibility {
+    pub buffers: Vec<wgpu::Buffer>,
+    bind_groups: Vec<wgpu::BindGroup>,
+    vertex_counts: Vec<u32>,
+}
+
+impl VertexVisibility {
+    pub fn new(device: &wgpu::Device, compute: &PerVertexCompute, scene: &GpuScene) -> VertexVisibility {
+        let mut buffers = Vec::new();
+        let mut bind_groups = Vec::new();
+        let mut vertex_counts = Vec::new();
+        for object in &scene.objects {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("vertex visibility"),
+                size: compute.stride * object.vertex_count.max(1) as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("per-vertex object"),
+                layout: &compute.object_layout,
+                entries: &numbered_entries([object.vertex_buffer.as_entire_binding(), buffer.as_entire_binding()]),
+            }));
+            buffers.push(buffer);
+            vertex_counts.push(object.vertex_count);
+        }
+        VertexVisibility {
+            buffers,
+            bind_groups,
+            vertex_counts,
+        }
+    }
+}

@@ -1,0 +1,425 @@
+//! The one renderer of a scene, which the editor's viewport and the CLI both draw with
+//! ([`SceneRenderer`]): it owns the scene's GPU resources (meshes, lights, blockers,
+//! heat map, per-vertex and low-resolution buffers), the lights' shadow paths, a cache of
+//! log-SH pipelines keyed by what is compiled into them (`pipeline_cache`) and the target
+//! frames are drawn into. Callers say what changed (`set_*`) and ask for frames
+//! ([`SceneRenderer::render`]); how new pipelines are compiled is theirs to choose
+//! ([`Compilation`]): the editor keeps drawing with the previous pipeline while a new one
+//! compiles in the background.
+
+mod pipeline_cache;
+
+use std::cell::RefCell;
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+pub use pipeline_cache::{Compilation, PipelineKey};
+
+use super::passes::heat_map::HeatMapPipeline;
+use super::passes::logsh::{LogShPipeline, Shading};
+use super::passes::per_vertex::VertexVisibility;
+use super::passes::raster::ScenePipeline;
+use super::passes::reduced_shading::LowResolutionTargets;
+use super::resources::{GpuBlockers, GpuScene};
+use super::target::edge_filter::EdgeFilter;
+use super::target::{AntiAliasing, RenderTarget};
+use crate::blockers::Sphere;
+use crate::scene::{Camera, Environment, Light, Scene};
+use crate::shading::gpu_types::GpuLight;
+use crate::shading::{
+    BakedIndirect, CompiledPaths, LightPathContext, RenderSettings, SceneLighting, ShadowSettings, compiled_paths,
+};
+use pipeline_cache::PipelineCache;
+
+/// The log-SH state frames are drawn with.
+struct Shadows {
+    /// The settings the pipeline and buffers are for.
+    settings: ShadowSettings,
+    pipeline: Arc<LogShPipeline>,
+    /// What `pipeline` was compiled for.
+    key: PipelineKey,
+    blockers: GpuBlockers,
+    /// Per-vertex visibility buffers of the scene for the pipeline's order.
+    visibility: Option<VertexVisibility>,
+    /// The reduced-resolution images for the last frame size, if the pipeline shades at a
+    /// reduced resolution.
+    low_resolution: Option<LowResolutionTargets>,
+}
+
+/// Each light's shadow path as chosen for `lights` under `settings`.
+struct PathChoice {
+    lights: Vec<Light>,
+    settings: ShadowSettings,
+    shaded: Vec<GpuLight>,
+}
+
+/// How a frame is shaded besides its settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameQuality {
+    /// Shade per vertex where the order allows, whatever the settings say (the editor's
+    /// preview while the camera moves).
+    pub per_vertex_preview: bool,
+}
+
+pub struct SceneRenderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    anti_aliasing: AntiAliasing,
+    raster: ScenePipeline,
+    /// Draws the importance heat map instead of the shading while it has values.
+    heat_map: HeatMapPipeline,
+    /// The edge filter's pipelines, shared by every target made for a new size.
+    edge_filter: EdgeFilter,
+    gpu_scene: GpuScene,
+    shadows: Shadows,
+    pipelines: PipelineCache,
+    /// Settings waiting for their pipeline (compiling in the background).
+    pending: Option<ShadowSettings>,
+    /// The scene's lights as last set: which paths they take decides what the pipeline
+    /// compiles.
+    lights: Vec<Light>,
+    /// What the choice of each light's shadow path looks at (the scene's centre, some of
+    /// its surface points, the blockers).
+    path_context: LightPathContext,
+    /// The last choice of the lights' paths ([`Self::shaded_lights`]).
+    path_choice: RefCell<Option<PathChoice>>,
+    /// Whether an environment or a terrain is there (each compiles in shading code).
+    lighting: SceneLighting,
+    target: Option<RenderTarget>,
+}
+
+impl SceneRenderer {
+    /// A renderer of `scene` with `blockers`, drawing with `shadows` (invalid settings:
+    /// the defaults; see [`ShadowSettings::gpu_problems`]) into targets antialiased as
+    /// `anti_aliasing` says. The first pipeline is compiled at once.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        blockers: &[Sphere],
+        shadows: &ShadowSettings,
+        anti_aliasing: AntiAliasing,
+        compilation: Compilation,
+    ) -> SceneRenderer {
+        let samples = anti_aliasing.samples();
+        let raster = ScenePipeline::with_samples(device, samples);
+        let gpu_scene = GpuScene::upload(device, queue, &raster.layouts, scene);
+        let settings = if shadows.gpu_problems().is_empty() {
+            *shadows
+        } else {
+            ShadowSettings::default()
+        };
+        let path_context = LightPathContext::of_scene(scene, blockers);
+        let lighting = SceneLighting::of(scene);
+        let paths = compiled_paths(
+            &crate::shading::shading_lights(&scene.lights, &settings, &path_context),
+            lighting,
+            blockers.len(),
+        );
+        let mut pipelines = PipelineCache::new(device, &raster.layouts, compilation);
+        let key = PipelineKey::new(&settings, samples, paths);
+        let pipeline = pipelines.get_now(key);
+        let gpu_blockers = GpuBlockers::upload(
+            device,
+            queue,
+            &pipeline.shadow_layout,
+            blockers,
+            scene.terrain.as_ref().map(|t| &t.field),
+            &settings,
+        );
+        let visibility = pipeline.vertex_visibility(device, &gpu_scene);
+        let heat_map = HeatMapPipeline::new(device, &raster.layouts, samples);
+        let mut renderer = SceneRenderer {
+            device: device.clone(),
+            queue: queue.clone(),
+            anti_aliasing,
+            raster,
+            heat_map,
+            edge_filter: EdgeFilter::new(device),
+            gpu_scene,
+            shadows: Shadows {
+                settings,
+                pipeline,
+                key,
+                blockers: gpu_blockers,
+                visibility,
+                low_resolution: None,
+            },
+            pipelines,
+            pending: None,
+            lights: scene.lights.clone(),
+            path_context,
+            path_choice: RefCell::new(None),
+            lighting,
+            target: None,
+        };
+        renderer.write_lights();
+        renderer
+    }
+
+    /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
+    /// its angular radius seen from `point` in degrees (`shading::light_paths_at` with the
+    /// renderer's scene and blockers).
+    pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
+        crate::shading::paths_and_sizes_at(&self.shaded_lights(lights, settings), point)
+    }
+
+    /// `lights` on the shadow paths `settings` give them (`shading::shading_lights` with
+    /// the renderer's scene and blockers). The last choice is kept until the lights, the
+    /// settings or the blockers change: the UI asks every frame, and weighing the blockers
+    /// that matter is not free.
+    fn shaded_lights(&self, lights: &[Light], settings: &ShadowSettings) -> Vec<GpuLight> {
+        let mut cache = self.path_choice.borrow_mut();
+        match cache.as_ref() {
+            Some(choice) if choice.lights == lights && choice.settings == *settings => choice.shaded.clone(),
+            _ => {
+                let shaded = crate::shading::shading_lights(lights, settings, &self.path_context);
+                *cache = Some(PathChoice {
+                    lights: lights.to_vec(),
+                    settings: *settings,
+                    shaded: shaded.clone(),
+                });
+                shaded
+            }
+        }
+    }
+
+    /// Writes the lights on the paths the drawn settings give them. Until a pipeline with
+    /// every path they need is compiled, a light whose path the drawn pipeline lacks takes
+    /// the other one.
+    fn write_lights(&mut self) {
+        let mut lights = self.shaded_lights(&self.lights, &self.shadows.settings);
+        let compiled = self.shadows.key.paths;
+        for light in &mut lights {
+            if !compiled.exact {
+                light.exact_path = 0;
+            } else if !compiled.harmonics {
+                light.exact_path = 1;
+            }
+        }
+        self.gpu_scene
+            .update_lights(&self.device, &self.queue, &self.raster.layouts, &lights);
+    }
+
+    /// Replaces the lights; a light that needs a path the pipeline lacks, or no longer
+    /// needs one it has, recompiles it.
+    pub fn set_lights(&mut self, lights: &[Light]) {
+        self.lights = lights.to_vec();
+        self.write_lights();
+        self.recompile_if_paths_changed();
+    }
+
+    /// The paths `settings` need for the renderer's lights and environment.
+    fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
+        compiled_paths(
+            &self.shaded_lights(&self.lights, settings),
+            self.lighting,
+            self.path_context.blockers.len(),
+        )
+    }
+
+    fn key_for(&self, settings: &ShadowSettings) -> PipelineKey {
+        PipelineKey::new(settings, self.anti_aliasing.samples(), self.paths_for(settings))
+    }
+
+    /// Asks again for the settings drawn or pending when what they need compiled in has
+    /// changed (lights, environment, blockers).
+    fn recompile_if_paths_changed(&mut self) {
+        let wanted = self.pending.unwrap_or(self.shadows.settings);
+        let have = match self.pending {
+            Some(_) => self.pipelines.compiling(),
+            None => Some(self.shadows.key),
+        };
+        if have != Some(self.key_for(&wanted)) {
+            self.set_shadow_settings(wanted);
+        }
+    }
+
+    /// Shows per-vertex `values` (one list per scene object) as a heat map against
+    /// `scale` instead of the shading; None goes back to the shading.
+    pub fn set_heat_map(&mut self, values: Option<(&[Vec<f32>], f32)>) {
+        self.heat_map
+            .set_values(&self.device, &self.raster.layouts, &self.gpu_scene, values);
+    }
+
+    /// Hides the objects `hidden` lists (indices into the scene's objects); shows the rest.
+    pub fn set_hidden(&mut self, hidden: &BTreeSet<usize>) {
+        self.gpu_scene.set_hidden(hidden);
+    }
+
+    /// Replaces the baked indirect light (None: none).
+    pub fn set_baked_indirect(&mut self, indirect: Option<&BakedIndirect>) {
+        self.gpu_scene.set_baked_indirect(&self.queue, indirect);
+    }
+
+    /// Replaces the environment light (one that appears or goes away recompiles).
+    pub fn set_environment(&mut self, environment: Option<&Environment>) {
+        self.gpu_scene.set_environment(environment);
+        self.lighting.has_environment = environment.is_some();
+        self.recompile_if_paths_changed();
+    }
+
+    /// Replaces the blockers.
+    pub fn set_blockers(&mut self, blockers: &[Sphere]) {
+        self.shadows
+            .blockers
+            .update(&self.device, &self.queue, blockers, &self.shadows.settings);
+        // Which blockers matter can change which lights go exact.
+        self.path_context.blockers = blockers.to_vec();
+        self.path_choice.replace(None);
+        self.write_lights();
+        self.recompile_if_paths_changed();
+    }
+
+    /// The shadow settings frames are drawn with now.
+    pub fn shadow_settings(&self) -> &ShadowSettings {
+        &self.shadows.settings
+    }
+
+    /// The settings whose pipeline is compiling in the background, if any (frames keep
+    /// the current settings until it is ready).
+    pub fn compiling(&self) -> Option<&ShadowSettings> {
+        self.pending.as_ref()
+    }
+
+    /// Asks for `settings` (invalid ones are ignored: see
+    /// [`ShadowSettings::gpu_problems`]). With a background compilation they apply once
+    /// their pipeline is ready ([`Self::poll`]).
+    pub fn set_shadow_settings(&mut self, settings: ShadowSettings) {
+        if !settings.gpu_problems().is_empty() {
+            return;
+        }
+        let key = self.key_for(&settings);
+        let ready = if key == self.shadows.key {
+            Some(self.shadows.pipeline.clone())
+        } else {
+            self.pipelines.request(key)
+        };
+        match ready {
+            Some(pipeline) => {
+                self.pending = None;
+                self.pipelines.forget_compiling();
+                self.install(pipeline, key, settings);
+            }
+            None => self.pending = Some(settings),
+        }
+    }
+
+    /// Installs the pending settings if their pipeline has finished compiling; true when
+    /// something new will be drawn.
+    pub fn poll(&mut self) -> bool {
+        let Some(settings) = self.pending else { return false };
+        let key = self.key_for(&settings);
+        if self.pipelines.compiling() != Some(key) {
+            // The lights changed what the settings need meanwhile.
+            self.set_shadow_settings(settings);
+            return self.pending.is_none();
+        }
+        match self.pipelines.request(key) {
+            Some(pipeline) => {
+                self.pending = None;
+                self.install(pipeline, key, settings);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Makes `settings` and their `pipeline` the ones drawn.
+    fn install(&mut self, pipeline: Arc<LogShPipeline>, key: PipelineKey, settings: ShadowSettings) {
+        if !Arc::ptr_eq(&pipeline, &self.shadows.pipeline) {
+            self.shadows.pipeline = pipeline;
+            self.shadows.key = key;
+            // Bound through the old pipeline's layouts.
+            self.shadows.low_resolution = None;
+            self.shadows.visibility = self.shadows.pipeline.vertex_visibility(&self.device, &self.gpu_scene);
+        }
+        self.shadows
+            .blockers
+            .apply_settings(&self.device, &self.queue, &settings);
+        self.shadows.settings = settings;
+        // The budget and the paths decide which lights may go the exact way.
+        self.write_lights();
+    }
+
+    /// The target the last frame was drawn into.
+    pub fn target(&self) -> Option<&RenderTarget> {
+        self.target.as_ref()
+    }
+
+    /// Draws a frame of `size` pixels seen by `camera` with `settings` (their shadows as
+    /// drawn now: see [`Self::set_shadow_settings`]) into the renderer's target, made anew
+    /// when the size changes; true when it was (a texture showing it must be re-bound).
+    pub fn render(
+        &mut self,
+        camera: &Camera,
+        size: [u32; 2],
+        settings: &RenderSettings,
+        quality: FrameQuality,
+    ) -> bool {
+        let resized = self.target.as_ref().is_none_or(|t| [t.width, t.height] != size);
+        if resized {
+            self.target = Some(match self.anti_aliasing {
+                AntiAliasing::EdgeFilter => {
+                    RenderTarget::with_edge_filter(&self.device, size[0], size[1], &self.edge_filter)
+                }
+                other => RenderTarget::with_anti_aliasing(&self.device, size[0], size[1], other),
+            });
+        }
+        let Some(target) = &self.target else { return resized };
+        self.gpu_scene
+            .write_frame(&self.queue, camera, size, settings.exposure_ev);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let background = settings.background_linear();
+        if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
+            // The heat map replaces the shading.
+        } else if settings.shadows.enabled
+            // While new shaders compile, the shadows keep their previous settings.
+            && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
+        {
+            let shadows = &mut self.shadows;
+            let per_vertex = shadows
+                .visibility
+                .as_ref()
+                .filter(|_| quality.per_vertex_preview || shadows.settings.per_vertex);
+            if per_vertex.is_none() {
+                shadows.low_resolution =
+                    shadows
+                        .pipeline
+                        .low_resolution_targets(&self.device, size, shadows.low_resolution.take());
+            }
+            shadows.pipeline.draw(
+                &mut encoder,
+                target,
+                &self.gpu_scene,
+                &shadows.blockers,
+                background,
+                Shading::first_of(per_vertex, shadows.low_resolution.as_ref()),
+            );
+        } else {
+            self.raster.draw(&mut encoder, target, &self.gpu_scene, background);
+        }
+        self.queue.submit([encoder.finish()]);
+        resized
+    }
+
+    /// The last frame, read back from the GPU (None before the first frame).
+    pub fn read_image(&self) -> Option<Result<image::RgbaImage, super::RenderError>> {
+        let target = self.target.as_ref()?;
+        let encoder = self.device.create_command_encoder(&Default::default());
+        Some(super::readback::read_target_image(
+            &self.device,
+            &self.queue,
+            encoder,
+            target,
+        ))
+    }
+}
+
+/// Whether `a` and `b` differ at most in their terrain sampling.
+pub fn same_but_terrain(a: &ShadowSettings, b: &ShadowSettings) -> bool {
+    ShadowSettings {
+        terrain: b.terrain,
+        ..*a
+    } == *b
+}

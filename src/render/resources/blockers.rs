@@ -1,0 +1,183 @@
+//! Blockers, their culling groups, the shadow parameters and the terrain on the GPU: bind
+//! group 2 of logsh.wgsl and terrain.wgsl, shared by the shading pass and the per-vertex
+//! compute pass.
+
+use wgpu::util::DeviceExt;
+
+use super::terrain::GpuTerrain;
+use crate::blockers::Sphere;
+use crate::render::descriptors::numbered_entries;
+use crate::shading::ShadowSettings;
+use crate::shading::blocker_groups::group_blockers;
+use crate::shading::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams, UNIFORM_BLOCKER_CAPACITY};
+use crate::terrain::HeightField;
+
+/// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
+/// logsh.wgsl). Groups depend on the influence cut-off, so they are rebuilt with it.
+pub struct GpuBlockers {
+    params: wgpu::Buffer,
+    bind_group_layout: wgpu::BindGroupLayout,
+    spheres: Vec<Sphere>,
+    groups: Vec<GpuBlockerGroup>,
+    /// The influence cut-off the groups were built for.
+    grouped_for_min_cap_ratio: f32,
+    terrain_field: Option<HeightField>,
+    terrain: GpuTerrain,
+    pub bind_group: wgpu::BindGroup,
+}
+
+impl GpuBlockers {
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        spheres: &[Sphere],
+        terrain: Option<&HeightField>,
+        settings: &ShadowSettings,
+    ) -> GpuBlockers {
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow params"),
+            size: std::mem::size_of::<GpuShadowParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (ordered, groups) = gpu_groups(spheres, settings);
+        let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
+        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups, &gpu_terrain);
+        let blockers = GpuBlockers {
+            params,
+            bind_group_layout: layout.clone(),
+            spheres: spheres.to_vec(),
+            groups,
+            grouped_for_min_cap_ratio: settings.min_cap_ratio,
+            terrain_field: terrain.cloned(),
+            terrain: gpu_terrain,
+            bind_group,
+        };
+        blockers.write_params(queue, settings);
+        blockers
+    }
+
+    /// Replaces the blockers (keeping the terrain) and writes the parameters.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        spheres: &[Sphere],
+        settings: &ShadowSettings,
+    ) {
+        let terrain = self.terrain_field.take();
+        *self = GpuBlockers::upload(
+            device,
+            queue,
+            &self.bind_group_layout,
+            spheres,
+            terrain.as_ref(),
+            settings,
+        );
+    }
+
+    /// Applies new settings; a new influence cut-off regroups the blockers, and a new
+    /// order or terrain sampling rebuilds the terrain's model.
+    pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let terrain_stale = self.terrain_field.is_some() && self.terrain.is_stale_for(settings);
+        if settings.min_cap_ratio == self.grouped_for_min_cap_ratio && !terrain_stale {
+            self.write_params(queue, settings);
+        } else {
+            let spheres = std::mem::take(&mut self.spheres);
+            self.update(device, queue, &spheres, settings);
+        }
+    }
+
+    fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let params = GpuShadowParams {
+            ln_epsilon: settings.epsilon.ln(),
+            min_cap_ratio: settings.min_cap_ratio,
+            blocker_count: self.spheres.len() as u32,
+            ratio_attenuation: settings.ratio_attenuation as u32,
+            group_count: self.groups.len() as u32,
+            _pad: [0; 3],
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+    }
+}
+
+fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>, Vec<GpuBlockerGroup>) {
+    let (ordered, groups) = group_blockers(spheres, settings.min_cap_ratio);
+    (
+        ordered.iter().map(GpuBlocker::new).collect(),
+        groups.iter().map(GpuBlockerGroup::new).collect(),
+    )
+}
+
+fn storage_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: &wgpu::Buffer,
+    spheres: &[GpuBlocker],
+    groups: &[GpuBlockerGroup],
+    terrain: &GpuTerrain,
+) -> wgpu::BindGroup {
+    let [blockers, every_blocker] = uniform_and_storage(device, "blockers", spheres);
+    let [groups, every_group] = uniform_and_storage(device, "blocker groups", groups);
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shadow"),
+        layout,
+        entries: &numbered_entries([
+            params.as_entire_binding(),
+            blockers.as_entire_binding(),
+            groups.as_entire_binding(),
+            terrain.params.as_entire_binding(),
+            terrain.heights.as_entire_binding(),
+            every_blocker.as_entire_binding(),
+            every_group.as_entire_binding(),
+        ]),
+    })
+}
+
+/// The buffers logsh.wgsl reads `items` through: the first [`UNIFORM_BLOCKER_CAPACITY`] in
+/// a uniform buffer of that many (zero-filled), and all of them in a storage buffer (one
+/// zeroed item when there are none: a binding may not be empty).
+fn uniform_and_storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, items: &[T]) -> [wgpu::Buffer; 2] {
+    let mut first = vec![T::zeroed(); UNIFORM_BLOCKER_CAPACITY];
+    let shown = items.len().min(UNIFORM_BLOCKER_CAPACITY);
+    first[..shown].copy_from_slice(&items[..shown]);
+    let every = if items.is_empty() { &first[..1] } else { items };
+    let buffer = |contents: &[T], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(contents),
+            usage,
+        })
+    };
+    [
+        buffer(&first, wgpu::BufferUsages::UNIFORM),
+        buffer(every, wgpu::BufferUsages::STORAGE),
+    ]
+}
+
+/// The bind group layout of [`GpuBlockers`].
+pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("shadow"),
+        entries: &[
+            entry(0, wgpu::BufferBindingType::Uniform),
+            entry(1, wgpu::BufferBindingType::Uniform),
+            entry(2, wgpu::BufferBindingType::Uniform),
+            entry(3, wgpu::BufferBindingType::Uniform),
+            entry(4, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
+            entry(6, wgpu::BufferBindingType::Storage { read_only: true }),
+        ],
+    })
+}

@@ -1,0 +1,371 @@
+//! A [`Scene`] uploaded to the GPU: vertex and index buffers per object, one bind group
+//! per material (uniform, mipmapped base colour texture, sampler), and the frame uniform,
+//! light storage buffer and baked indirect light shared by every draw.
+
+use wgpu::util::DeviceExt;
+
+use super::layouts::SceneLayouts;
+use crate::render::descriptors::numbered_entries;
+use crate::scene::{Camera, Environment, Scene, TextureImage};
+use crate::shading::BakedIndirect;
+use crate::shading::gpu_types::{
+    GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance,
+};
+
+pub struct GpuObject {
+    /// [`GpuVertex`]es, also readable as storage (the per-vertex shadow pass reads them).
+    pub vertex_buffer: wgpu::Buffer,
+    pub vertex_count: u32,
+    pub index_buffer: wgpu::Buffer,
+    pub index_count: u32,
+    pub material: usize,
+    /// Whether its material samples a base colour texture.
+    pub textured: bool,
+    /// Where this object's vertices start in the baked indirect light buffer.
+    pub first_vertex: u32,
+    /// Index of the object in [`Scene::objects`] (objects without triangles are not uploaded).
+    pub source: usize,
+    /// Hidden in the viewport: not drawn (see [`GpuScene::set_hidden`]).
+    pub hidden: bool,
+}
+
+pub struct GpuScene {
+    pub objects: Vec<GpuObject>,
+    pub material_bind_groups: Vec<wgpu::BindGroup>,
+    frame_buffer: wgpu::Buffer,
+    lights: LightBuffers,
+    /// Baked indirect irradiance, linear RGB per vertex of every object (zeros: none).
+    indirect_buffer: wgpu::Buffer,
+    pub frame_bind_group: wgpu::BindGroup,
+    pub light_count: usize,
+    /// Lights from this index on (in the buffer's order) take the exact shadow path.
+    first_exact_light: usize,
+    environment_irradiance: [[f32; 4]; 9],
+}
+
+impl GpuScene {
+    pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
+        let mut first_vertex = 0u32;
+        let objects: Vec<GpuObject> = scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| !o.indices.is_empty())
+            .map(|(source, object)| {
+                let vertices: Vec<GpuVertex> = (0..object.positions.len())
+                    .map(|i| GpuVertex {
+                        position: object.positions[i].to_array(),
+                        normal: object.normals[i].to_array(),
+                        uv: object.uvs[i].to_array(),
+                    })
+                    .collect();
+                let material = object.material.min(scene.materials.len().saturating_sub(1));
+                let object_first_vertex = first_vertex;
+                first_vertex += vertices.len() as u32;
+                GpuObject {
+                    vertex_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&object.name),
+                        contents: bytemuck::cast_slice(&vertices),
+                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
+                    }),
+                    index_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&object.name),
+                        contents: bytemuck::cast_slice(&object.indices),
+                        usage: wgpu::BufferUsages::INDEX,
+                    }),
+                    vertex_count: vertices.len() as u32,
+                    index_count: object.indices.len() as u32,
+                    material,
+                    textured: scene
+                        .materials
+                        .get(material)
+                        .and_then(|m| m.base_color_texture)
+                        .is_some_and(|t| t < scene.textures.len()),
+                    first_vertex: object_first_vertex,
+                    source,
+                    hidden: false,
+                }
+            })
+            .collect();
+        let indirect_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("baked indirect light"),
+            // Never empty: a binding needs a buffer of some size.
+            size: 12 * first_vertex.max(1) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+
+        let textures: Vec<wgpu::TextureView> = scene
+            .textures
+            .iter()
+            .map(|t| upload_texture(device, queue, t))
+            .collect();
+        let white = upload_texture(
+            device,
+            queue,
+            &TextureImage {
+                name: "white".into(),
+                width: 1,
+                height: 1,
+                rgba8: vec![255; 4],
+            },
+        );
+        let material_bind_groups = scene
+            .materials
+            .iter()
+            .map(|material| {
+                let texture = material.base_color_texture.and_then(|i| textures.get(i));
+                let uniform = GpuMaterial::new(material, texture.is_some());
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&material.name),
+                    contents: bytemuck::bytes_of(&uniform),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&material.name),
+                    layout: &layouts.material,
+                    entries: &numbered_entries([
+                        buffer.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
+                        wgpu::BindingResource::Sampler(&layouts.sampler),
+                    ]),
+                })
+            })
+            .collect();
+
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<GpuFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let lights = LightBuffers::new(device, scene.lights.len());
+        let frame_bind_group = frame_bind_group(device, layouts, &frame_buffer, &lights, &indirect_buffer);
+        let mut gpu_scene = GpuScene {
+            objects,
+            material_bind_groups,
+            frame_buffer,
+            lights,
+            indirect_buffer,
+            frame_bind_group,
+            light_count: 0,
+            first_exact_light: 0,
+            environment_irradiance: environment_irradiance(scene.environment.as_ref()),
+        };
+        let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
+        gpu_scene.update_lights(device, queue, layouts, &lights);
+        gpu_scene
+    }
+
+    /// A frame bind group like [`Self::frame_bind_group`] whose per-vertex binding (2)
+    /// reads `per_vertex` instead of the baked indirect light: 3 floats per vertex of
+    /// every uploaded object, in [`Self::objects`]' order.
+    pub fn frame_bind_group_with(
+        &self,
+        device: &wgpu::Device,
+        layouts: &SceneLayouts,
+        per_vertex: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, per_vertex)
+    }
+
+    /// Vertices of every uploaded object together.
+    pub fn vertex_total(&self) -> u32 {
+        self.objects.iter().map(|o| o.vertex_count).sum()
+    }
+
+    /// Hides the objects whose [`Scene::objects`] index `hidden` holds (and shows the rest).
+    pub fn set_hidden(&mut self, hidden: &std::collections::BTreeSet<usize>) {
+        for object in &mut self.objects {
+            object.hidden = hidden.contains(&object.source);
+        }
+    }
+
+    /// Rewrites the light buffer, growing it when there are more lights than it holds;
+    /// lights on the exact path go last ([`crate::shading::gpu_types::exact_lights_last`]).
+    pub fn update_lights(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &SceneLayouts,
+        lights: &[GpuLight],
+    ) {
+        if lights.len() > self.lights.every_capacity {
+            self.lights = LightBuffers::new(device, lights.len().next_power_of_two());
+            self.frame_bind_group =
+                frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, &self.indirect_buffer);
+        }
+        let (ordered, first_exact_light) = crate::shading::gpu_types::exact_lights_last(lights);
+        self.lights.write(queue, &ordered);
+        self.light_count = ordered.len();
+        self.first_exact_light = first_exact_light;
+    }
+
+    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
+    pub fn write_frame(&self, queue: &wgpu::Queue, camera: &Camera, size_px: [u32; 2], exposure_ev: f32) {
+        let frame = GpuFrame::new(
+            camera,
+            size_px,
+            exposure_ev,
+            self.light_count,
+            self.first_exact_light,
+            self.environment_irradiance,
+        );
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+    }
+
+    /// Replaces the baked indirect light (None: none): per object of the [`Scene`] it was
+    /// uploaded from, the irradiance of each vertex.
+    pub fn set_baked_indirect(&self, queue: &wgpu::Queue, indirect: Option<&BakedIndirect>) {
+        let vertex_count: u32 = self.objects.iter().map(|o| o.vertex_count).sum();
+        let mut values = vec![0.0f32; 3 * vertex_count as usize];
+        if let Some(indirect) = indirect {
+            for object in &self.objects {
+                let Some(irradiance) = indirect.objects.get(object.source) else {
+                    continue;
+                };
+                let start = 3 * object.first_vertex as usize;
+                let count = irradiance.len().min(object.vertex_count as usize);
+                values[start..start + 3 * count].copy_from_slice(bytemuck::cast_slice(&irradiance[..count]));
+            }
+        }
+        if !values.is_empty() {
+            queue.write_buffer(&self.indirect_buffer, 0, bytemuck::cast_slice(&values));
+        }
+    }
+
+    /// Replaces the environment light (None: no environment).
+    pub fn set_environment(&mut self, environment: Option<&Environment>) {
+        self.environment_irradiance = environment_irradiance(environment);
+    }
+}
+
+/// The lights as scene.wgsl reads them: the first [`UNIFORM_LIGHT_CAPACITY`] in a uniform
+/// buffer of that many, and every light in a storage buffer (read past the capacity).
+struct LightBuffers {
+    uniform: wgpu::Buffer,
+    every: wgpu::Buffer,
+    /// Lights `every` holds.
+    every_capacity: usize,
+}
+
+impl LightBuffers {
+    fn new(device: &wgpu::Device, every_capacity: usize) -> LightBuffers {
+        let every_capacity = every_capacity.max(1);
+        let buffer = |label, count: usize, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (count * std::mem::size_of::<GpuLight>()) as u64,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        LightBuffers {
+            uniform: buffer("lights", UNIFORM_LIGHT_CAPACITY, wgpu::BufferUsages::UNIFORM),
+            every: buffer("every light", every_capacity, wgpu::BufferUsages::STORAGE),
+            every_capacity,
+        }
+    }
+
+    /// Writes `lights` (at most the capacity `every` was made with).
+    fn write(&self, queue: &wgpu::Queue, lights: &[GpuLight]) {
+        if lights.is_empty() {
+            return;
+        }
+        let first = &lights[..lights.len().min(UNIFORM_LIGHT_CAPACITY)];
+        queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(first));
+        queue.write_buffer(&self.every, 0, bytemuck::cast_slice(lights));
+    }
+}
+
+fn frame_bind_group(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    frame: &wgpu::Buffer,
+    lights: &LightBuffers,
+    indirect: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("frame"),
+        layout: &layouts.frame,
+        entries: &numbered_entries([
+            frame.as_entire_binding(),
+            lights.uniform.as_entire_binding(),
+            indirect.as_entire_binding(),
+            lights.every.as_entire_binding(),
+        ]),
+    })
+}
+
+/// Uploads an sRGB texture with a full mip chain (box-filtered on the CPU), so distant
+/// and grazing texels average instead of aliasing.
+fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureImage) -> wgpu::TextureView {
+    let levels = mip_chain(texture);
+    let gpu_texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(&texture.name),
+        size: wgpu::Extent3d {
+            width: texture.width,
+            height: texture.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (level, image) in levels.iter().enumerate() {
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &gpu_texture,
+                mip_level: level as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            image.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * image.width()),
+                rows_per_image: Some(image.height()),
+            },
+            wgpu::Extent3d {
+                width: image.width(),
+                height: image.height(),
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    gpu_texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+fn mip_chain(texture: &TextureImage) -> Vec<image::RgbaImage> {
+    let base = image::RgbaImage::from_raw(texture.width, texture.height, texture.rgba8.clone())
+        .unwrap_or_else(|| image::RgbaImage::from_pixel(1, 1, image::Rgba([255; 4])));
+    let mut levels = vec![base];
+    loop {
+        let last = &levels[levels.len() - 1];
+        if last.width() == 1 && last.height() == 1 {
+            break levels;
+        }
+        let (w, h) = ((last.width() / 2).max(1), (last.height() / 2).max(1));
+        let next = image::imageops::resize(last, w, h, image::imageops::FilterType::Triangle);
+        levels.push(next);
+    }
+}
+
+/// Draws every shown object of `scene` into `pass` (pipeline and group 0 set).
+pub fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+    for object in scene.objects.iter().filter(|o| !o.hidden) {
+        draw_object(pass, scene, object);
+    }
+}
+
+/// Draws one object; its one instance's index is the object's first vertex in the baked
+/// indirect light (scene.wgsl reads it as `instance_index`).
+pub fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &GpuObject) {
+    pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
+    pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
+    pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+    pass.draw_indexed(0..object.index_count, 0, object.first_vertex..object.first_vertex + 1);
+}

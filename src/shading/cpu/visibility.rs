@@ -1,0 +1,158 @@
+//! The shadowed side of the f64 shading twin: the blockers' and the terrain's
+//! log-visibility, its means over a light's cap and the clamped cosine, and the exact
+//! path's visibility of a small light (`logsh.wgsl`, `exact_lights.wgsl`).
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::surface::{Incidence, SurfacePoint};
+use crate::blockers::Sphere;
+use crate::sh::{self, ExpMethod};
+use crate::shading::ShadowSettings;
+use crate::shading::gpu_types::GpuLight;
+use crate::terrain::TerrainShadow;
+
+/// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl).
+pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> Vec<f64> {
+    let order = settings.order;
+    let ln_epsilon = (settings.epsilon as f64).ln();
+    let mut f = vec![0.0; order * order];
+    for cap in blockers
+        .iter()
+        .filter_map(|b| b.cap_from(p, n, settings.min_cap_ratio as f64))
+    {
+        let (ratio, horizon) = (cap.ratio, cap.horizon);
+        let scale = if settings.ratio_attenuation {
+            ln_epsilon * horizon * ratio
+        } else {
+            ln_epsilon * horizon
+        };
+        // Funk–Hecke: f_lm += scale·√(4π/(2l+1))·z_l·y_lm(d), without building the
+        // rotated vector.
+        with_basis(order, cap.direction, |y| {
+            sh::cap_zh_ratio_each(order, ratio, |l, z| {
+                let weight = scale * (4.0 * PI / (2 * l + 1) as f64).sqrt() * z;
+                for i in l * l..(l + 1) * (l + 1) {
+                    f[i] += weight * y[i];
+                }
+            });
+        });
+    }
+    f
+}
+
+/// The blockers' log-visibility plus, with a terrain, the terrain's (`log_visibility` in
+/// logsh.wgsl, which adds `terrain_log_visibility`).
+pub fn scene_log_visibility(
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    terrain: Option<&TerrainShadow>,
+    p: DVec3,
+    n: DVec3,
+) -> Vec<f64> {
+    let mut f = log_visibility(settings, blockers, p, n);
+    if let Some(terrain) = terrain {
+        let ln_epsilon = (settings.epsilon as f64).ln();
+        for (a, b) in f.iter_mut().zip(terrain.log_visibility(p, ln_epsilon)) {
+            *a += b;
+        }
+    }
+    f
+}
+
+/// The SH basis at unit `d`: the unrolled polynomials up to order 4 (as the shaders
+/// evaluate it), the general recurrence above.
+fn basis(order: usize, d: DVec3) -> Vec<f64> {
+    with_basis(order, d, <[f64]>::to_vec)
+}
+
+/// Calls `f` with the n² basis values at unit `d`, on the stack up to order 4 (the shading
+/// loops call this per blocker and per light).
+fn with_basis<R>(order: usize, d: DVec3, f: impl FnOnce(&[f64]) -> R) -> R {
+    if order <= 4 {
+        f(&sh::basis16(d.normalize_or(DVec3::Z))[..order * order])
+    } else {
+        f(&sh::basis(order, d))
+    }
+}
+
+/// Mean of the visibility SH `g` over a cap of sin(half-angle) `cap_ratio` around `d`.
+pub fn visibility_toward(g: &[f64], d: DVec3, cap_ratio: f64) -> f64 {
+    let order = sh::order_of(g.len()).unwrap_or(0);
+    let s = cap_ratio.clamp(0.0, 1.0);
+    if s == 0.0 {
+        // A point: every band's weight is 1, V̄ = G(d).
+        return with_basis(order, d, |y| g.iter().zip(y).map(|(a, b)| a * b).sum());
+    }
+    let y = basis(order, d);
+    let c = (1.0 - s * s).max(0.0).sqrt();
+    let dp = sh::legendre_derivative(order, c);
+    (0..order)
+        .map(|l| {
+            let w = if l == 0 {
+                1.0
+            } else {
+                (1.0 + c) * dp[l] / (l * (l + 1)) as f64
+            };
+            w * (l * l..(l + 1) * (l + 1)).map(|i| g[i] * y[i]).sum::<f64>()
+        })
+        .sum()
+}
+
+/// Clamped-cosine average of `g` about `n`: ⟨G, max(n·ω, 0)/π⟩ (1 when unoccluded).
+pub fn visibility_cosine(g: &[f64], n: DVec3) -> f64 {
+    let order = sh::order_of(g.len()).unwrap_or(0);
+    let cosine = sh::rotate_zh(&sh::phong_lobe_zh(order, 1.0), n);
+    g.iter().zip(cosine).map(|(a, b)| a * b).sum()
+}
+
+/// The visibility of `light`, seen as `inc` from `s`, when it is on the exact path
+/// (`GpuLight::exact_path`, which `shading::shading_lights` sets): `crate::penumbra` times
+/// the share of its disc above the terrain's horizon. None when it takes the SH path.
+/// `pixel_footprint_m` anti-aliases hard blocker edges (`penumbra::light_visibility`; 0:
+/// none).
+pub fn exact_visibility(
+    s: &SurfacePoint,
+    light: &GpuLight,
+    inc: &Incidence,
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    terrain: Option<&TerrainShadow>,
+    pixel_footprint_m: f64,
+) -> Option<f64> {
+    (light.exact_path != 0).then(|| {
+        let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
+        let light = crate::penumbra::LightDisc {
+            to_light: inc.to_light,
+            distance_m: inc.distance_m,
+            cap_ratio: inc.cap_ratio,
+        };
+        let min_cap_ratio = settings.min_cap_ratio as f64;
+        above_terrain
+            * crate::penumbra::light_visibility(
+                s.position,
+                s.normal,
+                &light,
+                blockers,
+                min_cap_ratio,
+                pixel_footprint_m,
+            )
+    })
+}
+
+/// exp* as the GPU evaluates it: HYB's carried magnitude capped where f32 stops (see
+/// `wgsl_sh::F32_MAX_EXPONENT`); every other method as in `sh::exp`.
+pub(super) fn exp_for_shading(method: ExpMethod, f: &[f64]) -> Vec<f64> {
+    let g = sh::exp(method, f);
+    if method != ExpMethod::Hyb {
+        return g;
+    }
+    let cap = crate::shading::wgsl::sh::F32_MAX_EXPONENT.exp();
+    let norm = g.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if norm > cap {
+        g.into_iter().map(|v| v * cap / norm).collect()
+    } else {
+        g
+    }
+}

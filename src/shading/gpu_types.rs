@@ -1,0 +1,272 @@
+//! Rust twins of the WGSL structs in `shaders/common.wgsl` (`#[repr(C)]`, bytemuck).
+//! `tests/wgsl_layout.rs` checks each size and field offset against naga's layout of the
+//! WGSL source, so the two cannot drift apart.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+
+use crate::scene::{Camera, Environment, Light, LightKind, Material};
+
+/// Light kind tags shared with WGSL (`LIGHT_POINT`, `LIGHT_SPOT`, `LIGHT_DIRECTIONAL`).
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_SPOT: u32 = 1;
+pub const LIGHT_DIRECTIONAL: u32 = 2;
+pub const LIGHT_AREA: u32 = 3;
+
+/// How many lights the uniform array `lights` of scene.wgsl holds (WGSL
+/// `UNIFORM_LIGHT_CAPACITY`): as many as fit in wgpu's default 64 KiB uniform binding.
+/// lavapipe reads a uniform array several times faster than a storage buffer; a frame with
+/// more lights also reads the rest from a storage buffer (`LIGHT_OVERFLOW`).
+pub const UNIFORM_LIGHT_CAPACITY: usize = 682;
+
+/// How many blockers and blocker groups the uniform arrays `blockers` and `groups` of
+/// logsh.wgsl hold (WGSL `UNIFORM_BLOCKER_CAPACITY`); as [`UNIFORM_LIGHT_CAPACITY`], with
+/// `BLOCKER_OVERFLOW`. Groups never outnumber blockers, so one capacity serves both.
+pub const UNIFORM_BLOCKER_CAPACITY: usize = 2048;
+
+/// wgpu's default `max_uniform_buffer_binding_size`.
+const MAX_UNIFORM_BINDING_BYTES: usize = 64 << 10;
+const _: () = assert!(UNIFORM_LIGHT_CAPACITY * std::mem::size_of::<GpuLight>() <= MAX_UNIFORM_BINDING_BYTES);
+const _: () = assert!(UNIFORM_BLOCKER_CAPACITY * std::mem::size_of::<GpuBlockerGroup>() <= MAX_UNIFORM_BINDING_BYTES);
+
+/// Vertex buffer element: position, normal (world space) and UV set 0 (locations 0–2 of
+/// scene.wgsl's vertex stage; `render::resources::vertex_layout`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuVertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+}
+
+/// WGSL `Frame`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    pub view_proj: [[f32; 4]; 4],
+    pub camera_position: [f32; 4],
+    pub exposure: f32,
+    pub light_count: u32,
+    /// The angle one pixel subtends at the image centre (see [`pixel_angle_rad`]).
+    pub pixel_angle_rad: f32,
+    /// Lights from this index on take the exact shadow path (see [`exact_lights_last`]).
+    pub first_exact_light: u32,
+    /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
+    pub environment_irradiance: [[f32; 4]; 9],
+}
+
+impl GpuFrame {
+    /// The frame of `camera` drawn into `size_px` (width, height) pixels.
+    pub fn new(
+        camera: &Camera,
+        size_px: [u32; 2],
+        exposure_ev: f32,
+        light_count: usize,
+        first_exact_light: usize,
+        environment_irradiance: [[f32; 4]; 9],
+    ) -> GpuFrame {
+        let [width, height] = size_px.map(|v| v.max(1) as f32);
+        GpuFrame {
+            view_proj: camera.view_projection(width / height).to_cols_array_2d(),
+            camera_position: camera.position.extend(1.0).to_array(),
+            exposure: exposure_ev.exp2(),
+            light_count: light_count as u32,
+            pixel_angle_rad: pixel_angle_rad(camera, size_px[1]) as f32,
+            first_exact_light: first_exact_light.min(light_count) as u32,
+            environment_irradiance,
+        }
+    }
+
+    pub fn view_projection(&self) -> Mat4 {
+        Mat4::from_cols_array_2d(&self.view_proj)
+    }
+}
+
+/// `lights` in the order the shaders take them: those on the SH path first, then those on
+/// the exact path (each side in scene order), with the index of the first exact one. The
+/// shaders walk each side in its own loop: lavapipe runs both sides of a branch at every
+/// pixel, so a per-light choice inside one loop would cost both paths for every light.
+pub fn exact_lights_last(lights: &[GpuLight]) -> (Vec<GpuLight>, usize) {
+    let (exact, harmonics): (Vec<GpuLight>, Vec<GpuLight>) = lights.iter().partition(|light| light.exact_path != 0);
+    let first_exact = harmonics.len();
+    (harmonics.into_iter().chain(exact).collect(), first_exact)
+}
+
+/// The angle (radians) one pixel subtends at the centre of an image `height_px` tall seen
+/// through `camera`: 2 tan(yfov/2) / height. Times a point's distance from the eye, it is
+/// the width of a pixel there (shaders: `pixel_footprint`).
+pub fn pixel_angle_rad(camera: &Camera, height_px: u32) -> f64 {
+    2.0 * (0.5 * camera.yfov_rad as f64).tan() / height_px.max(1) as f64
+}
+
+/// The environment's irradiance SH in the layout of `Frame::environment_irradiance`
+/// (zeros without an environment).
+pub fn environment_irradiance(environment: Option<&Environment>) -> [[f32; 4]; 9] {
+    let mut out = [[0.0; 4]; 9];
+    if let Some(environment) = environment {
+        let irradiance = crate::scene::environment::irradiance_sh(&environment.world_radiance_sh());
+        for (slot, rgb) in out.iter_mut().zip(irradiance) {
+            *slot = [rgb[0] as f32, rgb[1] as f32, rgb[2] as f32, 0.0];
+        }
+    }
+    out
+}
+
+/// WGSL `Light`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 4],
+    pub direction_range: [f32; 4],
+    pub intensity_rgb: [f32; 4],
+    pub spot_cone: [f32; 4],
+    pub kind: u32,
+    /// Sphere lights: radius in metres; area lights: emitting area in m²; otherwise 0.
+    pub source_size: f32,
+    /// 1 if this light is shadowed on the exact path, 0 on the SH path (decided for the
+    /// frame by `shading::shading_lights`; [`GpuLight::new`] sets 0).
+    pub exact_path: u32,
+    pub _pad: u32,
+}
+
+impl GpuLight {
+    pub fn new(light: &Light) -> GpuLight {
+        // A sphere lights like a point at its centre (exact for unshadowed receivers it is
+        // wholly above the horizon of); an area light like a point whose intensity falls
+        // with the cosine to its normal, I(θ) = L·A·cos θ (exact in the far field).
+        let mut intensity_scale = 1.0;
+        let mut source_size = 0.0;
+        let (kind, spot_cone) = match light.kind {
+            LightKind::Point => (LIGHT_POINT, [0.0; 4]),
+            LightKind::Sphere { radius_m } => {
+                source_size = radius_m;
+                (LIGHT_POINT, [0.0; 4])
+            }
+            LightKind::Rect { .. } | LightKind::Disk { .. } => {
+                intensity_scale = light.kind.emitting_area_m2().unwrap_or(0.0);
+                source_size = intensity_scale;
+                (LIGHT_AREA, [0.0; 4])
+            }
+            LightKind::Directional => (LIGHT_DIRECTIONAL, [0.0; 4]),
+            LightKind::Spot { .. } => {
+                let (cos_outer, inverse_transition) = light.kind.spot_cone().unwrap_or((-1.0, 1.0));
+                (LIGHT_SPOT, [cos_outer, inverse_transition, 0.0, 0.0])
+            }
+        };
+        let intensity: Vec3 = light.color * light.intensity * intensity_scale;
+        GpuLight {
+            position: light.position.extend(1.0).to_array(),
+            direction_range: light.direction.extend(light.range.unwrap_or(0.0)).to_array(),
+            intensity_rgb: intensity.extend(0.0).to_array(),
+            spot_cone,
+            kind,
+            source_size,
+            exact_path: 0,
+            _pad: 0,
+        }
+    }
+}
+
+/// WGSL `Material`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    pub params: [f32; 4],
+    pub emissive: [f32; 4],
+}
+
+impl GpuMaterial {
+    pub fn new(material: &Material, textured: bool) -> GpuMaterial {
+        GpuMaterial {
+            base_color: material.base_color.to_array(),
+            params: [
+                material.metallic,
+                material.specular,
+                material.phong_exponent(),
+                if textured { 1.0 } else { 0.0 },
+            ],
+            emissive: material.emissive.extend(0.0).to_array(),
+        }
+    }
+}
+
+/// WGSL `ShadowParams`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuShadowParams {
+    pub ln_epsilon: f32,
+    pub min_cap_ratio: f32,
+    pub blocker_count: u32,
+    pub ratio_attenuation: u32,
+    pub group_count: u32,
+    pub _pad: [u32; 3],
+}
+
+/// WGSL `UpsampleParams` (see `reduced_shading`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuUpsampleParams {
+    pub full_to_low: [f32; 2],
+    pub plane_tolerance_px: f32,
+    pub min_matched_weight: f32,
+}
+
+/// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).
+pub const GPU_TERRAIN_LEVELS: usize = 12;
+
+/// WGSL `TerrainParams` (see `gpu_terrain`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuTerrainParams {
+    pub present: u32,
+    pub azimuths: u32,
+    pub levels: u32,
+    pub sample_count: u32,
+    pub first_step_m: f32,
+    pub surface_first: u32,
+    pub surface_tolerance_m: f32,
+    pub _pad: f32,
+    pub level_frame: [[f32; 4]; GPU_TERRAIN_LEVELS],
+    pub level_size: [[u32; 4]; GPU_TERRAIN_LEVELS],
+    pub wedge: [[f32; 4]; 256],
+}
+
+/// WGSL `BlockerGroup` (see `blocker_groups`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuBlockerGroup {
+    pub center_extent: [f32; 4],
+    pub influence_m: f32,
+    pub first: u32,
+    pub count: u32,
+    pub _pad: u32,
+}
+
+impl GpuBlockerGroup {
+    pub fn new(group: &super::blocker_groups::BlockerGroup) -> GpuBlockerGroup {
+        GpuBlockerGroup {
+            center_extent: group.center.extend(group.extent_m).to_array(),
+            // f32::MAX rather than infinity: squared in the shader, it still compares.
+            influence_m: group.influence_m.min(1e18),
+            first: group.first as u32,
+            count: group.count as u32,
+            _pad: 0,
+        }
+    }
+}
+
+/// WGSL `Blocker`: centre xyz and radius w, world metres.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuBlocker {
+    pub center_radius: [f32; 4],
+}
+
+impl GpuBlocker {
+    pub fn new(sphere: &crate::blockers::Sphere) -> GpuBlocker {
+        GpuBlocker {
+            center_radius: sphere.center.extend(sphere.radius_m).to_array(),
+        }
+    }
+}

@@ -1,0 +1,446 @@
+//! Which shadow path each light takes, and which shading code a frame's pipelines carry.
+//!
+//! One choice per light for the whole frame (no receiver shows a seam where a light
+//! would change path), the same in the editor, the CLI, the CPU reference and painting:
+//! every light exact under [`LightPaths::Exact`], none under [`LightPaths::Harmonics`];
+//! under [`LightPaths::Auto`] the sphere and area lights whose angular radius at the
+//! scene's centre is under [`super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG`], at most the settings'
+//! `exact_light_budget` of them, those whose exact shadows matter most first: brightness
+//! at the centre times the share of the scene's surface where some blocker cuts the
+//! light's disc (a light no blocker shadows gains nothing from the exact path).
+
+use glam::{DVec3, Vec3};
+
+use super::gpu_types::{GpuLight, UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+use super::{LightPaths, ShadowSettings};
+use crate::blockers::Sphere;
+use crate::scene::{Light, Scene};
+
+/// Most surface points [`LightPathContext::of_scene`] keeps: enough to tell a light that
+/// shadows much of the scene from one that shadows little, cheap enough to redo while a
+/// light is dragged.
+pub const MAX_RECEIVERS: usize = 128;
+
+/// Most receiver–blocker tests weighing one light: with many blockers, fewer receivers
+/// (at least [`MIN_RECEIVERS`]) are looked at, so the choice stays interactive.
+const MAX_TESTS_PER_LIGHT: usize = 100_000;
+const MIN_RECEIVERS: usize = 16;
+
+/// What Auto's choice of exact lights looks at besides the lights: the scene's centre,
+/// where each light's size and brightness are taken, and, to weigh the blockers that
+/// matter, a spread of the scene's surface points and the blockers.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LightPathContext {
+    pub centre: Vec3,
+    /// Surface points (position, unit normal); none: every light's shadows count alike.
+    pub receivers: Vec<(Vec3, Vec3)>,
+    pub blockers: Vec<Sphere>,
+}
+
+impl LightPathContext {
+    /// Lights ranked by their brightness at `centre` alone.
+    pub fn at(centre: Vec3) -> LightPathContext {
+        LightPathContext {
+            centre,
+            ..LightPathContext::default()
+        }
+    }
+
+    /// The context of `scene` shadowed by `blockers`: its centre, and up to
+    /// [`MAX_RECEIVERS`] of its vertices spread evenly over all its objects.
+    pub fn of_scene(scene: &Scene, blockers: &[Sphere]) -> LightPathContext {
+        let total: usize = scene.objects.iter().map(|o| o.positions.len()).sum();
+        let stride = total.div_ceil(MAX_RECEIVERS).max(1);
+        let receivers = scene
+            .objects
+            .iter()
+            .flat_map(|o| o.positions.iter().copied().zip(o.normals.iter().copied()))
+            .step_by(stride)
+            .filter(|(p, n)| p.is_finite() && n.is_normalized())
+            .collect();
+        LightPathContext {
+            centre: scene.bounds().center(),
+            receivers,
+            blockers: blockers.to_vec(),
+        }
+    }
+
+    /// The centre, or the origin for a scene without geometry (whose centre is not finite).
+    fn centre(&self) -> DVec3 {
+        if self.centre.is_finite() {
+            self.centre.as_dvec3()
+        } else {
+            DVec3::ZERO
+        }
+    }
+
+    /// Share of the receivers that `light` lights and at which some blocker cuts its disc
+    /// (the exact path's cap test without the lens); 1 without receivers.
+    fn shadowed_share(&self, light: &GpuLight, min_cap_ratio: f64) -> f64 {
+        if self.receivers.is_empty() {
+            return 1.0;
+        }
+        let affordable = (MAX_TESTS_PER_LIGHT / self.blockers.len().max(1)).max(MIN_RECEIVERS);
+        let stride = self.receivers.len().div_ceil(affordable).max(1);
+        let receivers: Vec<&(Vec3, Vec3)> = self.receivers.iter().step_by(stride).collect();
+        let shadowed = receivers
+            .iter()
+            .filter(|(p, n)| {
+                let (p, n) = (p.as_dvec3(), n.as_dvec3());
+                let inc = super::cpu::incidence(light, p);
+                if inc.irradiance == DVec3::ZERO || n.dot(inc.to_light) <= 0.0 {
+                    return false;
+                }
+                let disc = inc.cap_ratio.clamp(0.0, 1.0).asin();
+                self.blockers.iter().any(|b| {
+                    b.cap_from(p, n, min_cap_ratio).is_some_and(|cap| {
+                        cap.distance_m - (b.radius_m as f64) < inc.distance_m
+                            && cap.direction.angle_between(inc.to_light) < disc + cap.ratio.asin()
+                    })
+                })
+            })
+            .count();
+        shadowed as f64 / receivers.len() as f64
+    }
+}
+
+/// Which shading code a log-SH pipeline compiles in (the override constants
+/// EXACT_LIGHT_PATH, EXACT_WIDE, SH_VISIBILITY, TERRAIN_SHADOWS, LIGHT_OVERFLOW and
+/// BLOCKER_OVERFLOW): lavapipe runs the code of both sides of a branch at every pixel
+/// whether taken or not, so code that the frame does not need is left out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct CompiledPaths {
+    /// Some light is on the exact path (EXACT_LIGHT_PATH).
+    pub exact: bool,
+    /// More than four lights are: the exact path takes them eight at a time rather than
+    /// four (EXACT_WIDE).
+    pub exact_wide: bool,
+    /// The visibility SH are read: some light is on the SH path, or an environment lights
+    /// the scene (SH_VISIBILITY).
+    pub harmonics: bool,
+    /// The scene has a terrain (TERRAIN_SHADOWS).
+    pub terrain: bool,
+    /// More lights than the shaders' uniform array holds: the rest are read from a storage
+    /// buffer (LIGHT_OVERFLOW; [`UNIFORM_LIGHT_CAPACITY`]).
+    pub light_overflow: bool,
+    /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
+    pub blocker_overflow: bool,
+    /// Back faces are culled: every material of the scene is single-sided. Not code but
+    /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent
+    /// a tenth of the studio's default frame on the back faces it rasterised only for
+    /// the depth test to reject them.
+    pub cull_back_faces: bool,
+}
+
+impl CompiledPaths {
+    /// Every path (a pipeline any frame can be drawn with).
+    pub const ALL: CompiledPaths = CompiledPaths {
+        exact: true,
+        exact_wide: true,
+        harmonics: true,
+        terrain: true,
+        light_overflow: true,
+        blocker_overflow: true,
+        cull_back_faces: false,
+    };
+
+    /// No optional path (a pipeline that shades no light).
+    pub const NONE: CompiledPaths = CompiledPaths {
+        exact: false,
+        exact_wide: false,
+        harmonics: false,
+        terrain: false,
+        light_overflow: false,
+        blocker_overflow: false,
+        cull_back_faces: false,
+    };
+}
+
+/// What a frame lights a scene with, besides its lights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneLighting {
+    pub has_environment: bool,
+    pub has_terrain: bool,
+    /// Every material is single-sided: back faces are culled
+    /// ([`Scene::every_material_single_sided`]).
+    pub single_sided: bool,
+}
+
+impl SceneLighting {
+    pub fn of(scene: &Scene) -> SceneLighting {
+        SceneLighting {
+            has_environment: scene.environment.is_some(),
+            has_terrain: scene.terrain.is_some(),
+            single_sided: scene.every_material_single_sided(),
+        }
+    }
+}
+
+/// Exact-path lights per half of the shaders' eight-light batch: one `vec4` lane each
+/// (`ExactBatch` in exact_lights.wgsl). A frame with more needs the wide batch
+/// (EXACT_WIDE).
+const EXACT_LIGHTS_PER_HALF_BATCH: usize = 4;
+
+/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
+/// and `blocker_count` blockers.
+pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
+    let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
+    CompiledPaths {
+        exact: exact_count > 0,
+        exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
+        harmonics: lighting.has_environment || shaded.iter().any(|light| light.exact_path == 0),
+        terrain: lighting.has_terrain,
+        light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
+        blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
+        cull_back_faces: lighting.single_sided,
+    }
+}
+
+/// The lights as the shaders and the CPU reference take them, each on the shadow path
+/// `settings` give it (`GpuLight::exact_path`; see the module's documentation for the
+/// choice).
+pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &LightPathContext) -> Vec<GpuLight> {
+    let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
+    let exact: Vec<bool> = match settings.light_paths {
+        LightPaths::Exact => vec![true; lights.len()],
+        LightPaths::Harmonics => vec![false; lights.len()],
+        LightPaths::Auto => auto_exact(&gpu_lights, settings, context),
+    };
+    for (light, exact) in gpu_lights.iter_mut().zip(exact) {
+        light.exact_path = u32::from(exact);
+    }
+    gpu_lights
+}
+
+/// Auto's choice: which of `lights` go exact.
+fn auto_exact(lights: &[GpuLight], settings: &ShadowSettings, context: &LightPathContext) -> Vec<bool> {
+    let centre = context.centre();
+    let candidates: Vec<usize> = (0..lights.len())
+        .filter(|&i| {
+            let light = &lights[i];
+            light.source_size > 0.0 && LightPaths::Auto.is_exact(super::cpu::incidence(light, centre).cap_ratio)
+        })
+        .collect();
+    let budget = settings.exact_light_budget as usize;
+    let mut exact = vec![false; lights.len()];
+    // Within the budget every candidate goes: no need to weigh them.
+    if candidates.len() <= budget {
+        for i in candidates {
+            exact[i] = true;
+        }
+        return exact;
+    }
+    let min_cap_ratio = settings.min_cap_ratio as f64;
+    let mut ranked: Vec<(usize, f64, f64)> = candidates
+        .into_iter()
+        .map(|i| {
+            let brightness = crate::scene::luminance(super::cpu::incidence(&lights[i], centre).irradiance);
+            (
+                i,
+                brightness * context.shadowed_share(&lights[i], min_cap_ratio),
+                brightness,
+            )
+        })
+        .collect();
+    // Most shadow first, then the brightest; equal ones in scene order, so the choice is
+    // stable.
+    ranked.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.total_cmp(&a.2)).then(a.0.cmp(&b.0)));
+    for &(i, _, _) in ranked.iter().take(budget) {
+        exact[i] = true;
+    }
+    exact
+}
+
+/// For each of `lights`: whether it takes the exact shadow path under `settings` (see
+/// [`shading_lights`]) and its angular radius seen from `point` in degrees (the editor
+/// asks at the view's pivot).
+pub fn light_paths_at(
+    lights: &[Light],
+    point: Vec3,
+    settings: &ShadowSettings,
+    context: &LightPathContext,
+) -> Vec<(bool, f64)> {
+    paths_and_sizes_at(&shading_lights(lights, settings, context), point)
+}
+
+/// For lights as the shaders take them: whether each is on the exact path, and its
+/// angular radius seen from `point` in degrees.
+pub fn paths_and_sizes_at(lights: &[GpuLight], point: Vec3) -> Vec<(bool, f64)> {
+    lights
+        .iter()
+        .map(|light| {
+            let inc = super::cpu::incidence(light, point.as_dvec3());
+            (light.exact_path != 0, inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(kind: crate::scene::LightKind, intensity: f32) -> crate::scene::Light {
+        crate::scene::Light {
+            name: "light".into(),
+            kind,
+            color: glam::Vec3::ONE,
+            intensity,
+            position: glam::Vec3::Y,
+            direction: glam::Vec3::NEG_Y,
+            range: None,
+        }
+    }
+
+    #[test]
+    fn pipelines_compile_only_the_paths_the_lights_take() {
+        use crate::scene::LightKind;
+        let points = [light(LightKind::Point, 1.0), light(LightKind::Directional, 1.0)];
+        let sphere = light(LightKind::Sphere { radius_m: 0.1 }, 1.0);
+        let one_sphere = std::slice::from_ref(&sphere);
+        let with_sphere = [points[0].clone(), sphere.clone()];
+        let five_spheres = vec![sphere.clone(); 5];
+        let (auto, exact, harmonics) = (LightPaths::Auto, LightPaths::Exact, LightPaths::Harmonics);
+        let origin = glam::Vec3::ZERO;
+        // 0.1 m at 1 m is 5.7°; at 0.11 m the light is 65° wide, above Auto's 40°.
+        let near_sphere = glam::Vec3::new(0.0, 0.89, 0.0);
+        // (exact, exact_wide, harmonics) for these paths, budget, lights, centre and sky.
+        let compiled = |light_paths, exact_light_budget, lights: &[crate::scene::Light], centre, has_environment| {
+            let settings = ShadowSettings {
+                light_paths,
+                exact_light_budget,
+                ..ShadowSettings::default()
+            };
+            let lighting = SceneLighting {
+                has_environment,
+                has_terrain: false,
+                single_sided: false,
+            };
+            let paths = compiled_paths(
+                &shading_lights(lights, &settings, &LightPathContext::at(centre)),
+                lighting,
+                0,
+            );
+            (paths.exact, paths.exact_wide, paths.harmonics)
+        };
+        // Auto: point-like lights stay on the SH, small sized ones go exact, four at most
+        // unless the budget allows more.
+        assert_eq!(compiled(auto, 4, &points, origin, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &with_sphere, origin, false), (true, false, true));
+        assert_eq!(compiled(auto, 4, one_sphere, origin, false), (true, false, false));
+        assert_eq!(compiled(auto, 4, one_sphere, origin, true), (true, false, true));
+        assert_eq!(compiled(auto, 4, one_sphere, near_sphere, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &five_spheres, origin, false), (true, false, true));
+        assert_eq!(compiled(auto, 8, &five_spheres, origin, false), (true, true, false));
+        assert_eq!(compiled(auto, 0, &with_sphere, origin, false), (false, false, true));
+        assert_eq!(compiled(auto, 4, &[], origin, false), (false, false, false));
+        assert_eq!(compiled(exact, 0, &points, origin, false), (true, false, false));
+        assert_eq!(
+            compiled(harmonics, 4, &with_sphere, origin, false),
+            (false, false, true)
+        );
+        let terrain = SceneLighting {
+            has_environment: false,
+            has_terrain: true,
+            single_sided: false,
+        };
+        assert!(compiled_paths(&[], terrain, 0).terrain);
+        let single_sided = SceneLighting {
+            single_sided: true,
+            ..terrain
+        };
+        assert!(compiled_paths(&[], single_sided, 0).cull_back_faces);
+        assert!(!compiled_paths(&[], terrain, 0).cull_back_faces);
+    }
+
+    #[test]
+    fn storage_buffers_are_read_only_past_the_uniform_capacities() {
+        let lighting = SceneLighting {
+            has_environment: false,
+            has_terrain: false,
+            single_sided: false,
+        };
+        let lights = |n| vec![GpuLight::new(&light(crate::scene::LightKind::Point, 1.0)); n];
+        let at_capacity = compiled_paths(&lights(UNIFORM_LIGHT_CAPACITY), lighting, UNIFORM_BLOCKER_CAPACITY);
+        assert!(!at_capacity.light_overflow && !at_capacity.blocker_overflow);
+        let past = compiled_paths(
+            &lights(UNIFORM_LIGHT_CAPACITY + 1),
+            lighting,
+            UNIFORM_BLOCKER_CAPACITY + 1,
+        );
+        assert!(past.light_overflow && past.blocker_overflow);
+    }
+
+    #[test]
+    fn the_budget_lets_the_brightest_sized_lights_go_exact() {
+        use crate::scene::LightKind;
+        let lights = [
+            light(LightKind::Sphere { radius_m: 0.1 }, 2.0),
+            light(LightKind::Point, 50.0),
+            light(LightKind::Sphere { radius_m: 0.1 }, 9.0),
+            light(LightKind::Disk { radius_m: 0.2 }, 100.0),
+            light(LightKind::Sphere { radius_m: 0.1 }, 9.0),
+        ];
+        let allowed = |light_paths, exact_light_budget| -> Vec<u32> {
+            let settings = ShadowSettings {
+                light_paths,
+                exact_light_budget,
+                ..ShadowSettings::default()
+            };
+            shading_lights(&lights, &settings, &LightPathContext::at(glam::Vec3::ZERO))
+                .iter()
+                .map(|l| l.exact_path)
+                .collect()
+        };
+        // At the centre, 1 m below them all: the disk (100 × π 0.2² ≈ 12.6 lux) outshines
+        // the 9 cd spheres; of those equal two, the first in the scene wins; the point light
+        // has no disc.
+        assert_eq!(allowed(LightPaths::Auto, 2), [0, 0, 1, 1, 0]);
+        assert_eq!(allowed(LightPaths::Auto, 3), [0, 0, 1, 1, 1]);
+        assert_eq!(allowed(LightPaths::Auto, 64), [1, 0, 1, 1, 1]);
+        assert_eq!(allowed(LightPaths::Auto, 0), [0; 5]);
+        assert_eq!(allowed(LightPaths::Exact, 0), [1; 5]);
+        assert_eq!(allowed(LightPaths::Harmonics, 64), [0; 5]);
+    }
+
+    /// Two small sphere lights over a floor, the right one brighter; a ball shadows the
+    /// left one's light onto the floor's middle, while the right one's shadow of it falls
+    /// off the floor. With room for one exact light, the left one goes: its shadows are
+    /// the ones that matter. Without receivers to look at, the brighter one goes.
+    #[test]
+    fn the_budget_goes_to_the_lights_whose_blockers_matter() {
+        use crate::scene::LightKind;
+        let sphere_light = |x: f32, intensity| Light {
+            position: Vec3::new(x, 3.0, 0.0),
+            ..light(LightKind::Sphere { radius_m: 0.1 }, intensity)
+        };
+        let lights = [sphere_light(-2.0, 10.0), sphere_light(2.0, 12.0)];
+        let ball = Sphere {
+            center: Vec3::new(-1.0, 1.5, 0.0),
+            radius_m: 0.3,
+        };
+        // The floor from −2 to 2 m in x and z: the left light's shadow of the ball is
+        // centred at x = 0, the right one's at x = −4.
+        let receivers = (0..11)
+            .flat_map(|i| (0..11).map(move |j| (Vec3::new(-2.0 + 0.4 * i as f32, 0.0, -2.0 + 0.4 * j as f32), Vec3::Y)))
+            .collect();
+        let floor = LightPathContext {
+            centre: Vec3::ZERO,
+            receivers,
+            blockers: vec![ball],
+        };
+        let settings = ShadowSettings {
+            exact_light_budget: 1,
+            ..ShadowSettings::default()
+        };
+        let exact = |context: &LightPathContext| -> Vec<u32> {
+            shading_lights(&lights, &settings, context)
+                .iter()
+                .map(|l| l.exact_path)
+                .collect()
+        };
+        assert!(floor.shadowed_share(&GpuLight::new(&lights[0]), 0.03) > 0.0);
+        assert_eq!(floor.shadowed_share(&GpuLight::new(&lights[1]), 0.03), 0.0);
+        assert_eq!(exact(&floor), [1, 0]);
+        assert_eq!(exact(&LightPathContext::at(Vec3::ZERO)), [0, 1]);
+    }
+}

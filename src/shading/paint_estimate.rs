@@ -1,0 +1,202 @@
+//! The direct-only transfer estimate painting uses before (or instead of) a bake: the
+//! real-time renderer's own shading (`cpu.rs`, the f64 twin of logsh.wgsl), evaluated at
+//! the painted vertices, one light at a time at unit intensity. Visibility comes from the
+//! sphere blockers and the terrain (the log-SH, or the exact share for the lights the settings send that
+//! way, as on screen), so it needs no ray tracing and answers at once; indirect light is
+//! left out (the bake adds it).
+
+use glam::{DVec3, Vec3};
+
+use super::ShadowSettings;
+use super::cpu::{self, SurfacePoint};
+use super::gpu_types::{GpuLight, environment_irradiance};
+use crate::blockers::Sphere;
+use crate::paint::{Transfer, VertexRef};
+use crate::scene::{Light, Material, Scene, luminance};
+use crate::sh;
+use crate::terrain::TerrainShadow;
+
+/// [`Transfer`] from the log-SH shading of the scene's lights, each at unit intensity.
+pub struct DirectEstimate<'a> {
+    scene: &'a Scene,
+    blockers: Vec<Sphere>,
+    terrain: Option<TerrainShadow>,
+    settings: ShadowSettings,
+    unit_lights: Vec<GpuLight>,
+    environment: [[f32; 4]; 9],
+}
+
+impl<'a> DirectEstimate<'a> {
+    pub fn new(scene: &'a Scene, blockers: Vec<Sphere>, settings: ShadowSettings) -> DirectEstimate<'a> {
+        // Unit intensities, each light on the shadow path the frame gives it.
+        let context = super::LightPathContext::of_scene(scene, &blockers);
+        let shading = super::shading_lights(&scene.lights, &settings, &context);
+        let unit_lights = scene
+            .lights
+            .iter()
+            .zip(shading)
+            .map(|(light, shaded)| GpuLight {
+                exact_path: shaded.exact_path,
+                ..GpuLight::new(&Light {
+                    intensity: 1.0,
+                    ..light.clone()
+                })
+            })
+            .collect();
+        DirectEstimate {
+            scene,
+            blockers,
+            terrain: scene
+                .terrain
+                .as_ref()
+                .map(|t| super::terrain::terrain_march(&t.field, &settings)),
+            settings,
+            unit_lights,
+            environment: environment_irradiance(scene.environment.as_ref()),
+        }
+    }
+
+    fn surface(&self, vertex: VertexRef) -> Option<SurfacePoint> {
+        let object = self.scene.objects.get(vertex.object as usize)?;
+        let v = vertex.vertex as usize;
+        let default = Material::default();
+        let material = self.scene.materials.get(object.material).unwrap_or(&default);
+        Some(SurfacePoint {
+            position: object.positions.get(v)?.as_dvec3(),
+            normal: object.normals.get(v)?.as_dvec3(),
+            k_d: material.diffuse_albedo().as_dvec3(),
+            k_s: material.specular_color().as_dvec3(),
+            phong_exponent: material.phong_exponent() as f64,
+            emissive: material.emissive.as_dvec3(),
+        })
+    }
+
+    /// Exponentiated visibility SH at the surface point.
+    fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
+        let f = cpu::scene_log_visibility(
+            &self.settings,
+            &self.blockers,
+            self.terrain.as_ref(),
+            s.position,
+            s.normal,
+        );
+        sh::exp(self.settings.exp, &f)
+    }
+}
+
+/// The exponentiated visibility at a surface point, evaluated on first use and shared by
+/// the transfer and the fixed light of the same vertex.
+struct LazyVisibility<'e, 'a> {
+    estimate: &'e DirectEstimate<'a>,
+    g: Option<Vec<f64>>,
+}
+
+impl LazyVisibility<'_, '_> {
+    fn at(&mut self, s: &SurfacePoint) -> &[f64] {
+        let estimate = self.estimate;
+        self.g.get_or_insert_with(|| estimate.visibility(s))
+    }
+}
+
+impl<'a> DirectEstimate<'a> {
+    fn lazy(&self) -> LazyVisibility<'_, 'a> {
+        LazyVisibility {
+            estimate: self,
+            g: None,
+        }
+    }
+
+    /// Per-light transfer at `s` toward `eye`.
+    fn transfer_at(&self, s: &SurfacePoint, eye: Vec3, g: &mut LazyVisibility) -> Vec<(u32, f64)> {
+        let eye = eye.as_dvec3();
+        self.unit_lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, light)| {
+                let incidence = cpu::incidence(light, s.position);
+                let unshadowed = cpu::direct_radiance(s, &incidence, eye);
+                if unshadowed == DVec3::ZERO {
+                    return None;
+                }
+                let visible = cpu::exact_visibility(
+                    s,
+                    light,
+                    &incidence,
+                    &self.settings,
+                    &self.blockers,
+                    self.terrain.as_ref(),
+                    0.0,
+                )
+                .unwrap_or_else(|| {
+                    cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                });
+                let t = luminance(unshadowed) * visible;
+                (t.is_finite() && t > 0.0).then_some((i as u32, t))
+            })
+            .collect()
+    }
+
+    /// Luminance at `s` that no light changes: emission and the shadowed environment.
+    fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
+        let mut radiance = s.emissive;
+        if self.scene.environment.is_some() {
+            let visible = cpu::visibility_cosine(g.at(s), s.normal).clamp(0.0, 1.0);
+            radiance += cpu::environment_radiance(s, &self.environment) * visible;
+        }
+        luminance(radiance)
+    }
+}
+
+impl Transfer for DirectEstimate<'_> {
+    fn light_count(&self) -> usize {
+        self.unit_lights.len()
+    }
+
+    fn vertex_transfer(&self, vertex: VertexRef, eye: Vec3) -> Vec<(u32, f64)> {
+        let Some(s) = self.surface(vertex) else {
+            return Vec::new();
+        };
+        self.transfer_at(&s, eye, &mut self.lazy())
+    }
+
+    fn fixed_luminance(&self, vertex: VertexRef, _eye: Vec3) -> f64 {
+        let Some(s) = self.surface(vertex) else { return 0.0 };
+        self.fixed_at(&s, &mut self.lazy())
+    }
+
+    fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        let Some(s) = self.surface(vertex) else {
+            return (0.0, Vec::new());
+        };
+        let mut g = self.lazy();
+        let transfer = self.transfer_at(&s, eye, &mut g);
+        (self.fixed_at(&s, &mut g), transfer)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+
+    /// Without blockers, a white Lambertian floor under a unit point light shows
+    /// L = (1/π)·cos θ/d² (closed form).
+    #[test]
+    fn an_unoccluded_lambertian_floor_matches_the_closed_form() {
+        let scene = Scene::lambert_floor_under_point_light(2, Vec3::new(0.5, 2.0, 0.0), 30.0);
+        let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
+        for v in 0..scene.objects[0].positions.len() {
+            let p = scene.objects[0].positions[v].as_dvec3();
+            let offset = DVec3::new(0.5, 2.0, 0.0) - p;
+            let expected = offset.normalize().y / offset.length_squared() / PI;
+            let vertex = VertexRef {
+                object: 0,
+                vertex: v as u32,
+            };
+            let t = estimate.vertex_transfer(vertex, Vec3::new(0.0, 3.0, 3.0));
+            assert_eq!(t.len(), 1);
+            assert!((t[0].1 / expected - 1.0).abs() < 1e-6, "{} vs {expected}", t[0].1);
+        }
+    }
+}

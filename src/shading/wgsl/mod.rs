@@ -1,0 +1,56 @@
+//! WGSL sources and the code generated for them (no wgpu here: `render` compiles them).
+//! WGSL has no `#include`: a module is assembled from `common.wgsl` (shared
+//! structs and colour functions), `scene.wgsl` (bindings, vertex stage, lights, surfaces)
+//! and its own file, so shared code lives in exactly one place. The log-SH module also
+//! takes the SH code generated for its order and method (`sh`) and the terrain's
+//! (`terrain`, then `terrain.wgsl`).
+
+pub mod lobes;
+pub mod sh;
+pub mod terrain;
+
+use super::BrdfShading;
+use crate::sh::ExpMethod;
+
+pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
+pub const SCENE: &str = include_str!("../../../shaders/scene.wgsl");
+pub const RASTER: &str = include_str!("../../../shaders/raster.wgsl");
+pub const LOGSH: &str = include_str!("../../../shaders/logsh.wgsl");
+pub const EXACT_LIGHTS: &str = include_str!("../../../shaders/exact_lights.wgsl");
+pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
+pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
+pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
+pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
+/// Standalone: it reads a finished frame, not the scene.
+pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
+
+/// The shared prelude, then `body`.
+pub fn with_common(body: &str) -> String {
+    format!("{COMMON}\n{body}")
+}
+
+/// The unshadowed raster module.
+pub fn raster_source() -> String {
+    format!("{COMMON}\n{SCENE}\n{RASTER}")
+}
+
+/// The importance heat map module.
+pub fn heat_map_source() -> String {
+    format!("{COMMON}\n{SCENE}\n{HEAT_MAP}")
+}
+
+/// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
+/// form) and the `brdf` variant, with the reduced-resolution entry points and the
+/// per-vertex ones where the order allows them.
+pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
+    let generated = sh::sh_module(order, method) + &lobes::lobes_module(order, method, brdf);
+    let per_vertex = if sh::supports_per_vertex(order) {
+        LOGSH_PER_VERTEX
+    } else {
+        ""
+    };
+    let terrain = terrain::terrain_module(order);
+    format!(
+        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{per_vertex}"
+    )
+}
