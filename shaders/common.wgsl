@@ -15,6 +15,16 @@ const LIGHT_AREA: u32 = 3u;
 // Rust side). Frames with more also read the rest from storage buffers.
 const UNIFORM_LIGHT_CAPACITY: u32 = 682u;
 const UNIFORM_BLOCKER_CAPACITY: u32 = 2048u;
+// Layers of the shadow-map array (src/shading/gpu_types.rs MAX_SHADOW_VIEWS).
+const MAX_SHADOW_VIEWS: u32 = 64u;
+// Light.shadow_path values and the first_shadow_view of a light without maps.
+const SHADOW_PATH_SH: u32 = 0u;
+const SHADOW_PATH_EXACT: u32 = 1u;
+const SHADOW_PATH_MAP: u32 = 2u;
+const NO_SHADOW_VIEW: u32 = 0xffffffffu;
+// A spot whose cos(outer cone) is at least this has one shadow-map view, a wider one a
+// cube of six (src/shading/shadow_maps.rs SINGLE_VIEW_SPOT_MIN_COS).
+const SINGLE_VIEW_SPOT_MIN_COS: f32 = 0.5;
 
 // Per-frame constants.
 struct Frame {
@@ -29,6 +39,11 @@ struct Frame {
     // Lights from this index on take the exact shadow path (render::shading_lights
     // decides per light for the frame; the upload puts them last).
     first_exact_light: u32,
+    // Lights from this index to first_exact_light are shadowed by their shadow maps.
+    first_mapped_light: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
     // axes, polar axis +z (shading-model.md §3).
     environment_irradiance: array<vec4<f32>, 9>,
@@ -51,10 +66,23 @@ struct Light {
     // Sphere lights (kind LIGHT_POINT): radius in metres; area lights: emitting area in m²;
     // 0 for point-like lights.
     source_size: f32,
-    // 1: shadowed on the exact path, 0: through the SH (decided per light for the frame
-    // by render::shading_lights; the shaders read Frame.first_exact_light).
-    exact_path: u32,
-    _pad: u32,
+    // SHADOW_PATH_SH, SHADOW_PATH_EXACT or SHADOW_PATH_MAP (decided per light for the
+    // frame by shading::shading_lights; the shaders read Frame.first_mapped_light and
+    // first_exact_light).
+    shadow_path: u32,
+    // The first of the light's shadow-map views (NO_SHADOW_VIEW: none).
+    first_shadow_view: u32,
+};
+
+// One layer of the shadow-map array, seen from a light (src/shading/shadow_maps.rs).
+struct ShadowView {
+    // World to clip space (depth 0 near, 1 far).
+    view_proj: mat4x4<f32>,
+    // x: a texel's width per metre of distance from the eye (perspective), y: a texel's
+    // width in metres (orthographic), z: 1 for perspective views, 0 for orthographic.
+    texel: vec4<f32>,
+    // xyz: the eye (perspective) or the forward axis (orthographic).
+    eye: vec4<f32>,
 };
 
 // Parameters of the log-SH shadow pass (logsh.wgsl).

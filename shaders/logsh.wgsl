@@ -21,6 +21,15 @@
 @group(2) @binding(2) var<uniform> groups: array<BlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
 @group(2) @binding(5) var<storage, read> every_blocker: array<Blocker>;
 @group(2) @binding(6) var<storage, read> every_group: array<BlockerGroup>;
+// The shadow maps of the lights on the shadow-map path: one depth layer per view, read
+// with a comparison sampler (linear: each read filters the 2 × 2 texels around), and the
+// views' matrices (src/shading/shadow_maps.rs).
+@group(2) @binding(7) var shadow_maps: texture_depth_2d_array;
+@group(2) @binding(8) var shadow_map_sampler: sampler_comparison;
+@group(2) @binding(9) var<uniform> shadow_views: array<ShadowView, MAX_SHADOW_VIEWS>;
+
+// false: no light of the frame has a shadow map (shading::compiled_paths).
+override SHADOW_MAPS: bool = true;
 
 // false: the frame has at most UNIFORM_BLOCKER_CAPACITY blockers (and so as many groups),
 // and every_blocker and every_group are never read (shading::compiled_paths). Blockers
@@ -220,12 +229,17 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
+    return soft_shadowed_radiance(s) + mapped_lights_radiance(s).radiance;
+}
+
+// The shadowed radiance less the lights on the shadow-map path.
+fn soft_shadowed_radiance(s: Surface) -> vec3<f32> {
     if !SH_VISIBILITY {
         // Read only by a light the viewport draws before its pipeline with the SH path is
         // compiled: it shows unshadowed meanwhile.
-        return radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+        return soft_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
     }
-    return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+    return soft_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
 }
 
 // A light's shadowed radiance at s through the lobes' SH.
@@ -252,13 +266,44 @@ fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     return s.k_d * clamp(sh_dot_environment(lobes.diffuse), vec3<f32>(0.0), unshadowed);
 }
 
-// Radiance of surface s lit through the lobes' SH by the lights before
-// frame.first_exact_light; the lights from there on take the exact path instead, eight
-// at a time: their exact visibility (times the share above the terrain's horizon) times
-// their unshadowed radiance.
+// Radiance of surface s with every light: soft_radiance_through plus the lights on the
+// shadow-map path.
 fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
+    return soft_radiance_through(s, lobes) + mapped_lights_radiance(s).radiance;
+}
+
+// The light of the lights on the shadow-map path, and the sum of their visibilities: a
+// signature that changes across any of their shadows' edges (reduced_shading.wgsl shades
+// in full the pixels whose nearest samples disagree on it).
+struct MappedLights {
+    radiance: vec3<f32>,
+    visibility_sum: f32,
+};
+
+// The lights from frame.first_mapped_light to frame.first_exact_light, each shadowed by
+// its shadow maps.
+fn mapped_lights_radiance(s: Surface) -> MappedLights {
+    var mapped = MappedLights(vec3<f32>(0.0), 0.0);
+    if SHADOW_MAPS {
+        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
+            let light = light_at(i);
+            let inc = incidence(light, s.position);
+            let visibility = shadow_map_visibility(light, inc, s);
+            mapped.radiance += direct_radiance(s, inc) * visibility;
+            mapped.visibility_sum += visibility;
+        }
+    }
+    return mapped;
+}
+
+// Radiance of surface s lit through the lobes' SH by the lights before
+// frame.first_mapped_light; the lights from frame.first_exact_light on take the exact
+// path instead, eight at a time: their exact visibility (times the share above the
+// terrain's horizon) times their unshadowed radiance. The lights in between, on the
+// shadow-map path, are left to mapped_lights_radiance.
+fn soft_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     var radiance = s.emissive + environment_through(s, lobes);
-    for (var i = 0u; i < frame.first_exact_light; i++) {
+    for (var i = 0u; i < frame.first_mapped_light; i++) {
         radiance += light_through(s, lobes, incidence(light_at(i), s.position));
     }
     if EXACT_LIGHT_PATH {
@@ -328,6 +373,51 @@ fn exact_light(s: Surface, index: u32) -> ExactLight {
         * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
     let lit = any(unshadowed != vec3<f32>(0.0));
     return ExactLight(inc.to_light, clamp(inc.cap_ratio, 0.0, 1.0), select(0.0, inc.distance, lit), unshadowed);
+}
+
+// The share of `light` (seen as `inc`) that reaches s through its shadow maps: the view
+// that sees s (a point light's cube face by the largest component of s − light), the
+// receiver pushed by a texel and a half along its normal and one toward the light (no
+// self-shadowing where a texel spans depths of the surface), then one comparison read
+// that filters the 2 × 2 texels around (percentage-closer, bilinear). Wider filters of
+// offset reads were measured to lose a quarter or more of the shadow of bars a few texels
+// wide (tests/shadow_maps.rs), so edges stay one texel soft. Outside its views a light is
+// unshadowed. shading::cpu takes the exact visibility by a ray
+// instead, which this converges to as the maps grow.
+fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
+    if light.first_shadow_view == NO_SHADOW_VIEW {
+        return 1.0;
+    }
+    var index = light.first_shadow_view;
+    let cube = light.kind == LIGHT_POINT || (light.kind == LIGHT_SPOT && light.spot_cone.x < SINGLE_VIEW_SPOT_MIN_COS);
+    if cube {
+        index += cube_face(s.position - light.position.xyz);
+    }
+    let view = shadow_views[min(index, MAX_SHADOW_VIEWS - 1u)];
+    let distance = length(s.position - view.eye.xyz);
+    let texel = select(view.texel.y, view.texel.x * distance, view.texel.z > 0.5);
+    let p = s.position + s.normal * (1.5 * texel) + inc.to_light * texel;
+    let clip = view.view_proj * vec4<f32>(p, 1.0);
+    let ndc = clip.xyz / clip.w;
+    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
+    if clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 {
+        return 1.0;
+    }
+    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, uv, i32(index), max(ndc.z, 0.0));
+}
+
+// The cube face a receiver at `offset` from a point light reads: 2·axis of the largest
+// component (ties to the earlier axis), plus 1 on the negative side
+// (shadow_maps::cube_face).
+fn cube_face(offset: vec3<f32>) -> u32 {
+    let a = abs(offset);
+    if a.x >= a.y && a.x >= a.z {
+        return select(0u, 1u, offset.x < 0.0);
+    }
+    if a.y >= a.z {
+        return select(2u, 3u, offset.y < 0.0);
+    }
+    return select(4u, 5u, offset.z < 0.0);
 }
 
 @fragment

@@ -79,8 +79,11 @@ fn the_exact_path_matches_the_cpu_reference_on_the_samples() {
             light_paths: LightPaths::Exact,
             ..document.settings.shadows.every_pixel()
         };
+        // The spot lights without shadow maps, on the SH path (their maps' twin is a ray
+        // cast: tests/shadow_maps.rs).
         let auto = ShadowSettings {
             light_paths: LightPaths::Auto,
+            shadow_map_size: 0,
             ..document.settings.shadows.every_pixel()
         };
         // A budget of one exact light: the sphere light whose shadows matter most goes

@@ -49,6 +49,7 @@ fn shade(p: &SurfacePoint, lights: &[GpuLight], blockers: &[Sphere], settings: &
             settings,
             eye: DVec3::new(0.0, 5.0, 0.1),
             pixel_angle_rad: 0.0,
+            occluders: None,
         },
     )
 }
@@ -195,6 +196,7 @@ fn white_furnace_shades_to_one() {
                     settings: &settings,
                     eye: DVec3::new(0.0, 5.0, 0.0),
                     pixel_angle_rad: 0.0,
+                    occluders: None,
                 };
                 let radiance = cpu::shadowed_radiance(&p, &inputs);
                 assert!(
@@ -266,6 +268,7 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
                 settings: &settings,
                 eye,
                 pixel_angle_rad: 0.0,
+                occluders: None,
             },
         );
         let there = cpu::shadowed_radiance(
@@ -278,6 +281,7 @@ fn moving_blockers_lights_and_receiver_together_changes_nothing() {
                 settings: &settings,
                 eye: eye + shift.as_dvec3(),
                 pixel_angle_rad: 0.0,
+                occluders: None,
             },
         );
         // f32 positions moved by metres round at ~1e-7 relative.

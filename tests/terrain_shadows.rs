@@ -157,6 +157,7 @@ fn shade(
             settings,
             eye: p + DVec3::new(0.0, 5.0, 1.0),
             pixel_angle_rad: 0.0,
+            occluders: None,
         },
     )
     .x

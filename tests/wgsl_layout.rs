@@ -56,6 +56,7 @@ fn frame_matches_wgsl() {
             ("light_count", offset_of!(GpuFrame, light_count)),
             ("pixel_angle_rad", offset_of!(GpuFrame, pixel_angle_rad)),
             ("first_exact_light", offset_of!(GpuFrame, first_exact_light)),
+            ("first_mapped_light", offset_of!(GpuFrame, first_mapped_light)),
             ("environment_irradiance", offset_of!(GpuFrame, environment_irradiance)),
         ],
     );
@@ -73,9 +74,43 @@ fn light_matches_wgsl() {
             ("spot_cone", offset_of!(GpuLight, spot_cone)),
             ("kind", offset_of!(GpuLight, kind)),
             ("source_size", offset_of!(GpuLight, source_size)),
-            ("exact_path", offset_of!(GpuLight, exact_path)),
+            ("shadow_path", offset_of!(GpuLight, shadow_path)),
+            ("first_shadow_view", offset_of!(GpuLight, first_shadow_view)),
         ],
     );
+}
+
+#[test]
+fn shadow_view_matches_wgsl() {
+    use lightpaint::shading::gpu_types::GpuShadowView;
+    assert_twin(
+        "ShadowView",
+        size_of::<GpuShadowView>(),
+        &[
+            ("view_proj", offset_of!(GpuShadowView, view_proj)),
+            ("texel", offset_of!(GpuShadowView, texel)),
+            ("eye", offset_of!(GpuShadowView, eye)),
+        ],
+    );
+}
+
+#[test]
+fn shadow_map_constants_match_wgsl() {
+    use lightpaint::shading::gpu_types::{
+        MAX_SHADOW_VIEWS, NO_SHADOW_VIEW, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH,
+    };
+    use lightpaint::shading::shadow_maps::SINGLE_VIEW_SPOT_MIN_COS;
+    let lines = [
+        format!("const MAX_SHADOW_VIEWS: u32 = {MAX_SHADOW_VIEWS}u;"),
+        format!("const SHADOW_PATH_SH: u32 = {SHADOW_PATH_SH}u;"),
+        format!("const SHADOW_PATH_EXACT: u32 = {SHADOW_PATH_EXACT}u;"),
+        format!("const SHADOW_PATH_MAP: u32 = {SHADOW_PATH_MAP}u;"),
+        format!("const NO_SHADOW_VIEW: u32 = {NO_SHADOW_VIEW:#x}u;"),
+        format!("const SINGLE_VIEW_SPOT_MIN_COS: f32 = {SINGLE_VIEW_SPOT_MIN_COS:?};"),
+    ];
+    for line in lines {
+        assert!(wgsl::COMMON.contains(&line), "common.wgsl lacks `{line}`");
+    }
 }
 
 #[test]

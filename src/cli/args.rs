@@ -41,8 +41,9 @@ pub struct RenderArgs {
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     pub ratio_attenuation: bool,
-    /// Which lights are shadowed exactly, per light, instead of through the SH: auto
-    /// (extended lights under 40° of angular radius), harmonics (none) or exact (all);
+    /// How each light is shadowed: auto (point, spot and directional lights by shadow maps
+    /// of the real triangles, extended lights under 40° of angular radius exactly, the rest
+    /// through the SH), harmonics (all through the SH) or exact (all exactly);
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     pub light_paths: Option<LightPaths>,
@@ -51,6 +52,11 @@ pub struct RenderArgs {
     /// project's, or 4.
     #[arg(long)]
     pub exact_lights: Option<u32>,
+    /// Under --light-paths auto, the texels along a side of the shadow maps of point, spot
+    /// and directional lights (64-4096, e.g. 1024; larger: truer shadow edges), or 0 for
+    /// none (those lights then take the SH); default: the project's, or 0.
+    #[arg(long)]
+    pub shadow_map_size: Option<u32>,
     /// How the BRDF meets the visibility: separate (each light's exact BRDF times its
     /// visibility), log (the log-BRDF added before exponentiating) or product (the BRDF
     /// multiplied in by the SH product); default: the project's, or separate.

@@ -42,6 +42,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     shadows.light_paths = args.light_paths.unwrap_or(shadows.light_paths);
     shadows.brdf = args.brdf.unwrap_or(shadows.brdf);
     shadows.exact_light_budget = args.exact_lights.unwrap_or(shadows.exact_light_budget);
+    shadows.shadow_map_size = args.shadow_map_size.unwrap_or(shadows.shadow_map_size);
     shadows.terrain.azimuths = args.terrain_azimuths.unwrap_or(shadows.terrain.azimuths);
     shadows.terrain.pyramid_levels = args.terrain_levels.unwrap_or(shadows.terrain.pyramid_levels);
     // The CPU reference shades every pixel; a project's per-vertex choice is for the GPU.
@@ -266,8 +267,12 @@ fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::
     } else {
         String::new()
     };
+    let maps = match shadows.shadow_map_size {
+        0 => String::new(),
+        size => format!(", shadow maps {size}²"),
+    };
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths, {} BRDF",
+        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths{maps}, {} BRDF",
         shadows.order,
         shadows.exp,
         shadows.epsilon,

@@ -9,7 +9,7 @@ use super::passes::logsh::{SURFACE_FORMAT, surface_pipelines};
 use super::passes::raster::ScenePipeline;
 use super::readback::{read_target_image, read_texture};
 use super::renderer::{Compilation, FrameQuality, SceneRenderer};
-use super::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_objects, shadow_layout};
+use super::resources::{GpuBlockers, GpuScene, SceneLayouts, ShadowMaps, draw_objects, shadow_layout};
 use super::target::{AntiAliasing, RenderTarget};
 use super::{GpuContext, RenderError};
 use crate::blockers::Sphere;
@@ -225,7 +225,16 @@ pub fn capture_surfaces(
     gpu_scene.write_frame(&gpu.queue, camera, [width, height], 0.0);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
-    let no_blockers = GpuBlockers::upload(&gpu.device, &gpu.queue, &shadows, &[], None, &ShadowSettings::default());
+    let no_maps = ShadowMaps::new(&gpu.device);
+    let no_blockers = GpuBlockers::upload(
+        &gpu.device,
+        &gpu.queue,
+        &shadows,
+        &[],
+        None,
+        &ShadowSettings::default(),
+        no_maps.binding(),
+    );
     let mut channels: Vec<Vec<[f32; 4]>> = Vec::with_capacity(5);
     for pipeline in surface_pipelines(&gpu.device, &layouts, &shadows, scene.every_material_single_sided()) {
         let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -310,6 +319,12 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         .terrain
         .as_ref()
         .map(|t| crate::shading::terrain::terrain_shadow(&t.field, frame.shadows));
+    // The scene's triangles, for the lights the GPU shadows by shadow maps: the CPU casts
+    // the exact rays the maps approximate.
+    let occluders = lights
+        .iter()
+        .any(|l| l.shadow_path == crate::shading::gpu_types::SHADOW_PATH_MAP)
+        .then(|| crate::bake::scene_bvh::SceneBvh::build(frame.scene));
     let inputs = ShadingInputs {
         lights: &lights,
         environment_irradiance: &environment,
@@ -318,6 +333,7 @@ pub fn shade_surfaces(surfaces: &[Option<SurfacePoint>], frame: &ShadowFrame) ->
         settings: frame.shadows,
         eye: frame.camera.position.as_dvec3(),
         pixel_angle_rad: crate::shading::gpu_types::pixel_angle_rad(frame.camera, frame.height),
+        occluders: occluders.as_ref(),
     };
     let exposure = frame.settings.exposure_ev as f64;
     let background = frame.settings.background_srgb8;

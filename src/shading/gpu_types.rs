@@ -13,6 +13,20 @@ pub const LIGHT_SPOT: u32 = 1;
 pub const LIGHT_DIRECTIONAL: u32 = 2;
 pub const LIGHT_AREA: u32 = 3;
 
+/// Shadow paths shared with WGSL (`GpuLight::shadow_path`): through the log-SH
+/// visibility, the exact share of the light's disc the sphere blockers hide, or a shadow
+/// map of the real triangles rasterised from the light.
+pub const SHADOW_PATH_SH: u32 = 0;
+pub const SHADOW_PATH_EXACT: u32 = 1;
+pub const SHADOW_PATH_MAP: u32 = 2;
+
+/// `GpuLight::first_shadow_view` of a light without a shadow map.
+pub const NO_SHADOW_VIEW: u32 = u32::MAX;
+
+/// How many shadow-map views (layers of the map array, WGSL `MAX_SHADOW_VIEWS`) a frame
+/// has at most: a point light takes six (a cube), a spot or the sun one.
+pub const MAX_SHADOW_VIEWS: usize = 64;
+
 /// How many lights the uniform array `lights` of scene.wgsl holds (WGSL
 /// `UNIFORM_LIGHT_CAPACITY`): as many as fit in wgpu's default 64 KiB uniform binding.
 /// lavapipe reads a uniform array several times faster than a storage buffer; a frame with
@@ -49,8 +63,12 @@ pub struct GpuFrame {
     pub light_count: u32,
     /// The angle one pixel subtends at the image centre (see [`pixel_angle_rad`]).
     pub pixel_angle_rad: f32,
-    /// Lights from this index on take the exact shadow path (see [`exact_lights_last`]).
+    /// Lights from this index on take the exact shadow path (see
+    /// [`order_by_shadow_path`]).
     pub first_exact_light: u32,
+    /// Lights from this index to `first_exact_light` are shadowed by their shadow maps.
+    pub first_mapped_light: u32,
+    pub _pad: [u32; 3],
     /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
     pub environment_irradiance: [[f32; 4]; 9],
 }
@@ -62,7 +80,7 @@ impl GpuFrame {
         size_px: [u32; 2],
         exposure_ev: f32,
         light_count: usize,
-        first_exact_light: usize,
+        [first_mapped_light, first_exact_light]: [usize; 2],
         environment_irradiance: [[f32; 4]; 9],
     ) -> GpuFrame {
         let [width, height] = size_px.map(|v| v.max(1) as f32);
@@ -73,6 +91,8 @@ impl GpuFrame {
             light_count: light_count as u32,
             pixel_angle_rad: pixel_angle_rad(camera, size_px[1]) as f32,
             first_exact_light: first_exact_light.min(light_count) as u32,
+            first_mapped_light: first_mapped_light.min(first_exact_light).min(light_count) as u32,
+            _pad: [0; 3],
             environment_irradiance,
         }
     }
@@ -82,14 +102,24 @@ impl GpuFrame {
     }
 }
 
-/// `lights` in the order the shaders take them: those on the SH path first, then those on
-/// the exact path (each side in scene order), with the index of the first exact one. The
-/// shaders walk each side in its own loop: lavapipe runs both sides of a branch at every
+/// `lights` in the order the shaders take them: those on the SH path first, then those
+/// with a shadow map, then those on the exact path (each in scene order), with the index
+/// of the first mapped and of the first exact one. The shaders walk each range in its own
+/// loop: lavapipe runs both sides of a branch at every
 /// pixel, so a per-light choice inside one loop would cost both paths for every light.
-pub fn exact_lights_last(lights: &[GpuLight]) -> (Vec<GpuLight>, usize) {
-    let (exact, harmonics): (Vec<GpuLight>, Vec<GpuLight>) = lights.iter().partition(|light| light.exact_path != 0);
-    let first_exact = harmonics.len();
-    (harmonics.into_iter().chain(exact).collect(), first_exact)
+pub fn order_by_shadow_path(lights: &[GpuLight]) -> (Vec<GpuLight>, [usize; 2]) {
+    let on = |path: u32| lights.iter().filter(move |light| light.shadow_path == path).copied();
+    let mut ordered: Vec<GpuLight> = on(SHADOW_PATH_SH).collect();
+    let first_mapped = ordered.len();
+    ordered.extend(on(SHADOW_PATH_MAP));
+    let first_exact = ordered.len();
+    ordered.extend(
+        lights
+            .iter()
+            .filter(|l| !matches!(l.shadow_path, SHADOW_PATH_SH | SHADOW_PATH_MAP))
+            .copied(),
+    );
+    (ordered, [first_mapped, first_exact])
 }
 
 /// The angle (radians) one pixel subtends at the centre of an image `height_px` tall seen
@@ -123,10 +153,12 @@ pub struct GpuLight {
     pub kind: u32,
     /// Sphere lights: radius in metres; area lights: emitting area in m²; otherwise 0.
     pub source_size: f32,
-    /// 1 if this light is shadowed on the exact path, 0 on the SH path (decided for the
-    /// frame by `shading::shading_lights`; [`GpuLight::new`] sets 0).
-    pub exact_path: u32,
-    pub _pad: u32,
+    /// [`SHADOW_PATH_SH`], [`SHADOW_PATH_EXACT`] or [`SHADOW_PATH_MAP`] (decided for the
+    /// frame by `shading::shading_lights`; [`GpuLight::new`] sets the SH path).
+    pub shadow_path: u32,
+    /// The first of the light's shadow-map views ([`NO_SHADOW_VIEW`]: none): one for a
+    /// spot or the sun, six (+x, −x, +y, −y, +z, −z) for a point light.
+    pub first_shadow_view: u32,
 }
 
 impl GpuLight {
@@ -161,10 +193,24 @@ impl GpuLight {
             spot_cone,
             kind,
             source_size,
-            exact_path: 0,
-            _pad: 0,
+            shadow_path: SHADOW_PATH_SH,
+            first_shadow_view: NO_SHADOW_VIEW,
         }
     }
+}
+
+/// WGSL `ShadowView`: one layer of the shadow-map array, seen from a light.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuShadowView {
+    /// World to clip space of the light's view (depth 0 near, 1 far).
+    pub view_proj: [[f32; 4]; 4],
+    /// x: a texel's width per metre of distance from the light (perspective views),
+    /// y: a texel's width in metres (orthographic views), z: the light's position for
+    /// the distance (perspective: 1; orthographic: 0), w unused.
+    pub texel: [f32; 4],
+    /// xyz: the view's eye (perspective) or its forward axis (orthographic); w unused.
+    pub eye: [f32; 4],
 }
 
 /// WGSL `Material`.

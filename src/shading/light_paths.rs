@@ -3,7 +3,9 @@
 //! One choice per light for the whole frame (no receiver shows a seam where a light
 //! would change path), the same in the editor, the CLI, the CPU reference and painting:
 //! every light exact under [`LightPaths::Exact`], none under [`LightPaths::Harmonics`];
-//! under [`LightPaths::Auto`] the sphere and area lights whose angular radius at the
+//! under [`LightPaths::Auto`] point, spot and directional lights by shadow maps of the
+//! real triangles (as many as the shadow-map views hold), and the sphere and area lights
+//! whose angular radius at the
 //! scene's centre is under [`super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG`], at most the settings'
 //! `exact_light_budget` of them, those whose exact shadows matter most first: brightness
 //! at the centre times the share of the scene's surface where some blocker cuts the
@@ -11,7 +13,10 @@
 
 use glam::{DVec3, Vec3};
 
-use super::gpu_types::{GpuLight, UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+use super::gpu_types::{
+    GpuLight, MAX_SHADOW_VIEWS, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH, UNIFORM_BLOCKER_CAPACITY,
+    UNIFORM_LIGHT_CAPACITY,
+};
 use super::{LightPaths, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Light, Scene};
@@ -112,6 +117,8 @@ impl LightPathContext {
 pub struct CompiledPaths {
     /// Some light is on the exact path (EXACT_LIGHT_PATH).
     pub exact: bool,
+    /// Some light is shadowed by its shadow map (SHADOW_MAPS).
+    pub maps: bool,
     /// More than four lights are: the exact path takes them eight at a time rather than
     /// four (EXACT_WIDE).
     pub exact_wide: bool,
@@ -136,6 +143,7 @@ impl CompiledPaths {
     /// Every path (a pipeline any frame can be drawn with).
     pub const ALL: CompiledPaths = CompiledPaths {
         exact: true,
+        maps: true,
         exact_wide: true,
         harmonics: true,
         terrain: true,
@@ -147,6 +155,7 @@ impl CompiledPaths {
     /// No optional path (a pipeline that shades no light).
     pub const NONE: CompiledPaths = CompiledPaths {
         exact: false,
+        maps: false,
         exact_wide: false,
         harmonics: false,
         terrain: false,
@@ -184,11 +193,15 @@ const EXACT_LIGHTS_PER_HALF_BATCH: usize = 4;
 /// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
 /// and `blocker_count` blockers.
 pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
-    let exact_count = shaded.iter().filter(|light| light.exact_path != 0).count();
+    let exact_count = shaded
+        .iter()
+        .filter(|light| light.shadow_path == SHADOW_PATH_EXACT)
+        .count();
     CompiledPaths {
         exact: exact_count > 0,
+        maps: shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_MAP),
         exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
-        harmonics: lighting.has_environment || shaded.iter().any(|light| light.exact_path == 0),
+        harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
         terrain: lighting.has_terrain,
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
@@ -197,8 +210,8 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
 }
 
 /// The lights as the shaders and the CPU reference take them, each on the shadow path
-/// `settings` give it (`GpuLight::exact_path`; see the module's documentation for the
-/// choice).
+/// `settings` give it (`GpuLight::shadow_path`, and `first_shadow_view` for the lights with
+/// shadow maps; see the module's documentation for the choice).
 pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &LightPathContext) -> Vec<GpuLight> {
     let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
     let exact: Vec<bool> = match settings.light_paths {
@@ -207,7 +220,20 @@ pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &Lig
         LightPaths::Auto => auto_exact(&gpu_lights, settings, context),
     };
     for (light, exact) in gpu_lights.iter_mut().zip(exact) {
-        light.exact_path = u32::from(exact);
+        light.shadow_path = if exact { SHADOW_PATH_EXACT } else { SHADOW_PATH_SH };
+    }
+    if settings.light_paths == LightPaths::Auto && settings.shadow_map_size > 0 {
+        let mut views = 0;
+        for light in gpu_lights.iter_mut().filter(|l| l.shadow_path == SHADOW_PATH_SH) {
+            let Some(count) = super::shadow_maps::view_count(light) else {
+                continue;
+            };
+            if views + count <= MAX_SHADOW_VIEWS {
+                light.shadow_path = SHADOW_PATH_MAP;
+                light.first_shadow_view = views as u32;
+                views += count;
+            }
+        }
     }
     gpu_lights
 }
@@ -259,18 +285,49 @@ pub fn light_paths_at(
     point: Vec3,
     settings: &ShadowSettings,
     context: &LightPathContext,
-) -> Vec<(bool, f64)> {
+) -> Vec<(ShadowPath, f64)> {
     paths_and_sizes_at(&shading_lights(lights, settings, context), point)
 }
 
-/// For lights as the shaders take them: whether each is on the exact path, and its
-/// angular radius seen from `point` in degrees.
-pub fn paths_and_sizes_at(lights: &[GpuLight], point: Vec3) -> Vec<(bool, f64)> {
+/// The shadow path a light takes, as the editor names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShadowPath {
+    /// Through the log-SH visibility of the sphere blockers.
+    Harmonics,
+    /// The exact share of its disc the sphere blockers hide.
+    Exact,
+    /// A shadow map of the real triangles.
+    Map,
+}
+
+impl ShadowPath {
+    /// The path of a light as the shaders take it (`GpuLight::shadow_path`).
+    pub fn of(light: &GpuLight) -> ShadowPath {
+        match light.shadow_path {
+            SHADOW_PATH_EXACT => ShadowPath::Exact,
+            SHADOW_PATH_MAP => ShadowPath::Map,
+            _ => ShadowPath::Harmonics,
+        }
+    }
+
+    /// Plain words for the editor.
+    pub fn words(self) -> &'static str {
+        match self {
+            ShadowPath::Harmonics => "soft (SH)",
+            ShadowPath::Exact => "exact",
+            ShadowPath::Map => "shadow map",
+        }
+    }
+}
+
+/// For lights as the shaders take them: the shadow path of each, and its angular radius
+/// seen from `point` in degrees.
+pub fn paths_and_sizes_at(lights: &[GpuLight], point: Vec3) -> Vec<(ShadowPath, f64)> {
     lights
         .iter()
         .map(|light| {
             let inc = super::cpu::incidence(light, point.as_dvec3());
-            (light.exact_path != 0, inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
+            (ShadowPath::of(light), inc.cap_ratio.clamp(0.0, 1.0).asin().to_degrees())
         })
         .collect()
 }
@@ -303,11 +360,13 @@ mod tests {
         let origin = glam::Vec3::ZERO;
         // 0.1 m at 1 m is 5.7°; at 0.11 m the light is 65° wide, above Auto's 40°.
         let near_sphere = glam::Vec3::new(0.0, 0.89, 0.0);
-        // (exact, exact_wide, harmonics) for these paths, budget, lights, centre and sky.
+        // (exact, exact_wide, harmonics, maps) for these paths, budget, lights, centre and
+        // sky.
         let compiled = |light_paths, exact_light_budget, lights: &[crate::scene::Light], centre, has_environment| {
             let settings = ShadowSettings {
                 light_paths,
                 exact_light_budget,
+                shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
                 ..ShadowSettings::default()
             };
             let lighting = SceneLighting {
@@ -320,24 +379,45 @@ mod tests {
                 lighting,
                 0,
             );
-            (paths.exact, paths.exact_wide, paths.harmonics)
+            (paths.exact, paths.exact_wide, paths.harmonics, paths.maps)
         };
-        // Auto: point-like lights stay on the SH, small sized ones go exact, four at most
-        // unless the budget allows more.
-        assert_eq!(compiled(auto, 4, &points, origin, false), (false, false, true));
-        assert_eq!(compiled(auto, 4, &with_sphere, origin, false), (true, false, true));
-        assert_eq!(compiled(auto, 4, one_sphere, origin, false), (true, false, false));
-        assert_eq!(compiled(auto, 4, one_sphere, origin, true), (true, false, true));
-        assert_eq!(compiled(auto, 4, one_sphere, near_sphere, false), (false, false, true));
-        assert_eq!(compiled(auto, 4, &five_spheres, origin, false), (true, false, true));
-        assert_eq!(compiled(auto, 8, &five_spheres, origin, false), (true, true, false));
-        assert_eq!(compiled(auto, 0, &with_sphere, origin, false), (false, false, true));
-        assert_eq!(compiled(auto, 4, &[], origin, false), (false, false, false));
-        assert_eq!(compiled(exact, 0, &points, origin, false), (true, false, false));
+        // Auto: lights of no size take shadow maps, small sized ones go exact, four at
+        // most unless the budget allows more, the rest the SH.
+        assert_eq!(compiled(auto, 4, &points, origin, false), (false, false, false, true));
+        assert_eq!(
+            compiled(auto, 4, &with_sphere, origin, false),
+            (true, false, false, true)
+        );
+        assert_eq!(
+            compiled(auto, 4, one_sphere, origin, false),
+            (true, false, false, false)
+        );
+        assert_eq!(compiled(auto, 4, one_sphere, origin, true), (true, false, true, false));
+        assert_eq!(
+            compiled(auto, 4, one_sphere, near_sphere, false),
+            (false, false, true, false)
+        );
+        assert_eq!(
+            compiled(auto, 4, &five_spheres, origin, false),
+            (true, false, true, false)
+        );
+        assert_eq!(
+            compiled(auto, 8, &five_spheres, origin, false),
+            (true, true, false, false)
+        );
+        assert_eq!(
+            compiled(auto, 0, &with_sphere, origin, false),
+            (false, false, true, true)
+        );
+        assert_eq!(compiled(auto, 4, &[], origin, false), (false, false, false, false));
+        assert_eq!(compiled(exact, 0, &points, origin, false), (true, false, false, false));
         assert_eq!(
             compiled(harmonics, 4, &with_sphere, origin, false),
-            (false, false, true)
+            (false, false, true, false)
         );
+        // Eleven point lights: ten cubes fill the 64 views, the eleventh takes the SH.
+        let eleven = vec![points[0].clone(); 11];
+        assert_eq!(compiled(auto, 4, &eleven, origin, false), (false, false, true, true));
         let terrain = SceneLighting {
             has_environment: false,
             has_terrain: true,
@@ -384,11 +464,12 @@ mod tests {
             let settings = ShadowSettings {
                 light_paths,
                 exact_light_budget,
+                shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
                 ..ShadowSettings::default()
             };
             shading_lights(&lights, &settings, &LightPathContext::at(glam::Vec3::ZERO))
                 .iter()
-                .map(|l| l.exact_path)
+                .map(|l| u32::from(l.shadow_path == SHADOW_PATH_EXACT))
                 .collect()
         };
         // At the centre, 1 m below them all: the disk (100 × π 0.2² ≈ 12.6 lux) outshines
@@ -435,7 +516,7 @@ mod tests {
         let exact = |context: &LightPathContext| -> Vec<u32> {
             shading_lights(&lights, &settings, context)
                 .iter()
-                .map(|l| l.exact_path)
+                .map(|l| u32::from(l.shadow_path == SHADOW_PATH_EXACT))
                 .collect()
         };
         assert!(floor.shadowed_share(&GpuLight::new(&lights[0]), 0.03) > 0.0);

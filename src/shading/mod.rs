@@ -14,17 +14,20 @@ pub mod gpu_types;
 mod light_paths;
 pub mod paint_estimate;
 mod settings;
+pub mod shadow_maps;
 pub mod terrain;
 pub mod wgsl;
 
 pub use baked_indirect::BakedIndirect;
 pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
 pub use light_paths::{
-    CompiledPaths, LightPathContext, SceneLighting, compiled_paths, light_paths_at, paths_and_sizes_at, shading_lights,
+    CompiledPaths, LightPathContext, SceneLighting, ShadowPath, compiled_paths, light_paths_at, paths_and_sizes_at,
+    shading_lights,
 };
 pub use settings::{
-    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, LightPaths, MAX_EXACT_LIGHT_BUDGET, MAX_SHADING_DOWNSAMPLE,
-    MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, ShadowSettings, TerrainShading, parse_exp_method,
+    AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, DEFAULT_SHADOW_MAP_SIZE, LightPaths, MAX_EXACT_LIGHT_BUDGET,
+    MAX_SHADING_DOWNSAMPLE, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, SHADOW_MAP_SIZES, SUGGESTED_SHADOW_MAP_SIZE,
+    ShadowSettings, TerrainShading, parse_exp_method,
 };
 
 /// Settings that change how a frame looks, not what the scene is.

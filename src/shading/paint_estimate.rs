@@ -1,15 +1,18 @@
 //! The direct-only transfer estimate painting uses before (or instead of) a bake: the
 //! real-time renderer's own shading (`cpu.rs`, the f64 twin of logsh.wgsl), evaluated at
-//! the painted vertices, one light at a time at unit intensity. Visibility comes from the
-//! sphere blockers and the terrain (the log-SH, or the exact share for the lights the settings send that
-//! way, as on screen), so it needs no ray tracing and answers at once; indirect light is
-//! left out (the bake adds it).
+//! the painted vertices, one light at a time at unit intensity. Visibility is what the
+//! view shows: the sphere blockers and the terrain (the log-SH, or the exact share for the
+//! lights the settings send that way), and for the lights the view shadows by shadow maps
+//! the scene's triangles themselves, by a ray cast per painted vertex on a BVH built at
+//! the first such light; indirect light is left out (the bake adds it).
 
 use glam::{DVec3, Vec3};
 
 use super::ShadowSettings;
 use super::cpu::{self, SurfacePoint};
-use super::gpu_types::{GpuLight, environment_irradiance};
+use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
+use super::shadow_maps::ray_visibility;
+use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{Transfer, VertexRef};
 use crate::scene::{Light, Material, Scene, luminance};
@@ -24,6 +27,9 @@ pub struct DirectEstimate<'a> {
     settings: ShadowSettings,
     unit_lights: Vec<GpuLight>,
     environment: [[f32; 4]; 9],
+    /// The scene's triangles for the lights the view shadows by shadow maps, built when
+    /// first needed.
+    occluders: std::sync::OnceLock<SceneBvh>,
 }
 
 impl<'a> DirectEstimate<'a> {
@@ -36,7 +42,8 @@ impl<'a> DirectEstimate<'a> {
             .iter()
             .zip(shading)
             .map(|(light, shaded)| GpuLight {
-                exact_path: shaded.exact_path,
+                shadow_path: shaded.shadow_path,
+                first_shadow_view: shaded.first_shadow_view,
                 ..GpuLight::new(&Light {
                     intensity: 1.0,
                     ..light.clone()
@@ -53,6 +60,7 @@ impl<'a> DirectEstimate<'a> {
             settings,
             unit_lights,
             environment: environment_irradiance(scene.environment.as_ref()),
+            occluders: std::sync::OnceLock::new(),
         }
     }
 
@@ -117,6 +125,21 @@ impl<'a> DirectEstimate<'a> {
                 let unshadowed = cpu::direct_radiance(s, &incidence, eye);
                 if unshadowed == DVec3::ZERO {
                     return None;
+                }
+                if light.shadow_path == SHADOW_PATH_MAP {
+                    // What the view's shadow map shows: the scene's triangles, by a ray.
+                    let lift_m = 1e-4 * (1.0 + s.position.length());
+                    let occluders = self.occluders.get_or_init(|| SceneBvh::build(self.scene));
+                    let visible = ray_visibility(
+                        occluders,
+                        s.position,
+                        s.normal,
+                        incidence.to_light,
+                        incidence.distance_m,
+                        lift_m,
+                    );
+                    let t = luminance(unshadowed) * visible;
+                    return (t.is_finite() && t > 0.0).then_some((i as u32, t));
                 }
                 let visible = cpu::exact_visibility(
                     s,

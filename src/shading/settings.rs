@@ -46,6 +46,34 @@ pub struct ShadowSettings {
     /// the scene's centre (project format 8).
     #[serde(default = "default_exact_light_budget")]
     pub exact_light_budget: u32,
+    /// Texels along each side of a shadow map (the real geometry's shadows of point, spot
+    /// and directional lights under [`LightPaths::Auto`]): larger maps draw sharper,
+    /// truer shadow edges; 0 draws no maps (those lights take the SH path). Written only
+    /// when not the default, so projects that keep it open in older builds.
+    #[serde(
+        default = "default_shadow_map_size",
+        skip_serializing_if = "is_default_shadow_map_size"
+    )]
+    pub shadow_map_size: u32,
+}
+
+/// Texels along a shadow map's side by default: none yet. Maps are off by default until
+/// two things measured on lavapipe are fixed: the studio's default frame costs 1.7 times
+/// as much with them (93 against 54 ms at 960 × 540), and two renders of the same frame
+/// differ in a few pixels (28 of 14,400 on the sample), so the maps' drawing races
+/// somewhere. Turn them on with [`SUGGESTED_SHADOW_MAP_SIZE`] (`render --shadow-map-size`).
+pub const DEFAULT_SHADOW_MAP_SIZE: u32 = 0;
+/// The size the tests and the docs measure shadow maps at.
+pub const SUGGESTED_SHADOW_MAP_SIZE: u32 = 1024;
+/// The range of [`ShadowSettings::shadow_map_size`].
+pub const SHADOW_MAP_SIZES: std::ops::RangeInclusive<u32> = 64..=4096;
+
+fn default_shadow_map_size() -> u32 {
+    DEFAULT_SHADOW_MAP_SIZE
+}
+
+fn is_default_shadow_map_size(size: &u32) -> bool {
+    *size == DEFAULT_SHADOW_MAP_SIZE
 }
 
 /// Four exact lights: key, rim and two accents, at about the SH path's cost each.
@@ -93,13 +121,14 @@ impl Default for TerrainShading {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LightPaths {
-    /// Extended lights (spheres, rectangles, disks) under
+    /// Lights of no size (points, spots, the sun) by shadow maps of the real triangles
+    /// when [`ShadowSettings::shadow_map_size`] is set (else through the SH), as many as
+    /// [`super::gpu_types::MAX_SHADOW_VIEWS`] views hold (a point light takes six);
+    /// extended lights (spheres, rectangles, disks) under
     /// [`AUTO_EXACT_BELOW_HALF_ANGLE_DEG`] of angular radius at the scene's centre exactly,
-    /// as many as the settings' budget allows (brightest first); larger ones, and lights
-    /// of no size (points, spots, the sun), through the SH. The choice is one per light
-    /// for the whole frame, so no receiver shows a seam where a light changes path. Point-like
-    /// lights cast hard shadows on the exact path, which show the sphere blockers' beads
-    /// on mesh scenes; the SH's soft shadows hide them, so Auto keeps those on the SH.
+    /// as many as the settings' budget allows (brightest first); larger ones through the
+    /// SH. The choice is one per light for the whole frame, so no receiver shows a seam
+    /// where a light changes path.
     #[default]
     Auto,
     /// Every light through the visibility SH (the log-SH papers' method).
@@ -190,6 +219,7 @@ impl Default for ShadowSettings {
             shading_downsample: default_shading_downsample(),
             brdf: BrdfShading::Separate,
             exact_light_budget: default_exact_light_budget(),
+            shadow_map_size: DEFAULT_SHADOW_MAP_SIZE,
         }
     }
 }
@@ -259,6 +289,14 @@ impl ShadowSettings {
             problems.push(format!(
                 "shading downsample {} must be 1..={MAX_SHADING_DOWNSAMPLE}",
                 self.shading_downsample
+            ));
+        }
+        if self.shadow_map_size != 0 && !SHADOW_MAP_SIZES.contains(&self.shadow_map_size) {
+            problems.push(format!(
+                "shadow map size {} must be 0 (no maps) or {}..={}",
+                self.shadow_map_size,
+                SHADOW_MAP_SIZES.start(),
+                SHADOW_MAP_SIZES.end()
             ));
         }
         if !(1..=MAX_TERRAIN_LEVELS).contains(&self.terrain.pyramid_levels) {

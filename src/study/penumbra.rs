@@ -297,6 +297,7 @@ pub(super) fn compare(
         // compared with it (no anti-aliasing of hard edges, which would widen them by a
         // pixel the reference does not blur).
         pixel_angle_rad: 0.0,
+        occluders: None,
     };
     let open = ShadingInputs {
         blockers: &[],

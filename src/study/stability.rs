@@ -149,6 +149,7 @@ pub fn measure(
         settings: &case.shadows,
         eye: case.camera.position.as_dvec3(),
         pixel_angle_rad: crate::shading::gpu_types::pixel_angle_rad(&case.camera, height),
+        occluders: None,
     };
     let unlit = ShadingInputs {
         blockers: &[],

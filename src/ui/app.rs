@@ -1006,15 +1006,15 @@ impl eframe::App for EditorApp {
                             _ => None,
                         };
                         let (pivot, distance) = (viewport.orbit.target, viewport.orbit.distance);
-                        let exact: Vec<bool> = viewport
+                        let paths: Vec<_> = viewport
                             .light_paths_at(&document.scene.lights, pivot, &document.settings.shadows)
                             .into_iter()
-                            .map(|(exact, _)| exact)
+                            .map(|(path, _)| path)
                             .collect();
                         let lights = GizmoLights {
                             lights: &document.scene.lights,
                             selected,
-                            exact: &exact,
+                            paths: &paths,
                         };
                         gizmo = light_gizmo(ui, response.rect, &viewport.view(), lights, pivot, distance);
                     }

@@ -61,14 +61,14 @@ impl EditorApp {
                         crate::shading::light_paths_at(lights, pivot, shadows, &context)
                     }
                 };
-                let (exact, angle_deg) = paths[index];
+                let (path, angle_deg) = paths[index];
                 let light = &mut document.scene.lights[index];
                 ui.heading(format!("Light: {}", light.name));
                 let distance = light.position.distance(pivot).max(0.1);
                 let edit = light_inspector(ui, light, distance);
                 ui.weak(format!(
-                    "shadow path at the view's pivot: {} ({angle_deg:.1}° in radius)",
-                    if exact { "exact" } else { "SH" }
+                    "shadow at the view's pivot: {} ({angle_deg:.1}° in radius)",
+                    path.words()
                 ));
                 ui.checkbox(&mut self.preferences.show_heat_map, "heat map of where it reaches")
                     .on_hover_text(

@@ -94,12 +94,12 @@ enum Handle {
     Aim,
 }
 
-/// The lights a gizmo draws: the lights, which one is selected, and per light whether its
-/// shadows take the exact path rather than the SH.
+/// The lights a gizmo draws: the lights, which one is selected, and the shadow path of
+/// each.
 pub struct GizmoLights<'a> {
     pub lights: &'a [Light],
     pub selected: Option<usize>,
-    pub exact: &'a [bool],
+    pub paths: &'a [crate::shading::ShadowPath],
 }
 
 /// Draws the markers of the lights and the gizmo of the selected one over `rect`, and
@@ -116,7 +116,7 @@ pub fn light_gizmo(
     let GizmoLights {
         lights,
         selected,
-        exact,
+        paths,
     } = lights;
     let mut output = GizmoOutput::default();
     let painter = ui.painter_at(rect);
@@ -133,7 +133,11 @@ pub fn light_gizmo(
             continue;
         };
         let is_selected = selected == Some(index);
-        let exact_path = exact.get(index).copied().unwrap_or(false);
+        let path = paths
+            .get(index)
+            .copied()
+            .unwrap_or(crate::shading::ShadowPath::Harmonics);
+        let exact_path = path == crate::shading::ShadowPath::Exact;
         let id = ui.scope_id().with(("light marker", index));
         let response = ui
             .interact(
@@ -145,7 +149,7 @@ pub fn light_gizmo(
                 "{} ({}; {} shadows at the view's pivot)",
                 light.name,
                 light.kind.label(),
-                if exact_path { "exact" } else { "SH" }
+                path.words()
             ));
         if response.clicked() || response.drag_started() {
             output.select = Some(index);

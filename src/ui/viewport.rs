@@ -74,9 +74,14 @@ impl Viewport {
         }
     }
 
-    /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
+    /// For each of `lights`: the shadow path it takes under `settings`, and
     /// its angular radius seen from `point` in degrees.
-    pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
+    pub fn light_paths_at(
+        &self,
+        lights: &[Light],
+        point: glam::Vec3,
+        settings: &ShadowSettings,
+    ) -> Vec<(crate::shading::ShadowPath, f64)> {
         self.renderer.light_paths_at(lights, point, settings)
     }
 

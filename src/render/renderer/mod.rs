@@ -20,12 +20,13 @@ use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
 use super::passes::reduced_shading::LowResolutionTargets;
-use super::resources::{GpuBlockers, GpuScene};
+use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
 use crate::blockers::Sphere;
-use crate::scene::{Camera, Environment, Light, Scene};
-use crate::shading::gpu_types::GpuLight;
+use crate::scene::{Aabb, Camera, Environment, Light, Scene};
+use crate::shading::gpu_types::{GpuLight, GpuShadowView, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
+use crate::shading::shadow_maps::shadow_views;
 use crate::shading::{
     BakedIndirect, CompiledPaths, LightPathContext, RenderSettings, SceneLighting, ShadowSettings, compiled_paths,
 };
@@ -85,6 +86,14 @@ pub struct SceneRenderer {
     path_choice: RefCell<Option<PathChoice>>,
     /// Whether an environment or a terrain is there (each compiles in shading code).
     lighting: SceneLighting,
+    /// The shadow maps of the lights on the shadow-map path, their views, and whether
+    /// they must be drawn again before the next frame (a light, an object's visibility or
+    /// the map size changed).
+    shadow_maps: ShadowMaps,
+    map_views: Vec<GpuShadowView>,
+    maps_stale: bool,
+    /// The scene's bounds, which the maps' views cover.
+    bounds: Aabb,
     target: Option<RenderTarget>,
 }
 
@@ -119,6 +128,7 @@ impl SceneRenderer {
         let mut pipelines = PipelineCache::new(device, &raster.layouts, compilation);
         let key = PipelineKey::new(&settings, samples, paths);
         let pipeline = pipelines.get_now(key);
+        let shadow_maps = ShadowMaps::new(device);
         let gpu_blockers = GpuBlockers::upload(
             device,
             queue,
@@ -126,6 +136,7 @@ impl SceneRenderer {
             blockers,
             scene.terrain.as_ref().map(|t| &t.field),
             &settings,
+            shadow_maps.binding(),
         );
         let visibility = pipeline.vertex_visibility(device, &gpu_scene);
         let heat_map = HeatMapPipeline::new(device, &raster.layouts, samples);
@@ -151,16 +162,25 @@ impl SceneRenderer {
             path_context,
             path_choice: RefCell::new(None),
             lighting,
+            shadow_maps,
+            map_views: Vec::new(),
+            maps_stale: false,
+            bounds: scene.bounds(),
             target: None,
         };
         renderer.write_lights();
         renderer
     }
 
-    /// For each of `lights`: whether it takes the exact shadow path under `settings`, and
+    /// For each of `lights`: the shadow path it takes under `settings`, and
     /// its angular radius seen from `point` in degrees (`shading::light_paths_at` with the
     /// renderer's scene and blockers).
-    pub fn light_paths_at(&self, lights: &[Light], point: glam::Vec3, settings: &ShadowSettings) -> Vec<(bool, f64)> {
+    pub fn light_paths_at(
+        &self,
+        lights: &[Light],
+        point: glam::Vec3,
+        settings: &ShadowSettings,
+    ) -> Vec<(crate::shading::ShadowPath, f64)> {
         crate::shading::paths_and_sizes_at(&self.shaded_lights(lights, settings), point)
     }
 
@@ -191,14 +211,46 @@ impl SceneRenderer {
         let mut lights = self.shaded_lights(&self.lights, &self.shadows.settings);
         let compiled = self.shadows.key.paths;
         for light in &mut lights {
-            if !compiled.exact {
-                light.exact_path = 0;
-            } else if !compiled.harmonics {
-                light.exact_path = 1;
+            let has = |path| match path {
+                SHADOW_PATH_EXACT => compiled.exact,
+                SHADOW_PATH_MAP => compiled.maps,
+                _ => compiled.harmonics,
+            };
+            if !has(light.shadow_path) {
+                // The nearest path the pipeline has: the SH, else the exact one.
+                light.shadow_path = if compiled.harmonics {
+                    SHADOW_PATH_SH
+                } else if compiled.exact {
+                    SHADOW_PATH_EXACT
+                } else {
+                    SHADOW_PATH_MAP
+                };
             }
+        }
+        let views = shadow_views(&lights, &self.bounds, self.shadows.settings.shadow_map_size);
+        if views != self.map_views {
+            self.map_views = views;
+            self.maps_stale = true;
         }
         self.gpu_scene
             .update_lights(&self.device, &self.queue, &self.raster.layouts, &lights);
+    }
+
+    /// Draws the shadow maps again if something they show changed.
+    fn refresh_shadow_maps(&mut self) {
+        if !self.maps_stale || self.map_views.is_empty() {
+            return;
+        }
+        let size = self.shadows.settings.shadow_map_size;
+        if self
+            .shadow_maps
+            .draw(&self.device, &self.queue, &self.gpu_scene, &self.map_views, size)
+        {
+            self.shadows
+                .blockers
+                .set_shadow_maps(&self.device, self.shadow_maps.binding());
+        }
+        self.maps_stale = false;
     }
 
     /// Replaces the lights; a light that needs a path the pipeline lacks, or no longer
@@ -245,6 +297,7 @@ impl SceneRenderer {
     /// Hides the objects `hidden` lists (indices into the scene's objects); shows the rest.
     pub fn set_hidden(&mut self, hidden: &BTreeSet<usize>) {
         self.gpu_scene.set_hidden(hidden);
+        self.maps_stale = true;
     }
 
     /// Replaces the baked indirect light (None: none).
@@ -366,6 +419,7 @@ impl SceneRenderer {
                 other => RenderTarget::with_anti_aliasing(&self.device, size[0], size[1], other),
             });
         }
+        self.refresh_shadow_maps();
         let Some(target) = &self.target else { return resized };
         self.gpu_scene
             .write_frame(&self.queue, camera, size, settings.exposure_ev);

@@ -1,9 +1,10 @@
-//! Blockers, their culling groups, the shadow parameters and the terrain on the GPU: bind
-//! group 2 of logsh.wgsl and terrain.wgsl, shared by the shading pass and the per-vertex
-//! compute pass.
+//! Blockers, their culling groups, the shadow parameters, the terrain and the shadow maps'
+//! bindings on the GPU: bind group 2 of logsh.wgsl and terrain.wgsl, shared by the shading
+//! pass and the per-vertex compute pass.
 
 use wgpu::util::DeviceExt;
 
+use super::shadow_maps::ShadowMapBinding;
 use super::terrain::GpuTerrain;
 use crate::blockers::Sphere;
 use crate::render::descriptors::numbered_entries;
@@ -23,6 +24,9 @@ pub struct GpuBlockers {
     grouped_for_min_cap_ratio: f32,
     terrain_field: Option<HeightField>,
     terrain: GpuTerrain,
+    /// The uniform and storage copies of the ordered blockers and of the groups.
+    buffers: [wgpu::Buffer; 4],
+    maps: ShadowMapBinding,
     pub bind_group: wgpu::BindGroup,
 }
 
@@ -34,6 +38,7 @@ impl GpuBlockers {
         spheres: &[Sphere],
         terrain: Option<&HeightField>,
         settings: &ShadowSettings,
+        maps: &ShadowMapBinding,
     ) -> GpuBlockers {
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shadow params"),
@@ -43,7 +48,10 @@ impl GpuBlockers {
         });
         let (ordered, groups) = gpu_groups(spheres, settings);
         let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
-        let bind_group = storage_bind_group(device, layout, &params, &ordered, &groups, &gpu_terrain);
+        let [blockers_uniform, blockers_storage] = uniform_and_storage(device, "blockers", &ordered);
+        let [groups_uniform, groups_storage] = uniform_and_storage(device, "blocker groups", &groups);
+        let buffers = [blockers_uniform, blockers_storage, groups_uniform, groups_storage];
+        let bind_group = shadow_bind_group(device, layout, &params, &buffers, &gpu_terrain, maps);
         let blockers = GpuBlockers {
             params,
             bind_group_layout: layout.clone(),
@@ -52,6 +60,8 @@ impl GpuBlockers {
             grouped_for_min_cap_ratio: settings.min_cap_ratio,
             terrain_field: terrain.cloned(),
             terrain: gpu_terrain,
+            buffers,
+            maps: maps.clone(),
             bind_group,
         };
         blockers.write_params(queue, settings);
@@ -74,6 +84,20 @@ impl GpuBlockers {
             spheres,
             terrain.as_ref(),
             settings,
+            &self.maps.clone(),
+        );
+    }
+
+    /// Binds new shadow-map layers (after [`super::ShadowMaps::draw`] allocated them).
+    pub fn set_shadow_maps(&mut self, device: &wgpu::Device, maps: &ShadowMapBinding) {
+        self.maps = maps.clone();
+        self.bind_group = shadow_bind_group(
+            device,
+            &self.bind_group_layout,
+            &self.params,
+            &self.buffers,
+            &self.terrain,
+            &self.maps,
         );
     }
 
@@ -110,16 +134,14 @@ fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>
     )
 }
 
-fn storage_bind_group(
+fn shadow_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     params: &wgpu::Buffer,
-    spheres: &[GpuBlocker],
-    groups: &[GpuBlockerGroup],
+    [blockers, every_blocker, groups, every_group]: &[wgpu::Buffer; 4],
     terrain: &GpuTerrain,
+    maps: &ShadowMapBinding,
 ) -> wgpu::BindGroup {
-    let [blockers, every_blocker] = uniform_and_storage(device, "blockers", spheres);
-    let [groups, every_group] = uniform_and_storage(device, "blocker groups", groups);
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow"),
         layout,
@@ -131,6 +153,9 @@ fn storage_bind_group(
             terrain.heights.as_entire_binding(),
             every_blocker.as_entire_binding(),
             every_group.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&maps.layers),
+            wgpu::BindingResource::Sampler(&maps.sampler),
+            maps.views.as_entire_binding(),
         ]),
     })
 }
@@ -158,14 +183,21 @@ fn uniform_and_storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, ite
 
 /// The bind group layout of [`GpuBlockers`].
 pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        visibility,
         ty: wgpu::BindingType::Buffer {
             ty,
             has_dynamic_offset: false,
             min_binding_size: None,
         },
+        count: None,
+    };
+    let other = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty,
         count: None,
     };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -178,6 +210,16 @@ pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             entry(4, wgpu::BufferBindingType::Storage { read_only: true }),
             entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
             entry(6, wgpu::BufferBindingType::Storage { read_only: true }),
+            other(
+                7,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Depth,
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+            ),
+            other(8, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison)),
+            entry(9, wgpu::BufferBindingType::Uniform),
         ],
     })
 }

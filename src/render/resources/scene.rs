@@ -39,7 +39,9 @@ pub struct GpuScene {
     pub frame_bind_group: wgpu::BindGroup,
     pub light_count: usize,
     /// Lights from this index on (in the buffer's order) take the exact shadow path.
-    first_exact_light: usize,
+    /// The first light with a shadow map and the first on the exact path, in the order
+    /// uploaded.
+    first_light_on: [usize; 2],
     environment_irradiance: [[f32; 4]; 9],
 }
 
@@ -149,7 +151,7 @@ impl GpuScene {
             indirect_buffer,
             frame_bind_group,
             light_count: 0,
-            first_exact_light: 0,
+            first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
@@ -182,7 +184,8 @@ impl GpuScene {
     }
 
     /// Rewrites the light buffer, growing it when there are more lights than it holds;
-    /// lights on the exact path go last ([`crate::shading::gpu_types::exact_lights_last`]).
+    /// lights come ordered by shadow path
+    /// ([`crate::shading::gpu_types::order_by_shadow_path`]).
     pub fn update_lights(
         &mut self,
         device: &wgpu::Device,
@@ -195,10 +198,10 @@ impl GpuScene {
             self.frame_bind_group =
                 frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, &self.indirect_buffer);
         }
-        let (ordered, first_exact_light) = crate::shading::gpu_types::exact_lights_last(lights);
+        let (ordered, first_light_on) = crate::shading::gpu_types::order_by_shadow_path(lights);
         self.lights.write(queue, &ordered);
         self.light_count = ordered.len();
-        self.first_exact_light = first_exact_light;
+        self.first_light_on = first_light_on;
     }
 
     /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
@@ -208,7 +211,7 @@ impl GpuScene {
             size_px,
             exposure_ev,
             self.light_count,
-            self.first_exact_light,
+            self.first_light_on,
             self.environment_irradiance,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));

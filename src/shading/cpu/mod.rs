@@ -12,9 +12,11 @@
 //!   V̄ is the mean of G over the cap the light subtends: V̄ = Σ_lm w_l(s) G_lm y_lm(d)
 //!   with w_0 = 1 and w_l = (1 + c)·P_l′(c)/(l(l+1)) = z_l/(z_0 √(2l+1)) of the cap
 //!   (s = sin of its half-angle, c = √(1 − s²)); for a point light (s = 0) this is G(d).
-//!   Lights on the exact path (`GpuLight::exact_path`, chosen per light for the frame by
+//!   Lights on the exact path (`GpuLight::shadow_path`, chosen per light for the frame by
 //!   `shading::shading_lights`) take `penumbra::light_visibility` instead (the share of
 //!   their disc no blocker hides);
+//! - lights on the shadow-map path take the exact visibility of the scene's triangles by
+//!   ray casts (`ShadingInputs::occluders`), which the GPU's maps converge to;
 //! - with a terrain, F gains its log-visibility (`TerrainShadow::log_visibility`, the twin
 //!   of terrain.wgsl) and exact-path lights the share of their disc above its horizon.
 //!
@@ -32,15 +34,17 @@ pub use surface::{
 };
 pub use visibility::{exact_visibility, log_visibility, scene_log_visibility, visibility_cosine, visibility_toward};
 
+use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
-use crate::shading::gpu_types::GpuLight;
+use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
+use crate::shading::shadow_maps::ray_visibility;
 use crate::terrain::TerrainShadow;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
 use visibility::exp_for_shading;
 
 /// What shades a frame besides the surface: lights, environment, blockers, settings.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub struct ShadingInputs<'a> {
     pub lights: &'a [GpuLight],
     /// Order-3 SH of the environment's irradiance, as `Frame::environment_irradiance`.
@@ -53,6 +57,10 @@ pub struct ShadingInputs<'a> {
     /// The angle one pixel subtends (`gpu_types::pixel_angle_rad`): exact-path shadow edges
     /// ramp over one pixel's width; 0 leaves them hard.
     pub pixel_angle_rad: f64,
+    /// The scene's triangles, which shadow the lights on the shadow-map path by ray casts
+    /// (`shadow_maps::ray_visibility`, what the maps converge to); None: those lights
+    /// are unshadowed.
+    pub occluders: Option<&'a SceneBvh>,
 }
 
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
@@ -66,6 +74,14 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         let inc = incidence(light, s.position);
         let unshadowed = direct_radiance(s, &inc, inputs.eye);
         if unshadowed == DVec3::ZERO {
+            continue;
+        }
+        if light.shadow_path == SHADOW_PATH_MAP {
+            let visibility = inputs.occluders.map_or(1.0, |bvh| {
+                let lift_m = 1e-4 * (1.0 + s.position.length());
+                ray_visibility(bvh, s.position, s.normal, inc.to_light, inc.distance_m, lift_m)
+            });
+            radiance += unshadowed * visibility;
             continue;
         }
         radiance += match exact_visibility(s, light, &inc, settings, inputs.blockers, inputs.terrain, footprint) {

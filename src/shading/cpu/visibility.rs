@@ -10,7 +10,7 @@ use super::surface::{Incidence, SurfacePoint};
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
 use crate::shading::ShadowSettings;
-use crate::shading::gpu_types::GpuLight;
+use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT};
 use crate::terrain::TerrainShadow;
 
 /// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl).
@@ -108,7 +108,7 @@ pub fn visibility_cosine(g: &[f64], n: DVec3) -> f64 {
 }
 
 /// The visibility of `light`, seen as `inc` from `s`, when it is on the exact path
-/// (`GpuLight::exact_path`, which `shading::shading_lights` sets): `crate::penumbra` times
+/// (`GpuLight::shadow_path`, which `shading::shading_lights` sets): `crate::penumbra` times
 /// the share of its disc above the terrain's horizon. None when it takes the SH path.
 /// `pixel_footprint_m` anti-aliases hard blocker edges (`penumbra::light_visibility`; 0:
 /// none).
@@ -121,7 +121,7 @@ pub fn exact_visibility(
     terrain: Option<&TerrainShadow>,
     pixel_footprint_m: f64,
 ) -> Option<f64> {
-    (light.exact_path != 0).then(|| {
+    (light.shadow_path == SHADOW_PATH_EXACT).then(|| {
         let above_terrain = terrain.map_or(1.0, |t| t.light_visibility(s.position, inc.to_light, inc.cap_ratio));
         let light = crate::penumbra::LightDisc {
             to_light: inc.to_light,

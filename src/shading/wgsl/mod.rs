@@ -21,6 +21,7 @@ pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
+pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
 /// Standalone: it reads a finished frame, not the scene.
 pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
 
@@ -32,6 +33,11 @@ pub fn with_common(body: &str) -> String {
 /// The unshadowed raster module.
 pub fn raster_source() -> String {
     format!("{COMMON}\n{SCENE}\n{RASTER}")
+}
+
+/// The shadow-map depth pass's module.
+pub fn shadow_map_source() -> String {
+    format!("{COMMON}\n{SHADOW_MAP}")
 }
 
 /// The importance heat map module.

@@ -1,0 +1,252 @@
+//! The shadow maps on the GPU: one `Depth32Float` layer per view of the lights on the
+//! shadow-map path (`shading::shadow_maps` places the views), drawn from the scene's
+//! triangles by a depth-only pass (shaders/shadow_map.wgsl), and what logsh.wgsl reads
+//! them through: the layers as one array, a comparison sampler and the views' uniform
+//! (bindings 7–9 of the shadow group). The maps are drawn only when asked
+//! ([`ShadowMaps::draw`]): the scene holds still while the artist paints, so the
+//! renderer redraws them when a light, an object's visibility or the map size changes.
+
+use wgpu::util::DeviceExt;
+
+use super::layouts::vertex_layout;
+use super::scene::GpuScene;
+use crate::render::descriptors::{DEPTH_FORMAT, create_module};
+use crate::shading::gpu_types::{GpuShadowView, MAX_SHADOW_VIEWS};
+use crate::shading::wgsl;
+
+/// Byte stride of one view in the draw pass's uniform (wgpu's dynamic offset alignment).
+const DRAW_STRIDE: u64 = 256;
+
+/// What the shading passes bind of the maps (cheap handles, cloned into each bind group).
+#[derive(Clone)]
+pub struct ShadowMapBinding {
+    pub layers: wgpu::TextureView,
+    pub sampler: wgpu::Sampler,
+    pub views: wgpu::Buffer,
+}
+
+pub struct ShadowMaps {
+    /// Texels per side and layers of the array as allocated.
+    size: u32,
+    layers: u32,
+    texture: wgpu::Texture,
+    binding: ShadowMapBinding,
+    draw_views: wgpu::Buffer,
+    draw_group: wgpu::BindGroup,
+    draw_layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl ShadowMaps {
+    /// One 1 × 1 layer until the first [`Self::draw`] (lights take no view before it).
+    pub fn new(device: &wgpu::Device) -> ShadowMaps {
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow map view"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<GpuShadowView>() as u64),
+                },
+                count: None,
+            }],
+        });
+        let pipeline = depth_pipeline(device, &draw_layout);
+        let views = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("shadow views"),
+            contents: bytemuck::cast_slice(&[<GpuShadowView as bytemuck::Zeroable>::zeroed(); MAX_SHADOW_VIEWS]),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let draw_views = draw_buffer(device, 1);
+        let draw_group = draw_group(device, &draw_layout, &draw_views);
+        let texture = layers_texture(device, 1, 1);
+        let binding = ShadowMapBinding {
+            layers: array_view(&texture),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("shadow map"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                compare: Some(wgpu::CompareFunction::LessEqual),
+                ..Default::default()
+            }),
+            views,
+        };
+        ShadowMaps {
+            size: 1,
+            layers: 1,
+            texture,
+            binding,
+            draw_views,
+            draw_group,
+            draw_layout,
+            pipeline,
+        }
+    }
+
+    pub fn binding(&self) -> &ShadowMapBinding {
+        &self.binding
+    }
+
+    /// Draws `views` (in layer order) of `scene` into maps `size` texels on a side,
+    /// submitting the work; true when the layers were allocated anew (the bind groups that
+    /// read them must be made again from [`Self::binding`]).
+    pub fn draw(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &GpuScene,
+        views: &[GpuShadowView],
+        size: u32,
+    ) -> bool {
+        let views = &views[..views.len().min(MAX_SHADOW_VIEWS)];
+        let layers = (views.len() as u32).max(1);
+        let reallocated = size != self.size || layers > self.layers;
+        if reallocated {
+            self.texture = layers_texture(device, size, layers);
+            self.binding.layers = array_view(&self.texture);
+            self.size = size;
+            self.layers = layers;
+            self.draw_views = draw_buffer(device, layers as u64);
+            self.draw_group = draw_group(device, &self.draw_layout, &self.draw_views);
+        }
+        let mut padded = vec![0u8; (DRAW_STRIDE * layers as u64) as usize];
+        for (k, view) in views.iter().enumerate() {
+            let at = k * DRAW_STRIDE as usize;
+            padded[at..at + std::mem::size_of::<GpuShadowView>()].copy_from_slice(bytemuck::bytes_of(view));
+        }
+        queue.write_buffer(&self.draw_views, 0, &padded);
+        queue.write_buffer(&self.binding.views, 0, bytemuck::cast_slice(views));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        for layer in 0..self.layers {
+            let target = layer_view(&self.texture, layer);
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &target,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if (layer as usize) < views.len() {
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &self.draw_group, &[(layer as u64 * DRAW_STRIDE) as u32]);
+                for object in scene.objects.iter().filter(|o| !o.hidden) {
+                    pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
+                    pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..object.index_count, 0, 0..1);
+                }
+            }
+        }
+        queue.submit([encoder.finish()]);
+        reallocated
+    }
+}
+
+fn layers_texture(device: &wgpu::Device, size: u32, layers: u32) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("shadow maps"),
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DEPTH_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    })
+}
+
+fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some("shadow map layers"),
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+fn layer_view(texture: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some("shadow map layer"),
+        dimension: Some(wgpu::TextureViewDimension::D2),
+        base_array_layer: layer,
+        array_layer_count: Some(1),
+        ..Default::default()
+    })
+}
+
+fn draw_buffer(device: &wgpu::Device, views: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("shadow map draw views"),
+        size: DRAW_STRIDE * views.max(1),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn draw_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shadow map view"),
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(std::mem::size_of::<GpuShadowView>() as u64),
+            }),
+        }],
+    })
+}
+
+/// The depth-only pipeline drawing a view: both faces (open and single-sided meshes cast
+/// shadows too).
+fn depth_pipeline(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> wgpu::RenderPipeline {
+    let module = create_module(device, "shadow map", &wgsl::shadow_map_source());
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("shadow map"),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("shadow map"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_shadow_map"),
+            compilation_options: Default::default(),
+            buffers: &[Some(vertex_layout())],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            // No rasterised bias: a slope-scaled one pushed the side faces of thin bars,
+            // seen edge-on from the light, beyond the floor, and their shadows came out
+            // narrower than the ray casts'; receivers are offset along their normal and
+            // toward the light when they read the map instead (logsh.wgsl).
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: Default::default(),
+        fragment: None,
+        multiview_mask: None,
+        cache: None,
+    })
+}
