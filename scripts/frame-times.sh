@@ -29,6 +29,7 @@ if [[ -n "${REPEAT:-}" ]]; then
 fi
 row "studio, defaults (order 4, HYB, 48 fitted spheres, 1 in 3×3 shaded, edge filter)" "$studio"
 row "studio, defaults without antialiasing" "$studio" --aa none
+row "studio, defaults with 1024² shadow maps" "$studio" --shadow-map-size 1024
 row "studio, defaults with 4× MSAA" "$studio" --aa msaa
 row "studio, 1 in 2×2 shaded" "$studio" --shading-downsample 2
 row "studio, 1 in 4×4 shaded" "$studio" --shading-downsample 4

@@ -524,13 +524,27 @@ fn lights_are_added_and_deleted_with_undo() {
 }
 
 /// The editor and `lightpaint render` draw through the same renderer: the viewport of a
-/// project and `render` of the same project at the viewport's size give the same pixels.
+/// project and `render` of the same project at the viewport's size give the same pixels —
+/// also with an object hidden (saved in the project), which neither draws nor shadows.
 #[test]
 fn the_editor_and_render_draw_the_same_pixels() {
-    for sample in [Sample::Sample, Sample::Studio] {
+    for (sample, hide_first) in [(Sample::Sample, false), (Sample::Studio, false), (Sample::Sample, true)] {
         let Some((dir, project, mut harness)) = editor_on_copy(sample) else {
             return;
         };
+        if hide_first {
+            let pillar = harness
+                .state()
+                .document()
+                .and_then(|d| d.scene.objects.iter().position(|o| o.name.contains("Pillar")))
+                .expect("the sample has a pillar");
+            harness.state_mut().toggle_hidden(pillar);
+            harness.run();
+            harness.state_mut().save_to(&project);
+            harness.run();
+            let saved = lightpaint::project::Document::open(&project).expect("reopens");
+            assert!(saved.hidden_objects.contains(&pillar), "the hidden pillar is saved");
+        }
         let exported = dir.path().join("viewport.png");
         harness.state_mut().export_png(&exported);
         harness.run();

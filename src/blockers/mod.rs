@@ -154,6 +154,17 @@ impl SceneBlockers {
         self.per_object.iter().flat_map(|s| s.spheres.iter().copied()).collect()
     }
 
+    /// The spheres of the objects `hidden` does not list (indices into the scene's
+    /// objects): hidden objects cast no shadow.
+    pub fn shown_spheres(&self, hidden: &std::collections::BTreeSet<usize>) -> Vec<Sphere> {
+        self.per_object
+            .iter()
+            .enumerate()
+            .filter(|(object, _)| !hidden.contains(object))
+            .flat_map(|(_, s)| s.spheres.iter().copied())
+            .collect()
+    }
+
     pub fn sphere_count(&self) -> usize {
         self.per_object.iter().map(|s| s.spheres.len()).sum()
     }
@@ -187,6 +198,20 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
         Some(terrain) => &scene.objects[..terrain.object.min(scene.objects.len())],
         None => &scene.objects[..],
     };
+    if settings.budget == SphereBudget::Total(0) {
+        // A budget of none means none: no object gets a sphere.
+        return SceneBlockers {
+            per_object: scene
+                .objects
+                .iter()
+                .map(|_| SphereSet {
+                    spheres: Vec::new(),
+                    fit_error: 0.0,
+                    skipped: Some("no sphere blockers asked for (a budget of 0)".to_string()),
+                })
+                .collect(),
+        };
+    }
     let grids: Vec<Arc<Solid>> = casters.par_iter().map(|o| solid(o, settings)).collect();
     let mut per_object: Vec<SphereSet> = match settings.budget {
         SphereBudget::FitError(_) => grids.par_iter().map(|solid| fit_solid(solid, settings, None)).collect(),
@@ -330,6 +355,26 @@ mod tests {
             objects,
             ..Default::default()
         }
+    }
+
+    #[test]
+    fn a_total_budget_of_zero_fits_no_sphere_and_says_why() {
+        let ball = shapes::uv_sphere(0.5, 32, 16);
+        let scene = scene(vec![object("ball", ball)]);
+        let none = fit_scene(
+            &scene,
+            &BlockerSettings {
+                budget: SphereBudget::Total(0),
+                ..BlockerSettings::default()
+            },
+        );
+        assert_eq!(none.sphere_count(), 0);
+        assert!(
+            none.per_object[0]
+                .skipped
+                .as_deref()
+                .is_some_and(|why| why.contains("0"))
+        );
     }
 
     #[test]

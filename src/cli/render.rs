@@ -25,13 +25,15 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         settings.background_srgb8 = background;
     }
     let camera = document.view().camera();
+    // Hidden objects are neither drawn nor cast shadows, as in the editor.
+    let scene = document.shown_scene();
     if args.reference {
         let reference = lightpaint::reference::ReferenceSettings {
             samples_per_pixel: args.spp,
             bounces: args.bounces,
             seed: args.seed,
         };
-        return render_reference_png(&args.file, &document, &camera, &settings, &reference, args);
+        return render_reference_png(&args.file, &scene, &camera, &settings, &reference, args);
     }
     let gpu = GpuContext::headless()?;
     let mut shadows = settings.shadows;
@@ -73,7 +75,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         for line in fit.report(&document.scene) {
             log::info!("blockers: {line}");
         }
-        fit.spheres()
+        fit.shown_spheres(&document.hidden_objects)
     };
     let fit_ms = fitted.elapsed().as_secs_f64() * 1000.0;
     let indirect = if settings.baked_indirect && !args.no_baked_indirect {
@@ -83,7 +85,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     };
     let frame = ShadowFrame {
         baked_indirect: indirect.as_ref(),
-        scene: &document.scene,
+        scene: &scene,
         camera: &camera,
         settings: &settings,
         shadows: &shadows,
@@ -94,7 +96,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     let started = std::time::Instant::now();
     let (image, renderer) = if no_shadows {
         (
-            render_image(&gpu, &document.scene, &camera, &settings, args.width, args.height)?,
+            render_image(&gpu, &scene, &camera, &settings, args.width, args.height)?,
             "raster, no shadows".to_string(),
         )
     } else if args.cpu {
@@ -139,7 +141,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
 /// `render --reference`: the path tracer, with a progress bar over its passes.
 fn render_reference_png(
     file: &Path,
-    document: &Document,
+    scene: &lightpaint::scene::Scene,
     camera: &lightpaint::scene::Camera,
     settings: &lightpaint::shading::RenderSettings,
     reference: &lightpaint::reference::ReferenceSettings,
@@ -157,14 +159,9 @@ fn render_reference_png(
         indicatif::ProgressStyle::with_template("path tracing {bar:40} {pos}/{len} samples per pixel, {eta} left")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let image = lightpaint::reference::render_reference(
-        &document.scene,
-        camera,
-        args.width,
-        args.height,
-        reference,
-        |passes| bar.set_position(passes as u64),
-    );
+    let image = lightpaint::reference::render_reference(scene, camera, args.width, args.height, reference, |passes| {
+        bar.set_position(passes as u64)
+    });
     bar.finish_and_clear();
     let elapsed = started.elapsed().as_secs_f64();
     image

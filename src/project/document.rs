@@ -40,6 +40,19 @@ pub fn is_project_path(path: &Path) -> bool {
 }
 
 impl Document {
+    /// The scene as shown: the hidden objects keep their place in the list (object
+    /// indices, per-object bakes and fits stay valid) but lose their triangles, so they
+    /// are neither drawn nor cast shadows.
+    pub fn shown_scene(&self) -> crate::scene::Scene {
+        let mut scene = self.scene.clone();
+        for (index, object) in scene.objects.iter_mut().enumerate() {
+            if self.hidden_objects.contains(&index) {
+                object.indices.clear();
+            }
+        }
+        scene
+    }
+
     /// The camera the document is viewed from: the project's saved one, else the scene's
     /// initial orbit. The editor, `render`, `paint` and the study all look through it.
     pub fn view(&self) -> crate::scene::OrbitCamera {

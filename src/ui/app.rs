@@ -257,7 +257,7 @@ impl EditorApp {
         let project = document.project_path.as_deref();
         self.blockers = sphere_cache::fit_with_cache(scene, &document.settings.blockers, project);
         self.fitted_with = document.settings.blockers;
-        let spheres = self.blockers.spheres();
+        let spheres = self.blockers.shown_spheres(&document.hidden_objects);
         self.viewport = render_state.map(|rs| {
             let mut viewport = Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows);
             viewport.set_hidden(&document.hidden_objects);
@@ -424,6 +424,7 @@ impl EditorApp {
         self.message = format!("{} {}", object.name, if now_hidden { "hidden" } else { "shown" });
         if let Some(viewport) = &mut self.viewport {
             viewport.set_hidden(&document.hidden_objects);
+            viewport.set_blockers(&self.blockers.shown_spheres(&document.hidden_objects));
         }
     }
 
@@ -459,7 +460,7 @@ impl EditorApp {
             self.heat_map = None;
             return;
         };
-        let spheres = self.blockers.spheres();
+        let spheres = self.blockers.shown_spheres(&document.hidden_objects);
         let transfer = painting.transfer(&document.scene, &spheres, &document.settings.shadows);
         let eye = viewport.orbit.camera().position;
         let values =
@@ -637,7 +638,7 @@ impl EditorApp {
         else {
             return;
         };
-        let spheres = self.blockers.spheres();
+        let spheres = self.blockers.shown_spheres(&document.hidden_objects);
         let camera = viewport.orbit.camera();
         let shadows = document.settings.shadows;
         let hidden = &document.hidden_objects;
@@ -998,7 +999,8 @@ impl eframe::App for EditorApp {
                     let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
                     if self.preferences.show_blockers {
                         let painter = ui.painter_at(response.rect);
-                        draw_blockers(&painter, response.rect, &viewport.view(), &self.blockers.spheres());
+                        let shown = self.blockers.shown_spheres(&document.hidden_objects);
+                        draw_blockers(&painter, response.rect, &viewport.view(), &shown);
                     }
                     if self.preferences.show_light_markers {
                         let selected = match self.selection {

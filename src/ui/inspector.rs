@@ -161,7 +161,7 @@ impl EditorApp {
             let project = document.project_path.as_deref();
             self.blockers = sphere_cache::fit_with_cache(&document.scene, &document.settings.blockers, project);
             self.fitted_with = document.settings.blockers;
-            viewport.set_blockers(&self.blockers.spheres());
+            viewport.set_blockers(&self.blockers.shown_spheres(&document.hidden_objects));
         }
         if let Some(environment) = &mut document.scene.environment {
             egui::CollapsingHeader::new("Environment")

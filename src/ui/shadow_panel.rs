@@ -1,6 +1,7 @@
-//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, how the
-//! BRDF meets the visibility, the shading resolution and the terrain's horizon sampling, and the sphere blockers fitted to the scene's meshes (count
-//! and fit per object).
+//! The inspector's "Shadows" section: on/off, SH order, exponentiation method, ε, which
+//! lights take shadow maps or the exact path, how the BRDF meets the visibility, the
+//! shading resolution and the terrain's horizon sampling, and the sphere blockers fitted
+//! to the scene's meshes (count and fit per object).
 
 use crate::blockers::{SceneBlockers, SphereBudget};
 use crate::scene::Scene;
@@ -51,10 +52,12 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             .on_hover_text(
                 "Exact: each light's visible share past every sphere, right for small lights \
                  (sharp, correct penumbrae; point lights cast hard shadows) at a cost per light. \
-                 SH: one visibility for all lights, soft. Auto: exact for sphere and area lights \
-                 under 40° of angular radius. The Lights list shows each light's path.",
+                 SH: one visibility for all lights, soft. Auto: shadow maps for point, spot and \
+                 sun lights when they are on, exact for sphere and area lights under 40° of \
+                 angular radius. The selected light says which path it takes.",
             );
         if settings.light_paths == LightPaths::Auto {
+            shadow_map_control(ui, &mut settings.shadow_map_size);
             ui.add(
                 egui::Slider::new(
                     &mut settings.exact_light_budget,
@@ -143,6 +146,28 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             }
         });
     });
+}
+
+/// Shadow maps of the real triangles for point, spot and directional lights: off, or a
+/// size of map.
+fn shadow_map_control(ui: &mut egui::Ui, size: &mut u32) {
+    let label = |size: u32| match size {
+        0 => "off (soft SH shadows)".to_string(),
+        size => format!("{size} × {size}"),
+    };
+    egui::ComboBox::from_label("shadow maps")
+        .selected_text(label(*size))
+        .show_ui(ui, |ui| {
+            for choice in [0, 512, crate::shading::SUGGESTED_SHADOW_MAP_SIZE, 2048, 4096] {
+                ui.selectable_value(size, choice, label(choice));
+            }
+        })
+        .response
+        .on_hover_text(
+            "Point, spot and sun shadows from the real triangles (walls, cards, thin bars \
+             included), drawn into maps of this many texels: larger maps give sharper, truer \
+             edges. Off: those lights take the soft SH shadows of the sphere blockers.",
+        );
 }
 
 fn light_paths_label(paths: LightPaths) -> &'static str {
