@@ -125,6 +125,58 @@ fn render_writes_a_png_of_the_requested_size() {
     assert_eq!((image.width(), image.height()), (160, 90));
 }
 
+/// The flags that change how a frame is shaded change the frame: `--per-vertex` (shadows
+/// interpolated from the vertices, under the default automatic light paths) and
+/// `--shadow-map-size` (the real triangles' shadows for the lights of no size) each give
+/// another image than the project's defaults, and `--blockers 0` fits no sphere.
+#[test]
+fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
+    if common::no_gpu_wanted() {
+        eprintln!("GPU test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let project = common::repo_path("projects/sample/sample.lightpaint");
+    let render_with_summary = |name: &str, extra: &[&str]| {
+        let png = dir.path().join(name);
+        let mut args: Vec<&OsStr> = vec![
+            OsStr::new("render"),
+            project.as_os_str(),
+            OsStr::new("-o"),
+            png.as_os_str(),
+            OsStr::new("--width"),
+            OsStr::new("160"),
+            OsStr::new("--height"),
+            OsStr::new("90"),
+        ];
+        args.extend(extra.iter().map(OsStr::new));
+        let out = common::run_lightpaint(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        (
+            image::open(&png).expect("a PNG was written").to_rgb8(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
+    };
+    let render = |name: &str, extra: &[&str]| render_with_summary(name, extra).0;
+    let differing =
+        |a: &image::RgbImage, b: &image::RgbImage| a.pixels().zip(b.pixels()).filter(|(x, y)| x != y).count();
+    let defaults = render("defaults.png", &[]);
+    let pixels = (160 * 90) as usize;
+    for (name, flags) in [
+        ("per-vertex.png", &["--per-vertex"][..]),
+        ("maps.png", &["--shadow-map-size", "1024"][..]),
+    ] {
+        let changed = differing(&render(name, flags), &defaults);
+        assert!(changed > pixels / 100, "{flags:?} changed only {changed} pixels");
+    }
+    let (no_blockers, summary) = render_with_summary("no-blockers.png", &["--blockers", "0"]);
+    assert!(summary.contains(", 0 blockers"), "{summary}");
+    assert!(
+        differing(&no_blockers, &defaults) > pixels / 100,
+        "--blockers 0 shadows as before"
+    );
+}
+
 #[test]
 fn render_reference_path_traces_without_a_gpu_and_is_repeatable() {
     let dir = tempfile::tempdir().unwrap();
