@@ -80,7 +80,7 @@ pub fn exp_dc_isolated(f: &[f64], inner: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64
 /// exp(M_f)·1 by eigendecomposition of the symmetric product matrix M_f̂ of the DC-free
 /// part, with the DC folded into the eigenvalues (M_f = M_f̂ + f₀/√(4π)·I), so a large
 /// negative DC damps the ringing modes instead of multiplying an overflowed value by zero.
-/// Exponents are capped at [`MAX_EXPONENT`]: beyond it the value (over 1e43, where a
+/// Exponents are capped at `MAX_EXPONENT`: beyond it the value (over 1e43, where a
 /// visibility is at most 1) can only come from the ringing of a truncated log-visibility,
 /// and saturating keeps everything downstream finite.
 pub fn exp_reference(f: &[f64]) -> Vec<f64> {

@@ -52,7 +52,7 @@ impl LightPathContext {
     }
 
     /// The context of `scene` shadowed by `blockers`: its centre, and up to
-    /// [`MAX_RECEIVERS`] of its vertices spread evenly over all its objects.
+    /// `MAX_RECEIVERS` of its vertices spread evenly over all its objects.
     pub fn of_scene(scene: &Scene, blockers: &[Sphere]) -> LightPathContext {
         let total: usize = scene.objects.iter().map(|o| o.positions.len()).sum();
         let stride = total.div_ceil(MAX_RECEIVERS).max(1);

@@ -309,7 +309,7 @@ impl ShadowSettings {
     }
 }
 
-/// Parses an exponentiation method as the CLI spells it: dc, ol, hyb, ps<k> (e.g. ps8), ref.
+/// Parses an exponentiation method as the CLI spells it: dc, ol, hyb, `ps<k>` (e.g. ps8), ref.
 pub fn parse_exp_method(text: &str) -> Result<ExpMethod, String> {
     let lower = text.trim().to_ascii_lowercase();
     match lower.as_str() {

@@ -41,9 +41,9 @@ pub fn screen_point(view: &crate::paint::View, rect: egui::Rect, p: glam::Vec3) 
 /// Radians of orbit per point of mouse drag.
 const ORBIT_RAD_PER_POINT: f32 = 0.008;
 
-/// How the viewport smooths edges: the edge filter (its pipelines in
-/// [`Viewport::edge_filter`]), a few milliseconds on lavapipe where multisampling more
-/// than doubles the frame time.
+/// How the viewport smooths edges: the edge filter (compiled once by the renderer and
+/// shared by the targets made as the size changes), a few milliseconds on lavapipe where
+/// multisampling more than doubles the frame time.
 const ANTI_ALIASING: AntiAliasing = AntiAliasing::EdgeFilter;
 
 impl Viewport {

@@ -118,7 +118,7 @@ enum Stage<'a> {
 impl LogShPipeline {
     /// Pipelines for `settings.order` and `settings.exp` drawing into targets of `samples`
     /// samples (the settings must be valid: see [`ShadowSettings::gpu_problems`]), with
-    /// the shading `paths` compiled in (see [`super::compiled_paths`]: lavapipe pays for
+    /// the shading `paths` compiled in (see [`crate::shading::compiled_paths`]: lavapipe pays for
     /// a path's code at every pixel whether or not a light takes it).
     pub fn new(
         device: &wgpu::Device,

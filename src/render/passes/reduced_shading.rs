@@ -6,7 +6,7 @@
 //! best sample nearby on multisampled ones (see `logsh::shades_unmatched_exactly`).
 //!
 //! A frame is three render passes: the depth of the low-resolution image, its shading
-//! into [`LOW_RESOLUTION_FORMATS`] targets, then in the frame's [`super::RenderTarget`] the
+//! into [`LOW_RESOLUTION_FORMATS`] targets, then in the frame's [`crate::render::RenderTarget`] the
 //! depth pre-pass, the upsampling and the full shading of the unmatched pixels.
 
 use wgpu::util::DeviceExt;

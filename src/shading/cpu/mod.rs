@@ -5,7 +5,7 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
-//! - visibility G = exp*(F) by the chosen [`ExpMethod`];
+//! - visibility G = exp*(F) by the chosen [`crate::sh::ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
 //!   [`super::BrdfShading::Separate`]; the BRDF-in-SH variants are in `lobes`), where
