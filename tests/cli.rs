@@ -177,6 +177,45 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     );
 }
 
+/// `render` checks where it writes before it renders: a format it cannot write or a
+/// folder that does not exist is a usage error (exit 2) that leaves no file; a .jpg is
+/// written as JPEG.
+#[test]
+fn render_checks_its_output_before_rendering_and_writes_jpeg() {
+    let dir = tempfile::tempdir().unwrap();
+    let project = common::repo_path("projects/sample/sample.lightpaint");
+    let render = |output: &Path| {
+        common::run_lightpaint(&[
+            OsStr::new("render"),
+            project.as_os_str(),
+            OsStr::new("-o"),
+            output.as_os_str(),
+            OsStr::new("--width"),
+            OsStr::new("64"),
+            OsStr::new("--height"),
+            OsStr::new("36"),
+        ])
+    };
+    for bad in [dir.path().join("frame.bmp"), dir.path().join("missing/frame.png")] {
+        let out = render(&bad);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(&bad.display().to_string()), "{stderr}");
+        assert!(!bad.exists(), "no file is left at {}", bad.display());
+    }
+    if common::no_gpu_wanted() {
+        eprintln!("GPU part not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let jpeg = dir.path().join("frame.JPG");
+    let out = render(&jpeg);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let bytes = std::fs::read(&jpeg).expect("written");
+    assert_eq!(image::guess_format(&bytes).ok(), Some(image::ImageFormat::Jpeg));
+    let image = image::load_from_memory(&bytes).expect("decodes");
+    assert_eq!((image.width(), image.height()), (64, 36));
+}
+
 #[test]
 fn render_reference_path_traces_without_a_gpu_and_is_repeatable() {
     let dir = tempfile::tempdir().unwrap();

@@ -36,6 +36,37 @@ fn editor_shows_the_sample_and_saves_with_ctrl_s() {
     assert!(!harness.state().has_unsaved_changes());
 }
 
+/// Orbiting the camera is looking, not editing: no unsaved changes (quitting does not ask),
+/// while Ctrl+S still records where the camera looks.
+#[test]
+fn orbiting_leaves_no_unsaved_changes_and_saving_keeps_the_view() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let before = harness.state().orbit().expect("a viewport");
+    let centre = harness.state().viewport_rect().center();
+    // While the camera moves the viewport keeps repainting, so the drag steps frames
+    // rather than waiting for the UI to settle.
+    harness.hover_at(centre);
+    harness.step();
+    harness.drag_at(centre);
+    harness.step();
+    for k in 1..=4 {
+        harness.hover_at(centre + egui::vec2(20.0, 8.0) * k as f32);
+        harness.step();
+    }
+    harness.drop_at(centre + egui::vec2(80.0, 32.0));
+    harness.run();
+    let after = harness.state().orbit().expect("a viewport");
+    assert_ne!(before, after, "the drag orbited the camera");
+    assert!(!harness.state().has_unsaved_changes(), "orbiting is no change");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).unwrap();
+    assert_eq!(reopened.camera, Some(after), "the saved project keeps the new view");
+}
+
 #[test]
 fn editor_looks_as_reviewed() {
     let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {

@@ -11,7 +11,7 @@ use lightpaint::shading::{BrdfShading, LightPaths, parse_exp_method};
 pub struct RenderArgs {
     /// The project (.lightpaint) or .gltf/.glb scene.
     pub file: PathBuf,
-    /// Output PNG file.
+    /// Output image: .png, or .jpg/.jpeg (checked before rendering; written whole or not at all).
     #[arg(short, long)]
     pub output: PathBuf,
     #[arg(long, default_value_t = 1280)]

@@ -24,6 +24,7 @@ pub mod args;
 pub mod bake;
 pub mod check;
 pub mod editor;
+pub mod output;
 pub mod paint;
 pub mod render;
 pub mod study;

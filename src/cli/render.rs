@@ -24,6 +24,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     if let Some(background) = args.background {
         settings.background_srgb8 = background;
     }
+    let format = super::output::check_output(&args.output)?;
     let camera = document.view().camera();
     // Hidden objects are neither drawn nor cast shadows, as in the editor.
     let scene = document.shown_scene();
@@ -33,7 +34,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             bounces: args.bounces,
             seed: args.seed,
         };
-        return render_reference_png(&args.file, &scene, &camera, &settings, &reference, args);
+        return render_reference_png(&args.file, &scene, &camera, &settings, &reference, args, format);
     }
     let gpu = GpuContext::headless()?;
     let mut shadows = settings.shadows;
@@ -122,10 +123,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     if args.time_frames > 0 && !no_shadows {
         time_frames(&gpu, &frame, args.time_frames, args.aa)?;
     }
-    image.save(&args.output).map_err(|source| CliError::WriteImage {
-        path: args.output.clone(),
-        source,
-    })?;
+    super::output::write_image(&args.output, &image, format)?;
     say!(
         "rendered {} ({}×{}, {renderer}) with {} in {:.0} ms (sphere fit {fit_ms:.0} ms) → {}",
         args.file.display(),
@@ -146,6 +144,7 @@ fn render_reference_png(
     settings: &lightpaint::shading::RenderSettings,
     reference: &lightpaint::reference::ReferenceSettings,
     args: &RenderArgs,
+    format: image::ImageFormat,
 ) -> Result<(), CliError> {
     if args.width == 0 || args.height == 0 || args.width > 16_384 || args.height > 16_384 {
         return Err(CliError::Usage(format!(
@@ -164,13 +163,8 @@ fn render_reference_png(
     });
     bar.finish_and_clear();
     let elapsed = started.elapsed().as_secs_f64();
-    image
-        .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
-        .save(&args.output)
-        .map_err(|source| CliError::WriteImage {
-            path: args.output.clone(),
-            source,
-        })?;
+    let display = image.to_srgb8(settings.exposure_ev as f64, settings.background_srgb8);
+    super::output::write_image(&args.output, &display, format)?;
     if image.discarded_samples > 0 {
         eprintln!(
             "warning: {}: {} samples were not finite and were left out",

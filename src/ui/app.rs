@@ -538,6 +538,11 @@ impl EditorApp {
         self.viewport.as_ref().map_or(egui::Rect::NOTHING, |v| v.rect)
     }
 
+    /// Where the viewport's camera looks from (None without a viewport).
+    pub fn orbit(&self) -> Option<crate::scene::OrbitCamera> {
+        self.viewport.as_ref().map(|v| v.orbit)
+    }
+
     /// Intensities of the document's lights, in order.
     pub fn light_intensities(&self) -> Vec<f32> {
         self.document
@@ -769,14 +774,15 @@ impl EditorApp {
 
     /// Whether the document differs from its file (a document never saved counts as
     /// changed).
+    /// Whether the document differs from the file it was opened from or saved to. Where
+    /// the camera looks is not a change (saving records it all the same): looking around
+    /// and quitting must not ask to save.
     pub fn has_unsaved_changes(&self) -> bool {
         let Some(document) = &self.document else { return false };
         match (&document.project_path, &self.saved) {
             (Some(path), Some(saved)) => {
                 let mut current = document.to_project_file(path);
-                if let Some(viewport) = &self.viewport {
-                    current.camera = Some(viewport.orbit);
-                }
+                current.camera = saved.camera;
                 current != *saved
             }
             _ => true,
