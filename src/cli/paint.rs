@@ -9,7 +9,7 @@ use super::CliError;
 /// `paint`: the transfer comes from a bake with `bounces`, or (None) from the direct-only
 /// log-SH estimate.
 pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>) -> Result<(), CliError> {
-    use lightpaint::paint::{BakedTransfer, Painter, Transfer, View, ViewRecord, script::Script};
+    use lightpaint::paint::{Painter, Transfer, View, ViewRecord, script::Script};
     if !lightpaint::project::is_project_path(output) {
         return Err(CliError::Usage(format!(
             "{}: the output must be a project file (.lightpaint)",
@@ -53,16 +53,15 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
         }
         maps
     });
-    let project = document.project_path.as_deref();
-    let estimate_blockers = || sphere_cache::cached_or_fitted(scene, &document.settings.blockers, project).spheres();
-    let transfer: Box<dyn Transfer> = match &maps {
-        Some(maps) => Box::new(BakedTransfer::new(scene, maps)),
-        None => Box::new(lightpaint::shading::paint_estimate::DirectEstimate::new(
-            scene,
-            estimate_blockers(),
-            document.settings.shadows,
-        )),
+    // The estimate sees the blockers the editor shows (hidden objects cast none); a bake
+    // needs none.
+    let blockers = match &maps {
+        Some(_) => Vec::new(),
+        None => sphere_cache::cached_or_fitted(scene, &document.settings.blockers, document.project_path.as_deref())
+            .shown_spheres(&document.hidden_objects),
     };
+    let transfer: Box<dyn Transfer> =
+        lightpaint::shading::paint_estimate::transfer_for(maps.as_ref(), scene, &blockers, &document.settings.shadows);
     let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(scene);
     say!(
         "{} the transfer of {} lights in {:.0} ms",

@@ -197,6 +197,21 @@ impl Transfer for DirectEstimate<'_> {
     }
 }
 
+/// The transfer strokes read: the baked maps when there are maps for this scene, else the
+/// direct estimate through `blockers` (the view's visibility). One choice for the editor
+/// and `lightpaint paint` alike.
+pub fn transfer_for<'a>(
+    maps: Option<&'a crate::bake::ImportanceMaps>,
+    scene: &'a Scene,
+    blockers: &[Sphere],
+    shadows: &ShadowSettings,
+) -> Box<dyn Transfer + 'a> {
+    match maps {
+        Some(maps) => Box::new(crate::paint::BakedTransfer::new(scene, maps)),
+        None => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::f64::consts::PI;

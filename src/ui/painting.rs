@@ -14,14 +14,12 @@ use crate::bake::scene_bvh::SceneBvh;
 use crate::bake::{BakeSettings, ImportanceMaps};
 use crate::blockers::Sphere;
 use crate::paint::{
-    BakedTransfer, Brush, BrushKind, PaintSettings, Painter, StrokeRecord, StrokeReport, Transfer, View, ViewRecord,
-    dabs_along,
+    Brush, BrushKind, PaintSettings, Painter, StrokeRecord, StrokeReport, Transfer, View, ViewRecord, dabs_along,
 };
 use crate::project::bake_cache::light_hash;
 use crate::project::{Document, PaintingState};
 use crate::scene::{Camera, Scene};
 use crate::shading::ShadowSettings;
-use crate::shading::paint_estimate::DirectEstimate;
 
 /// What the left mouse button does in the viewport.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -274,7 +272,7 @@ impl Painting {
             // `maps_for` borrows all of `self`; the field alone leaves the painter free.
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
-            let transfer = transfer_from(maps, scene, blockers, shadows);
+            let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, blockers, shadows);
             self.painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
         };
@@ -291,7 +289,7 @@ impl Painting {
         blockers: &[Sphere],
         shadows: &ShadowSettings,
     ) -> Box<dyn Transfer + 'a> {
-        transfer_from(self.maps_for(scene), scene, blockers, shadows)
+        crate::shading::paint_estimate::transfer_for(self.maps_for(scene), scene, blockers, shadows)
     }
 
     /// Whether strokes read baked maps (fresh for `scene`) rather than the estimate.
@@ -324,18 +322,5 @@ impl Painting {
         let redone = self.painter.redo(&mut intensities);
         scene.set_light_intensities(&intensities);
         redone
-    }
-}
-
-/// The baked transfer of `maps`, or the direct estimate through `blockers` without them.
-fn transfer_from<'a>(
-    maps: Option<&'a ImportanceMaps>,
-    scene: &'a Scene,
-    blockers: &[Sphere],
-    shadows: &ShadowSettings,
-) -> Box<dyn Transfer + 'a> {
-    match maps {
-        Some(maps) => Box::new(BakedTransfer::new(scene, maps)),
-        None => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
     }
 }
