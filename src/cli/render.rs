@@ -76,6 +76,26 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
         for line in fit.report(&document.scene) {
             log::info!("blockers: {line}");
         }
+        // No mesh is left out silently: say which cast no soft (SH) shadow, and why.
+        let without: Vec<String> = fit
+            .per_object
+            .iter()
+            .zip(&document.scene.objects)
+            .enumerate()
+            .filter(|(index, _)| !document.hidden_objects.contains(index))
+            .filter_map(|(_, (set, object))| set.skipped.as_ref().map(|why| format!("{} ({why})", object.name)))
+            .collect();
+        if !without.is_empty() {
+            say!(
+                "no sphere blockers, so no soft shadows from: {}{}",
+                without.join("; "),
+                if shadows.shadow_map_size > 0 {
+                    " — their shadows of point, spot and sun lights come from the shadow maps"
+                } else {
+                    " — --shadow-map-size 1024 gives their shadows of point, spot and sun lights"
+                }
+            );
+        }
         fit.shown_spheres(&document.hidden_objects)
     };
     let fit_ms = fitted.elapsed().as_secs_f64() * 1000.0;
