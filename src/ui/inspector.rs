@@ -266,7 +266,7 @@ fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::
         ui.end_row();
         ui.label("shown");
         ui.label(if document.hidden_objects.contains(&index) {
-            "hidden (still casts shadows)"
+            "hidden (casts no shadow)"
         } else {
             "yes"
         });
@@ -274,7 +274,7 @@ fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::
         ui.label("shadow proxy");
         let proxy = match blockers.per_object.get(index) {
             Some(set) => match &set.skipped {
-                Some(reason) => format!("none ({reason})"),
+                Some(reason) => format!("none: no soft shadow ({reason})"),
                 None => format!(
                     "{} spheres, fit error {:.0} %",
                     set.spheres.len(),
@@ -288,6 +288,7 @@ fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::
     });
     let material = document.scene.objects[index].material;
     if let Some(material) = document.scene.materials.get(material) {
-        ui.label(egui::RichText::new(material.summary()).small());
+        // At the body size: the small style was about 8 px tall.
+        ui.label(material.summary());
     }
 }

@@ -54,7 +54,7 @@ pub fn outliner(ui: &mut egui::Ui, scene: &Scene, state: &OutlinerState) -> Opti
                             .on_hover_text(if hidden {
                                 "Hidden: tick to show"
                             } else {
-                                "Shown: untick to hide it in the viewport (it still casts shadows)"
+                                "Shown: untick to hide it (a hidden object is neither drawn nor casts shadows)"
                             })
                             .changed()
                         {
