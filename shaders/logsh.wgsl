@@ -229,7 +229,7 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
-    return soft_shadowed_radiance(s) + mapped_lights_radiance(s).radiance;
+    return soft_shadowed_radiance(s) + mapped_lights_radiance(s);
 }
 
 // The shadowed radiance less the lights on the shadow-map path.
@@ -269,31 +269,21 @@ fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 // Radiance of surface s with every light: soft_radiance_through plus the lights on the
 // shadow-map path.
 fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
-    return soft_radiance_through(s, lobes) + mapped_lights_radiance(s).radiance;
+    return soft_radiance_through(s, lobes) + mapped_lights_radiance(s);
 }
-
-// The light of the lights on the shadow-map path, and the sum of their visibilities: a
-// signature that changes across any of their shadows' edges (reduced_shading.wgsl shades
-// in full the pixels whose nearest samples disagree on it).
-struct MappedLights {
-    radiance: vec3<f32>,
-    visibility_sum: f32,
-};
 
 // The lights from frame.first_mapped_light to frame.first_exact_light, each shadowed by
 // its shadow maps.
-fn mapped_lights_radiance(s: Surface) -> MappedLights {
-    var mapped = MappedLights(vec3<f32>(0.0), 0.0);
+fn mapped_lights_radiance(s: Surface) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
     if SHADOW_MAPS {
         for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
             let light = light_at(i);
             let inc = incidence(light, s.position);
-            let visibility = shadow_map_visibility(light, inc, s);
-            mapped.radiance += direct_radiance(s, inc) * visibility;
-            mapped.visibility_sum += visibility;
+            radiance += direct_radiance(s, inc) * shadow_map_visibility(light, inc, s);
         }
     }
-    return mapped;
+    return radiance;
 }
 
 // Radiance of surface s lit through the lobes' SH by the lights before

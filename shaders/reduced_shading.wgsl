@@ -9,9 +9,9 @@
 // (in half floats: clamped where the tone curve is long saturated) and each
 // full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
 // material edges stay sharp at full resolution while only the smooth lighting is
-// interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes),
-// and pixels between samples that disagree on the lights on the shadow-map path (their
-// visibility sums differ: a shadow map's hard edge passes there), are discarded by
+// interpolated, hard shadow-map edges included (shading those pixels in full doubled the
+// maps' cost and made renders differ run to run: docs/performance.md). Pixels that no
+// low-resolution sample matches (thin objects, silhouettes) are discarded by
 // fs_upsample_marking and shaded in full by fs_logsh right after: every
 // pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
 // depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
@@ -23,8 +23,8 @@
 // Two images, so that the upsampling reads each sample with two texel fetches (on
 // lavapipe the fetches were most of its cost).
 struct LowResolutionSample {
-    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1 + the mapped lights'
-    // visibility sum where a surface was shaded (the clear value 0 elsewhere).
+    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1 where a surface was
+    // shaded (the clear value 0 elsewhere).
     @location(0) lighting: vec4<f32>,
     // xyz: the bits of the world position (metres, f32); w: the unit shading normal,
     // octahedral, two snorm16.
@@ -64,19 +64,13 @@ const MAX_LIGHTING: f32 = 6e4;
 @fragment
 fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> LowResolutionSample {
     let s = surface(in, front_facing);
-    let mapped = mapped_lights_radiance(s);
-    let radiance = soft_shadowed_radiance(s) + mapped.radiance - material.emissive.rgb;
+    let radiance = shadowed_radiance(s) - material.emissive.rgb;
     let lighting = min(frame.exposure * radiance / reflectance(s), vec3<f32>(MAX_LIGHTING));
     var out: LowResolutionSample;
-    // a ≥ 1 where a surface was shaded: 1 + the mapped lights' visibility sum.
-    out.lighting = vec4<f32>(lighting, 1.0 + mapped.visibility_sum);
+    out.lighting = vec4<f32>(lighting, 1.0);
     out.surface = vec4<u32>(bitcast<vec3<u32>>(s.position), pack2x16snorm(octahedral_from_unit(s.normal)));
     return out;
 }
-
-// Matching samples whose mapped lights' visibility sums differ by this much straddle a
-// shadow map's edge (a sum changes by up to the number of those lights across edges).
-const MAPPED_EDGE_STEP: f32 = 0.02;
 
 fn pow2(x: f32) -> f32 {
     return x * x;
@@ -106,10 +100,6 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     // The best-matching sample (by score), for pixels the 2 × 2 nearest do not match.
     var best_lighting = vec3<f32>(0.0);
     var best_match = 0.0;
-    // The range of the mapped lights' visibility sums over the matching samples: a
-    // pixel between samples on both sides of a shadow map's edge is shaded in full.
-    var least_visible = 1e9;
-    var most_visible = -1e9;
     let side = select(2u, 4u, ring);
     let first = select(0, -1, ring);
     for (var k = 0u; k < side * side; k++) {
@@ -141,17 +131,11 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
         // in for the best match.
         let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
         let weight = tent.x * tent.y * geometry;
-        let counts = weight > 0.0;
-        least_visible = select(least_visible, min(least_visible, lit.a), counts);
-        most_visible = select(most_visible, max(most_visible, lit.a), counts);
         lighting += weight * sample;
         matched += weight;
     }
-    let on_surface = matched >= upsample.min_matched_weight;
-    // Across a shadow map's edge the pixel is left to the full shading pass; with the ring
-    // (multisampled targets, no such pass) the samples' blend is kept.
-    let matches = on_surface && most_visible - least_visible < MAPPED_EDGE_STEP;
-    if ring && !on_surface {
+    let matches = matched >= upsample.min_matched_weight;
+    if ring && !matches {
         lighting = best_lighting;
         matched = 1.0;
     }

@@ -127,8 +127,9 @@ fn render_writes_a_png_of_the_requested_size() {
 
 /// The flags that change how a frame is shaded change the frame: `--per-vertex` (shadows
 /// interpolated from the vertices, under the default automatic light paths) and
-/// `--shadow-map-size` (the real triangles' shadows for the lights of no size) each give
-/// another image than the project's defaults, and `--blockers 0` fits no sphere.
+/// `--shadow-map-size 0` (the lights of no size on the SH path instead of the real
+/// triangles' shadow maps) each give another image than the project's defaults, and
+/// `--blockers 0` fits no sphere.
 #[test]
 fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     if common::no_gpu_wanted() {
@@ -164,7 +165,7 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     let pixels = (160 * 90) as usize;
     for (name, flags) in [
         ("per-vertex.png", &["--per-vertex"][..]),
-        ("maps.png", &["--shadow-map-size", "1024"][..]),
+        ("no-maps.png", &["--shadow-map-size", "0"][..]),
     ] {
         let changed = differing(&render(name, flags), &defaults);
         assert!(changed > pixels / 100, "{flags:?} changed only {changed} pixels");

@@ -54,7 +54,7 @@ pub struct RenderArgs {
     pub exact_lights: Option<u32>,
     /// Under --light-paths auto, the texels along a side of the shadow maps of point, spot
     /// and directional lights (64-4096, e.g. 1024; larger: truer shadow edges), or 0 for
-    /// none (those lights then take the SH); default: the project's, or 0.
+    /// none (those lights then take the SH); default: the project's, or 1024.
     #[arg(long)]
     pub shadow_map_size: Option<u32>,
     /// How the BRDF meets the visibility: separate (each light's exact BRDF times its

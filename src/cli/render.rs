@@ -92,7 +92,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
                 if shadows.shadow_map_size > 0 {
                     " — their shadows of point, spot and sun lights come from the shadow maps"
                 } else {
-                    " — --shadow-map-size 1024 gives their shadows of point, spot and sun lights"
+                    " — without --shadow-map-size 0 the shadow maps give their shadows of point, spot and sun lights"
                 }
             );
         }

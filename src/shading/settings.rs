@@ -57,12 +57,10 @@ pub struct ShadowSettings {
     pub shadow_map_size: u32,
 }
 
-/// Texels along a shadow map's side by default: none yet. Maps are off by default until
-/// two things measured on lavapipe are fixed: the studio's default frame costs 1.7 times
-/// as much with them (93 against 54 ms at 960 × 540), and two renders of the same frame
-/// differ in a few pixels (28 of 14,400 on the sample), so the maps' drawing races
-/// somewhere. Turn them on with [`SUGGESTED_SHADOW_MAP_SIZE`] (`render --shadow-map-size`).
-pub const DEFAULT_SHADOW_MAP_SIZE: u32 = 0;
+/// Texels along a shadow map's side by default: [`SUGGESTED_SHADOW_MAP_SIZE`], so the
+/// lights of no size cast the real triangles' shadows (the studio's default frame 1.2
+/// times as long as with those lights on the SH, docs/performance.md).
+pub const DEFAULT_SHADOW_MAP_SIZE: u32 = SUGGESTED_SHADOW_MAP_SIZE;
 /// The size the tests and the docs measure shadow maps at.
 pub const SUGGESTED_SHADOW_MAP_SIZE: u32 = 1024;
 /// The range of [`ShadowSettings::shadow_map_size`].
