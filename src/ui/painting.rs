@@ -115,8 +115,8 @@ impl Painting {
     pub fn transfer_label(&self, scene: &Scene) -> String {
         match (&self.maps, self.maps_for(scene)) {
             (_, Some(maps)) => format!("baked maps ({} vertex-light pairs)", maps.entry_count()),
-            (Some(_), None) => "direct estimate from the log-SH shadows (maps out of date: lights moved)".to_string(),
-            (None, None) => "direct estimate from the log-SH shadows (no bake yet)".to_string(),
+            (Some(_), None) => "direct estimate from the view's shadows (maps out of date: lights moved)".to_string(),
+            (None, None) => "direct estimate from the view's shadows (no bake yet)".to_string(),
         }
     }
 
