@@ -229,17 +229,12 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
-    return soft_shadowed_radiance(s) + mapped_lights_radiance(s);
-}
-
-// The shadowed radiance less the lights on the shadow-map path.
-fn soft_shadowed_radiance(s: Surface) -> vec3<f32> {
     if !SH_VISIBILITY {
         // Read only by a light the viewport draws before its pipeline with the SH path is
         // compiled: it shows unshadowed meanwhile.
-        return soft_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+        return radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
     }
-    return soft_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+    return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
 }
 
 // A light's shadowed radiance at s through the lobes' SH.
@@ -370,8 +365,8 @@ fn exact_light(s: Surface, index: u32) -> ExactLight {
 // receiver pushed by a texel and a half along its normal and one toward the light (no
 // self-shadowing where a texel spans depths of the surface), then one comparison read
 // that filters the 2 × 2 texels around (percentage-closer, bilinear). Wider filters of
-// offset reads were measured to lose a quarter or more of the shadow of bars a few texels
-// wide (tests/shadow_maps.rs), so edges stay one texel soft. Outside its views a light is
+// offset reads, tried against tests/shadow_maps.rs, lost much of the shadow of bars a few
+// texels wide, so edges stay one texel soft. Outside its views a light is
 // unshadowed. shading::cpu takes the exact visibility by a ray
 // instead, which this converges to as the maps grow.
 fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
