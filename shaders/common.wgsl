@@ -72,6 +72,11 @@ struct Light {
     shadow_path: u32,
     // The first of the light's shadow-map views (NO_SHADOW_VIEW: none).
     first_shadow_view: u32,
+    // 6: a cube of views (+x, −x, +y, −y, +z, −z); 1: one view; 0: no maps.
+    shadow_view_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 };
 
 // One layer of the shadow-map array, seen from a light (src/shading/shadow_maps.rs).
@@ -83,6 +88,9 @@ struct ShadowView {
     texel: vec4<f32>,
     // xyz: the eye (perspective) or the forward axis (orthographic).
     eye: vec4<f32>,
+    // x: near plane, y: far plane (perspective), z: the map's size in texels, w: the
+    // distance to the scene's bounding sphere (perspective).
+    depth_range: vec4<f32>,
 };
 
 // Parameters of the log-SH shadow pass (logsh.wgsl).

@@ -21,15 +21,7 @@
 @group(2) @binding(2) var<uniform> groups: array<BlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
 @group(2) @binding(5) var<storage, read> every_blocker: array<Blocker>;
 @group(2) @binding(6) var<storage, read> every_group: array<BlockerGroup>;
-// The shadow maps of the lights on the shadow-map path: one depth layer per view, read
-// with a comparison sampler (linear: each read filters the 2 × 2 texels around), and the
-// views' matrices (src/shading/shadow_maps.rs).
-@group(2) @binding(7) var shadow_maps: texture_depth_2d_array;
-@group(2) @binding(8) var shadow_map_sampler: sampler_comparison;
-@group(2) @binding(9) var<uniform> shadow_views: array<ShadowView, MAX_SHADOW_VIEWS>;
-
-// false: no light of the frame has a shadow map (shading::compiled_paths).
-override SHADOW_MAPS: bool = true;
+// Bindings 7–9, the shadow maps and their views, are declared in shadow_lookup.wgsl.
 
 // false: the frame has at most UNIFORM_BLOCKER_CAPACITY blockers (and so as many groups),
 // and every_blocker and every_group are never read (shading::compiled_paths). Blockers
@@ -358,51 +350,6 @@ fn exact_light(s: Surface, index: u32) -> ExactLight {
         * terrain_light_visibility(s.position, inc.to_light, inc.cap_ratio);
     let lit = any(unshadowed != vec3<f32>(0.0));
     return ExactLight(inc.to_light, clamp(inc.cap_ratio, 0.0, 1.0), select(0.0, inc.distance, lit), unshadowed);
-}
-
-// The share of `light` (seen as `inc`) that reaches s through its shadow maps: the view
-// that sees s (a point light's cube face by the largest component of s − light), the
-// receiver pushed by a texel and a half along its normal and one toward the light (no
-// self-shadowing where a texel spans depths of the surface), then one comparison read
-// that filters the 2 × 2 texels around (percentage-closer, bilinear). Wider filters of
-// offset reads, tried against tests/shadow_maps.rs, lost much of the shadow of bars a few
-// texels wide, so edges stay one texel soft. Outside its views a light is
-// unshadowed. shading::cpu takes the exact visibility by a ray
-// instead, which this converges to as the maps grow.
-fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
-    if light.first_shadow_view == NO_SHADOW_VIEW {
-        return 1.0;
-    }
-    var index = light.first_shadow_view;
-    let cube = light.kind == LIGHT_POINT || (light.kind == LIGHT_SPOT && light.spot_cone.x < SINGLE_VIEW_SPOT_MIN_COS);
-    if cube {
-        index += cube_face(s.position - light.position.xyz);
-    }
-    let view = shadow_views[min(index, MAX_SHADOW_VIEWS - 1u)];
-    let distance = length(s.position - view.eye.xyz);
-    let texel = select(view.texel.y, view.texel.x * distance, view.texel.z > 0.5);
-    let p = s.position + s.normal * (1.5 * texel) + inc.to_light * texel;
-    let clip = view.view_proj * vec4<f32>(p, 1.0);
-    let ndc = clip.xyz / clip.w;
-    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    if clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 {
-        return 1.0;
-    }
-    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, uv, i32(index), max(ndc.z, 0.0));
-}
-
-// The cube face a receiver at `offset` from a point light reads: 2·axis of the largest
-// component (ties to the earlier axis), plus 1 on the negative side
-// (shadow_maps::cube_face).
-fn cube_face(offset: vec3<f32>) -> u32 {
-    let a = abs(offset);
-    if a.x >= a.y && a.x >= a.z {
-        return select(0u, 1u, offset.x < 0.0);
-    }
-    if a.y >= a.z {
-        return select(2u, 3u, offset.y < 0.0);
-    }
-    return select(4u, 5u, offset.z < 0.0);
 }
 
 @fragment

@@ -8,95 +8,17 @@
 
 mod common;
 
-use glam::{Affine3A, Quat, Vec3, Vec4};
+use common::thin_casters::*;
+use glam::Vec3;
 use lightpaint::reference::{ReferenceSettings, render_reference};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
-use lightpaint::scene::shapes::{self, ShapeMesh};
-use lightpaint::scene::{Camera, Light, LightKind, Material, Scene};
+use lightpaint::scene::{Camera, Light, LightKind, Scene};
 use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 // Fine enough that the bars' and tubes' shadows are a few pixels wide: a pixel's centre
 // ray (the twin) then samples them without aliasing their mass away.
 const WIDTH: u32 = 400;
 const HEIGHT: u32 = 300;
-
-/// The floor alone under `light`: what each renderer's shadows are measured against.
-fn floor_only(light: Light) -> Scene {
-    let mut scene = scene_with(ShapeMesh::default(), light);
-    scene.objects.truncate(1);
-    scene
-}
-
-/// One caster over a 6 m one-quad floor, white diffuse everywhere.
-fn scene_with(caster: ShapeMesh, light: Light) -> Scene {
-    let mut scene = Scene::default();
-    scene.materials.push(Material {
-        base_color: Vec4::new(0.8, 0.8, 0.8, 1.0),
-        metallic: 0.0,
-        ..Material::default()
-    });
-    scene.objects.push(shapes::plane(6.0, 1, 1.0).into_object("floor"));
-    scene.objects.push(caster.into_object("caster"));
-    scene.lights.push(light);
-    scene
-}
-
-/// A single quad, 0.8 m square, tilted 30° and hovering 0.8 m up: no inside, one side.
-fn card() -> ShapeMesh {
-    shapes::plane(0.8, 1, 1.0).transformed(Affine3A::from_rotation_translation(
-        Quat::from_rotation_x(0.5),
-        Vec3::new(0.0, 0.8, 0.0),
-    ))
-}
-
-/// Five bars each way, 2 cm thick, 0.7 m up: a grid of thin shadows.
-fn lattice() -> ShapeMesh {
-    let mut mesh = ShapeMesh::default();
-    for k in 0..5 {
-        let offset = -0.4 + 0.2 * k as f32;
-        let along_x = shapes::cuboid(Vec3::new(0.5, 0.01, 0.01))
-            .transformed(Affine3A::from_translation(Vec3::new(0.0, 0.7, offset)));
-        let along_z = shapes::cuboid(Vec3::new(0.01, 0.01, 0.5))
-            .transformed(Affine3A::from_translation(Vec3::new(offset, 0.72, 0.0)));
-        mesh = mesh.merged(along_x).merged(along_z);
-    }
-    mesh
-}
-
-/// Two turns of a helix of 3 cm tubes around a vertical axis, 0.3 to 1.1 m up.
-fn helix() -> ShapeMesh {
-    let point = |t: f32| {
-        let angle = t * 4.0 * std::f32::consts::PI;
-        Vec3::new(0.35 * angle.cos(), 0.3 + 0.8 * t, 0.35 * angle.sin())
-    };
-    let mut mesh = ShapeMesh::default();
-    let segments = 40;
-    for k in 0..segments {
-        let (a, b) = (
-            point(k as f32 / segments as f32),
-            point((k + 1) as f32 / segments as f32),
-        );
-        let length = (b - a).length();
-        let tube = shapes::cylinder(0.015, length * 1.05, 8).transformed(Affine3A::from_rotation_translation(
-            Quat::from_rotation_arc(Vec3::Y, (b - a) / length),
-            a,
-        ));
-        mesh = mesh.merged(tube);
-    }
-    mesh
-}
-
-fn light(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -> Light {
-    Light {
-        name: "light".into(),
-        kind,
-        color: Vec3::ONE,
-        intensity,
-        position,
-        direction: direction.normalize(),
-        range: None,
-    }
-}
 
 fn lights() -> [(&'static str, Light); 3] {
     [
@@ -121,25 +43,6 @@ fn lights() -> [(&'static str, Light); 3] {
             light(LightKind::Directional, Vec3::ZERO, Vec3::new(0.35, -1.0, 0.2), 2.0),
         ),
     ]
-}
-
-fn casters() -> [(&'static str, ShapeMesh); 3] {
-    [("card", card()), ("lattice", lattice()), ("helix", helix())]
-}
-
-/// Looking down at the floor's middle from the front, so every shadow is in view.
-fn camera() -> Camera {
-    let position = Vec3::new(0.0, 3.2, 3.2);
-    let forward = (Vec3::new(0.0, 0.2, 0.0) - position).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    Camera {
-        position,
-        forward,
-        up: right.cross(forward),
-        yfov_rad: 0.9,
-        znear: 0.05,
-        zfar: None,
-    }
 }
 
 fn shadows(map_size: u32) -> ShadowSettings {
@@ -196,102 +99,6 @@ fn supersampled_twin(gpu: &lightpaint::render::GpuContext, frame: &ShadowFrame) 
             sum / (FACTOR * FACTOR) as f64
         })
         .collect()
-}
-
-/// Each pixel's luma in linear radiance × 2^EV: the sRGB encoding and the tone curve
-/// t(x) = x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14) undone (solved for x in closed form),
-/// so that shadows' masses add up as light does, whatever the display did to partly
-/// shadowed pixels.
-fn linear_luma(image: &image::RgbaImage) -> Vec<f64> {
-    let untone = |encoded: u8| {
-        let c = encoded as f64 / 255.0;
-        let y = if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-        .min(0.999);
-        // y(2.43x² + 0.59x + 0.14) = 2.51x² + 0.03x, a quadratic in x.
-        let (a, b, k) = (2.43 * y - 2.51, 0.59 * y - 0.03, 0.14 * y);
-        if y <= 0.0 {
-            0.0
-        } else {
-            (-b - (b * b - 4.0 * a * k).sqrt()) / (2.0 * a)
-        }
-    };
-    image
-        .pixels()
-        .map(|p| 0.2126 * untone(p[0]) + 0.7152 * untone(p[1]) + 0.0722 * untone(p[2]))
-        .collect()
-}
-
-fn luma(p: &image::Rgba<u8>) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
-
-/// Share of pixels whose channels all lie within `tolerance` of the other image's.
-fn within(a: &image::RgbaImage, b: &image::RgbaImage, tolerance: u8) -> f64 {
-    let close = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(x, y)| (0..3).all(|c| x[c].abs_diff(y[c]) <= tolerance))
-        .count();
-    close as f64 / (a.width() * a.height()) as f64
-}
-
-/// The pixels a caster shadows: darker in `shadowed` than in `unshadowed` by over 20/255.
-fn shadow_mask(shadowed: &image::RgbaImage, unshadowed: &image::RgbaImage) -> Vec<bool> {
-    shadowed
-        .pixels()
-        .zip(unshadowed.pixels())
-        .map(|(s, u)| luma(u) - luma(s) > 20.0)
-        .collect()
-}
-
-/// How much light `shadowed` lacks against `floor` (linear luma of the same renderer's
-/// image of the floor alone), summed over the pixels where the floor shows (`on_floor`):
-/// the shadows' mass, which does not depend on how a pixel straddling a thin shadow's
-/// edge is sampled (a ray through its centre, a filtered map, jittered paths).
-fn darkening(shadowed: &[f64], floor: &[f64], on_floor: &[bool]) -> f64 {
-    shadowed
-        .iter()
-        .zip(floor)
-        .zip(on_floor)
-        .filter(|(_, f)| **f)
-        .map(|((s, u), _)| u - s)
-        .sum()
-}
-
-/// The pixels where the floor, not the caster, is seen, two pixels clear of the caster's
-/// silhouette (where a renderer that antialiases blends the two): the unshadowed scene
-/// with the caster and the floor alone agree there (the twin's images, within 2/255).
-fn floor_pixels(with_caster: &image::RgbaImage, floor: &image::RgbaImage) -> Vec<bool> {
-    let (width, height) = (with_caster.width() as i64, with_caster.height() as i64);
-    let floor_seen: Vec<bool> = with_caster
-        .pixels()
-        .zip(floor.pixels())
-        .map(|(a, b)| (0..3).all(|c| a[c].abs_diff(b[c]) <= 2))
-        .collect();
-    let seen = |x: i64, y: i64| x < 0 || y < 0 || x >= width || y >= height || floor_seen[(y * width + x) as usize];
-    (0..height)
-        .flat_map(|y| (0..width).map(move |x| (x, y)))
-        .map(|(x, y)| (-2..=2).all(|dy| (-2..=2).all(|dx| seen(x + dx, y + dy))))
-        .collect()
-}
-
-fn mean_over(image: &image::RgbaImage, mask: &[bool]) -> f64 {
-    let (sum, count) = image
-        .pixels()
-        .zip(mask)
-        .filter(|(_, m)| **m)
-        .fold((0.0, 0usize), |(s, n), (p, _)| (s + luma(p), n + 1));
-    sum / count.max(1) as f64
-}
-
-fn save_for_review(name: &str, image: &image::RgbaImage) {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("shadow_maps");
-    let _ = std::fs::create_dir_all(&dir);
-    let _ = image.save(dir.join(format!("{name}.png")));
 }
 
 /// Each thin caster casts its shadow under each light, where the ray casts put it: the

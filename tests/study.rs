@@ -173,6 +173,11 @@ fn sphere_fit_suite_at_full_size() {
     let Some(gpu) = common::gpu() else { return };
     let rows = lightpaint::study::sphere_fit::measure_sphere_fit(&gpu, false).expect("suite runs");
     println!("{}", lightpaint::study::sphere_fit::markdown_table(&rows));
+    let maps = lightpaint::study::sphere_fit::measure_mesh_maps(&gpu, false).expect("maps measured");
+    println!(
+        "shadow maps on the meshes: penumbra RMS {:.4}, umbra RMS {:?}, reference noise {:.4}",
+        maps.penumbra_rms, maps.umbra_rms, maps.reference_noise
+    );
 }
 
 /// The small lights' cost at the full study's size (8 sphere lights over 50 blockers,
@@ -184,5 +189,26 @@ fn eight_lights_cost_at_full_size() {
     let Some(gpu) = common::gpu() else { return };
     for (path, ms) in lightpaint::study::penumbra::cost_of_eight_lights(&gpu, 540, 10).expect("suite runs") {
         println!("8 small lights x 50 blockers via {path:?}: {ms:.1} ms per frame");
+    }
+}
+
+/// The small-light suite alone at the full study's size (128 × 128, 2048 samples per
+/// pixel): prints its rows for docs/speed-accuracy.md. Minutes, so not in CI:
+/// `cargo nextest run --test study --run-ignored only --no-capture penumbra_suite`.
+#[test]
+#[ignore]
+fn penumbra_suite_at_full_size() {
+    let Some(gpu) = common::gpu() else { return };
+    for row in lightpaint::study::penumbra::measure_penumbrae(&gpu, false).expect("suite runs") {
+        println!(
+            "| {} | {:?} | {} | {:.4} | {} | {:.1} | {:.4} |",
+            row.light,
+            row.path,
+            row.penumbra_pixels,
+            row.penumbra_rms,
+            row.umbra_rms.map_or("–".into(), |e| format!("{e:.4}")),
+            row.ms_per_frame,
+            row.reference_noise
+        );
     }
 }

@@ -76,6 +76,7 @@ fn light_matches_wgsl() {
             ("source_size", offset_of!(GpuLight, source_size)),
             ("shadow_path", offset_of!(GpuLight, shadow_path)),
             ("first_shadow_view", offset_of!(GpuLight, first_shadow_view)),
+            ("shadow_view_count", offset_of!(GpuLight, shadow_view_count)),
         ],
     );
 }
@@ -90,6 +91,7 @@ fn shadow_view_matches_wgsl() {
             ("view_proj", offset_of!(GpuShadowView, view_proj)),
             ("texel", offset_of!(GpuShadowView, texel)),
             ("eye", offset_of!(GpuShadowView, eye)),
+            ("depth_range", offset_of!(GpuShadowView, depth_range)),
         ],
     );
 }

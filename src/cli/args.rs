@@ -41,9 +41,10 @@ pub struct RenderArgs {
     /// Scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     #[arg(long)]
     pub ratio_attenuation: bool,
-    /// How each light is shadowed: auto (point, spot and directional lights by shadow maps
-    /// of the real triangles, extended lights under 40° of angular radius exactly, the rest
-    /// through the SH), harmonics (all through the SH) or exact (all exactly);
+    /// How each light is shadowed: auto (point, spot and directional lights, and sphere and
+    /// area lights up to 20° of angular radius, by shadow maps of the real triangles; other
+    /// extended lights under 40° exactly; the rest through the SH), harmonics (all through
+    /// the SH) or exact (all exactly);
     /// default: the project's.
     #[arg(long, value_parser = parse_light_paths)]
     pub light_paths: Option<LightPaths>,
@@ -53,8 +54,9 @@ pub struct RenderArgs {
     #[arg(long)]
     pub exact_lights: Option<u32>,
     /// Under --light-paths auto, the texels along a side of the shadow maps of point, spot
-    /// and directional lights (64-4096, e.g. 1024; larger: truer shadow edges), or 0 for
-    /// none (those lights then take the SH); default: the project's, or 1024.
+    /// and directional lights and small sphere and area lights (64-4096, e.g. 1024; larger:
+    /// truer shadow edges), or 0 for none (those lights then take the exact path or the
+    /// SH); default: the project's, or 1024.
     #[arg(long)]
     pub shadow_map_size: Option<u32>,
     /// How the BRDF meets the visibility: separate (each light's exact BRDF times its

@@ -156,9 +156,12 @@ pub struct GpuLight {
     /// [`SHADOW_PATH_SH`], [`SHADOW_PATH_EXACT`] or [`SHADOW_PATH_MAP`] (decided for the
     /// frame by `shading::shading_lights`; [`GpuLight::new`] sets the SH path).
     pub shadow_path: u32,
-    /// The first of the light's shadow-map views ([`NO_SHADOW_VIEW`]: none): one for a
-    /// spot or the sun, six (+x, −x, +y, −y, +z, −z) for a point light.
+    /// The first of the light's shadow-map views ([`NO_SHADOW_VIEW`]: none).
     pub first_shadow_view: u32,
+    /// How many views its maps take (`shading::shadow_maps::view_count`): 6 for a cube
+    /// (+x, −x, +y, −y, +z, −z), 1 for one view; 0 without maps.
+    pub shadow_view_count: u32,
+    pub _pad: [u32; 3],
 }
 
 impl GpuLight {
@@ -195,6 +198,8 @@ impl GpuLight {
             source_size,
             shadow_path: SHADOW_PATH_SH,
             first_shadow_view: NO_SHADOW_VIEW,
+            shadow_view_count: 0,
+            _pad: [0; 3],
         }
     }
 }
@@ -211,6 +216,11 @@ pub struct GpuShadowView {
     pub texel: [f32; 4],
     /// xyz: the view's eye (perspective) or its forward axis (orthographic); w unused.
     pub eye: [f32; 4],
+    /// x: the near plane's distance, y: the far plane's (perspective views: a depth read
+    /// from the map turns back into a distance along the view's axis), z: the map's size
+    /// in texels, w: the distance from the light to the scene's bounding sphere (0 inside
+    /// it; perspective views), within which nothing casts a shadow.
+    pub depth_range: [f32; 4],
 }
 
 /// WGSL `Material`.

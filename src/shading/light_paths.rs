@@ -3,13 +3,16 @@
 //! One choice per light for the whole frame (no receiver shows a seam where a light
 //! would change path), the same in the editor, the CLI, the CPU reference and painting:
 //! every light exact under [`LightPaths::Exact`], none under [`LightPaths::Harmonics`];
-//! under [`LightPaths::Auto`] point, spot and directional lights by shadow maps of the
-//! real triangles (as many as the shadow-map views hold), and the sphere and area lights
-//! whose angular radius at the
-//! scene's centre is under [`super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG`], at most the settings'
-//! `exact_light_budget` of them, those whose exact shadows matter most first: brightness
-//! at the centre times the share of the scene's surface where some blocker cuts the
-//! light's disc (a light no blocker shadows gains nothing from the exact path).
+//! under [`LightPaths::Auto`] with shadow maps on, first, in scene order and as many as
+//! the shadow-map views hold, every point, spot and directional light and every sphere
+//! or area light up to [`super::shadow_maps::MAX_MAPPED_HALF_ANGLE_DEG`] in radius at
+//! the scene's centre takes shadow maps of the real triangles (the sized ones with
+//! penumbrae); then of the rest, the sphere and area lights whose angular radius at the
+//! scene's centre is under [`super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG`] go exact, at most
+//! the settings' `exact_light_budget` of them, those whose exact shadows matter most
+//! first: brightness at the centre times the share of the scene's surface where some
+//! blocker cuts the light's disc (a light no blocker shadows gains nothing from the
+//! exact path); the others take the SH.
 
 use glam::{DVec3, Vec3};
 
@@ -37,6 +40,9 @@ const MIN_RECEIVERS: usize = 16;
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LightPathContext {
     pub centre: Vec3,
+    /// The radius of the scene's bounding sphere around `centre` (0: unknown), which a
+    /// light outside it sees in one shadow-map view rather than a cube.
+    pub radius_m: f32,
     /// Surface points (position, unit normal); none: every light's shadows count alike.
     pub receivers: Vec<(Vec3, Vec3)>,
     pub blockers: Vec<Sphere>,
@@ -47,6 +53,17 @@ impl LightPathContext {
     pub fn at(centre: Vec3) -> LightPathContext {
         LightPathContext {
             centre,
+            ..LightPathContext::default()
+        }
+    }
+
+    /// As [`LightPathContext::at`] the centre of `bounds`, knowing their extent (as the
+    /// shadow maps' views see it), without receivers.
+    pub fn of_bounds(bounds: &crate::scene::Aabb) -> LightPathContext {
+        let (centre, radius_m) = super::shadow_maps::bounding_sphere(bounds);
+        LightPathContext {
+            centre,
+            radius_m,
             ..LightPathContext::default()
         }
     }
@@ -64,9 +81,9 @@ impl LightPathContext {
             .filter(|(p, n)| p.is_finite() && n.is_normalized())
             .collect();
         LightPathContext {
-            centre: scene.bounds().center(),
             receivers,
             blockers: blockers.to_vec(),
+            ..LightPathContext::of_bounds(&scene.bounds())
         }
     }
 
@@ -110,8 +127,8 @@ impl LightPathContext {
 }
 
 /// Which shading code a log-SH pipeline compiles in (the override constants
-/// EXACT_LIGHT_PATH, EXACT_WIDE, SH_VISIBILITY, TERRAIN_SHADOWS, LIGHT_OVERFLOW and
-/// BLOCKER_OVERFLOW): lavapipe runs the code of both sides of a branch at every pixel
+/// EXACT_LIGHT_PATH, EXACT_WIDE, SHADOW_MAPS, SOFT_SHADOW_MAPS, SH_VISIBILITY,
+/// TERRAIN_SHADOWS, LIGHT_OVERFLOW and BLOCKER_OVERFLOW): lavapipe runs the code of both sides of a branch at every pixel
 /// whether taken or not, so code that the frame does not need is left out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct CompiledPaths {
@@ -119,6 +136,9 @@ pub struct CompiledPaths {
     pub exact: bool,
     /// Some light is shadowed by its shadow map (SHADOW_MAPS).
     pub maps: bool,
+    /// Some of those has a size: its maps' penumbra filter is compiled in
+    /// (SOFT_SHADOW_MAPS).
+    pub soft_maps: bool,
     /// More than four lights are: the exact path takes them eight at a time rather than
     /// four (EXACT_WIDE).
     pub exact_wide: bool,
@@ -144,6 +164,7 @@ impl CompiledPaths {
     pub const ALL: CompiledPaths = CompiledPaths {
         exact: true,
         maps: true,
+        soft_maps: true,
         exact_wide: true,
         harmonics: true,
         terrain: true,
@@ -156,6 +177,7 @@ impl CompiledPaths {
     pub const NONE: CompiledPaths = CompiledPaths {
         exact: false,
         maps: false,
+        soft_maps: false,
         exact_wide: false,
         harmonics: false,
         terrain: false,
@@ -200,6 +222,9 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
     CompiledPaths {
         exact: exact_count > 0,
         maps: shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_MAP),
+        soft_maps: shaded
+            .iter()
+            .any(|light| light.shadow_path == SHADOW_PATH_MAP && light.source_size > 0.0),
         exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
         terrain: lighting.has_terrain,
@@ -214,34 +239,45 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
 /// shadow maps; see the module's documentation for the choice).
 pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &LightPathContext) -> Vec<GpuLight> {
     let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
-    let exact: Vec<bool> = match settings.light_paths {
-        LightPaths::Exact => vec![true; lights.len()],
-        LightPaths::Harmonics => vec![false; lights.len()],
-        LightPaths::Auto => auto_exact(&gpu_lights, settings, context),
-    };
-    for (light, exact) in gpu_lights.iter_mut().zip(exact) {
-        light.shadow_path = if exact { SHADOW_PATH_EXACT } else { SHADOW_PATH_SH };
-    }
+    let mut mapped = vec![false; lights.len()];
     if settings.light_paths == LightPaths::Auto && settings.shadow_map_size > 0 {
         let mut views = 0;
-        for light in gpu_lights.iter_mut().filter(|l| l.shadow_path == SHADOW_PATH_SH) {
-            let Some(count) = super::shadow_maps::view_count(light) else {
+        for (light, mapped) in gpu_lights.iter_mut().zip(mapped.iter_mut()) {
+            let Some(count) = super::shadow_maps::view_count(light, context.centre, context.radius_m) else {
                 continue;
             };
             if views + count <= MAX_SHADOW_VIEWS {
                 light.shadow_path = SHADOW_PATH_MAP;
                 light.first_shadow_view = views as u32;
+                light.shadow_view_count = count as u32;
                 views += count;
+                *mapped = true;
             }
+        }
+    }
+    let exact: Vec<bool> = match settings.light_paths {
+        LightPaths::Exact => vec![true; lights.len()],
+        LightPaths::Harmonics => vec![false; lights.len()],
+        LightPaths::Auto => auto_exact(&gpu_lights, settings, context, &mapped),
+    };
+    for ((light, exact), mapped) in gpu_lights.iter_mut().zip(exact).zip(mapped) {
+        if !mapped {
+            light.shadow_path = if exact { SHADOW_PATH_EXACT } else { SHADOW_PATH_SH };
         }
     }
     gpu_lights
 }
 
 /// Auto's choice: which of `lights` go exact.
-fn auto_exact(lights: &[GpuLight], settings: &ShadowSettings, context: &LightPathContext) -> Vec<bool> {
+fn auto_exact(
+    lights: &[GpuLight],
+    settings: &ShadowSettings,
+    context: &LightPathContext,
+    mapped: &[bool],
+) -> Vec<bool> {
     let centre = context.centre();
     let candidates: Vec<usize> = (0..lights.len())
+        .filter(|&i| !mapped[i])
         .filter(|&i| {
             let light = &lights[i];
             light.source_size > 0.0 && LightPaths::Auto.is_exact(super::cpu::incidence(light, centre).cap_ratio)
@@ -360,13 +396,19 @@ mod tests {
         let origin = glam::Vec3::ZERO;
         // 0.1 m at 1 m is 5.7°; at 0.11 m the light is 65° wide, above Auto's 40°.
         let near_sphere = glam::Vec3::new(0.0, 0.89, 0.0);
-        // (exact, exact_wide, harmonics, maps) for these paths, budget, lights, centre and
-        // sky.
-        let compiled = |light_paths, exact_light_budget, lights: &[crate::scene::Light], centre, has_environment| {
+        let (maps, no_maps) = (crate::shading::SUGGESTED_SHADOW_MAP_SIZE, 0);
+        // (exact, exact_wide, harmonics, maps, soft maps) for these paths, budget, map
+        // size, lights, centre and sky.
+        let compiled = |light_paths,
+                        exact_light_budget,
+                        shadow_map_size,
+                        lights: &[crate::scene::Light],
+                        centre,
+                        has_environment| {
             let settings = ShadowSettings {
                 light_paths,
                 exact_light_budget,
-                shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
+                shadow_map_size,
                 ..ShadowSettings::default()
             };
             let lighting = SceneLighting {
@@ -379,45 +421,59 @@ mod tests {
                 lighting,
                 0,
             );
-            (paths.exact, paths.exact_wide, paths.harmonics, paths.maps)
+            (
+                paths.exact,
+                paths.exact_wide,
+                paths.harmonics,
+                paths.maps,
+                paths.soft_maps,
+            )
         };
-        // Auto: lights of no size take shadow maps, small sized ones go exact, four at
-        // most unless the budget allows more, the rest the SH.
-        assert_eq!(compiled(auto, 4, &points, origin, false), (false, false, false, true));
+        // Auto with maps: lights of no size and small sized ones take shadow maps (the
+        // sized ones with the penumbra filter), wide ones the SH.
+        let f = false;
+        assert_eq!(compiled(auto, 4, maps, &points, origin, f), (f, f, f, true, f));
+        assert_eq!(compiled(auto, 4, maps, &with_sphere, origin, f), (f, f, f, true, true));
         assert_eq!(
-            compiled(auto, 4, &with_sphere, origin, false),
-            (true, false, false, true)
+            compiled(auto, 4, maps, one_sphere, origin, true),
+            (f, f, true, true, true)
+        );
+        assert_eq!(compiled(auto, 4, maps, one_sphere, near_sphere, f), (f, f, true, f, f));
+        assert_eq!(compiled(auto, 4, maps, &five_spheres, origin, f), (f, f, f, true, true));
+        // Without maps: small sized lights go exact, four at most unless the budget allows
+        // more, the rest the SH.
+        assert_eq!(compiled(auto, 4, no_maps, &points, origin, f), (f, f, true, f, f));
+        assert_eq!(
+            compiled(auto, 4, no_maps, &with_sphere, origin, f),
+            (true, f, true, f, f)
+        );
+        assert_eq!(compiled(auto, 4, no_maps, one_sphere, origin, f), (true, f, f, f, f));
+        assert_eq!(
+            compiled(auto, 4, no_maps, one_sphere, origin, true),
+            (true, f, true, f, f)
         );
         assert_eq!(
-            compiled(auto, 4, one_sphere, origin, false),
-            (true, false, false, false)
-        );
-        assert_eq!(compiled(auto, 4, one_sphere, origin, true), (true, false, true, false));
-        assert_eq!(
-            compiled(auto, 4, one_sphere, near_sphere, false),
-            (false, false, true, false)
+            compiled(auto, 4, no_maps, one_sphere, near_sphere, f),
+            (f, f, true, f, f)
         );
         assert_eq!(
-            compiled(auto, 4, &five_spheres, origin, false),
-            (true, false, true, false)
+            compiled(auto, 4, no_maps, &five_spheres, origin, f),
+            (true, f, true, f, f)
         );
         assert_eq!(
-            compiled(auto, 8, &five_spheres, origin, false),
-            (true, true, false, false)
+            compiled(auto, 8, no_maps, &five_spheres, origin, f),
+            (true, true, f, f, f)
         );
+        assert_eq!(compiled(auto, 0, no_maps, &with_sphere, origin, f), (f, f, true, f, f));
+        assert_eq!(compiled(auto, 4, maps, &[], origin, f), (f, f, f, f, f));
+        assert_eq!(compiled(exact, 0, maps, &points, origin, f), (true, f, f, f, f));
         assert_eq!(
-            compiled(auto, 0, &with_sphere, origin, false),
-            (false, false, true, true)
-        );
-        assert_eq!(compiled(auto, 4, &[], origin, false), (false, false, false, false));
-        assert_eq!(compiled(exact, 0, &points, origin, false), (true, false, false, false));
-        assert_eq!(
-            compiled(harmonics, 4, &with_sphere, origin, false),
-            (false, false, true, false)
+            compiled(harmonics, 4, maps, &with_sphere, origin, f),
+            (f, f, true, f, f)
         );
         // Eleven point lights: ten cubes fill the 64 views, the eleventh takes the SH.
         let eleven = vec![points[0].clone(); 11];
-        assert_eq!(compiled(auto, 4, &eleven, origin, false), (false, false, true, true));
+        assert_eq!(compiled(auto, 4, maps, &eleven, origin, f), (f, f, true, true, f));
         let terrain = SceneLighting {
             has_environment: false,
             has_terrain: true,
@@ -460,11 +516,12 @@ mod tests {
             light(LightKind::Disk { radius_m: 0.2 }, 100.0),
             light(LightKind::Sphere { radius_m: 0.1 }, 9.0),
         ];
+        // Without maps, which would take every one of these lights.
         let allowed = |light_paths, exact_light_budget| -> Vec<u32> {
             let settings = ShadowSettings {
                 light_paths,
                 exact_light_budget,
-                shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
+                shadow_map_size: 0,
                 ..ShadowSettings::default()
             };
             shading_lights(&lights, &settings, &LightPathContext::at(glam::Vec3::ZERO))
@@ -506,11 +563,14 @@ mod tests {
             .collect();
         let floor = LightPathContext {
             centre: Vec3::ZERO,
+            radius_m: 0.0,
             receivers,
             blockers: vec![ball],
         };
+        // Without maps, which would take both small lights.
         let settings = ShadowSettings {
             exact_light_budget: 1,
+            shadow_map_size: 0,
             ..ShadowSettings::default()
         };
         let exact = |context: &LightPathContext| -> Vec<u32> {

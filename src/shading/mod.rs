@@ -19,7 +19,9 @@ pub mod terrain;
 pub mod wgsl;
 
 pub use baked_indirect::BakedIndirect;
-pub use color::{display_srgb8, linear_to_srgb, srgb_to_linear, tonemap_aces_fit};
+pub use color::{
+    display_srgb8, displayed_radiance, linear_to_srgb, srgb_to_linear, tonemap_aces_fit, untonemap_aces_fit,
+};
 pub use light_paths::{
     CompiledPaths, LightPathContext, SceneLighting, ShadowPath, compiled_paths, light_paths_at, paths_and_sizes_at,
     shading_lights,

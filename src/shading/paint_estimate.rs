@@ -11,7 +11,7 @@ use glam::{DVec3, Vec3};
 use super::ShadowSettings;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
-use super::shadow_maps::ray_visibility;
+use super::shadow_maps::mapped_visibility;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{Transfer, VertexRef};
@@ -44,6 +44,7 @@ impl<'a> DirectEstimate<'a> {
             .map(|(light, shaded)| GpuLight {
                 shadow_path: shaded.shadow_path,
                 first_shadow_view: shaded.first_shadow_view,
+                shadow_view_count: shaded.shadow_view_count,
                 ..GpuLight::new(&Light {
                     intensity: 1.0,
                     ..light.clone()
@@ -127,17 +128,9 @@ impl<'a> DirectEstimate<'a> {
                     return None;
                 }
                 if light.shadow_path == SHADOW_PATH_MAP {
-                    // What the view's shadow map shows: the scene's triangles, by a ray.
-                    let lift_m = 1e-4 * (1.0 + s.position.length());
+                    // What the view's shadow map shows: the scene's triangles, by rays.
                     let occluders = self.occluders.get_or_init(|| SceneBvh::build(self.scene));
-                    let visible = ray_visibility(
-                        occluders,
-                        s.position,
-                        s.normal,
-                        incidence.to_light,
-                        incidence.distance_m,
-                        lift_m,
-                    );
+                    let visible = mapped_visibility(occluders, s.position, s.normal, &incidence);
                     let t = luminance(unshadowed) * visible;
                     return (t.is_finite() && t > 0.0).then_some((i as u32, t));
                 }

@@ -1,26 +1,33 @@
-//! Shadow maps of the real triangles for lights of no size (points, spots, the sun): the
-//! views each light's maps are rasterised from, and the f64 twin of what they measure —
-//! whether the segment from a receiver to the light is free — by ray casts on the bake's
-//! BVH (`shaders/logsh.wgsl`, `shadow_map_visibility`).
+//! Shadow maps of the real triangles for points, spots, the sun, and sphere and area
+//! lights up to [`MAX_MAPPED_HALF_ANGLE_DEG`]: the views each light's maps are
+//! rasterised from, and the f64 twin of what they measure — the share of the light a
+//! receiver sees past the scene's triangles — by ray casts on the bake's BVH
+//! ([`mapped_visibility`]; `shaders/shadow_lookup.wgsl`, `shadow_map_visibility`).
 //!
-//! Views: a spot whose cone's cosine is at least [`SINGLE_VIEW_SPOT_MIN_COS`] gets one
-//! perspective view along its axis; a point light, or a wider spot, a cube of six 90°
-//! views (+x, −x, +y, −y, +z, −z; a receiver reads the face of its direction's largest
-//! component, ties to the earlier axis); the sun one orthographic view over the scene's
-//! bounding sphere. Each perspective view is widened by [`FACE_MARGIN_TEXELS`] texels on
-//! every side, so the filter's taps near a cube face's edge stay inside that face. Depth
-//! runs 0 at the near plane to 1 at the far one (wgpu's clip space).
+//! Views: the sun one orthographic view over the scene's bounding sphere; a spot whose
+//! cone's cosine is at least [`SINGLE_VIEW_SPOT_MIN_COS`] one perspective view along its
+//! axis; any other light far enough outside the scene's bounding sphere that it sees it
+//! within 45° one perspective view aimed at it; the rest a cube of six 90° views (+x, −x,
+//! +y, −y, +z, −z; a receiver reads the face of its direction's largest component, ties
+//! to the earlier axis). Each perspective view is widened by [`FACE_MARGIN_TEXELS`]
+//! texels on every side, so taps near a cube face's edge stay inside that face, and its
+//! depth runs 0 at the near plane (at the scene's bounding sphere when the light is
+//! outside it) to 1 at the far one (wgpu's clip space).
 //!
 //! What the GPU adds to the exact visibility, and how it converges: the map quantises
 //! blockers' depths into texels of the receiver's view, so edges are placed within about
-//! a texel (a texel is `2·tan(half-fov)/size` of the distance to the light) and softened
-//! by the percentage-closer filter over 3 × 3 texels; receivers are pushed toward the light
-//! and along their normal by about a texel against self-shadowing (acne). All three
-//! shrink with the map's size (`ShadowSettings::shadow_map_size`).
+//! a texel (a texel is `2·tan(half-fov)/size` of the distance to the light) and, for
+//! lights of no size, softened by the bilinear comparison over 2 × 2 texels; receivers
+//! are pushed toward the light and along their normal by about a texel against
+//! self-shadowing (acne). All three shrink with the map's size
+//! (`ShadowSettings::shadow_map_size`). Sized lights add the penumbra filter's own
+//! approximations (one mean blocker depth per receiver, 32 taps; see the WGSL), which do
+//! not shrink with the size: the study's small-light suites measure them against the
+//! path tracer.
 
 use glam::{DVec3, Vec3};
 
-use super::gpu_types::{GpuLight, GpuShadowView, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+use super::gpu_types::{GpuLight, GpuShadowView, LIGHT_DIRECTIONAL, LIGHT_SPOT};
 use crate::bake::scene_bvh::SceneBvh;
 use crate::scene::Aabb;
 
@@ -41,33 +48,72 @@ const CUBE_FACES: [(Vec3, Vec3); 6] = [
     (Vec3::NEG_Z, Vec3::NEG_Y),
 ];
 
-/// How many views the maps of `light` take; None for a light that gets none (extended
-/// lights: spheres and area lights).
-pub fn view_count(light: &GpuLight) -> Option<usize> {
+/// How many views the maps of `light` take in a scene whose bounding sphere is `centre`,
+/// `radius_m` (a radius of 0: unknown), or None for a light that takes no maps (a sphere
+/// or area light wider than [`MAX_MAPPED_HALF_ANGLE_DEG`] seen from `centre`): one for
+/// the sun and for a spot of at most 60°; one aimed at the scene for a light far enough
+/// outside it that the scene fits in a cone of at most 45° half-angle (a cube face's
+/// width, so the view is no coarser than a face); a cube of six otherwise.
+pub fn view_count(light: &GpuLight, centre: Vec3, radius_m: f32) -> Option<usize> {
     match light.kind {
-        LIGHT_DIRECTIONAL => Some(1),
-        LIGHT_SPOT if light.source_size == 0.0 => Some(if single_view_spot(light) { 1 } else { 6 }),
-        LIGHT_POINT if light.source_size == 0.0 => Some(6),
-        _ => None,
+        LIGHT_DIRECTIONAL => return Some(1),
+        LIGHT_SPOT if single_view_spot(light) => return Some(1),
+        LIGHT_SPOT => {}
+        _ if light.source_size > 0.0 => {
+            let half_angle_deg = super::cpu::incidence(light, centre.as_dvec3())
+                .cap_ratio
+                .clamp(0.0, 1.0)
+                .asin()
+                .to_degrees();
+            if half_angle_deg > MAX_MAPPED_HALF_ANGLE_DEG {
+                return None;
+            }
+        }
+        _ => {}
     }
+    Some(if fitted_view(light, centre, radius_m).is_some() {
+        1
+    } else {
+        6
+    })
+}
+
+/// The widest sphere or area light (angular radius at the scene's centre, degrees) that
+/// takes shadow maps with penumbrae: wider ones keep the sphere blockers' exact or SH
+/// shadows, since the filter's one average blocker depth and its sparse taps stop
+/// describing a penumbra that spans much of the scene (measured in the study's
+/// small-light suites).
+pub const MAX_MAPPED_HALF_ANGLE_DEG: f64 = 20.0;
+
+/// Whether a light at `light`'s position sees the whole bounding sphere within 45° of its
+/// axis: the axis and the tangent of that half-angle.
+fn fitted_view(light: &GpuLight, centre: Vec3, radius_m: f32) -> Option<(Vec3, f32)> {
+    if radius_m <= 0.0 || light.kind == LIGHT_DIRECTIONAL {
+        return None;
+    }
+    let to_centre = centre - Vec3::from_slice(&light.position[..3]);
+    let distance = to_centre.length();
+    // The sphere's tangent cone: sin = r/d; at most 45° when d ≥ √2·r.
+    (distance >= std::f32::consts::SQRT_2 * radius_m).then(|| {
+        let tan_half = radius_m / (distance * distance - radius_m * radius_m).sqrt();
+        (to_centre / distance, tan_half)
+    })
 }
 
 fn single_view_spot(light: &GpuLight) -> bool {
     light.spot_cone[0] >= SINGLE_VIEW_SPOT_MIN_COS
 }
 
-/// The views of every light with a shadow map (`first_shadow_view` set by
-/// `shading_lights`), in view order, for a scene within `bounds`, maps `size` texels on a
-/// side. Views of lights without a map are left out; the result is as long as the
-/// largest view index used plus one.
+/// The views of every light with a shadow map (`first_shadow_view` and
+/// `shadow_view_count` set by `shading_lights`), in view order, for a scene within
+/// `bounds`, maps `size` texels on a side. Views of lights without a map are left out;
+/// the result is as long as the largest view index used plus one.
 pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuShadowView> {
     let mut views: Vec<GpuShadowView> = Vec::new();
     let (centre, radius) = bounding_sphere(bounds);
     for light in lights {
-        let (Some(count), first) = (view_count(light), light.first_shadow_view as usize) else {
-            continue;
-        };
-        if light.shadow_path != super::gpu_types::SHADOW_PATH_MAP {
+        let (count, first) = (light.shadow_view_count as usize, light.first_shadow_view as usize);
+        if light.shadow_path != super::gpu_types::SHADOW_PATH_MAP || count == 0 {
             continue;
         }
         let needed = first + count;
@@ -76,12 +122,27 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
         }
         let position = Vec3::from_slice(&light.position[..3]);
         let direction = Vec3::from_slice(&light.direction_range[..3]).normalize_or(Vec3::NEG_Y);
-        match light.kind {
-            LIGHT_DIRECTIONAL => views[first] = orthographic_view(direction, centre, radius, size),
-            LIGHT_SPOT if count == 1 => {
+        let up_for = |forward: Vec3| if forward.y.abs() > 0.9 { Vec3::X } else { Vec3::Y };
+        match (light.kind, count) {
+            (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, size),
+            (LIGHT_SPOT, 1) => {
                 let half_angle = light.spot_cone[0].clamp(-1.0, 1.0).acos();
-                let up = if direction.y.abs() > 0.9 { Vec3::X } else { Vec3::Y };
-                views[first] = perspective_view(position, direction, up, half_angle.tan(), centre, radius, size);
+                views[first] = perspective_view(
+                    position,
+                    direction,
+                    up_for(direction),
+                    half_angle.tan(),
+                    centre,
+                    radius,
+                    size,
+                );
+            }
+            (_, 1) => {
+                // Aimed at the scene; a scene that grew around the light since falls back
+                // to a 45° view, which the lookup leaves unshadowed outside.
+                let (forward, tan_half) =
+                    fitted_view(light, centre, radius).unwrap_or(((centre - position).normalize_or(Vec3::NEG_Y), 1.0));
+                views[first] = perspective_view(position, forward, up_for(forward), tan_half, centre, radius, size);
             }
             _ => {
                 for (k, (forward, up)) in CUBE_FACES.iter().enumerate() {
@@ -93,7 +154,9 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
     views
 }
 
-fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
+/// The sphere the maps' views cover: the centre of `bounds` and half their diagonal
+/// (the origin and 1 m for empty bounds).
+pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
     if bounds.is_empty() {
         return (Vec3::ZERO, 1.0);
     }
@@ -117,13 +180,19 @@ fn perspective_view(
     // Widened so that the nominal field of view keeps FACE_MARGIN_TEXELS texels on each side.
     let tan_wide = tan_half * size / (size - 2.0 * FACE_MARGIN_TEXELS).max(1.0);
     let far = ((centre - eye).length() + radius) * 1.01 + 1e-3;
-    let near = (far * 1e-4).max(1e-3);
+    // Nothing nearer than the scene's bounding sphere casts: starting the depth range
+    // there keeps a far light's depths fine (a near plane at far·10⁻⁴ left a light 200 m
+    // away with depth steps of 10 cm, which showed as speckled self-shadowing).
+    let nearest_m = (centre - eye).length() - radius;
+    let near = (far * 1e-4).max(1e-3).max(0.99 * nearest_m);
     let view = glam::camera::rh::view::look_to_mat4(eye, forward, up);
     let projection = glam::camera::rh::proj::directx::perspective(2.0 * tan_wide.atan(), 1.0, near, far);
+    let nearest = nearest_m.max(near);
     GpuShadowView {
         view_proj: (projection * view).to_cols_array_2d(),
         texel: [2.0 * tan_wide / size, 0.0, 1.0, 0.0],
         eye: eye.extend(1.0).to_array(),
+        depth_range: [near, far, size, nearest],
     }
 }
 
@@ -138,6 +207,7 @@ fn orthographic_view(direction: Vec3, centre: Vec3, radius: f32, size: u32) -> G
         view_proj: (projection * view).to_cols_array_2d(),
         texel: [0.0, 2.0 * radius / size.max(1) as f32, 0.0, 0.0],
         eye: direction.extend(0.0).to_array(),
+        depth_range: [0.0, depth, size.max(1) as f32, 0.0],
     }
 }
 
@@ -175,6 +245,47 @@ pub fn ray_visibility(occluders: &SceneBvh, p: DVec3, n: DVec3, to_light: DVec3,
     if blocked { 0.0 } else { 1.0 }
 }
 
+/// Rays [`mapped_visibility`] casts toward a sized light's disc.
+pub const DISC_RAYS: usize = 64;
+
+/// The golden angle (radians): successive points of a Vogel spiral turn by it, which
+/// spreads any number of them evenly over a disc (Vogel 1979). WGSL `GOLDEN_ANGLE`.
+pub const GOLDEN_ANGLE_RAD: f64 = 2.399_963_229_728_653;
+
+/// The `k`-th of `count` points of a Vogel spiral over the unit disc: radius
+/// √((k + ½)/count), angle k times the golden angle (equal areas per point).
+pub fn vogel_point(k: usize, count: usize) -> (f64, f64) {
+    let radius = ((k as f64 + 0.5) / count as f64).sqrt();
+    let angle = k as f64 * GOLDEN_ANGLE_RAD;
+    (radius * angle.cos(), radius * angle.sin())
+}
+
+/// The exact visibility a light's shadow maps approximate at the surface point `p` with
+/// normal `n`, the light seen as `inc`: for a light of no size, [`ray_visibility`] toward
+/// it; for a sphere or area light, the share of [`DISC_RAYS`] rays spread over its disc
+/// (the cap of sine `inc.cap_ratio` around `inc.to_light`, as the exact path takes it,
+/// sampled on the plane through the light's centre facing `p`) that nothing in
+/// `occluders` stops.
+pub fn mapped_visibility(occluders: &SceneBvh, p: DVec3, n: DVec3, inc: &super::cpu::Incidence) -> f64 {
+    let lift_m = 1e-4 * (1.0 + p.length());
+    let sine = inc.cap_ratio.clamp(0.0, 1.0);
+    if sine == 0.0 || !inc.distance_m.is_finite() {
+        return ray_visibility(occluders, p, n, inc.to_light, inc.distance_m, lift_m);
+    }
+    let tan_half = sine / (1.0 - sine * sine).max(1e-12).sqrt();
+    let (t1, t2) = inc.to_light.any_orthonormal_pair();
+    let free: f64 = (0..DISC_RAYS)
+        .map(|k| {
+            let (x, y) = vogel_point(k, DISC_RAYS);
+            let offset = (t1 * x + t2 * y) * tan_half;
+            let to_target = inc.to_light + offset;
+            let length = to_target.length();
+            ray_visibility(occluders, p, n, to_target / length, inc.distance_m * length, lift_m)
+        })
+        .sum();
+    free / DISC_RAYS as f64
+}
+
 #[cfg(test)]
 mod tests {
     use glam::Mat4;
@@ -193,6 +304,7 @@ mod tests {
         });
         light.shadow_path = super::super::gpu_types::SHADOW_PATH_MAP;
         light.first_shadow_view = 0;
+        light.shadow_view_count = view_count(&light, Vec3::ZERO, 0.0).unwrap_or(0) as u32;
         light
     }
 
@@ -257,5 +369,81 @@ mod tests {
         }
         // Nearer the sun is shallower.
         assert!(clip(&view, Vec3::new(0.0, 3.0, 0.0)).z < clip(&view, Vec3::ZERO).z);
+    }
+
+    #[test]
+    fn a_light_far_outside_the_scene_sees_it_in_one_view_and_a_near_one_in_a_cube() {
+        let bounds = Aabb::from_points(&[Vec3::new(-4.0, 0.0, -2.0), Vec3::new(4.0, 3.0, 2.0)]);
+        let (centre, radius) = bounding_sphere(&bounds);
+        let sun_like = |position: Vec3| {
+            let mut light = mapped(crate::scene::LightKind::Sphere { radius_m: 0.5 }, position, Vec3::NEG_Y);
+            light.shadow_view_count = view_count(&light, centre, radius).unwrap_or(0) as u32;
+            light
+        };
+        let far = sun_like(Vec3::new(30.0, 60.0, -20.0));
+        assert_eq!(far.shadow_view_count, 1);
+        let view = shadow_views(&[far], &bounds, 1024)[0];
+        for corner in 0..8 {
+            let p = Vec3::new(
+                if corner & 1 == 0 { -4.0 } else { 4.0 },
+                if corner & 2 == 0 { 0.0 } else { 3.0 },
+                if corner & 4 == 0 { -2.0 } else { 2.0 },
+            );
+            let q = clip(&view, p);
+            assert!(
+                q.x.abs() <= 1.0 && q.y.abs() <= 1.0 && (0.0..=1.0).contains(&q.z),
+                "{p} → {q}"
+            );
+        }
+        // Inside the scene's sphere: a cube.
+        assert_eq!(sun_like(Vec3::new(3.0, 2.0, 1.0)).shadow_view_count, 6);
+        // Too wide at the centre (a 1 m sphere 2 m away is 30° in radius): no maps.
+        let wide = mapped(
+            crate::scene::LightKind::Sphere { radius_m: 1.0 },
+            centre + Vec3::Y * 2.0,
+            Vec3::NEG_Y,
+        );
+        assert_eq!(view_count(&wide, centre, radius), None);
+    }
+
+    /// A sphere light straight above a receiver, a blocker plane halfway covering x < 0:
+    /// half the disc is hidden (the Vogel spiral's 64 points split within a few of half);
+    /// no blocker: all of it; a blocker over everything: none.
+    #[test]
+    fn the_disc_rays_see_the_share_of_a_sized_light_a_blocker_hides() {
+        use crate::scene::{Scene, shapes};
+        let light = GpuLight::new(&crate::scene::Light {
+            name: "light".into(),
+            kind: crate::scene::LightKind::Sphere { radius_m: 1.0 },
+            color: Vec3::ONE,
+            intensity: 1.0,
+            position: Vec3::new(0.0, 10.0, 0.0),
+            direction: Vec3::NEG_Y,
+            range: None,
+        });
+        let p = DVec3::ZERO;
+        let inc = super::super::cpu::incidence(&light, p);
+        let visibility_under = |blocker: Option<(f32, f32)>| {
+            let mut scene = Scene::default();
+            scene.materials.push(Default::default());
+            scene.objects.push(
+                shapes::plane(0.1, 1, 1.0)
+                    .transformed(glam::Affine3A::from_translation(Vec3::new(0.0, -5.0, 0.0)))
+                    .into_object("floor far below"),
+            );
+            if let Some((size, x)) = blocker {
+                scene.objects.push(
+                    shapes::plane(size, 1, 1.0)
+                        .transformed(glam::Affine3A::from_translation(Vec3::new(x, 5.0, 0.0)))
+                        .into_object("blocker"),
+                );
+            }
+            let bvh = SceneBvh::build(&scene);
+            mapped_visibility(&bvh, p, DVec3::Y, &inc)
+        };
+        assert_eq!(visibility_under(None), 1.0);
+        assert_eq!(visibility_under(Some((40.0, 0.0))), 0.0);
+        let half = visibility_under(Some((20.0, -10.0)));
+        assert!((half - 0.5).abs() <= 3.0 / DISC_RAYS as f64, "{half}");
     }
 }

@@ -157,6 +157,8 @@ pub struct StudyResults {
     pub penumbrae: Vec<penumbra::PenumbraRow>,
     /// Small lights over mesh blockers: the exact path's error by sphere budget.
     pub sphere_fit: Vec<sphere_fit::SphereFitRow>,
+    /// The shadow maps over the sphere-fit suite's meshes (no spheres needed).
+    pub mesh_maps: Option<penumbra::PenumbraRow>,
     /// ms per frame of 8 small lights and 50 blockers, by path, at `cost_size`² pixels.
     pub eight_light_cost: Vec<(crate::shading::LightPaths, f64)>,
     pub cost_size: u32,
@@ -189,6 +191,7 @@ pub fn run_study(
         stability_size: options.stability_size(),
         penumbrae: Vec::new(),
         sphere_fit: Vec::new(),
+        mesh_maps: None,
         eight_light_cost: Vec::new(),
         cost_size: if options.quick { 128 } else { 540 },
     };
@@ -279,6 +282,13 @@ pub fn run_study(
         ));
         results.sphere_fit.push(row);
     }
+    let maps = sphere_fit::measure_mesh_maps(gpu, options.quick)?;
+    say(&format!(
+        "shadow maps on the same meshes: penumbra RMS {:.4}, umbra RMS {}",
+        maps.penumbra_rms,
+        maps.umbra_rms.map_or("–".into(), |e| format!("{e:.4}"))
+    ));
+    results.mesh_maps = Some(maps);
     results.eight_light_cost = penumbra::cost_of_eight_lights(gpu, results.cost_size, options.timed_frames())?;
     for (path, ms) in &results.eight_light_cost {
         say(&format!(

@@ -24,7 +24,7 @@ use crate::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, captu
 use crate::scene::{Camera, Environment, Light, LightKind, Material, Scene, luminance, shapes};
 use crate::shading::cpu::{self, ShadingInputs, SurfacePoint};
 use crate::shading::gpu_types::environment_irradiance;
-use crate::shading::{LightPaths, RenderSettings, ShadowSettings};
+use crate::shading::{LightPaths, RenderSettings, ShadowPath, ShadowSettings};
 
 /// Light radii measured (degrees, at the floor's centre).
 pub const LIGHT_HALF_ANGLES_DEG: [f64; 5] = [1.0, 5.0, 15.0, 40.0, 60.0];
@@ -34,7 +34,7 @@ pub const LIGHT_HALF_ANGLES_DEG: [f64; 5] = [1.0, 5.0, 15.0, 40.0, 60.0];
 pub struct PenumbraRow {
     /// "5°" or "sky".
     pub light: String,
-    pub path: LightPaths,
+    pub path: ShadowPath,
     pub penumbra_pixels: usize,
     /// RMS of (L_path − L_reference)/L_unshadowed over the penumbra.
     pub penumbra_rms: f64,
@@ -214,8 +214,29 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
             )?;
             rows.push(row);
         }
+        // Shadow maps where Auto gives them: lights up to the mapped size.
+        let mapped = light.as_ref().is_some_and(|l| {
+            let half_angle_deg: f64 = l.name.trim_end_matches('°').parse().unwrap_or(f64::INFINITY);
+            half_angle_deg <= crate::shading::shadow_maps::MAX_MAPPED_HALF_ANGLE_DEG
+        });
+        if mapped {
+            let mut row = compare_maps(gpu, &scene, &open, &surfaces, &reference, &camera, size)?;
+            row.light = label.clone();
+            row.ms_per_frame = maps_frame_ms(gpu, &scene, &camera, size, if quick { 2 } else { 8 })?;
+            rows.push(row);
+        }
     }
     Ok(rows)
+}
+
+/// Mean GPU time of the shadow-map path's frames (no sphere blockers).
+fn maps_frame_ms(gpu: &GpuContext, scene: &Scene, camera: &Camera, size: u32, frames: u32) -> Result<f64, StudyError> {
+    let shadows = ShadowSettings {
+        light_paths: LightPaths::Auto,
+        shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
+        ..ShadowSettings::default().every_pixel()
+    };
+    frame_ms(gpu, scene, camera, &shadows, &[], size, frames)
 }
 
 /// The reference luminance of each pixel with and without the casters, and the noise of
@@ -273,8 +294,8 @@ struct PixelSample {
     shaded_visibility: f64,
 }
 
-/// Errors of one path, shading with `blockers`, against the reference over the floor's
-/// penumbra and umbra.
+/// Errors of one path, shading with `blockers` in f64, against the reference over the
+/// floor's penumbra and umbra.
 pub(super) fn compare(
     scene: &Scene,
     surfaces: &[Option<SurfacePoint>],
@@ -304,22 +325,89 @@ pub(super) fn compare(
         terrain: None,
         ..inputs
     };
+    let path = match shadows.light_paths {
+        LightPaths::Exact => ShadowPath::Exact,
+        _ => ShadowPath::Harmonics,
+    };
+    errors(surfaces, reference, path, |_, s| {
+        let unshadowed = luminance(cpu::shadowed_radiance(s, &open));
+        (unshadowed > 1e-6).then(|| luminance(cpu::shadowed_radiance(s, &inputs)) / unshadowed)
+    })
+}
+
+/// Errors of the shadow-map path against the reference over the floor's penumbra and
+/// umbra: GPU frames of `scene` and of `open` (the same without casters) with 1024² maps
+/// and no sphere blockers, their displayed pixels turned back into linear light
+/// ([`crate::shading::displayed_radiance`], within 8-bit rounding). The maps are the
+/// GPU's alone (their f64 twin casts rays, which is what they approximate), so they are
+/// measured on the GPU.
+pub(super) fn compare_maps(
+    gpu: &GpuContext,
+    scene: &Scene,
+    open: &Scene,
+    surfaces: &[Option<SurfacePoint>],
+    reference: &References,
+    camera: &Camera,
+    size: u32,
+) -> Result<PenumbraRow, StudyError> {
+    let settings = RenderSettings::default();
+    let shadows = ShadowSettings {
+        light_paths: LightPaths::Auto,
+        shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
+        ..ShadowSettings::default().every_pixel()
+    };
+    let linear_luminance = |scene: &Scene| -> Result<Vec<f64>, StudyError> {
+        let frame = ShadowFrame {
+            scene,
+            camera,
+            settings: &settings,
+            shadows: &shadows,
+            blockers: &[],
+            baked_indirect: None,
+            width: size,
+            height: size,
+        };
+        let image = crate::render::render_logsh_image(gpu, &frame, AntiAliasing::None)?;
+        Ok(image
+            .pixels()
+            .map(|p| {
+                luminance(crate::shading::displayed_radiance(
+                    [p[0], p[1], p[2]],
+                    settings.exposure_ev as f64,
+                ))
+            })
+            .collect())
+    };
+    let (shaded, unshadowed) = (linear_luminance(scene)?, linear_luminance(open)?);
+    Ok(errors(surfaces, reference, ShadowPath::Map, |i, _| {
+        (unshadowed[i] > 1e-6).then(|| shaded[i] / unshadowed[i])
+    }))
+}
+
+/// The row of a path whose visibility at floor pixel `i` (surface point `s`) is
+/// `visibility(i, s)`, against the reference.
+fn errors(
+    surfaces: &[Option<SurfacePoint>],
+    reference: &References,
+    path: ShadowPath,
+    visibility: impl Fn(usize, &SurfacePoint) -> Option<f64> + Sync,
+) -> PenumbraRow {
     let samples: Vec<PixelSample> = surfaces
         .par_iter()
         .enumerate()
         .filter_map(|(i, s)| {
             let s = s.as_ref().filter(|s| s.position.y.abs() < 1e-3)?;
-            let unshadowed = luminance(cpu::shadowed_radiance(s, &open));
             let reference_open = reference.unshadowed[i];
-            (unshadowed > 1e-6 && reference_open > 1e-6).then(|| {
-                let shaded = luminance(cpu::shadowed_radiance(s, &inputs)) / unshadowed;
-                let reference_visibility = reference.shadowed[i] / reference_open;
-                PixelSample {
-                    error: shaded - reference_visibility,
-                    noise: reference.noise[i] / reference_open,
-                    reference_visibility,
-                    shaded_visibility: shaded,
-                }
+            if reference_open <= 1e-6 {
+                return None;
+            }
+            let shaded = visibility(i, s)?;
+            let reference_visibility = reference.shadowed[i] / reference_open;
+            Some(PixelSample {
+                error: shaded - reference_visibility,
+                noise: reference.noise[i] / reference_open,
+                reference_visibility,
+                shaded_visibility: shaded,
             })
         })
         .collect();
@@ -329,7 +417,7 @@ pub(super) fn compare(
     let umbra: Vec<f64> = samples.iter().filter(in_umbra).map(|s| s.error).collect();
     PenumbraRow {
         light: String::new(),
-        path: shadows.light_paths,
+        path,
         penumbra_pixels: samples.iter().filter(in_penumbra).count(),
         penumbra_rms: rms(samples.iter().filter(in_penumbra).map(|s| s.error).collect()),
         umbra_rms: (!umbra.is_empty()).then(|| rms(umbra)),

@@ -141,7 +141,7 @@ fn penumbra_markdown(results: &StudyResults) -> String {
     let mut text = String::from(
         "\n## Small lights: SH path against the exact path\n\nThree exact sphere blockers over a \
          white floor under one sphere light of the given angular radius (then a uniform sky); \
-         errors are the path's visibility minus the reference's (shares of the unshadowed light) \
+         the shadow maps (up to the size Auto maps) see the balls' meshes instead; errors are the path's visibility minus the reference's (shares of the unshadowed light) \
          over the floor's penumbra (reference visibility 5–95 %) and umbra (≤ 5 %); the \
          reference's own noise over the penumbra is given beside them.\n\n| light | path | penumbra px | penumbra RMS | umbra RMS | max / unshadowed | ms/frame | reference noise |\n\
          |---|---|---:|---:|---:|---:|---:|---:|\n",
@@ -152,9 +152,9 @@ fn penumbra_markdown(results: &StudyResults) -> String {
             "| {} | {} | {} | {:.4} | {} | {:.3} | {:.1} | {:.4} |",
             r.light,
             match r.path {
-                crate::shading::LightPaths::Exact => "exact",
-                crate::shading::LightPaths::Harmonics => "SH",
-                crate::shading::LightPaths::Auto => "auto",
+                crate::shading::ShadowPath::Exact => "exact",
+                crate::shading::ShadowPath::Harmonics => "SH",
+                crate::shading::ShadowPath::Map => "maps",
             },
             r.penumbra_pixels,
             r.penumbra_rms,
@@ -183,11 +183,19 @@ fn sphere_fit_markdown(results: &StudyResults) -> String {
     if results.sphere_fit.is_empty() {
         return String::new();
     }
+    let maps = results.mesh_maps.as_ref().map_or(String::new(), |m| {
+        format!(
+            "\nThe shadow maps, which see the meshes themselves (no spheres): penumbra RMS {:.4}, \
+             umbra RMS {}.\n",
+            m.penumbra_rms,
+            m.umbra_rms.map_or("–".into(), |e| format!("{e:.4}"))
+        )
+    });
     format!(
         "\n## Small lights over meshes: the sphere fit's share\n\nA box, a torus and a cylinder \
          over the floor under a {}° sphere light; the path tracer sees the meshes, the renderer \
          spheres fitted with each budget. The exact path is exact for its spheres, so its \
-         penumbra error is the fit's.\n\n{}",
+         penumbra error is the fit's.\n\n{}{maps}",
         super::sphere_fit::LIGHT_HALF_ANGLE_DEG,
         super::sphere_fit::markdown_table(&results.sphere_fit)
     )

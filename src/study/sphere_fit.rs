@@ -5,12 +5,15 @@
 //! budget (`SphereBudget::Total`) or the automatic fit. The exact path is exact for its
 //! spheres, so its penumbra error is the fit's (plus the product over blockers treating
 //! overlapping spheres as independent, which over-darkens where they overlap); the SH
-//! path's error, band limit included, is measured beside it.
+//! path's error, band limit included, is measured beside it, and the shadow maps', which
+//! see the meshes themselves ([`measure_mesh_maps`]).
 
 use glam::{Affine3A, Quat, Vec3};
 
 use super::StudyError;
-use super::penumbra::{References, compare, floor_scene, overhead_camera, size_and_spp, sphere_light};
+use super::penumbra::{
+    PenumbraRow, References, compare, compare_maps, floor_scene, overhead_camera, size_and_spp, sphere_light,
+};
 use crate::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use crate::render::{GpuContext, capture_surfaces};
 use crate::scene::{MeshObject, shapes};
@@ -101,6 +104,23 @@ pub fn measure_sphere_fit(gpu: &GpuContext, quick: bool) -> Result<Vec<SphereFit
         });
     }
     Ok(rows)
+}
+
+/// The shadow-map path on the same meshes (it needs no spheres): the GPU's maps of the
+/// real triangles against the path tracer (`quick`: a small image).
+pub fn measure_mesh_maps(gpu: &GpuContext, quick: bool) -> Result<PenumbraRow, StudyError> {
+    let (size, spp) = size_and_spp(quick);
+    let camera = overhead_camera();
+    let light = sphere_light(LIGHT_HALF_ANGLE_DEG);
+    let (scene, open) = (
+        floor_scene(Some(light.clone()), casters()),
+        floor_scene(Some(light.clone()), Vec::new()),
+    );
+    let surfaces = capture_surfaces(gpu, &scene, &camera, None, size, size)?;
+    let reference = References::render(&scene, &open, &surfaces, camera.position, size, spp);
+    let mut row = compare_maps(gpu, &scene, &open, &surfaces, &reference, &camera, size)?;
+    row.light = light.name;
+    Ok(row)
 }
 
 /// The rows as a markdown table.

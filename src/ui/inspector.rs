@@ -57,7 +57,7 @@ impl EditorApp {
                 let paths = match &self.viewport {
                     Some(viewport) => viewport.light_paths_at(lights, pivot, shadows),
                     None => {
-                        let context = crate::shading::LightPathContext::at(document.scene.bounds().center());
+                        let context = crate::shading::LightPathContext::of_bounds(&document.scene.bounds());
                         crate::shading::light_paths_at(lights, pivot, shadows, &context)
                     }
                 };

@@ -148,8 +148,8 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
     });
 }
 
-/// Shadow maps of the real triangles for point, spot and directional lights: off, or a
-/// size of map.
+/// Shadow maps of the real triangles for point, spot and directional lights and small
+/// sphere and area lights: off, or a size of map.
 fn shadow_map_control(ui: &mut egui::Ui, size: &mut u32) {
     let label = |size: u32| match size {
         0 => "off (soft SH shadows)".to_string(),

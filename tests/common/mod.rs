@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod snapshot;
+pub mod thin_casters;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

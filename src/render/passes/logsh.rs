@@ -386,6 +386,7 @@ fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("EXACT_LIGHT_PATH", flag(paths.exact)),
         ("EXACT_WIDE", flag(paths.exact_wide)),
         ("SHADOW_MAPS", flag(paths.maps)),
+        ("SOFT_SHADOW_MAPS", flag(paths.soft_maps)),
         ("SH_VISIBILITY", flag(paths.harmonics)),
         ("TERRAIN_SHADOWS", flag(paths.terrain)),
         ("LIGHT_OVERFLOW", flag(paths.light_overflow)),

@@ -16,7 +16,8 @@
 //!   `shading::shading_lights`) take `penumbra::light_visibility` instead (the share of
 //!   their disc no blocker hides);
 //! - lights on the shadow-map path take the exact visibility of the scene's triangles by
-//!   ray casts (`ShadingInputs::occluders`), which the GPU's maps converge to;
+//!   ray casts (`ShadingInputs::occluders`; toward the light, or spread over a sized
+//!   light's disc), which the GPU's maps approach;
 //! - with a terrain, F gains its log-visibility (`TerrainShadow::log_visibility`, the twin
 //!   of terrain.wgsl) and exact-path lights the share of their disc above its horizon.
 //!
@@ -38,7 +39,7 @@ use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
-use crate::shading::shadow_maps::ray_visibility;
+use crate::shading::shadow_maps::mapped_visibility;
 use crate::terrain::TerrainShadow;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
 use visibility::exp_for_shading;
@@ -77,10 +78,9 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
             continue;
         }
         if light.shadow_path == SHADOW_PATH_MAP {
-            let visibility = inputs.occluders.map_or(1.0, |bvh| {
-                let lift_m = 1e-4 * (1.0 + s.position.length());
-                ray_visibility(bvh, s.position, s.normal, inc.to_light, inc.distance_m, lift_m)
-            });
+            let visibility = inputs
+                .occluders
+                .map_or(1.0, |bvh| mapped_visibility(bvh, s.position, s.normal, &inc));
             radiance += unshadowed * visibility;
             continue;
         }

@@ -2,8 +2,8 @@
 //! WGSL has no `#include`: a module is assembled from `common.wgsl` (shared
 //! structs and colour functions), `scene.wgsl` (bindings, vertex stage, lights, surfaces)
 //! and its own file, so shared code lives in exactly one place. The log-SH module also
-//! takes the SH code generated for its order and method (`sh`) and the terrain's
-//! (`terrain`, then `terrain.wgsl`).
+//! takes the SH code generated for its order and method (`sh`), the terrain's
+//! (`terrain`, then `terrain.wgsl`) and the shadow maps' lookup (`shadow_lookup.wgsl`).
 
 pub mod lobes;
 pub mod sh;
@@ -22,6 +22,7 @@ pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
 pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
+pub const SHADOW_LOOKUP: &str = include_str!("../../../shaders/shadow_lookup.wgsl");
 /// Standalone: it reads a finished frame, not the scene.
 pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
 
@@ -57,6 +58,6 @@ pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> Strin
     };
     let terrain = terrain::terrain_module(order);
     format!(
-        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{per_vertex}"
+        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{SHADOW_LOOKUP}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{per_vertex}"
     )
 }
