@@ -173,23 +173,37 @@ impl StrokeRecord {
     }
 }
 
-/// Dab centres every `spacing_px` along a screen polyline (its first point always).
+/// Most dabs one stroke is cut into: a 4k screen's diagonal is under 5000 px, so a stroke
+/// this long in dabs has left the screen many times over; a longer one gets its dabs
+/// spread wider instead of taking time and memory in proportion to its length.
+pub const MAX_DABS_PER_STROKE: usize = 100_000;
+
+/// Dab centres every `spacing_px` along a screen polyline (its first point always, its
+/// last too when the spacing leaves it over a quarter spacing away), at most
+/// [`MAX_DABS_PER_STROKE`] of them (a longer polyline's spacing is widened to fit).
+/// Distances are measured in f64, so the walk advances along segments of any length.
 pub fn dabs_along(points_px: &[Vec2], spacing_px: f32) -> Vec<Vec2> {
-    let spacing = spacing_px.max(0.5);
-    let mut dabs: Vec<Vec2> = points_px.first().copied().into_iter().collect();
-    let mut carried = 0.0;
-    for segment in points_px.windows(2) {
-        let (a, b) = (segment[0], segment[1]);
+    let finite: Vec<Vec2> = points_px.iter().copied().filter(|p| p.is_finite()).collect();
+    let total: f64 = finite
+        .windows(2)
+        .map(|s| s[0].as_dvec2().distance(s[1].as_dvec2()))
+        .sum();
+    let spacing = (spacing_px.max(0.5) as f64).max(total / MAX_DABS_PER_STROKE as f64);
+    let mut dabs: Vec<Vec2> = finite.first().copied().into_iter().collect();
+    // How far past the last dab the previous segment ended.
+    let mut carried = 0.0f64;
+    for segment in finite.windows(2) {
+        let (a, b) = (segment[0].as_dvec2(), segment[1].as_dvec2());
         let length = a.distance(b);
-        let mut along = spacing - carried;
-        while along <= length {
-            dabs.push(a.lerp(b, along / length));
-            along += spacing;
+        let first = spacing - carried;
+        if first <= length {
+            let count = ((length - first) / spacing).floor() as usize + 1;
+            dabs.extend((0..count).map(|k| a.lerp(b, (first + k as f64 * spacing) / length).as_vec2()));
         }
         carried = (carried + length) % spacing;
     }
-    if let Some(&last) = points_px.last()
-        && dabs.last().is_some_and(|d| d.distance(last) > 0.25 * spacing)
+    if let Some(&last) = finite.last()
+        && dabs.last().is_some_and(|d| d.distance(last) as f64 > 0.25 * spacing)
     {
         dabs.push(last);
     }
@@ -210,5 +224,24 @@ mod tests {
         assert_eq!(dabs.last(), Some(&Vec2::new(10.0, 10.0)));
         assert_eq!(dabs_along(&[Vec2::ONE], 4.0), vec![Vec2::ONE]);
         assert!(dabs_along(&[], 4.0).is_empty());
+    }
+
+    /// A segment of 10⁸ px (past where f32 stops advancing by a few pixels) ends at once,
+    /// its dabs bounded and spread evenly from start to end; one of 10⁴ px keeps its
+    /// spacing exactly.
+    #[test]
+    fn a_stroke_of_any_length_is_walked_in_bounded_time_and_memory() {
+        let end = Vec2::new(1e8, 0.0);
+        let dabs = dabs_along(&[Vec2::ZERO, end], 3.0);
+        assert!(dabs.len() <= MAX_DABS_PER_STROKE + 1, "{}", dabs.len());
+        assert_eq!(dabs.last(), Some(&end));
+        let gaps: Vec<f32> = dabs.windows(2).map(|p| p[1].x - p[0].x).collect();
+        let widest = gaps.iter().copied().fold(0.0, f32::max);
+        assert!(widest <= 1e8 / MAX_DABS_PER_STROKE as f32 * 1.01, "{widest}");
+        let short = dabs_along(&[Vec2::ZERO, Vec2::new(1e4, 0.0)], 4.0);
+        assert_eq!(short.len(), 2501);
+        assert!(short.windows(2).all(|p| (p[1].x - p[0].x - 4.0).abs() < 1e-3));
+        // Points that are not finite are left out rather than walked.
+        assert_eq!(dabs_along(&[Vec2::ZERO, Vec2::splat(f32::NAN)], 4.0), vec![Vec2::ZERO]);
     }
 }

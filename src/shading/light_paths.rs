@@ -3,11 +3,11 @@
 //! One choice per light for the whole frame (no receiver shows a seam where a light
 //! would change path), the same in the editor, the CLI, the CPU reference and painting:
 //! every light exact under [`LightPaths::Exact`], none under [`LightPaths::Harmonics`];
-//! under [`LightPaths::Auto`] with shadow maps on, first, in scene order and as many as
-//! the shadow-map views hold, every point, spot and directional light and every sphere
-//! or area light up to [`super::shadow_maps::MAX_MAPPED_HALF_ANGLE_DEG`] in radius at
-//! the scene's centre takes shadow maps of the real triangles (the sized ones with
-//! penumbrae); then of the rest, the sphere and area lights whose angular radius at the
+//! under [`LightPaths::Auto`] with shadow maps on, first, as many as the shadow-map views
+//! hold (lights of one view, then cubes, each brightest at the centre first), every
+//! point, spot and directional light and every sphere or area light up to
+//! [`super::shadow_maps::MAX_MAPPED_HALF_ANGLE_DEG`] in radius at the scene's centre
+//! takes shadow maps of the real triangles (the sized ones with penumbrae); then of the rest, the sphere and area lights whose angular radius at the
 //! scene's centre is under [`super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG`] go exact, at most
 //! the settings' `exact_light_budget` of them, those whose exact shadows matter most
 //! first: brightness at the centre times the share of the scene's surface where some
@@ -241,17 +241,29 @@ pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &Lig
     let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
     let mut mapped = vec![false; lights.len()];
     if settings.light_paths == LightPaths::Auto && settings.shadow_map_size > 0 {
+        // Lights of one view first (the sun, spots, far lights), then the cubes, each
+        // group brightest at the centre first: when the views run out, the lights left
+        // on the other paths are the dim ones that would each have taken six.
+        let centre = context.centre();
+        let mut wanted: Vec<(usize, usize, f64)> = gpu_lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, light)| {
+                let count = super::shadow_maps::view_count(light, context.centre, context.radius_m)?;
+                let brightness = crate::scene::luminance(super::cpu::incidence(light, centre).irradiance);
+                Some((i, count, brightness))
+            })
+            .collect();
+        wanted.sort_by(|a, b| a.1.cmp(&b.1).then(b.2.total_cmp(&a.2)).then(a.0.cmp(&b.0)));
         let mut views = 0;
-        for (light, mapped) in gpu_lights.iter_mut().zip(mapped.iter_mut()) {
-            let Some(count) = super::shadow_maps::view_count(light, context.centre, context.radius_m) else {
-                continue;
-            };
+        for (i, count, _) in wanted {
             if views + count <= MAX_SHADOW_VIEWS {
+                let light = &mut gpu_lights[i];
                 light.shadow_path = SHADOW_PATH_MAP;
                 light.first_shadow_view = views as u32;
                 light.shadow_view_count = count as u32;
                 views += count;
-                *mapped = true;
+                mapped[i] = true;
             }
         }
     }
@@ -486,6 +498,32 @@ mod tests {
         };
         assert!(compiled_paths(&[], single_sided, 0).cull_back_faces);
         assert!(!compiled_paths(&[], terrain, 0).cull_back_faces);
+    }
+
+    /// Twelve point lights, the last the dimmest, then a sun: the sun's one view comes
+    /// first, then ten cubes (61 views) by brightness; the dimmest two take the SH.
+    #[test]
+    fn when_the_views_run_out_single_views_and_bright_lights_come_first() {
+        use crate::scene::LightKind;
+        let mut lights: Vec<Light> = (0..12)
+            .map(|k| Light {
+                position: Vec3::new(k as f32, 2.0, 0.0),
+                ..light(LightKind::Point, 12.0 - k as f32)
+            })
+            .collect();
+        lights.push(light(LightKind::Directional, 0.1));
+        let settings = ShadowSettings {
+            shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
+            ..ShadowSettings::default()
+        };
+        let shaded = shading_lights(&lights, &settings, &LightPathContext::at(Vec3::ZERO));
+        let paths: Vec<u32> = shaded.iter().map(|l| l.shadow_path).collect();
+        let mut expected = vec![SHADOW_PATH_MAP; 10];
+        expected.extend([SHADOW_PATH_SH, SHADOW_PATH_SH, SHADOW_PATH_MAP]);
+        assert_eq!(paths, expected);
+        assert_eq!(shaded[12].first_shadow_view, 0);
+        assert_eq!(shaded[0].first_shadow_view, 1);
+        assert_eq!(shaded[9].first_shadow_view, 55);
     }
 
     #[test]

@@ -2,7 +2,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
-use super::blocker_overlay::draw_blockers;
+use super::blocker_overlay::{draw_blockers, draw_meshes_without_spheres};
 use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::tool_bar;
 use super::history::{History, Step};
@@ -1007,6 +1007,14 @@ impl eframe::App for EditorApp {
                         let painter = ui.painter_at(response.rect);
                         let shown = self.blockers.shown_spheres(&document.hidden_objects);
                         draw_blockers(&painter, response.rect, &viewport.view(), &shown);
+                        draw_meshes_without_spheres(
+                            &painter,
+                            response.rect,
+                            &viewport.view(),
+                            &document.scene,
+                            &self.blockers,
+                            &document.hidden_objects,
+                        );
                     }
                     if self.preferences.show_light_markers {
                         let selected = match self.selection {

@@ -1,6 +1,7 @@
 //! The blocker overlay: every shadow sphere drawn over the viewport as the outline of its
 //! silhouette, so an artist can see what casts the soft shadows and how well the sphere
-//! fit follows each mesh.
+//! fit follows each mesh; and, at each shown mesh that has no spheres, a label saying so
+//! and why (its shadows then come from the shadow maps alone).
 
 use super::viewport::screen_point;
 use crate::blockers::Sphere;
@@ -31,6 +32,32 @@ pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, sph
             continue;
         };
         painter.circle_stroke(center, radius, stroke);
+    }
+}
+
+/// Labels each shown object of `scene` that `blockers` gave no spheres with the reason,
+/// at its bounds' centre: such a mesh casts no soft (SH) shadow, only the shadow maps'.
+pub fn draw_meshes_without_spheres(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    view: &View,
+    scene: &crate::scene::Scene,
+    blockers: &crate::blockers::SceneBlockers,
+    hidden: &std::collections::BTreeSet<usize>,
+) {
+    let colour = egui::Color32::from_rgba_unmultiplied(90, 220, 255, 200);
+    let font = egui::FontId::proportional(11.0);
+    for (index, (object, set)) in scene.objects.iter().zip(&blockers.per_object).enumerate() {
+        let Some(reason) = set.skipped.as_deref().filter(|_| !hidden.contains(&index)) else {
+            continue;
+        };
+        let Some(at) = super::viewport::screen_point(view, rect, object.bounds().center()) else {
+            continue;
+        };
+        if rect.contains(at) {
+            let text = format!("{}: no soft-shadow spheres ({reason})", object.name);
+            painter.text(at, egui::Align2::CENTER_CENTER, text, font.clone(), colour);
+        }
     }
 }
 
