@@ -10,7 +10,6 @@ mod common;
 
 use common::thin_casters::*;
 use glam::Vec3;
-use lightpaint::reference::{ReferenceSettings, render_reference};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
 use lightpaint::scene::{Camera, Light, LightKind, Scene};
 use lightpaint::shading::{RenderSettings, ShadowSettings};
@@ -58,16 +57,7 @@ fn frame<'a>(
     settings: &'a RenderSettings,
     shadows: &'a ShadowSettings,
 ) -> ShadowFrame<'a> {
-    ShadowFrame {
-        scene,
-        camera,
-        settings,
-        shadows,
-        blockers: &[],
-        baked_indirect: None,
-        width: WIDTH,
-        height: HEIGHT,
-    }
+    frame_of(scene, camera, settings, shadows, (WIDTH, HEIGHT))
 }
 
 /// The twin's radiance (linear luma, [`linear_luma`]) at `FACTOR`² rays per pixel,
@@ -206,21 +196,7 @@ fn the_spots_shadows_match_the_path_tracer() {
         let gpu_image =
             render_logsh_image(&gpu, &frame(&scene, &camera, &settings, &mapped), AntiAliasing::None).expect("render");
         let lit = render_cpu_image(&gpu, &frame(&scene, &camera, &settings, &no_maps)).expect("CPU render");
-        let trace = |scene: &Scene| {
-            render_reference(
-                scene,
-                &camera,
-                WIDTH,
-                HEIGHT,
-                &ReferenceSettings {
-                    samples_per_pixel: 32,
-                    bounces: 0,
-                    seed: 7,
-                },
-                |_| {},
-            )
-            .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
-        };
+        let trace = |scene: &Scene| path_traced(scene, &camera, &settings, (WIDTH, HEIGHT), 32);
         let reference = trace(&scene);
         let floor = floor_only(spot.clone());
         let reference_floor = trace(&floor);

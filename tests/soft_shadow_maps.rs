@@ -9,7 +9,6 @@ mod common;
 
 use common::thin_casters::*;
 use glam::{Affine3A, Quat, Vec3};
-use lightpaint::reference::{ReferenceSettings, render_reference};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
 use lightpaint::scene::shapes::{self, ShapeMesh};
 use lightpaint::scene::{Camera, Light, LightKind, Scene};
@@ -78,16 +77,7 @@ fn frame<'a>(
     settings: &'a RenderSettings,
     shadows: &'a ShadowSettings,
 ) -> ShadowFrame<'a> {
-    ShadowFrame {
-        scene,
-        camera,
-        settings,
-        shadows,
-        blockers: &[],
-        baked_indirect: None,
-        width: WIDTH,
-        height: HEIGHT,
-    }
+    frame_of(scene, camera, settings, shadows, (WIDTH, HEIGHT))
 }
 
 fn mapped() -> ShadowSettings {
@@ -162,21 +152,7 @@ fn every_caster_casts_a_penumbra_under_small_sized_lights() {
             let gpu_floor = render_logsh_image(&gpu, &frame(&floor, &camera, &settings, &shadows), AntiAliasing::None)
                 .expect("GPU");
             let twin_floor = render_cpu_image(&gpu, &frame(&floor, &camera, &settings, &shadows)).expect("CPU");
-            let trace = |scene: &Scene| {
-                render_reference(
-                    scene,
-                    &camera,
-                    WIDTH,
-                    HEIGHT,
-                    &ReferenceSettings {
-                        samples_per_pixel: 64,
-                        bounces: 0,
-                        seed: 7,
-                    },
-                    |_| {},
-                )
-                .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
-            };
+            let trace = |scene: &Scene| path_traced(scene, &camera, &settings, (WIDTH, HEIGHT), 64);
             let (reference, reference_floor) = (trace(&scene), trace(&floor));
             let unshadowed = render_cpu_image(
                 &gpu,

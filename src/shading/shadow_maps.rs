@@ -346,6 +346,23 @@ mod tests {
         assert!(0.0 < near && near < far && far < 1.0, "{near} {far}");
     }
 
+    /// Every corner of `bounds` lands inside `view`'s clip volume.
+    fn assert_sees_every_corner(view: &GpuShadowView, bounds: &Aabb) {
+        for corner in 0..8 {
+            let pick = |bit: u32, lo: f32, hi: f32| if corner & bit == 0 { lo } else { hi };
+            let p = Vec3::new(
+                pick(1, bounds.min.x, bounds.max.x),
+                pick(2, bounds.min.y, bounds.max.y),
+                pick(4, bounds.min.z, bounds.max.z),
+            );
+            let q = clip(view, p);
+            assert!(
+                q.x.abs() <= 1.0 && q.y.abs() <= 1.0 && (0.0..=1.0).contains(&q.z),
+                "{p} → {q}"
+            );
+        }
+    }
+
     #[test]
     fn the_suns_view_covers_the_scene() {
         let light = mapped(
@@ -355,18 +372,7 @@ mod tests {
         );
         let bounds = Aabb::from_points(&[Vec3::new(-4.0, 0.0, -2.0), Vec3::new(4.0, 3.0, 2.0)]);
         let view = shadow_views(&[light], &bounds, 1024)[0];
-        for corner in 0..8 {
-            let p = Vec3::new(
-                if corner & 1 == 0 { -4.0 } else { 4.0 },
-                if corner & 2 == 0 { 0.0 } else { 3.0 },
-                if corner & 4 == 0 { -2.0 } else { 2.0 },
-            );
-            let q = clip(&view, p);
-            assert!(
-                q.x.abs() <= 1.0 && q.y.abs() <= 1.0 && (0.0..=1.0).contains(&q.z),
-                "{p} → {q}"
-            );
-        }
+        assert_sees_every_corner(&view, &bounds);
         // Nearer the sun is shallower.
         assert!(clip(&view, Vec3::new(0.0, 3.0, 0.0)).z < clip(&view, Vec3::ZERO).z);
     }
@@ -383,18 +389,7 @@ mod tests {
         let far = sun_like(Vec3::new(30.0, 60.0, -20.0));
         assert_eq!(far.shadow_view_count, 1);
         let view = shadow_views(&[far], &bounds, 1024)[0];
-        for corner in 0..8 {
-            let p = Vec3::new(
-                if corner & 1 == 0 { -4.0 } else { 4.0 },
-                if corner & 2 == 0 { 0.0 } else { 3.0 },
-                if corner & 4 == 0 { -2.0 } else { 2.0 },
-            );
-            let q = clip(&view, p);
-            assert!(
-                q.x.abs() <= 1.0 && q.y.abs() <= 1.0 && (0.0..=1.0).contains(&q.z),
-                "{p} → {q}"
-            );
-        }
+        assert_sees_every_corner(&view, &bounds);
         // Inside the scene's sphere: a cube.
         assert_eq!(sun_like(Vec3::new(3.0, 2.0, 1.0)).shadow_view_count, 6);
         // Too wide at the centre (a 1 m sphere 2 m away is 30° in radius): no maps.

@@ -425,7 +425,13 @@ impl SceneStudy<'_> {
     /// shading of the captured surfaces with no blockers (G = 1, the raster pass's
     /// shading exactly).
     fn unshadowed(&self) -> Result<image::RgbaImage, StudyError> {
-        let shadows = crate::shading::ShadowSettings::default();
+        // No shadow maps either: with them the f64 shading casts rays for the mapped
+        // lights, and this baseline (and the shadowed-pixel mask drawn from it) had the
+        // maps' shadows in it once maps were on by default.
+        let shadows = crate::shading::ShadowSettings {
+            shadow_map_size: 0,
+            ..crate::shading::ShadowSettings::default()
+        };
         let frame = ShadowFrame {
             baked_indirect: None,
             scene: self.scene,

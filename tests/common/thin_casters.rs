@@ -2,8 +2,10 @@
 //! by (tests/shadow_maps.rs, tests/soft_shadow_maps.rs).
 
 use glam::{Affine3A, Quat, Vec3, Vec4};
+use lightpaint::render::ShadowFrame;
 use lightpaint::scene::shapes::{self, ShapeMesh};
 use lightpaint::scene::{Camera, Light, LightKind, Material, Scene};
+use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 /// The floor alone under `light`: what each renderer's shadows are measured against.
 pub fn floor_only(light: Light) -> Scene {
@@ -197,4 +199,42 @@ pub fn save_for_review(name: &str, image: &image::RgbaImage) {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("shadow_maps");
     let _ = std::fs::create_dir_all(&dir);
     let _ = image.save(dir.join(format!("{name}.png")));
+}
+
+/// A frame of `scene` without sphere blockers (every shadow is the maps') at `size`.
+pub fn frame_of<'a>(
+    scene: &'a Scene,
+    camera: &'a Camera,
+    settings: &'a RenderSettings,
+    shadows: &'a ShadowSettings,
+    (width, height): (u32, u32),
+) -> ShadowFrame<'a> {
+    ShadowFrame {
+        scene,
+        camera,
+        settings,
+        shadows,
+        blockers: &[],
+        baked_indirect: None,
+        width,
+        height,
+    }
+}
+
+/// The path tracer's direct light of `scene` at `spp` samples per pixel, displayed as the
+/// renderer displays its frames.
+pub fn path_traced(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    (width, height): (u32, u32),
+    spp: u32,
+) -> image::RgbaImage {
+    let reference = lightpaint::reference::ReferenceSettings {
+        samples_per_pixel: spp,
+        bounces: 0,
+        seed: 7,
+    };
+    lightpaint::reference::render_reference(scene, camera, width, height, &reference, |_| {})
+        .to_srgb8(settings.exposure_ev as f64, settings.background_srgb8)
 }
