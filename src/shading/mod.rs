@@ -23,8 +23,8 @@ pub use color::{
     display_srgb8, displayed_radiance, linear_to_srgb, srgb_to_linear, tonemap_aces_fit, untonemap_aces_fit,
 };
 pub use light_paths::{
-    CompiledPaths, LightPathContext, SceneLighting, ShadowPath, compiled_paths, light_paths_at, paths_and_sizes_at,
-    shading_lights,
+    CompiledPaths, LightPathContext, SceneLighting, ShadowPath, compiled_paths, light_paths_at, path_reason,
+    paths_and_sizes_at, shading_lights,
 };
 pub use settings::{
     AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, DEFAULT_SHADOW_MAP_SIZE, LightPaths, MAX_EXACT_LIGHT_BUDGET,

@@ -62,14 +62,21 @@ impl EditorApp {
                     }
                 };
                 let (path, angle_deg) = paths[index];
+                // The choice is made at the scene's centre: its size there says why.
+                let centre = document.scene.bounds().center();
+                let gpu_light = crate::shading::gpu_types::GpuLight::new(&lights[index]);
+                let centre_deg = crate::shading::paths_and_sizes_at(&[gpu_light], centre)[0].1;
+                let reason = crate::shading::path_reason(path, gpu_light.source_size > 0.0, centre_deg, shadows);
                 let light = &mut document.scene.lights[index];
                 ui.heading(format!("Light: {}", light.name));
                 let distance = light.position.distance(pivot).max(0.1);
                 let edit = light_inspector(ui, light, distance);
                 ui.weak(format!(
-                    "shadow at the view's pivot: {} ({angle_deg:.1}° in radius)",
+                    "shadow: {} ({angle_deg:.1}° in radius at the view's pivot)",
                     path.words()
-                ));
+                ))
+                .on_hover_text(reason);
+                ui.weak(reason);
                 ui.checkbox(&mut self.preferences.show_heat_map, "heat map of where it reaches")
                     .on_hover_text(
                         "Colours the scene by the luminance this light adds at each vertex \
