@@ -15,6 +15,7 @@ mod light_paths;
 pub mod paint_estimate;
 mod settings;
 pub mod shadow_maps;
+mod shadow_path;
 pub mod terrain;
 pub mod wgsl;
 
@@ -22,15 +23,13 @@ pub use baked_indirect::BakedIndirect;
 pub use color::{
     display_srgb8, displayed_radiance, linear_to_srgb, srgb_to_linear, tonemap_aces_fit, untonemap_aces_fit,
 };
-pub use light_paths::{
-    CompiledPaths, LightPathContext, SceneLighting, ShadowPath, compiled_paths, light_paths_at, path_reason,
-    paths_and_sizes_at, shading_lights,
-};
+pub use light_paths::{CompiledPaths, LightPathContext, SceneLighting, compiled_paths, shading_lights};
 pub use settings::{
     AUTO_EXACT_BELOW_HALF_ANGLE_DEG, BrdfShading, DEFAULT_SHADOW_MAP_SIZE, LightPaths, MAX_EXACT_LIGHT_BUDGET,
     MAX_SHADING_DOWNSAMPLE, MAX_TERRAIN_AZIMUTHS, MAX_TERRAIN_LEVELS, SHADOW_MAP_SIZES, SUGGESTED_SHADOW_MAP_SIZE,
     ShadowSettings, TerrainShading, parse_exp_method,
 };
+pub use shadow_path::{ShadowPath, light_paths_at, path_reason, paths_and_sizes_at};
 
 /// Settings that change how a frame looks, not what the scene is.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
