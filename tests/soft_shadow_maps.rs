@@ -128,13 +128,13 @@ fn shadow_rms(a: &[Option<f64>], b: &[Option<f64>]) -> f64 {
 
 /// Each caster casts its shadow, penumbra included, where the path tracer (64 samples per
 /// pixel) puts it: the shadow's mass (the light it takes from the floor, linear) within
-/// 20 % of the path tracer's (measured 0.87–1.02, the lattice under the disk lowest: the
-/// filter's taps fall between its 2 cm bars), and the visibility over the shadowed floor,
-/// box-filtered over 3 × 3 pixels, within an RMS of 0.15 of it (measured 0.026–0.046
-/// under the 5° sphere and the disk, 0.053–0.115 under the far sun, whose nearly hard edges
-/// the maps place within a texel; the twin's own RMS against the path tracer, mostly the
-/// reference's noise, is 0.010–0.025). A vanished shadow has a mass near 0 and an RMS
-/// near its depth.
+/// 20 % of the path tracer's (measured 0.96–1.02 with 48 filter taps; 0.87 for the
+/// lattice under the disk with 32, whose taps fell between its 2 cm bars), and the
+/// visibility over the shadowed floor, box-filtered over 3 × 3 pixels, within an RMS of
+/// 0.15 of it (measured 0.015–0.043 under the 5° sphere and the disk, 0.053–0.114 under
+/// the far sun, whose nearly hard edges the maps place within a texel; the twin's own RMS
+/// against the path tracer, mostly the reference's noise, is 0.010–0.025). A vanished
+/// shadow has a mass near 0 and an RMS near its depth.
 #[test]
 fn every_caster_casts_a_penumbra_under_small_sized_lights() {
     let Some(gpu) = common::gpu() else { return };

@@ -87,7 +87,7 @@ fn the_gpu_matches_the_cpu_twin_on_the_terrain_sample() {
         &blockers,
     );
     eprintln!("defaults (shadow maps): {:.3} % within 2/255", 100.0 * within);
-    // Measured 98.6 %: the rest is where the filter's 32 taps and the texel grid place
+    // Measured 98.6 %: the rest is where the filter's 48 taps and the texel grid place
     // the stones' penumbrae apart from the 64 rays.
     assert!(within >= 0.97, "with shadow maps: {:.3} %", 100.0 * within);
 }

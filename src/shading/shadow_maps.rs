@@ -21,7 +21,7 @@
 //! are pushed toward the light and along their normal by about a texel against
 //! self-shadowing (acne). All three shrink with the map's size
 //! (`ShadowSettings::shadow_map_size`). Sized lights add the penumbra filter's own
-//! approximations (one mean blocker depth per receiver, 32 taps; see the WGSL), which do
+//! approximations (one mean blocker depth per receiver, 48 taps; see the WGSL), which do
 //! not shrink with the size: the study's small-light suites measure them against the
 //! path tracer.
 
