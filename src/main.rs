@@ -26,8 +26,27 @@ fn prefer_two_rasterizer_threads_per_core() {
     }
 }
 
+/// Gives a run without a usable XDG_RUNTIME_DIR (a headless session: CI, ssh, a
+/// container) a private one for its lifetime: the Vulkan loader's window-system layer
+/// asks for it while wgpu starts, and without it every headless command printed
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment" twice, which is
+/// not an error of ours. The directory is removed when the returned guard drops.
+fn private_runtime_dir_if_missing() -> Option<tempfile::TempDir> {
+    const VARIABLE: &str = "XDG_RUNTIME_DIR";
+    let usable = std::env::var_os(VARIABLE).is_some_and(|dir| std::path::Path::new(&dir).is_dir());
+    if usable {
+        return None;
+    }
+    // tempfile creates it readable by this user only, as the variable's spec asks.
+    let dir = tempfile::Builder::new().prefix("lightpaint-runtime-").tempdir().ok()?;
+    // SAFETY: called at the start of main, while this is the process's only thread.
+    unsafe { std::env::set_var(VARIABLE, dir.path()) };
+    Some(dir)
+}
+
 fn main() -> ExitCode {
     prefer_two_rasterizer_threads_per_core();
+    let _runtime_dir = private_runtime_dir_if_missing();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     lightpaint::panic_guard::install_quiet_panic_hook();
     let cli = Cli::parse();

@@ -296,6 +296,36 @@ fn a_closed_stdout_is_not_a_crash() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
+/// A headless session without XDG_RUNTIME_DIR (CI, ssh): `render` prints no complaint
+/// about it (the binary gives itself a private one) and leaves none behind.
+#[test]
+fn a_render_without_a_runtime_dir_says_nothing_about_it() {
+    if common::no_gpu_wanted() {
+        return;
+    }
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);
+    let out_dir = tempfile::tempdir().expect("temp dir");
+    let image = out_dir.path().join("frame.png");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lightpaint"))
+        .args([
+            OsStr::new("render"),
+            sample.as_os_str(),
+            OsStr::new("-o"),
+            image.as_os_str(),
+            OsStr::new("--width"),
+            OsStr::new("64"),
+            OsStr::new("--height"),
+            OsStr::new("36"),
+        ])
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .expect("the binary runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(image.is_file());
+    assert!(!stderr.contains("XDG_RUNTIME_DIR"), "{stderr}");
+}
+
 #[test]
 fn render_rejects_bad_shadow_settings_with_exit_code_2() {
     let sample = common::repo_path(lightpaint::samples::SAMPLE_PROJECT);

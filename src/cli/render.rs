@@ -90,9 +90,9 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
                 "no sphere blockers, so no soft shadows from: {}{}",
                 without.join("; "),
                 if shadows.shadow_map_size > 0 {
-                    " — their shadows of point, spot and sun lights come from the shadow maps"
+                    " — their shadows of the lights on shadow maps (points, spots, the sun, small sphere and area lights) come from those"
                 } else {
-                    " — without --shadow-map-size 0 the shadow maps give their shadows of point, spot and sun lights"
+                    " — shadow maps (--shadow-map-size, off here) would give their shadows of points, spots, the sun and small sphere and area lights"
                 }
             );
         }
