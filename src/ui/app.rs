@@ -55,8 +55,9 @@ pub struct EditorApp {
     /// An error waiting to be acknowledged in a window.
     pub(super) error: Option<String>,
     pub(super) options: EditorOptions,
-    pub(super) last_frame: Option<Instant>,
-    pub(super) frame_ms: f32,
+    pub(super) frame_clock: super::frame_clock::FrameClock,
+    /// The window's title as last sent (sent again only when it changes).
+    window_title: String,
     pub(super) first_frame_reported: bool,
     /// The document's painting state (None without a document).
     pub(super) painting: Option<Painting>,
@@ -113,8 +114,8 @@ impl EditorApp {
             message: String::new(),
             error: None,
             options: options.clone(),
-            last_frame: None,
-            frame_ms: 0.0,
+            frame_clock: Default::default(),
+            window_title: String::new(),
             first_frame_reported: false,
             painting: None,
             brush_input: BrushInput::default(),
@@ -844,14 +845,17 @@ impl EditorApp {
         egui::Panel::bottom("status").show(ui, |ui| {
             ui.horizontal(|ui| {
                 if !self.options.hide_frame_timings {
-                    let fps = if self.frame_ms > 0.0 {
-                        1000.0 / self.frame_ms
-                    } else {
-                        0.0
+                    let rate = match self.frame_clock.ms_per_frame() {
+                        Some(ms) => format!("{:.0} fps ({ms:.1} ms)", 1000.0 / ms.max(1e-3)),
+                        None => "– fps".to_string(),
                     };
-                    ui.label(format!("{fps:.0} fps ({:.1} ms)", self.frame_ms));
+                    ui.label(rate).on_hover_text(
+                        "Frames per second while the view redraws (orbiting, painting, dragging); \
+                         the editor at rest draws nothing and is not counted",
+                    );
                     if let Some(viewport) = &self.viewport {
-                        ui.label(format!("scene {:.1} ms", viewport.last_render_ms));
+                        ui.label(format!("3D view {:.1} ms", viewport.last_render_ms))
+                            .on_hover_text("Time the last frame spent drawing the 3D view (shadows and shading)");
                     }
                     ui.separator();
                 }
@@ -942,17 +946,25 @@ impl EditorApp {
     }
 
     fn track_frame_time(&mut self) {
-        let now = Instant::now();
-        if let Some(last) = self.last_frame {
-            let ms = (now - last).as_secs_f32() * 1000.0;
-            // Exponential smoothing keeps the readout legible.
-            self.frame_ms = if self.frame_ms == 0.0 {
-                ms
-            } else {
-                0.9 * self.frame_ms + 0.1 * ms
-            };
+        self.frame_clock.tick(Instant::now());
+    }
+
+    /// "NAME.lightpaint • — lightpaint" (the dot: unsaved changes), as window managers
+    /// and task bars show it.
+    fn update_window_title(&mut self, ctx: &egui::Context) {
+        let title = match &self.document {
+            Some(document) => {
+                let path = document.project_path.as_ref().unwrap_or(&document.scene_path);
+                let name = path.file_name().map_or("untitled".into(), |n| n.to_string_lossy());
+                let mark = if self.has_unsaved_changes() { " •" } else { "" };
+                format!("{name}{mark} — lightpaint")
+            }
+            None => "lightpaint".to_string(),
+        };
+        if title != self.window_title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.window_title = title;
         }
-        self.last_frame = Some(now);
     }
 
     fn scripted_close(&mut self, ctx: &egui::Context) {
@@ -971,6 +983,7 @@ impl eframe::App for EditorApp {
         self.track_frame_time();
         let render_state = frame.wgpu_render_state().cloned();
         let ctx = ui.ctx().clone();
+        self.update_window_title(&ctx);
         self.handle_shortcuts_and_drops(&ctx, render_state.as_ref());
         self.menu_bar(ui, render_state.as_ref());
         self.tool_bar(ui);
