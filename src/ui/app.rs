@@ -854,8 +854,11 @@ impl EditorApp {
                          the editor at rest draws nothing and is not counted",
                     );
                     if let Some(viewport) = &self.viewport {
-                        ui.label(format!("3D view {:.1} ms", viewport.last_render_ms))
-                            .on_hover_text("Time the last frame spent drawing the 3D view (shadows and shading)");
+                        ui.label(format!("3D view sent in {:.1} ms", viewport.last_render_ms))
+                            .on_hover_text(
+                                "CPU time the last frame took to prepare and submit the 3D view's drawing; \
+                                 the GPU's own time shows in the frame rate",
+                            );
                     }
                     ui.separator();
                 }
