@@ -132,6 +132,12 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
             assert!(rms.is_finite() && rms < 0.6, "{row:?}");
         }
     }
+    // The path tracer's samples per pixel to match the default frame's shadow error.
+    let equal_error = table
+        .lines()
+        .skip_while(|l| !l.starts_with("## Path tracing to the same shadow error"))
+        .find(|l| l.starts_with("| sample |"));
+    assert!(equal_error.is_some(), "the equal-error table has the sample: {table}");
     assert!(
         table.contains("## Stability at the extremes"),
         "the stability table is written"

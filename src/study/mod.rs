@@ -143,6 +143,22 @@ pub struct SceneReference {
     pub noise_rmse: f64,
 }
 
+/// How much path tracing matches the default frame's shadows: the fewest samples per
+/// pixel (a power of two) at which the path tracer's own image is as close to the
+/// converged reference over the shadowed pixels as the default real-time frame, and what
+/// that costs against the frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EqualError {
+    pub scene: String,
+    /// The default frame's shadowed-pixel RMSE.
+    pub frame_shadow_rmse: f64,
+    pub frame_ms: f64,
+    /// None: not reached within the largest count tried.
+    pub samples_per_pixel: Option<u32>,
+    /// Wall time of the path tracer at that count (all cores), ms.
+    pub trace_ms: f64,
+}
+
 /// Everything a study measured.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StudyResults {
@@ -159,6 +175,9 @@ pub struct StudyResults {
     pub sphere_fit: Vec<sphere_fit::SphereFitRow>,
     /// The shadow maps over the sphere-fit suite's meshes (no spheres needed).
     pub mesh_maps: Option<penumbra::PenumbraRow>,
+    /// Per scene: the path tracer's samples per pixel (and time) to match the default
+    /// frame's shadowed-pixel RMSE.
+    pub equal_error: Vec<EqualError>,
     /// ms per frame of 8 small lights and 50 blockers, by path, at `cost_size`² pixels.
     pub eight_light_cost: Vec<(crate::shading::LightPaths, f64)>,
     pub cost_size: u32,
@@ -192,6 +211,7 @@ pub fn run_study(
         penumbrae: Vec::new(),
         sphere_fit: Vec::new(),
         mesh_maps: None,
+        equal_error: Vec::new(),
         eight_light_cost: Vec::new(),
         cost_size: if options.quick { 128 } else { 540 },
     };
@@ -241,9 +261,37 @@ pub fn run_study(
             direct: &references[0],
             gi: references.get(1),
         };
-        results
-            .rows
-            .extend(scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?);
+        let rows = scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?;
+        let defaults = Some(ShadowSettings::default().every_pixel());
+        let default_row = rows.iter().find(|r| {
+            r.knobs.shadows == defaults
+                && r.knobs.blockers == document.settings.blockers.budget
+                && r.knobs.lighting == Lighting::Direct
+        });
+        if let Some(row) = default_row
+            && let Some(target) = row.errors.shadow_rmse
+        {
+            let max_spp = if options.quick { 64 } else { options.reference_spp() / 4 };
+            let (spp, trace_ms) = scene_study.equal_error_spp(references.direct, target, max_spp);
+            let entry = EqualError {
+                scene: sample.name().into(),
+                frame_shadow_rmse: target,
+                frame_ms: row.ms_per_frame,
+                samples_per_pixel: spp,
+                trace_ms,
+            };
+            say(&format!(
+                "{}: the path tracer matches the default frame's shadow RMSE {:.4} at {} spp in {:.0} ms ({:.1}× the frame's {:.1} ms)",
+                entry.scene,
+                target,
+                spp.map_or(format!("over {max_spp}"), |n| n.to_string()),
+                trace_ms,
+                trace_ms / row.ms_per_frame.max(1e-3),
+                row.ms_per_frame
+            ));
+            results.equal_error.push(entry);
+        }
+        results.rows.extend(rows);
     }
     if !options.runs_suites() {
         report::write_all(&results, &options.output_dir)?;
@@ -362,6 +410,43 @@ impl SceneStudy<'_> {
             ..a
         };
         (display(&mean), noise)
+    }
+
+    /// The fewest samples per pixel (1, 2, 4, … up to `max_spp`) at which an independent
+    /// path-traced image of direct light comes within `target` shadowed-pixel RMSE of
+    /// `reference` (the mask as the grid's rows use), and the wall time its passes took to
+    /// get there; None and the time of `max_spp` when it never does.
+    fn equal_error_spp(&self, reference: &image::RgbaImage, target: f64, max_spp: u32) -> (Option<u32>, f64) {
+        let reference_display = DisplayImage::from_rgba8(reference);
+        let shadowed = match self.unshadowed() {
+            Ok(unshadowed) => shadow_mask(&reference_display, &DisplayImage::from_rgba8(&unshadowed)),
+            Err(_) => return (None, 0.0),
+        };
+        let hits: Vec<Option<SurfaceHit>> = self.surfaces.iter().map(|s| s.as_ref().map(surface_hit)).collect();
+        let mut render = ProgressiveRender::from_surfaces(self.scene, hits, self.camera.position, self.width, 0, 3);
+        // Only the passes count, not the checks between them.
+        let mut tracing = std::time::Duration::ZERO;
+        let mut spp = 0;
+        let mut next_check = 1;
+        while spp < max_spp.max(1) {
+            let started = Instant::now();
+            render.run_pass();
+            tracing += started.elapsed();
+            spp += 1;
+            if spp < next_check {
+                continue;
+            }
+            next_check *= 2;
+            let elapsed_ms = tracing.as_secs_f64() * 1000.0;
+            let image = render
+                .image()
+                .to_srgb8(self.settings.exposure_ev as f64, self.settings.background_srgb8);
+            let errors = image_errors(&DisplayImage::from_rgba8(&image), &reference_display, &shadowed);
+            if errors.shadow_rmse.is_some_and(|e| e <= target) {
+                return (Some(spp), elapsed_ms);
+            }
+        }
+        (None, tracing.as_secs_f64() * 1000.0)
     }
 
     fn measure_grid(

@@ -127,9 +127,37 @@ fn markdown(results: &StudyResults) -> String {
             );
         }
     }
+    text.push_str(&equal_error_markdown(results));
     text.push_str(&penumbra_markdown(results));
     text.push_str(&sphere_fit_markdown(results));
     text.push_str(&stability_markdown(results));
+    text
+}
+
+/// Per scene: the path tracer's samples per pixel to match the default frame's shadows.
+fn equal_error_markdown(results: &StudyResults) -> String {
+    if results.equal_error.is_empty() {
+        return String::new();
+    }
+    let mut text = String::from(
+        "\n## Path tracing to the same shadow error\n\nThe fewest samples per pixel (powers of \
+         two) at which an independent path-traced image of direct light is as close to the \
+         converged reference over the shadowed pixels as the default real-time frame, and \
+         its tracing time (all cores) against the frame's.\n\n| scene | frame shadow RMSE | \
+         frame ms | path tracer spp | path tracer ms | ratio |\n|---|---:|---:|---:|---:|---:|\n",
+    );
+    for e in &results.equal_error {
+        let _ = writeln!(
+            text,
+            "| {} | {:.4} | {:.1} | {} | {:.0} | {:.1}× |",
+            e.scene,
+            e.frame_shadow_rmse,
+            e.frame_ms,
+            e.samples_per_pixel.map_or("not reached".into(), |n| n.to_string()),
+            e.trace_ms,
+            e.trace_ms / e.frame_ms.max(1e-3)
+        );
+    }
     text
 }
 
