@@ -16,7 +16,7 @@ override SHADOW_MAPS: bool = true;
 override SOFT_SHADOW_MAPS: bool = true;
 
 // Taps of the blocker search and of the penumbra filter each (a Vogel spiral:
-// shadow_maps::vogel_point). 48 against 32 took the study's meshes under a 5° light
+// shading::cpu::vogel_point). 48 against 32 took the study's meshes under a 5° light
 // from penumbra RMS 0.044 to 0.031 (docs/speed-accuracy.md) for 7 % more on the
 // terrain sample's frame.
 const PENUMBRA_TAPS: u32 = 48u;
@@ -38,7 +38,7 @@ const PLANE_SLACK: f32 = 0.1;
 // offset reads, tried against tests/shadow_maps.rs, lost much of the shadow of bars a
 // few texels wide, so hard edges stay one texel soft. A sphere or area light:
 // soft_shadow_map_visibility. Outside its views a light is unshadowed. shading::cpu takes
-// the exact visibility by rays instead (shadow_maps::mapped_visibility), which this
+// the exact visibility by rays instead (shading::cpu::mapped_visibility), which this
 // approaches as the maps grow.
 fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
     if light.first_shadow_view == NO_SHADOW_VIEW {

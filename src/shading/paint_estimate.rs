@@ -9,9 +9,9 @@
 use glam::{DVec3, Vec3};
 
 use super::ShadowSettings;
+use super::cpu::mapped_visibility;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
-use super::shadow_maps::mapped_visibility;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{Transfer, VertexRef};

@@ -24,11 +24,13 @@
 //! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
 
 pub mod lobes;
+mod mapped;
 mod surface;
 mod visibility;
 
 use glam::DVec3;
 
+pub use mapped::{DISC_RAYS, GOLDEN_ANGLE_RAD, mapped_visibility, ray_visibility, vogel_point};
 pub use surface::{
     Incidence, SurfacePoint, direct_lobes, direct_radiance, environment_irradiance_at, environment_radiance, incidence,
     mirrored_view,
@@ -39,7 +41,6 @@ use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
-use crate::shading::shadow_maps::mapped_visibility;
 use crate::terrain::TerrainShadow;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
 use visibility::exp_for_shading;
@@ -59,7 +60,7 @@ pub struct ShadingInputs<'a> {
     /// ramp over one pixel's width; 0 leaves them hard.
     pub pixel_angle_rad: f64,
     /// The scene's triangles, which shadow the lights on the shadow-map path by ray casts
-    /// (`shadow_maps::ray_visibility`, what the maps converge to); None: those lights
+    /// (`mapped_visibility`, what the maps converge to); None: those lights
     /// are unshadowed.
     pub occluders: Option<&'a SceneBvh>,
 }
