@@ -296,6 +296,19 @@ fn a_closed_stdout_is_not_a_crash() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
+/// A glTF without lights is no problem for `check` (the editor opens it): exit 0, with
+/// a note that says so.
+#[test]
+fn check_notes_a_scene_without_lights_and_passes_it() {
+    let file = common::repo_path("tests/corpus/no-lights.glb");
+    let out = common::run_lightpaint(&[OsStr::new("check"), file.as_os_str()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stdout.contains("no lights yet"), "{stdout}");
+    assert!(stdout.contains(": ok"), "{stdout}");
+}
+
 /// A headless session without XDG_RUNTIME_DIR (CI, ssh): `render` prints no complaint
 /// about it (the binary gives itself a private one) and leaves none behind.
 #[test]

@@ -35,6 +35,13 @@ pub fn check(file: &Path) -> Result<(), CliError> {
         scene.lights.len(),
         if scene.camera.is_some() { "camera" } else { "no camera" }
     );
+    if scene.lights.is_empty() {
+        // Not a problem: the editor opens it and lights are added there.
+        say!(
+            "note: {}: the scene has no lights yet (add some in the editor)",
+            file.display()
+        );
+    }
     if document.warnings.is_empty() {
         say!("{}: ok", file.display());
         Ok(())

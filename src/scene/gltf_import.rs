@@ -148,9 +148,6 @@ impl Importer<'_> {
             }
             None => self.warn("the file has no scene; nothing to show".to_string()),
         }
-        if self.scene.lights.is_empty() {
-            self.warn("the scene has no lights: add some in the editor".to_string());
-        }
         Ok(self.scene)
     }
 

@@ -241,10 +241,13 @@ impl EditorApp {
     fn install(&mut self, document: Document, what: &str, render_state: Option<&egui_wgpu::RenderState>) {
         let scene = &document.scene;
         self.message = format!(
-            "{what} — {} objects, {} vertices, {} lights{}",
+            "{what} — {} objects, {} vertices, {}{}",
             scene.objects.len(),
             scene.vertex_count(),
-            scene.lights.len(),
+            match scene.lights.len() {
+                0 => "no lights yet: Add light in the outliner".to_string(),
+                n => format!("{n} lights"),
+            },
             if document.warnings.is_empty() {
                 String::new()
             } else {
