@@ -124,7 +124,7 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
         let up_for = |forward: Vec3| if forward.y.abs() > 0.9 { Vec3::X } else { Vec3::Y };
         match (light.kind, count) {
             (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, size),
-            (LIGHT_SPOT, 1) => {
+            (LIGHT_SPOT, 1) if single_view_spot(light) => {
                 let half_angle = light.spot_cone[0].clamp(-1.0, 1.0).acos();
                 views[first] = perspective_view(
                     position,
@@ -328,6 +328,23 @@ mod tests {
         assert_eq!(far.shadow_view_count, 1);
         let view = shadow_views(&[far], &bounds, 1024)[0];
         assert_sees_every_corner(&view, &bounds);
+        // A spot wider than 60° that far out: one view aimed at the scene, not its cone.
+        let mut wide_spot = mapped(
+            crate::scene::LightKind::Spot {
+                inner_cone_rad: 1.0,
+                outer_cone_rad: 1.3,
+            },
+            Vec3::new(30.0, 60.0, -20.0),
+            Vec3::new(-0.4, -0.8, 0.3).normalize(),
+        );
+        wide_spot.shadow_view_count = view_count(&wide_spot, centre, radius).unwrap_or(0) as u32;
+        assert_eq!(wide_spot.shadow_view_count, 1);
+        let spot_view = shadow_views(&[wide_spot], &bounds, 1024)[0];
+        assert_sees_every_corner(&spot_view, &bounds);
+        assert!(
+            spot_view.texel[0] < view.texel[0] * 1.01,
+            "no coarser than the fitted view"
+        );
         // Inside the scene's sphere: a cube.
         assert_eq!(sun_like(Vec3::new(3.0, 2.0, 1.0)).shadow_view_count, 6);
         // Too wide at the centre (a 1 m sphere 2 m away is 30° in radius): no maps.
