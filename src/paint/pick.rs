@@ -67,13 +67,7 @@ impl View {
         }
         let mut min = Vec2::splat(f32::INFINITY);
         let mut max = Vec2::splat(f32::NEG_INFINITY);
-        for corner in 0..8 {
-            let pick = |bit: u32, lo: f32, hi: f32| if corner & bit == 0 { lo } else { hi };
-            let p = Vec3::new(
-                pick(1, bounds.min.x, bounds.max.x),
-                pick(2, bounds.min.y, bounds.max.y),
-                pick(4, bounds.min.z, bounds.max.z),
-            );
+        for p in bounds.corners() {
             let Some(q) = self.project(p) else { return true };
             min = min.min(q);
             max = max.max(q);

@@ -51,6 +51,18 @@ impl Aabb {
             0.5 * (self.max - self.min).length()
         }
     }
+
+    /// The eight corners, corner k taking max along x, y, z where bits 0, 1, 2 of k are set.
+    pub fn corners(&self) -> [Vec3; 8] {
+        std::array::from_fn(|k| {
+            let pick = |bit: usize, lo: f32, hi: f32| if k & bit == 0 { lo } else { hi };
+            Vec3::new(
+                pick(1, self.min.x, self.max.x),
+                pick(2, self.min.y, self.max.y),
+                pick(4, self.min.z, self.max.z),
+            )
+        })
+    }
 }
 
 #[cfg(test)]
@@ -64,5 +76,10 @@ mod tests {
         assert!(Aabb::EMPTY.is_empty());
         assert_eq!(b.center(), Vec3::new(0.0, 1.0, 4.0));
         assert!((b.radius() - (4.0f32 + 4.0 + 4.0).sqrt() / 2.0).abs() < 1e-6);
+        let corners = b.corners();
+        assert_eq!(corners[0], b.min);
+        assert_eq!(corners[7], b.max);
+        assert_eq!(corners[5], Vec3::new(1.0, 0.0, 5.0));
+        assert_eq!(Aabb::from_points(&corners), b);
     }
 }

@@ -159,8 +159,7 @@ pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
     if bounds.is_empty() {
         return (Vec3::ZERO, 1.0);
     }
-    let centre = bounds.center();
-    (centre, ((bounds.max - bounds.min).length() * 0.5).max(1e-3))
+    (bounds.center(), bounds.radius().max(1e-3))
 }
 
 /// A perspective view from `eye` along `forward` whose half-width is `tan_half` (at unit
@@ -286,13 +285,7 @@ mod tests {
 
     /// Every corner of `bounds` lands inside `view`'s clip volume.
     fn assert_sees_every_corner(view: &GpuShadowView, bounds: &Aabb) {
-        for corner in 0..8 {
-            let pick = |bit: u32, lo: f32, hi: f32| if corner & bit == 0 { lo } else { hi };
-            let p = Vec3::new(
-                pick(1, bounds.min.x, bounds.max.x),
-                pick(2, bounds.min.y, bounds.max.y),
-                pick(4, bounds.min.z, bounds.max.z),
-            );
+        for p in bounds.corners() {
             let q = clip(view, p);
             assert!(
                 q.x.abs() <= 1.0 && q.y.abs() <= 1.0 && (0.0..=1.0).contains(&q.z),
