@@ -229,13 +229,18 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
     Ok(rows)
 }
 
-/// Mean GPU time of the shadow-map path's frames (no sphere blockers).
-fn maps_frame_ms(gpu: &GpuContext, scene: &Scene, camera: &Camera, size: u32, frames: u32) -> Result<f64, StudyError> {
-    let shadows = ShadowSettings {
+/// The shadow-map path as the suites measure it: Auto with 1024² maps, every pixel shaded.
+fn maps_settings() -> ShadowSettings {
+    ShadowSettings {
         light_paths: LightPaths::Auto,
         shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
         ..ShadowSettings::default().every_pixel()
-    };
+    }
+}
+
+/// Mean GPU time of the shadow-map path's frames (no sphere blockers).
+fn maps_frame_ms(gpu: &GpuContext, scene: &Scene, camera: &Camera, size: u32, frames: u32) -> Result<f64, StudyError> {
+    let shadows = maps_settings();
     frame_ms(gpu, scene, camera, &shadows, &[], size, frames)
 }
 
@@ -351,11 +356,7 @@ pub(super) fn compare_maps(
     size: u32,
 ) -> Result<PenumbraRow, StudyError> {
     let settings = RenderSettings::default();
-    let shadows = ShadowSettings {
-        light_paths: LightPaths::Auto,
-        shadow_map_size: crate::shading::SUGGESTED_SHADOW_MAP_SIZE,
-        ..ShadowSettings::default().every_pixel()
-    };
+    let shadows = maps_settings();
     let linear_luminance = |scene: &Scene| -> Result<Vec<f64>, StudyError> {
         let frame = ShadowFrame {
             scene,

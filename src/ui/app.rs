@@ -843,8 +843,7 @@ impl EditorApp {
         }
     }
 
-    fn status_bar(&mut self, ui: &mut egui::Ui) {
-        let unsaved = self.has_unsaved_changes();
+    fn status_bar(&mut self, ui: &mut egui::Ui, unsaved: bool) {
         egui::Panel::bottom("status").show(ui, |ui| {
             ui.horizontal(|ui| {
                 if !self.options.hide_frame_timings {
@@ -957,12 +956,12 @@ impl EditorApp {
 
     /// "NAME.lightpaint • — lightpaint" (the dot: unsaved changes), as window managers
     /// and task bars show it.
-    fn update_window_title(&mut self, ctx: &egui::Context) {
+    fn update_window_title(&mut self, ctx: &egui::Context, unsaved: bool) {
         let title = match &self.document {
             Some(document) => {
                 let path = document.project_path.as_ref().unwrap_or(&document.scene_path);
                 let name = path.file_name().map_or("untitled".into(), |n| n.to_string_lossy());
-                let mark = if self.has_unsaved_changes() { " •" } else { "" };
+                let mark = if unsaved { " •" } else { "" };
                 format!("{name}{mark} — lightpaint")
             }
             None => "lightpaint".to_string(),
@@ -989,11 +988,13 @@ impl eframe::App for EditorApp {
         self.track_frame_time();
         let render_state = frame.wgpu_render_state().cloned();
         let ctx = ui.ctx().clone();
-        self.update_window_title(&ctx);
         self.handle_shortcuts_and_drops(&ctx, render_state.as_ref());
         self.menu_bar(ui, render_state.as_ref());
         self.tool_bar(ui);
-        self.status_bar(ui);
+        // Compared with the saved file once a frame, for the title and the status bar.
+        let unsaved = self.has_unsaved_changes();
+        self.update_window_title(&ctx, unsaved);
+        self.status_bar(ui, unsaved);
         if self.preferences.show_outliner {
             self.outliner(ui, render_state.as_ref());
         }
