@@ -78,6 +78,7 @@ fn scattered(scene: &Scene, count: usize) -> Vec<Sphere> {
             Sphere {
                 center: bounds.min + cell * spacing,
                 radius_m: 0.25 * spacing.min_element().max(0.02),
+                disc_normal: glam::Vec3::ZERO,
             }
         })
         .collect()

@@ -107,6 +107,9 @@ struct ShadowParams {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+    // k(s) at s = i/31, four to a vec4: the scale of a cap's log-visibility that keeps
+    // the light it blocks through the band limit (src/sh/cap_mass.rs; all 1 when off).
+    cap_mass_scale: array<vec4<f32>, 8>,
 };
 
 // Parameters of the reduced-resolution shading's upsampling (reduced_shading.wgsl).
@@ -152,12 +155,16 @@ struct BlockerGroup {
     influence_m: f32,
     first: u32,
     count: u32,
-    _pad0: u32,
+    // One sphere of the group's spheres' summed projected area, standing in for them
+    // beyond influence_m (src/shading/blocker_groups.rs).
+    stand_in_radius_m: f32,
 };
 
-// A spherical blocker: xyz = centre (world, metres), w = radius in metres.
+// A blocker: xyz = centre (world, metres), w = radius in metres; a sphere, or a flat disc
+// facing disc_normal.xyz when that is not zero (src/blockers/surface.rs).
 struct Blocker {
     center_radius: vec4<f32>,
+    disc_normal: vec4<f32>,
 };
 
 // A material, mapped from glTF metallic-roughness (see Material in src/scene/material.rs).

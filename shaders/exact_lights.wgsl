@@ -36,13 +36,12 @@ struct BlockerCap {
     counts: bool,
 };
 
-fn blocker_cap(b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> BlockerCap {
-    let offset = b.xyz - p;
-    let distance = sqrt(max(dot(offset, offset), 1e-30));
-    let ratio = b.w / distance;
-    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / b.w);
-    let counts = distance > b.w && ratio >= shadow.min_cap_ratio && horizon > 0.0;
-    return BlockerCap(offset / distance, distance, ratio, sqrt(max(1.0 - ratio * ratio, 0.0)), horizon, counts);
+fn blocker_cap(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> BlockerCap {
+    let seen = blocker_seen(b, p, n);
+    let ratio = max(seen.x, 0.0);
+    let counts = seen.x >= shadow.min_cap_ratio && seen.y > 0.0;
+    let direction = (b.center_radius.xyz - p) / seen.z;
+    return BlockerCap(direction, seen.z, ratio, sqrt(max(1.0 - ratio * ratio, 0.0)), seen.y, counts);
 }
 
 fn cos_to_lights(direction: vec3<f32>, batch: ExactBatch) -> vec4<f32> {
@@ -242,11 +241,11 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
             }
             let b = blocker_at(i);
             let cap = blocker_cap(b, p, n);
-            let tests_lo = cut_tests(cap, b.w, lo, half_footprint, covered_lo);
+            let tests_lo = cut_tests(cap, b.center_radius.w, lo, half_footprint, covered_lo);
             covered_lo = tests_lo.covered;
             add_cut(&list, batch_halves() * i, any(tests_lo.cuts));
             if EXACT_WIDE {
-                let tests_hi = cut_tests(cap, b.w, hi, half_footprint, covered_hi);
+                let tests_hi = cut_tests(cap, b.center_radius.w, hi, half_footprint, covered_hi);
                 covered_hi = tests_hi.covered;
                 add_cut(&list, 2u * i + 1u, any(tests_hi.cuts));
             }
@@ -266,7 +265,7 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
             select(lo.distance, hi.distance, upper),
         );
         let b = blocker_at(entry / batch_halves());
-        let visible = vec4<f32>(1.0) - hidden_by(blocker_cap(b, p, n), b.w, batch, half_footprint);
+        let visible = vec4<f32>(1.0) - hidden_by(blocker_cap(b, p, n), b.center_radius.w, batch, half_footprint);
         visible_lo *= select(visible, vec4<f32>(1.0), upper);
         visible_hi *= select(vec4<f32>(1.0), visible, upper);
     }

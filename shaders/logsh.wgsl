@@ -30,16 +30,41 @@ override BLOCKER_OVERFLOW: bool = true;
 
 // A sphere around every receiver, which every test skips as one containing its receiver
 // (its radius squared overflows to infinity): what blockers past the capacity read as.
-const NO_BLOCKER: vec4<f32> = vec4<f32>(0.0, 0.0, 0.0, 1e30);
+const NO_BLOCKER: Blocker = Blocker(vec4<f32>(0.0, 0.0, 0.0, 1e30), vec4<f32>(0.0));
 
-// Blocker i's centre (xyz) and radius (w).
-fn blocker_at(i: u32) -> vec4<f32> {
+// Blocker i.
+fn blocker_at(i: u32) -> Blocker {
     if BLOCKER_OVERFLOW {
         if i >= UNIFORM_BLOCKER_CAPACITY {
-            return every_blocker[i].center_radius;
+            return every_blocker[i];
         }
     }
-    return select(blockers[min(i, UNIFORM_BLOCKER_CAPACITY - 1u)].center_radius, NO_BLOCKER, i >= UNIFORM_BLOCKER_CAPACITY);
+    if i >= UNIFORM_BLOCKER_CAPACITY {
+        return NO_BLOCKER;
+    }
+    return blockers[min(i, UNIFORM_BLOCKER_CAPACITY - 1u)];
+}
+
+// Blocker b as a receiver at p with unit normal n sees it (blockers::Sphere::cap_from is
+// the f64 twin): x = sin of its cap's angular radius — r/d for a sphere; for a disc the
+// cap r′/√(d² + r′²), r′ = r·√|cos θ| to its normal, exact on its axis and of its solid
+// angle far away — or −1 for a sphere containing p; y = the fade below the tangent plane,
+// smoothstep(−1, 1, (c − p)·n / h), h the blocker's half-extent along n; z = distance.
+fn blocker_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let offset = b.center_radius.xyz - p;
+    let distance2 = dot(offset, offset);
+    let distance = sqrt(max(distance2, 1e-30));
+    let radius = b.center_radius.w;
+    let normal = b.disc_normal.xyz;
+    if dot(normal, normal) > 0.0 {
+        let seen_radius2 = radius * radius * abs(dot(offset, normal)) / distance;
+        let ratio = sqrt(seen_radius2 / max(distance2 + seen_radius2, 1e-30));
+        let tilt = sqrt(max(1.0 - dot(n, normal) * dot(n, normal), 0.0));
+        let half_extent = radius * max(tilt, 1e-4);
+        return vec3<f32>(ratio, smoothstep(-1.0, 1.0, dot(offset, n) / half_extent), distance);
+    }
+    let ratio = select(radius / distance, -1.0, distance2 <= radius * radius);
+    return vec3<f32>(ratio, smoothstep(-1.0, 1.0, dot(offset, n) / radius), distance);
 }
 
 // Blocker group g.
@@ -65,13 +90,22 @@ struct BlockerWalk {
     passing: u32,
     next: u32,
     end: u32,
+    // The receiver, and the weight of the current group's blockers there:
+    // 1 − stand_in_share (log_visibility's walk; the exact path ignores it).
+    receiver: vec3<f32>,
+    weight: f32,
 };
 
 // No blocker left to walk.
 const WALK_DONE: u32 = 0xffffffffu;
 
 fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u);
+    return BlockerWalk(first_group, passing, 0u, 0u, vec3<f32>(0.0), 1.0);
+}
+
+// A walk that weighs each group's blockers at receiver p.
+fn blocker_walk_at(first_group: u32, passing: u32, p: vec3<f32>) -> BlockerWalk {
+    return BlockerWalk(first_group, passing, 0u, 0u, p, 1.0);
 }
 
 // The index of the walk's next blocker, or WALK_DONE.
@@ -84,6 +118,7 @@ fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
         (*walk).passing &= (*walk).passing - 1u;
         (*walk).next = group.first;
         (*walk).end = group.first + group.count;
+        (*walk).weight = 1.0 - stand_in_share(group, (*walk).receiver);
     }
     (*walk).next += 1u;
     return (*walk).next - 1u;
@@ -111,13 +146,13 @@ override SH_VISIBILITY: bool = true;
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
     for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
-        var walk = blocker_walk(chunk, groups_in_reach(chunk, p, n));
+        var walk = blocker_walk_at(chunk, groups_in_reach(chunk, p, n, &f), p);
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {
                 break;
             }
-            f = add_blocker(f, blocker_at(i), p, n);
+            f = add_blocker(f, blocker_at(i), p, n, walk.weight);
         }
     }
     return sh_sum(f, terrain_log_visibility(p));
@@ -132,38 +167,77 @@ fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
         && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
 }
 
-// The groups chunk..chunk + WALK_GROUPS − 1 in reach of p (as BlockerWalk bits).
-fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>) -> u32 {
+// The groups chunk..chunk + WALK_GROUPS − 1 in reach of p (as BlockerWalk bits). Each
+// group adds its stand-in to *f, weighed by its share at p (add_stand_in).
+fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>) -> u32 {
     var passing = 0u;
     for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
-        if group_in_reach(group_at(g), p, n) {
+        let group = group_at(g);
+        if group_in_reach(group, p, n) {
             passing |= 1u << (g - chunk);
         }
+        *f = add_stand_in(*f, group, p, n);
     }
     return passing;
 }
 
-fn add_blocker(f: Sh, b: vec4<f32>, p: vec3<f32>, n: vec3<f32>) -> Sh {
-    let offset = b.xyz - p;
-    let distance2 = dot(offset, offset);
-    let radius = b.w;
-    if distance2 <= radius * radius {
+// How much of a group's shadow at p its stand-in carries (blocker_groups.rs): 0 within
+// half its influence distance, 1 beyond it, smoothly between, where its blockers are
+// weighed 1 − share — so no ring shows where one takes over from the other; 0 for groups
+// without a stand-in (those with a disc).
+fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
+    if group.stand_in_radius_m <= 0.0 {
+        return 0.0;
+    }
+    return smoothstep(0.5 * group.influence_m, group.influence_m, distance(group.center_extent.xyz, p));
+}
+
+// A group's stand-in, one sphere of its spheres' summed projected area at its centre,
+// weighed by stand_in_share and faded below the tangent plane over the group's extent.
+fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> Sh {
+    let share = stand_in_share(group, p);
+    let offset = group.center_extent.xyz - p;
+    let distance = sqrt(max(dot(offset, offset), 1e-30));
+    let ratio = group.stand_in_radius_m / distance;
+    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / max(group.center_extent.w, 1e-30));
+    if share <= 0.0 || ratio < shadow.min_cap_ratio || horizon <= 0.0 || group.count == 0u {
         return f;
     }
-    let distance = sqrt(distance2);
-    let ratio = radius / distance;
-    // Fades out a blocker as it sinks below the tangent plane (0 once wholly below):
-    // a sphere straddling the surface it approximates would otherwise darken its own
-    // receivers in blotches where they leave it.
-    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / radius);
-    if ratio < shadow.min_cap_ratio || horizon <= 0.0 {
-        return f;
-    }
-    var scale = shadow.ln_epsilon * horizon;
+    var scale = shadow.ln_epsilon * horizon * share * cap_mass_scale(ratio);
     if shadow.ratio_attenuation != 0u {
         scale *= ratio;
     }
     return sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
+}
+
+// k(s): the scale of a cap's log-visibility that keeps the light it blocks through the
+// band limit, linearly interpolated in shadow.cap_mass_scale (sh::interpolate_cap_mass_scale).
+fn cap_mass_scale(s: f32) -> f32 {
+    let t = clamp(s, 0.0, 1.0) * 31.0;
+    let i = min(u32(t), 30u);
+    let a = t - f32(i);
+    let j = i + 1u;
+    return mix(shadow.cap_mass_scale[i / 4u][i % 4u], shadow.cap_mass_scale[j / 4u][j % 4u], a);
+}
+
+// Blocker b's log-visibility at p, times `weight` (its group's 1 − stand_in_share).
+fn add_blocker(f: Sh, b: Blocker, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
+    // The fade out below the tangent plane keeps a sphere straddling the surface it
+    // approximates from darkening its own receivers in blotches where they leave it.
+    let seen = blocker_seen(b, p, n);
+    let ratio = seen.x;
+    let horizon = seen.y;
+    if ratio < shadow.min_cap_ratio || horizon <= 0.0 {
+        return f;
+    }
+    var scale = shadow.ln_epsilon * horizon * weight * cap_mass_scale(ratio);
+    if weight <= 0.0 {
+        return f;
+    }
+    if shadow.ratio_attenuation != 0u {
+        scale *= ratio;
+    }
+    return sh_add_zonal(f, sh_cap_zh(ratio), scale, (b.center_radius.xyz - p) / seen.z);
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'

@@ -156,6 +156,7 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
         .map(|k| Sphere {
             center: Vec3::new(-0.25 + 0.1 * (k % 6) as f32, 0.8, -0.2 + 0.1 * (k / 6) as f32),
             radius_m: 0.06,
+            disc_normal: glam::Vec3::ZERO,
         })
         .collect();
     let camera = Camera {
@@ -222,6 +223,7 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
     let ball = Sphere {
         center: Vec3::new(0.0, 1.0, 0.0),
         radius_m: 0.3,
+        disc_normal: glam::Vec3::ZERO,
     };
     let camera = Camera {
         position: Vec3::new(0.0, 6.0, 0.0),
@@ -289,6 +291,7 @@ fn the_f64_path_draws_the_exact_penumbra_of_a_ball() {
     let ball = [Sphere {
         center: Vec3::new(0.0, 1.0, 0.0),
         radius_m: 0.3,
+        disc_normal: glam::Vec3::ZERO,
     }];
     let light = DVec3::new(0.0, 3.0, 0.0);
     let mut last = 0.0;
@@ -320,6 +323,7 @@ fn a_point_lights_shadow_edge_ramps_over_about_one_pixel() {
     let ball = [Sphere {
         center: centre.as_vec3(),
         radius_m: radius as f32,
+        disc_normal: glam::Vec3::ZERO,
     }];
     let light = DVec3::new(0.0, 3.0, 0.0);
     // The cone from the light tangent to the ball meets the floor at this radius.

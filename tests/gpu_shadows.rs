@@ -170,10 +170,13 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     let ball = Sphere {
         center: Vec3::new(0.0, 0.5, 0.0),
         radius_m: 0.1,
+        disc_normal: glam::Vec3::ZERO,
     };
-    // The SH path's law (the exact path for small lights is tested below).
+    // The SH path's law, ln ε on the cap as Ren et al. state it (the exact path for small
+    // lights is tested below, the scale that keeps a cap's shadow mass in lightpaint::sh).
     let shadows = ShadowSettings {
         light_paths: lightpaint::shading::LightPaths::Harmonics,
+        preserve_shadow_mass: false,
         ..ShadowSettings::default().every_pixel()
     };
     let (width, height) = (101, 101);
@@ -293,8 +296,11 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
 }
 
 /// Per-vertex shading interpolates what per-pixel shading computes: on the studio, with
-/// soft order-4 shadows, the two frames barely differ, with the BRDF outside the SH and
-/// with it multiplied in per pixel (the product of the interpolated visibility).
+/// soft order-4 shadows, the two frames barely differ wherever the mesh has vertices to
+/// interpolate between — the figure and the 41 × 41 floor — with the BRDF outside the SH
+/// and with it multiplied in per pixel (the product of the interpolated visibility). The
+/// backdrop, two triangles a side, is left out: the floor's disc darkens its foot per
+/// pixel, and per vertex that darkening is spread from its corners over the whole wall.
 #[test]
 fn per_vertex_frames_look_like_per_pixel_frames() {
     let Some(gpu) = common::gpu() else { return };
@@ -318,15 +324,38 @@ fn per_vertex_frames_look_like_per_pixel_frames() {
         };
         render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("render")
     };
+    // The pixels whose surface lies on the figure or the floor (within their bounds).
+    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, 240, 135).expect("surfaces");
+    let dense: Vec<lightpaint::scene::Aabb> = scene
+        .objects
+        .iter()
+        .filter(|o| o.name != "Backdrop")
+        .map(|o| o.bounds())
+        .collect();
+    assert_eq!(dense.len() + 1, scene.objects.len(), "the studio has a backdrop");
+    let on_dense: Vec<bool> = surfaces
+        .iter()
+        .map(|s| {
+            s.is_some_and(|s| {
+                let p = s.position.as_vec3();
+                dense
+                    .iter()
+                    .any(|b| p.cmpge(b.min - Vec3::splat(1e-3)).all() && p.cmple(b.max + Vec3::splat(1e-3)).all())
+            })
+        })
+        .collect();
+    let counted = on_dense.iter().filter(|d| **d).count();
+    assert!(counted > 240 * 135 / 3, "{counted} pixels on the figure and the floor");
     for brdf in [BrdfShading::Separate, BrdfShading::Product] {
         let (per_pixel, per_vertex) = (render(false, brdf), render(true, brdf));
         save_for_review(&format!("studio-per-vertex-{brdf:?}"), &per_vertex);
         let close = per_pixel
             .pixels()
             .zip(per_vertex.pixels())
-            .filter(|(a, b)| (0..3).all(|c| a[c].abs_diff(b[c]) <= 4))
+            .zip(&on_dense)
+            .filter(|((a, b), dense)| **dense && (0..3).all(|c| a[c].abs_diff(b[c]) <= 4))
             .count();
-        let share = close as f64 / (240.0 * 135.0);
+        let share = close as f64 / counted as f64;
         eprintln!("{brdf:?}: {:.2} % of pixels within 4/255", 100.0 * share);
         assert!(share > 0.97, "{brdf:?}: {share}");
     }
@@ -384,6 +413,7 @@ fn lights_and_blockers_past_the_uniform_capacities_match_the_cpu_reference() {
                 -1.35 + 0.06 * (k / side) as f32,
             ),
             radius_m: 0.025,
+            disc_normal: glam::Vec3::ZERO,
         })
         .collect();
     assert!(blockers.len() > UNIFORM_BLOCKER_CAPACITY);

@@ -28,11 +28,14 @@ fn light(kind: LightKind, position: Vec3, intensity: f32) -> GpuLight {
     GpuLight::new(&common::scenes::white_light(kind, position, intensity))
 }
 
-/// The log-SH path for every light (these laws are the SH shading's; the exact path for
-/// small lights has its own tests in `lightpaint::penumbra`).
+/// The log-SH path for every light, each blocker's log-visibility ln ε on its cap as Ren
+/// et al. state it (these laws are the SH shading's; the exact path for small lights has
+/// its own tests in `lightpaint::penumbra`, the scale that keeps a cap's shadow mass its
+/// own in `lightpaint::sh` and tests/environment_shadows.rs).
 fn sh_path() -> ShadowSettings {
     ShadowSettings {
         light_paths: LightPaths::Harmonics,
+        preserve_shadow_mass: false,
         ..ShadowSettings::default()
     }
 }
@@ -69,6 +72,7 @@ fn ball_below_light() -> BallBelowLight {
         blocker: Sphere {
             center: Vec3::new(0.0, 1.5, 0.0),
             radius_m: 0.3,
+            disc_normal: glam::Vec3::ZERO,
         },
         lights: [light(LightKind::Point, Vec3::new(0.0, 3.0, 0.0), 9.0)],
         p: white_floor_point(DVec3::ZERO),
@@ -139,11 +143,13 @@ fn blockers_below_the_horizon_or_beyond_influence_leave_points_unshadowed() {
     let below = Sphere {
         center: Vec3::new(0.5, -0.6, 0.0),
         radius_m: 0.5,
+        disc_normal: glam::Vec3::ZERO,
     };
     // r/d = 0.3/20 is below the influence cut-off of 0.03.
     let far = Sphere {
         center: Vec3::new(20.0, 0.5, 0.0),
         radius_m: 0.3,
+        disc_normal: glam::Vec3::ZERO,
     };
     assert_eq!(shade(&p, &lights, &[below, far], &settings), open);
 }
@@ -215,6 +221,7 @@ fn scattered_blockers() -> Vec<Sphere> {
             Sphere {
                 center: Vec3::new(t.cos() * 0.8, 0.6 + 0.2 * (i % 3) as f32, t.sin() * 0.8),
                 radius_m: 0.15 + 0.03 * i as f32,
+                disc_normal: glam::Vec3::ZERO,
             }
         })
         .collect()

@@ -165,6 +165,7 @@ fn shadow_params_match_wgsl() {
             ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
             ("group_count", offset_of!(GpuShadowParams, group_count)),
+            ("cap_mass_scale", offset_of!(GpuShadowParams, cap_mass_scale)),
         ],
     );
 }
@@ -207,7 +208,10 @@ fn blocker_matches_wgsl() {
     assert_twin(
         "Blocker",
         size_of::<GpuBlocker>(),
-        &[("center_radius", offset_of!(GpuBlocker, center_radius))],
+        &[
+            ("center_radius", offset_of!(GpuBlocker, center_radius)),
+            ("disc_normal", offset_of!(GpuBlocker, disc_normal)),
+        ],
     );
 }
 
@@ -221,6 +225,7 @@ fn blocker_group_matches_wgsl() {
             ("influence_m", offset_of!(GpuBlockerGroup, influence_m)),
             ("first", offset_of!(GpuBlockerGroup, first)),
             ("count", offset_of!(GpuBlockerGroup, count)),
+            ("stand_in_radius_m", offset_of!(GpuBlockerGroup, stand_in_radius_m)),
         ],
     );
 }

@@ -43,7 +43,11 @@ pub fn fit_k(grid: &VoxelGrid, inside: &[IVec3], k: usize) -> (Vec<Sphere>, f32)
                 .min(grid.origin + grid.dims.as_vec3() * grid.cell_m - center)
                 .min_element();
             let max_radius = (3.0 * volume_radius).min(to_grid_edge);
-            best_radius(grid, &cluster, q as i32, center, max_radius).map(|radius_m| Sphere { center, radius_m })
+            best_radius(grid, &cluster, q as i32, center, max_radius).map(|radius_m| Sphere {
+                center,
+                radius_m,
+                disc_normal: glam::Vec3::ZERO,
+            })
         })
         .collect();
     let error = fit_error(grid, inside.len(), &spheres);
@@ -110,7 +114,7 @@ pub fn fit_error(grid: &VoxelGrid, inside_count: usize, spheres: &[Sphere]) -> f
     mismatched as f32 / inside_count as f32
 }
 
-fn nearest(centres: &[Vec3], p: Vec3) -> usize {
+pub(super) fn nearest(centres: &[Vec3], p: Vec3) -> usize {
     let mut best = (0, f32::INFINITY);
     for (i, c) in centres.iter().enumerate() {
         let d = c.distance_squared(p);
@@ -122,7 +126,7 @@ fn nearest(centres: &[Vec3], p: Vec3) -> usize {
 }
 
 /// k-means++ seeding with a fixed-seed generator, then Lloyd iterations.
-fn k_means(points: &[Vec3], k: usize) -> Vec<Vec3> {
+pub(super) fn k_means(points: &[Vec3], k: usize) -> Vec<Vec3> {
     if k == 0 || points.is_empty() {
         return Vec::new();
     }

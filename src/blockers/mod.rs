@@ -6,10 +6,12 @@
 //! the fit error — the volume where mesh and spheres disagree, over the mesh's volume — is
 //! within budget, so a ball gets one sphere and a figure dozens. Meshes with no inside (open
 //! surfaces, or thinner than a cell: floors, walls, cards) and meshes no sphere set fits
-//! within [`BlockerSettings::max_error`] cast no SH shadow; the report says why. Fits are
-//! cached in memory by a hash of the mesh and the settings.
+//! within [`BlockerSettings::max_error`] are fitted on their surface instead ([`surface`]:
+//! discs for planar patches, spheres for tubes and lattices); the report says which. Fits
+//! are cached in memory by a hash of the mesh and the settings.
 
 pub mod fit;
+pub mod surface;
 pub mod voxel;
 
 use std::collections::HashMap;
@@ -20,42 +22,90 @@ use glam::Vec3;
 use crate::scene::{MeshObject, Scene};
 use voxel::VoxelGrid;
 
-/// One spherical blocker in world space.
+/// One blocker in world space: a sphere, or — with a nonzero `disc_normal` — a flat disc of
+/// that radius facing `disc_normal`, the proxy of a planar patch of an open or thin mesh
+/// ([`surface`]).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sphere {
     pub center: Vec3,
     pub radius_m: f32,
+    /// Unit normal of a disc blocker; zero for a sphere.
+    #[serde(default)]
+    pub disc_normal: Vec3,
 }
 
-/// A sphere blocker's cap as a receiver sees it (`Sphere::cap_from`).
+/// A blocker's cap as a receiver sees it (`Sphere::cap_from`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockerCap {
-    /// Unit direction from the receiver to the sphere's centre.
+    /// Unit direction from the receiver to the blocker's centre.
     pub direction: glam::DVec3,
     pub distance_m: f64,
-    /// sin of the cap's angular radius, r/d.
+    /// sin of the cap's angular radius: r/d for a sphere; for a disc, that of the cap
+    /// of the disc's solid angle (see [`Sphere::cap_from`]).
     pub ratio: f64,
-    /// 1 above the receiver's tangent plane, fading smoothly to 0 as the sphere sinks
-    /// below it: smoothstep(−1, 1, (c − p)·n / r).
+    /// 1 above the receiver's tangent plane, fading smoothly to 0 as the blocker sinks
+    /// below it: smoothstep(−1, 1, (c − p)·n / h), h the blocker's half-extent along n.
     pub horizon: f64,
 }
 
 impl Sphere {
-    /// The cap this sphere covers in the sky of a receiver at `p` with unit normal `n`,
-    /// or None for the spheres every shadow path skips: one containing p (a sphere-fit
-    /// artefact on its own mesh), one too small in the sky (r/d < `min_cap_ratio`), and
-    /// one wholly below the tangent plane. The fade keeps a fitted sphere straddling its
-    /// own surface from darkening its receivers in blotches (a hard cut leaves them).
+    /// A sphere blocker.
+    pub fn ball(center: Vec3, radius_m: f32) -> Sphere {
+        Sphere {
+            center,
+            radius_m,
+            disc_normal: Vec3::ZERO,
+        }
+    }
+
+    /// A disc blocker of radius `radius_m` facing `normal` (normalised here).
+    pub fn disc(center: Vec3, radius_m: f32, normal: Vec3) -> Sphere {
+        Sphere {
+            center,
+            radius_m,
+            disc_normal: normal.normalize_or_zero(),
+        }
+    }
+
+    pub fn is_disc(&self) -> bool {
+        self.disc_normal != Vec3::ZERO
+    }
+
+    /// The cap this blocker covers in the sky of a receiver at `p` with unit normal `n`,
+    /// or None for the blockers every shadow path skips: a sphere containing p (a
+    /// sphere-fit artefact on its own mesh), a blocker too small in the sky (sin of its
+    /// cap's radius < `min_cap_ratio`), and one wholly below the tangent plane. The fade
+    /// keeps a fitted sphere straddling its own surface from darkening its receivers in
+    /// blotches (a hard cut leaves them).
+    ///
+    /// A disc of radius r seen at distance d under an angle θ to its normal is taken as
+    /// the cap of sine r′/√(d² + r′²), r′ = r·√|cos θ|: exact on the disc's axis at any
+    /// distance, and of the disc's solid angle πr²|cos θ|/d² far away; a receiver in the
+    /// disc's plane (its own patch) sees nothing of it.
     pub fn cap_from(&self, p: glam::DVec3, n: glam::DVec3, min_cap_ratio: f64) -> Option<BlockerCap> {
         let offset = self.center.as_dvec3() - p;
         let radius = self.radius_m as f64;
         let distance2 = offset.length_squared();
-        if distance2 <= radius * radius {
-            return None;
-        }
+        let (ratio, half_extent) = if self.is_disc() {
+            if distance2 <= 0.0 {
+                return None;
+            }
+            let normal = self.disc_normal.as_dvec3();
+            let cos_view = offset.dot(normal).abs() / distance2.sqrt();
+            let seen_radius2 = radius * radius * cos_view;
+            let tilt2 = (1.0 - n.dot(normal).powi(2)).max(0.0);
+            (
+                (seen_radius2 / (distance2 + seen_radius2)).sqrt(),
+                radius * tilt2.sqrt().max(1e-4),
+            )
+        } else {
+            if distance2 <= radius * radius {
+                return None;
+            }
+            (radius / distance2.sqrt(), radius)
+        };
         let distance = distance2.sqrt();
-        let ratio = radius / distance;
-        let t = ((offset.dot(n) / radius + 1.0) / 2.0).clamp(0.0, 1.0);
+        let t = ((offset.dot(n) / half_extent + 1.0) / 2.0).clamp(0.0, 1.0);
         let horizon = t * t * (3.0 - 2.0 * t);
         (ratio >= min_cap_ratio && horizon > 0.0).then(|| BlockerCap {
             direction: offset / distance,
@@ -140,6 +190,10 @@ pub struct SphereSet {
     pub fit_error: f32,
     /// Why the mesh has no spheres, if it has none.
     pub skipped: Option<String>,
+    /// Whether the blockers were fitted to the surface ([`surface`]: the mesh has no
+    /// inside, or no sphere set fits its solid), `fit_error` then being the silhouettes'.
+    #[serde(default)]
+    pub on_surface: bool,
 }
 
 /// The sphere sets of every object of a scene, in object order.
@@ -176,6 +230,13 @@ impl SceneBlockers {
             .zip(&scene.objects)
             .map(|(set, object)| match &set.skipped {
                 Some(reason) => format!("{}: no spheres ({reason})", object.name),
+                None if set.on_surface => format!(
+                    "{}: {} blocker(s) on its surface ({} discs; it has no sphere-like inside), silhouette error {:.0} %",
+                    object.name,
+                    set.spheres.len(),
+                    set.spheres.iter().filter(|s| s.is_disc()).count(),
+                    100.0 * set.fit_error
+                ),
                 None => format!(
                     "{}: {} sphere(s), fit error {:.0} %",
                     object.name,
@@ -188,7 +249,7 @@ impl SceneBlockers {
 }
 
 /// Sphere counts tried, in order, under [`SphereBudget::FitError`].
-const K_LADDER: [usize; 14] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128];
+pub(crate) const K_LADDER: [usize; 14] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128];
 
 /// Fits sphere sets to every object of `scene` (in parallel, cached per mesh).
 pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
@@ -208,6 +269,7 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
                     spheres: Vec::new(),
                     fit_error: 0.0,
                     skipped: Some("no sphere blockers asked for (a budget of 0)".to_string()),
+                    on_surface: false,
                 })
                 .collect(),
         };
@@ -247,11 +309,24 @@ pub fn fit_scene(scene: &Scene, settings: &BlockerSettings) -> SceneBlockers {
                 .collect()
         }
     };
+    // Meshes the solid fit leaves without spheres are fitted on their surface instead: no
+    // mesh is dropped because it is open or thin.
+    per_object
+        .par_iter_mut()
+        .zip(casters.par_iter())
+        .for_each(|(set, object)| {
+            if set.spheres.is_empty()
+                && let Some(on_surface) = surface::fit_mesh(object, settings)
+            {
+                *set = on_surface;
+            }
+        });
     // The terrain's entry, after every caster's.
     per_object.resize_with(scene.objects.len(), || SphereSet {
         spheres: Vec::new(),
         fit_error: 0.0,
         skipped: Some("terrain: it shadows through its horizons".to_string()),
+        on_surface: false,
     });
     SceneBlockers { per_object }
 }
@@ -299,6 +374,7 @@ fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> 
         spheres: Vec::new(),
         fit_error: 0.0,
         skipped: Some(reason.to_string()),
+        on_surface: false,
     };
     if solid.inside.is_empty() {
         return none("no inside: an open surface, or thinner than a voxel");
@@ -338,6 +414,7 @@ fn fit_uncached(solid: &Solid, settings: &BlockerSettings, k: Option<usize>) -> 
         spheres,
         fit_error: error,
         skipped: None,
+        on_surface: false,
     }
 }
 
@@ -386,7 +463,7 @@ mod tests {
         let scene = scene(vec![object("ball", ball), object("slab", slab)]);
         let automatic = fit_scene(&scene, &BlockerSettings::default());
         assert!(
-            automatic.per_object[1].spheres.is_empty() && !automatic.per_object[0].spheres.is_empty(),
+            automatic.per_object[1].on_surface && !automatic.per_object[0].on_surface,
             "the slab is not sphere-like: {:?}",
             automatic.per_object[1]
         );
@@ -399,7 +476,8 @@ mod tests {
                 },
             );
             assert_eq!(fitted.per_object[0].spheres.len(), total, "{:?}", fitted.per_object[0]);
-            assert!(fitted.per_object[1].spheres.is_empty());
+            // The slab keeps the blockers on its surface it has without a total.
+            assert_eq!(fitted.per_object[1], automatic.per_object[1]);
         }
     }
 
@@ -431,16 +509,26 @@ mod tests {
     }
 
     #[test]
-    fn open_and_flat_meshes_cast_no_sphere_shadow() {
+    fn open_and_flat_meshes_cast_through_discs_on_their_surface() {
+        // Neither a one-quad floor nor a 4 cm slab has an inside the voxels see: both get
+        // discs lying in their plane, and say so.
         let floor = shapes::plane(10.0, 4, 1.0);
         let slab = shapes::cuboid(Vec3::new(5.0, 0.02, 5.0));
-        let fitted = fit_scene(
-            &scene(vec![object("floor", floor), object("slab", slab)]),
-            &BlockerSettings::default(),
-        );
+        let scene = scene(vec![object("floor", floor), object("slab", slab)]);
+        let fitted = fit_scene(&scene, &BlockerSettings::default());
         for set in &fitted.per_object {
-            assert!(set.spheres.is_empty() && set.skipped.is_some(), "{set:?}");
+            assert!(
+                set.on_surface && set.skipped.is_none() && !set.spheres.is_empty(),
+                "{set:?}"
+            );
+            for disc in &set.spheres {
+                assert!(
+                    disc.is_disc() && disc.disc_normal.y.abs() > 0.999 && disc.center.y.abs() < 0.03,
+                    "{disc:?}"
+                );
+            }
         }
+        assert!(fitted.report(&scene).iter().all(|line| line.contains("on its surface")));
     }
 
     #[test]

@@ -91,6 +91,7 @@ mod tests {
         let ball = [Sphere {
             center: Vec3::new(0.0, 5.0, 0.0),
             radius_m: 0.5,
+            disc_normal: glam::Vec3::ZERO,
         }];
         // The light at 3 m, the ball beyond it at 5 m.
         assert_eq!(
@@ -101,6 +102,7 @@ mod tests {
         let under = [Sphere {
             center: Vec3::new(0.0, -2.0, 0.0),
             radius_m: 0.5,
+            disc_normal: glam::Vec3::ZERO,
         }];
         assert_eq!(
             light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &under, 0.0, 0.0),
@@ -110,6 +112,7 @@ mod tests {
         let cover = [Sphere {
             center: Vec3::new(0.0, 1.0, 0.0),
             radius_m: 0.5,
+            disc_normal: glam::Vec3::ZERO,
         }];
         assert_eq!(
             light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.05), &cover, 0.0, 0.0),

@@ -10,7 +10,7 @@ use crate::blockers::{BlockerSettings, SceneBlockers, fit_scene};
 use crate::scene::Scene;
 
 /// Version of the file layout; a file of another version is refitted.
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 
 #[derive(serde::Serialize, serde::Deserialize)]
 struct CacheFile {

@@ -9,6 +9,7 @@
 
 pub mod accuracy;
 mod basis;
+mod cap_mass;
 mod exp;
 mod gaunt;
 mod legendre;
@@ -22,6 +23,7 @@ mod window;
 mod zonal;
 
 pub use basis::{basis, basis_generic, basis_unrolled4, basis16};
+pub use cap_mass::{CAP_MASS_ENTRIES, cap_mass_scales, interpolate_cap_mass_scale};
 pub use exp::{
     ExpMethod, exp, exp_dc_isolated, exp_hyb, exp_ol, exp_ps, exp_reference, hyb_threshold, ol_coefficients,
 };

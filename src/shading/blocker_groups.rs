@@ -4,8 +4,13 @@
 //!
 //! The group tests are conservative: a group is skipped only when every one of its spheres
 //! would be skipped by the per-sphere tests of logsh.wgsl (beyond its influence distance
-//! r/min_cap_ratio, or wholly below the tangent plane), so culling never changes a pixel
-//! and the CPU reference, which tests every sphere, stays the reference.
+//! r/min_cap_ratio, or wholly below the tangent plane), so culling never changes a pixel.
+//! Far from a group its spheres are not simply dropped: one sphere of their summed
+//! projected area stands in for them (`stand_in_radius_m`), taking over smoothly between
+//! half the influence distance and the influence distance (no ring shows where it does),
+//! for as long as it is large enough in the sky: many small blockers (a lattice's, a
+//! helix's) keep the far reaches of their soft shadows, each of them alone too small to
+//! count.
 
 use glam::Vec3;
 
@@ -23,6 +28,11 @@ pub struct BlockerGroup {
     /// A receiver farther than this from `center` is beyond every sphere's influence
     /// distance: max |cᵢ − c| + rᵢ / min_cap_ratio.
     pub influence_m: f32,
+    /// √Σ rᵢ²: the radius of one sphere at `center` with the projected area of the
+    /// group's spheres, which takes over from them between half the influence distance
+    /// and `influence_m` (where each alone is too small to count); 0 for a group with a
+    /// disc, which keeps its blockers.
+    pub stand_in_radius_m: f32,
     pub first: usize,
     pub count: usize,
 }
@@ -75,10 +85,16 @@ fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32) -> BlockerGroup {
     } else {
         f32::INFINITY
     };
+    let stand_in_radius_m = if spheres.iter().any(Sphere::is_disc) {
+        0.0
+    } else {
+        spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt()
+    };
     BlockerGroup {
         center,
         extent_m,
         influence_m,
+        stand_in_radius_m,
         first,
         count: spheres.len(),
     }
@@ -95,6 +111,7 @@ mod tests {
                 Sphere {
                     center: Vec3::new(t.cos() * t, (1.3 * t).sin(), t * 0.2),
                     radius_m: 0.05 + 0.01 * (i % 7) as f32,
+                    disc_normal: glam::Vec3::ZERO,
                 }
             })
             .collect()

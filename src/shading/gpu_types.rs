@@ -42,6 +42,7 @@ pub const UNIFORM_BLOCKER_CAPACITY: usize = 2048;
 const MAX_UNIFORM_BINDING_BYTES: usize = 64 << 10;
 const _: () = assert!(UNIFORM_LIGHT_CAPACITY * std::mem::size_of::<GpuLight>() <= MAX_UNIFORM_BINDING_BYTES);
 const _: () = assert!(UNIFORM_BLOCKER_CAPACITY * std::mem::size_of::<GpuBlockerGroup>() <= MAX_UNIFORM_BINDING_BYTES);
+const _: () = assert!(UNIFORM_BLOCKER_CAPACITY * std::mem::size_of::<GpuBlocker>() <= MAX_UNIFORM_BINDING_BYTES);
 
 /// Vertex buffer element: position, normal (world space) and UV set 0 (locations 0–2 of
 /// scene.wgsl's vertex stage; `render::resources::vertex_layout`).
@@ -257,6 +258,23 @@ pub struct GpuShadowParams {
     pub ratio_attenuation: u32,
     pub group_count: u32,
     pub _pad: [u32; 3],
+    /// k(s) at s = i/31 (`sh::cap_mass_scales`), four to a vec4; all 1 when the
+    /// settings do not preserve the shadow mass.
+    pub cap_mass_scale: [[f32; 4]; crate::sh::CAP_MASS_ENTRIES / 4],
+}
+
+impl GpuShadowParams {
+    /// The table `cap_mass_scale` for `settings` (`ShadowSettings::cap_mass_table`).
+    pub fn cap_mass_scale_for(
+        settings: &crate::shading::ShadowSettings,
+    ) -> [[f32; 4]; crate::sh::CAP_MASS_ENTRIES / 4] {
+        let table = settings.cap_mass_table();
+        let mut packed = [[1.0; 4]; crate::sh::CAP_MASS_ENTRIES / 4];
+        for (i, k) in table.iter().enumerate() {
+            packed[i / 4][i % 4] = *k as f32;
+        }
+        packed
+    }
 }
 
 /// WGSL `UpsampleParams` (see `reduced_shading`).
@@ -296,7 +314,7 @@ pub struct GpuBlockerGroup {
     pub influence_m: f32,
     pub first: u32,
     pub count: u32,
-    pub _pad: u32,
+    pub stand_in_radius_m: f32,
 }
 
 impl GpuBlockerGroup {
@@ -307,22 +325,25 @@ impl GpuBlockerGroup {
             influence_m: group.influence_m.min(1e18),
             first: group.first as u32,
             count: group.count as u32,
-            _pad: 0,
+            stand_in_radius_m: group.stand_in_radius_m,
         }
     }
 }
 
-/// WGSL `Blocker`: centre xyz and radius w, world metres.
+/// WGSL `Blocker`: centre xyz and radius w, world metres; a disc's unit normal in
+/// `disc_normal.xyz` (zero for a sphere; w unused).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuBlocker {
     pub center_radius: [f32; 4],
+    pub disc_normal: [f32; 4],
 }
 
 impl GpuBlocker {
     pub fn new(sphere: &crate::blockers::Sphere) -> GpuBlocker {
         GpuBlocker {
             center_radius: sphere.center.extend(sphere.radius_m).to_array(),
+            disc_normal: sphere.disc_normal.extend(0.0).to_array(),
         }
     }
 }

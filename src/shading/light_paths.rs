@@ -538,6 +538,7 @@ mod tests {
         let ball = Sphere {
             center: Vec3::new(-1.0, 1.5, 0.0),
             radius_m: 0.3,
+            disc_normal: glam::Vec3::ZERO,
         };
         // The floor from −2 to 2 m in x and z: the left light's shadow of the ball is
         // centred at x = 0, the right one's at x = −4.

@@ -55,6 +55,20 @@ pub struct ShadowSettings {
         skip_serializing_if = "is_default_shadow_map_size"
     )]
     pub shadow_map_size: u32,
+    /// Scale each blocker's log-visibility so that, through the SH's band limit, its cap
+    /// blocks the light it truly blocks (`sh::cap_mass_scales`); off, a small blocker's
+    /// soft shadow takes up to |ln ε|/(1 − ε) times too much light (2.5× at ε = 0.1).
+    /// Written only when off, so projects that keep it open in older builds.
+    #[serde(default = "keep_shadow_mass", skip_serializing_if = "is_kept")]
+    pub preserve_shadow_mass: bool,
+}
+
+fn keep_shadow_mass() -> bool {
+    true
+}
+
+fn is_kept(preserve: &bool) -> bool {
+    *preserve
 }
 
 /// Texels along a shadow map's side by default: [`SUGGESTED_SHADOW_MAP_SIZE`], so the
@@ -218,11 +232,34 @@ impl Default for ShadowSettings {
             brdf: BrdfShading::Separate,
             exact_light_budget: default_exact_light_budget(),
             shadow_map_size: DEFAULT_SHADOW_MAP_SIZE,
+            preserve_shadow_mass: true,
         }
     }
 }
 
 impl ShadowSettings {
+    /// The scales k(s) that keep each cap's blocked light through the band limit for
+    /// `settings` (`sh::cap_mass_scales`, computed once per order and ε), all 1 when the
+    /// settings do not preserve the shadow mass. The GPU reads the same table in f32.
+    pub fn cap_mass_table(&self) -> [f64; crate::sh::CAP_MASS_ENTRIES] {
+        use std::collections::HashMap;
+        use std::sync::{Mutex, OnceLock};
+        if !self.preserve_shadow_mass {
+            return [1.0; crate::sh::CAP_MASS_ENTRIES];
+        }
+        type Tables = HashMap<(usize, u32), [f64; crate::sh::CAP_MASS_ENTRIES]>;
+        static TABLES: OnceLock<Mutex<Tables>> = OnceLock::new();
+        let key = (self.order, self.epsilon.to_bits());
+        let tables = TABLES.get_or_init(Default::default);
+        if let Some(table) = tables.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+            return *table;
+        }
+        // Rounded to f32 as the GPU reads it, so that both sides scale alike.
+        let table = crate::sh::cap_mass_scales(self.order, self.epsilon as f64).map(|k| k as f32 as f64);
+        tables.lock().unwrap_or_else(|e| e.into_inner()).insert(key, table);
+        table
+    }
+
     /// These settings shading every pixel: what the CPU reference does, so what GPU–CPU
     /// comparisons and the accuracy study measure.
     pub fn every_pixel(self) -> ShadowSettings {

@@ -54,14 +54,17 @@ fn balls() -> [Sphere; 3] {
         Sphere {
             center: Vec3::new(0.0, 0.6, 0.0),
             radius_m: 0.35,
+            disc_normal: glam::Vec3::ZERO,
         },
         Sphere {
             center: Vec3::new(1.1, 0.4, 0.5),
             radius_m: 0.25,
+            disc_normal: glam::Vec3::ZERO,
         },
         Sphere {
             center: Vec3::new(-0.9, 0.9, -0.6),
             radius_m: 0.3,
+            disc_normal: glam::Vec3::ZERO,
         },
     ]
 }
@@ -135,6 +138,7 @@ pub fn cost_of_eight_lights(gpu: &GpuContext, size: u32, frames: u32) -> Result<
             Sphere {
                 center: Vec3::new(-3.0 + i, 0.5 + 0.1 * (k % 3) as f32, -3.0 + j),
                 radius_m: 0.2 + 0.02 * (k % 5) as f32,
+                disc_normal: glam::Vec3::ZERO,
             }
         })
         .collect();

@@ -229,6 +229,7 @@ fn case(name: &str, light: Light, blockers: Vec<Sphere>, scale: f32) -> Stabilit
             .map(|b| Sphere {
                 center: b.center * scale,
                 radius_m: b.radius_m * scale,
+                disc_normal: b.disc_normal,
             })
             .collect(),
         shadows: ShadowSettings::default().every_pixel(),
@@ -251,5 +252,6 @@ fn sphere(x: f32, y: f32, z: f32, r: f32) -> Sphere {
     Sphere {
         center: Vec3::new(x, y, z),
         radius_m: r,
+        disc_normal: glam::Vec3::ZERO,
     }
 }

@@ -1,5 +1,5 @@
 //! The blocker overlay: every shadow sphere drawn over the viewport as the outline of its
-//! silhouette, so an artist can see what casts the soft shadows and how well the sphere
+//! silhouette (a disc blocker as its rim), so an artist can see what casts the soft shadows and how well the sphere
 //! fit follows each mesh; and, at each shown mesh that has no spheres, a label saying so
 //! and why (its shadows then come from the shadow maps alone).
 
@@ -27,6 +27,21 @@ pub fn silhouette_radius_px(view: &View, sphere: &Sphere) -> Option<f32> {
 pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, spheres: &[Sphere]) {
     let stroke = egui::Stroke::new(1.0, egui::Color32::from_rgba_unmultiplied(90, 220, 255, 150));
     for sphere in spheres {
+        if sphere.is_disc() {
+            // A disc's rim, projected point by point.
+            let (u, v) = sphere.disc_normal.any_orthonormal_pair();
+            let rim: Option<Vec<egui::Pos2>> = (0..32)
+                .map(|k| {
+                    let angle = k as f32 * std::f32::consts::TAU / 32.0;
+                    let at = sphere.center + sphere.radius_m * (angle.cos() * u + angle.sin() * v);
+                    screen_point(view, rect, at)
+                })
+                .collect();
+            if let Some(rim) = rim {
+                painter.add(egui::Shape::closed_line(rim, stroke));
+            }
+            continue;
+        }
         let center = screen_point(view, rect, sphere.center);
         let (Some(center), Some(radius)) = (center, silhouette_radius_px(view, sphere)) else {
             continue;
@@ -85,6 +100,7 @@ mod tests {
         let sphere = Sphere {
             center: Vec3::new(0.0, 0.0, -5.0),
             radius_m: 1.0,
+            disc_normal: glam::Vec3::ZERO,
         };
         let radius = silhouette_radius_px(&view, &sphere).expect("in front");
         // The tangent ray's direction (cos, sin) of the half-angle reaches the image plane
@@ -96,6 +112,7 @@ mod tests {
         let behind = Sphere {
             center: Vec3::new(0.0, 0.0, 5.0),
             radius_m: 1.0,
+            disc_normal: glam::Vec3::ZERO,
         };
         assert!(silhouette_radius_px(&view, &behind).is_none());
     }

@@ -121,6 +121,7 @@ impl GpuBlockers {
             ratio_attenuation: settings.ratio_attenuation as u32,
             group_count: self.groups.len() as u32,
             _pad: [0; 3],
+            cap_mass_scale: GpuShadowParams::cap_mass_scale_for(settings),
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }

@@ -13,24 +13,26 @@ use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT};
 use crate::terrain::TerrainShadow;
 
-/// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl).
+/// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl):
+/// the blockers of the groups in reach of p one by one, weighed 1 − their group's
+/// stand-in share, and each group's stand-in sphere weighed by that share
+/// (`shading::blocker_groups`).
 pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> Vec<f64> {
     let order = settings.order;
     let ln_epsilon = (settings.epsilon as f64).ln();
+    let mass_scales = settings.cap_mass_table();
+    let min_cap_ratio = settings.min_cap_ratio as f64;
     let mut f = vec![0.0; order * order];
-    for cap in blockers
-        .iter()
-        .filter_map(|b| b.cap_from(p, n, settings.min_cap_ratio as f64))
-    {
-        let (ratio, horizon) = (cap.ratio, cap.horizon);
+    let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
+        let mass_scale = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
         let scale = if settings.ratio_attenuation {
-            ln_epsilon * horizon * ratio
+            ln_epsilon * horizon * ratio * mass_scale
         } else {
-            ln_epsilon * horizon
+            ln_epsilon * horizon * mass_scale
         };
         // Funk–Hecke: f_lm += scale·√(4π/(2l+1))·z_l·y_lm(d), without building the
         // rotated vector.
-        with_basis(order, cap.direction, |y| {
+        with_basis(order, direction, |y| {
             sh::cap_zh_ratio_each(order, ratio, |l, z| {
                 let weight = scale * (4.0 * PI / (2 * l + 1) as f64).sqrt() * z;
                 for i in l * l..(l + 1) * (l + 1) {
@@ -38,8 +40,64 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
                 }
             });
         });
-    }
+    };
+    let smoothstep = |edge0: f64, edge1: f64, x: f64| {
+        let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    with_groups(blockers, settings.min_cap_ratio, |ordered, groups| {
+        for group in groups {
+            let offset = group.center.as_dvec3() - p;
+            let (extent, influence) = (group.extent_m as f64, group.influence_m as f64);
+            let distance = offset.length();
+            // The stand-in's share (`stand_in_share` in logsh.wgsl).
+            let share = if group.stand_in_radius_m > 0.0 {
+                smoothstep(0.5 * influence, influence, distance)
+            } else {
+                0.0
+            };
+            let in_reach = distance * distance <= influence * influence && offset.dot(n) + extent > 0.0;
+            if in_reach && share < 1.0 {
+                for cap in ordered[group.first..group.first + group.count]
+                    .iter()
+                    .filter_map(|b| b.cap_from(p, n, min_cap_ratio))
+                {
+                    add_cap(cap.direction, cap.ratio, cap.horizon * (1.0 - share));
+                }
+            }
+            let ratio = group.stand_in_radius_m as f64 / distance.max(1e-300);
+            let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / extent.max(1e-30));
+            if share > 0.0 && ratio >= min_cap_ratio && horizon > 0.0 {
+                add_cap(offset / distance, ratio, horizon * share);
+            }
+        }
+    });
     f
+}
+
+/// Calls `f` with `blockers` grouped as the GPU groups them (`group_blockers`), the
+/// grouping of the last blocker list kept per thread: the twin shades pixel after pixel
+/// with one list.
+fn with_groups<R>(
+    blockers: &[Sphere],
+    min_cap_ratio: f32,
+    f: impl FnOnce(&[Sphere], &[crate::shading::blocker_groups::BlockerGroup]) -> R,
+) -> R {
+    use crate::shading::blocker_groups::{BlockerGroup, group_blockers};
+    type Grouped = (Vec<Sphere>, u32, Vec<Sphere>, Vec<BlockerGroup>);
+    thread_local! {
+        static LAST: std::cell::RefCell<Option<Grouped>> = const { std::cell::RefCell::new(None) };
+    }
+    LAST.with(|last| {
+        let mut last = last.borrow_mut();
+        let fresh = !matches!(&*last, Some((input, ratio, _, _)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits());
+        if fresh {
+            let (ordered, groups) = group_blockers(blockers, min_cap_ratio);
+            *last = Some((blockers.to_vec(), min_cap_ratio.to_bits(), ordered, groups));
+        }
+        let (_, _, ordered, groups) = last.as_ref().expect("just grouped");
+        f(ordered, groups)
+    })
 }
 
 /// The blockers' log-visibility plus, with a terrain, the terrain's (`log_visibility` in
