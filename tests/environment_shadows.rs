@@ -7,23 +7,15 @@
 mod common;
 
 use common::thin_casters::*;
-use glam::{Affine3A, Quat, Vec3};
+use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, fit_scene};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
-use lightpaint::scene::shapes::{self, ShapeMesh};
+use lightpaint::scene::shapes::ShapeMesh;
 use lightpaint::scene::{Environment, Scene};
 use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 120;
-
-/// A closed box, 0.5 × 0.3 × 0.4 m, turned and floating 0.6 m up.
-fn closed_box() -> ShapeMesh {
-    shapes::cuboid(Vec3::new(0.25, 0.15, 0.2)).transformed(Affine3A::from_rotation_translation(
-        Quat::from_rotation_y(0.5),
-        Vec3::new(0.0, 0.6, 0.0),
-    ))
-}
 
 /// `caster` (or the floor alone) under a uniform sky of radiance 0.6 and no light.
 fn under_sky(caster: Option<ShapeMesh>) -> Scene {
@@ -61,19 +53,6 @@ fn visibility(shadowed: &[f64], floor: &[f64], on_floor: &[bool]) -> Vec<Option<
         .zip(on_floor)
         .map(|((s, u), f)| (*f && *u > 1e-3).then(|| s / u))
         .collect()
-}
-
-/// RMS of a − b where both exist and the path tracer's `b` is shadowed (under 0.95).
-fn shadow_rms(a: &[Option<f64>], b: &[Option<f64>]) -> f64 {
-    let errors: Vec<f64> = a
-        .iter()
-        .zip(b)
-        .filter_map(|(a, b)| match (a, b) {
-            (Some(a), Some(b)) if *b < 0.95 => Some(a - b),
-            _ => None,
-        })
-        .collect();
-    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
 }
 
 /// Each caster's shadow under the sky takes about the light the path tracer's (64 samples

@@ -8,22 +8,14 @@
 mod common;
 
 use common::thin_casters::*;
-use glam::{Affine3A, Quat, Vec3};
+use glam::Vec3;
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
-use lightpaint::scene::shapes::{self, ShapeMesh};
+use lightpaint::scene::shapes::ShapeMesh;
 use lightpaint::scene::{Camera, Light, LightKind, Scene};
 use lightpaint::shading::{RenderSettings, ShadowSettings};
 
 const WIDTH: u32 = 240;
 const HEIGHT: u32 = 180;
-
-/// A closed box, 0.5 × 0.3 × 0.4 m, turned and floating 0.6 m up.
-fn closed_box() -> ShapeMesh {
-    shapes::cuboid(Vec3::new(0.25, 0.15, 0.2)).transformed(Affine3A::from_rotation_translation(
-        Quat::from_rotation_y(0.5),
-        Vec3::new(0.0, 0.6, 0.0),
-    ))
-}
 
 fn sized_lights() -> [(&'static str, Light); 3] {
     let position = Vec3::new(0.4, 2.6, 0.3);
@@ -111,19 +103,6 @@ fn visibilities(shadowed: &[f64], floor: &[f64], on_floor: &[bool]) -> Vec<Optio
             Some(around.iter().sum::<f64>() / around.len() as f64)
         })
         .collect()
-}
-
-/// RMS of a − b over the pixels where both exist and `b` is in shadow (under 0.95).
-fn shadow_rms(a: &[Option<f64>], b: &[Option<f64>]) -> f64 {
-    let errors: Vec<f64> = a
-        .iter()
-        .zip(b)
-        .filter_map(|(a, b)| match (a, b) {
-            (Some(a), Some(b)) if *b < 0.95 => Some(a - b),
-            _ => None,
-        })
-        .collect();
-    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
 }
 
 /// Each caster casts its shadow, penumbra included, where the path tracer (64 samples per

@@ -73,6 +73,14 @@ pub fn helix() -> ShapeMesh {
     mesh
 }
 
+/// A closed box, 0.5 × 0.3 × 0.4 m, turned and floating 0.6 m up.
+pub fn closed_box() -> ShapeMesh {
+    shapes::cuboid(Vec3::new(0.25, 0.15, 0.2)).transformed(Affine3A::from_rotation_translation(
+        Quat::from_rotation_y(0.5),
+        Vec3::new(0.0, 0.6, 0.0),
+    ))
+}
+
 /// The three thin and open casters, by name.
 pub fn casters() -> [(&'static str, ShapeMesh); 3] {
     [("card", card()), ("lattice", lattice()), ("helix", helix())]
@@ -184,6 +192,19 @@ pub fn floor_pixels(with_caster: &image::RgbaImage, floor: &image::RgbaImage) ->
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| (-2..=2).all(|dy| (-2..=2).all(|dx| seen(x + dx, y + dy))))
         .collect()
+}
+
+/// RMS of a − b over the pixels where both exist and `b` is in shadow (under 0.95).
+pub fn shadow_rms(a: &[Option<f64>], b: &[Option<f64>]) -> f64 {
+    let errors: Vec<f64> = a
+        .iter()
+        .zip(b)
+        .filter_map(|(a, b)| match (a, b) {
+            (Some(a), Some(b)) if *b < 0.95 => Some(a - b),
+            _ => None,
+        })
+        .collect();
+    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
 }
 
 pub fn mean_over(image: &image::RgbaImage, mask: &[bool]) -> f64 {
