@@ -133,7 +133,8 @@ pub struct BlockerSettings {
     pub budget: SphereBudget,
     /// Most spheres for one mesh under [`SphereBudget::FitError`].
     pub max_spheres_per_mesh: usize,
-    /// A mesh whose best fit errs more than this casts no shadow (it is not sphere-like).
+    /// A mesh whose best solid fit errs more than this is not sphere-like: it is fitted on
+    /// its surface instead ([`surface`]).
     pub max_error: f32,
     /// Voxel cells over a mesh's bounds: finer grids fit thin limbs better.
     pub cell_budget: usize,
