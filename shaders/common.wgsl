@@ -104,12 +104,14 @@ struct ShadowParams {
     ratio_attenuation: u32,
     // Number of BlockerGroups (src/shading/blocker_groups.rs).
     group_count: u32,
-    _pad0: u32,
+    // Discs in `discs`: open and thin meshes' planar patches, shaded in their own loop.
+    disc_count: u32,
     _pad1: u32,
     _pad2: u32,
     // k(s) at s = i/31, four to a vec4: the scale of a cap's log-visibility that keeps
     // the light it blocks through the band limit (src/sh/cap_mass.rs; all 1 when off).
     cap_mass_scale: array<vec4<f32>, 8>,
+    discs: array<Blocker, 64>,
 };
 
 // Parameters of the reduced-resolution shading's upsampling (reduced_shading.wgsl).

@@ -269,5 +269,16 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
         visible_lo *= select(visible, vec4<f32>(1.0), upper);
         visible_hi *= select(vec4<f32>(1.0), visible, upper);
     }
+    // The discs, at every receiver (their own list; logsh.wgsl's add_discs).
+    for (var d = 0u; d < shadow.disc_count; d++) {
+        let disc = shadow.discs[d];
+        let seen = disc_cap_seen(disc, p, n);
+        let counts = seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0;
+        let cap = BlockerCap(seen.direction, seen.distance, seen.ratio, sqrt(max(1.0 - seen.ratio * seen.ratio, 0.0)), seen.horizon, counts);
+        visible_lo *= vec4<f32>(1.0) - hidden_by(cap, disc.center_radius.w, lo, half_footprint);
+        if EXACT_WIDE {
+            visible_hi *= vec4<f32>(1.0) - hidden_by(cap, disc.center_radius.w, hi, half_footprint);
+        }
+    }
     return ExactVisibility(select(visible_lo, vec4<f32>(0.0), covered_lo), select(visible_hi, vec4<f32>(0.0), covered_hi));
 }

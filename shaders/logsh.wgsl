@@ -45,26 +45,118 @@ fn blocker_at(i: u32) -> Blocker {
     return blockers[min(i, UNIFORM_BLOCKER_CAPACITY - 1u)];
 }
 
-// Blocker b as a receiver at p with unit normal n sees it (blockers::Sphere::cap_from is
-// the f64 twin): x = sin of its cap's angular radius — r/d for a sphere; for a disc the
-// cap r′/√(d² + r′²), r′ = r·√|cos θ| to its normal, exact on its axis and of its solid
-// angle far away — or −1 for a sphere containing p; y = the fade below the tangent plane,
-// smoothstep(−1, 1, (c − p)·n / h), h the blocker's half-extent along n; z = distance.
+// Sphere b as a receiver at p with unit normal n sees it (blockers::Sphere::cap_from is
+// the f64 twin): x = sin of its cap's angular radius r/d, or −1 for a sphere containing
+// p; y = the fade below the tangent plane, smoothstep(−1, 1, (c − p)·n / r); z = distance.
 fn blocker_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let offset = b.center_radius.xyz - p;
     let distance2 = dot(offset, offset);
     let distance = sqrt(max(distance2, 1e-30));
     let radius = b.center_radius.w;
-    let normal = b.disc_normal.xyz;
-    if dot(normal, normal) > 0.0 {
-        let seen_radius2 = radius * radius * abs(dot(offset, normal)) / distance;
-        let ratio = sqrt(seen_radius2 / max(distance2 + seen_radius2, 1e-30));
-        let tilt = sqrt(max(1.0 - dot(n, normal) * dot(n, normal), 0.0));
-        let half_extent = radius * max(tilt, 1e-4);
-        return vec3<f32>(ratio, smoothstep(-1.0, 1.0, dot(offset, n) / half_extent), distance);
-    }
     let ratio = select(radius / distance, -1.0, distance2 <= radius * radius);
     return vec3<f32>(ratio, smoothstep(-1.0, 1.0, dot(offset, n) / radius), distance);
+}
+
+// A disc blocker as a receiver sees it: the cap of its solid angle around the mean
+// direction over it (disc_seen), faded below the tangent plane over the disc's
+// half-extent along n.
+struct SeenDisc {
+    direction: vec3<f32>,
+    ratio: f32,
+    horizon: f32,
+    distance: f32,
+};
+
+// The circumradius over the disc's radius of the square of the disc's area that stands
+// for it near by, √(π/2); beyond NEAR_FIELD_RADII radii the far-field cap
+// (src/blockers/disc.rs).
+const POLYGON_SCALE: f32 = 1.2533141373155003;
+const NEAR_FIELD_RADII: f32 = 4.0;
+const DISC_PLANE_TOLERANCE_M: f32 = 1e-3;
+
+// Signed solid angle of the triangle a, b, c seen from the origin (Van Oosterom and
+// Strackee: tan(Ω/2) = a·(b × c) / (abc + (a·b)c + (a·c)b + (b·c)a)).
+fn triangle_solid_angle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> f32 {
+    let la = length(a);
+    let lb = length(b);
+    let lc = length(c);
+    let numerator = dot(a, cross(b, c));
+    let denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    return 2.0 * atan2(numerator, denominator);
+}
+
+// An edge's share of the vector form factor: its angle times the unit normal of the
+// plane through the eye and the edge.
+fn edge_form_factor(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    let plane = cross(a, b);
+    let plane_length = length(plane);
+    return atan2(plane_length, dot(a, b)) * plane / max(plane_length, 1e-30);
+}
+
+// The solid angle a disc subtends from p (w, steradians) and the unit mean direction over
+// it (xyz); 0 from its own plane (blockers::disc::disc_seen).
+fn disc_seen(center: vec3<f32>, radius: f32, normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {
+    let to_center = center - p;
+    let height = abs(dot(to_center, normal));
+    let distance = length(to_center);
+    if height <= DISC_PLANE_TOLERANCE_M * max(radius, 1.0) {
+        return vec4<f32>(normal, 0.0);
+    }
+    let toward = to_center / max(distance, 1e-30);
+    if distance > NEAR_FIELD_RADII * radius {
+        let seen_radius2 = radius * radius * height / distance;
+        return vec4<f32>(toward, 2.0 * PI * (1.0 - distance * inverseSqrt(distance * distance + seen_radius2)));
+    }
+    // Duff et al.'s orthonormal pair, as disc_frame.
+    let sign = select(-1.0, 1.0, normal.z >= 0.0);
+    let a = -1.0 / (sign + normal.z);
+    let b = normal.x * normal.y * a;
+    let reach = radius * POLYGON_SCALE;
+    let u = reach * vec3<f32>(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
+    let v = reach * vec3<f32>(b, sign + normal.y * normal.y * a, -normal.y);
+    let q0 = to_center + u;
+    let q1 = to_center + v;
+    let q2 = to_center - u;
+    let q3 = to_center - v;
+    let solid_angle = triangle_solid_angle(q0, q1, q2) + triangle_solid_angle(q0, q2, q3);
+    let form_factor = edge_form_factor(q0, q1) + edge_form_factor(q1, q2) + edge_form_factor(q2, q3)
+        + edge_form_factor(q3, q0);
+    var direction = toward;
+    if dot(form_factor, form_factor) > 0.0 {
+        direction = normalize(form_factor);
+    }
+    direction = select(direction, -direction, dot(direction, to_center) < 0.0);
+    return vec4<f32>(direction, min(abs(solid_angle), 2.0 * PI));
+}
+
+fn disc_cap_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> SeenDisc {
+    let normal = b.disc_normal.xyz;
+    let radius = b.center_radius.w;
+    let seen = disc_seen(b.center_radius.xyz, radius, normal, p);
+    // The cap of that solid angle: cos = 1 − Ω/2π.
+    let cos_cap = 1.0 - seen.w / (2.0 * PI);
+    let ratio = sqrt(max(1.0 - cos_cap * cos_cap, 0.0));
+    let tilt = sqrt(max(1.0 - dot(n, normal) * dot(n, normal), 0.0));
+    let offset = b.center_radius.xyz - p;
+    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / (radius * max(tilt, 1e-4)));
+    return SeenDisc(seen.xyz, ratio, horizon, length(offset));
+}
+
+// The discs' log-visibility at p (each shaded at every receiver, in their own loop so
+// that the spheres' walk stays small).
+fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>) -> Sh {
+    var sum = f;
+    for (var i = 0u; i < shadow.disc_count; i++) {
+        let seen = disc_cap_seen(shadow.discs[i], p, n);
+        if seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0 {
+            var scale = shadow.ln_epsilon * seen.horizon * cap_mass_scale(seen.ratio);
+            if shadow.ratio_attenuation != 0u {
+                scale *= seen.ratio;
+            }
+            sum = sh_add_zonal(sum, sh_cap_zh(seen.ratio), scale, seen.direction);
+        }
+    }
+    return sum;
 }
 
 // Blocker group g.
@@ -155,6 +247,7 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
             f = add_blocker(f, blocker_at(i), p, n, walk.weight);
         }
     }
+    f = add_discs(f, p, n);
     return sh_sum(f, terrain_log_visibility(p));
 }
 

@@ -57,10 +57,10 @@ fn visibility(shadowed: &[f64], floor: &[f64], on_floor: &[bool]) -> Vec<Option<
 
 /// Each caster's shadow under the sky takes about the light the path tracer's (64 samples
 /// per pixel) takes from the floor: its mass (linear) within 0.6–1.4 of it — measured
-/// card 0.99, lattice 0.96, helix 0.98, box 1.09 (the f64 twin 0.71–0.87: the soft tails
+/// card 1.12, lattice 1.04, helix 1.08, box 1.14 (the f64 twin 0.77–0.97: the soft tails
 /// are a few 8-bit steps deep and the GPU rounds them one step darker at about 2 000
 /// pixels) — and the visibility over the shadowed floor within an RMS of 0.12 (measured
-/// 0.044–0.085). Without blockers on their surface the open and thin casters cast
+/// 0.038–0.076). Without blockers on their surface the open and thin casters cast
 /// nothing (mass 0); without the scale that keeps a cap's mass through the band limit the
 /// card and the box took 1.8–2.0 times the light; without the groups' stand-ins the
 /// lattice's and the helix's small spheres, each too small to count a metre away, took

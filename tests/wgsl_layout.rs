@@ -165,7 +165,9 @@ fn shadow_params_match_wgsl() {
             ("blocker_count", offset_of!(GpuShadowParams, blocker_count)),
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
             ("group_count", offset_of!(GpuShadowParams, group_count)),
+            ("disc_count", offset_of!(GpuShadowParams, disc_count)),
             ("cap_mass_scale", offset_of!(GpuShadowParams, cap_mass_scale)),
+            ("discs", offset_of!(GpuShadowParams, discs)),
         ],
     );
 }

@@ -10,6 +10,7 @@
 //! discs for planar patches, spheres for tubes and lattices); the report says which. Fits
 //! are cached in memory by a hash of the mesh and the settings.
 
+pub mod disc;
 pub mod fit;
 pub mod surface;
 pub mod voxel;
@@ -37,11 +38,12 @@ pub struct Sphere {
 /// A blocker's cap as a receiver sees it (`Sphere::cap_from`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockerCap {
-    /// Unit direction from the receiver to the blocker's centre.
+    /// Unit direction from the receiver to the blocker's centre (a disc's: the mean
+    /// direction over it).
     pub direction: glam::DVec3,
     pub distance_m: f64,
     /// sin of the cap's angular radius: r/d for a sphere; for a disc, that of the cap
-    /// of the disc's solid angle (see [`Sphere::cap_from`]).
+    /// of the disc's solid angle.
     pub ratio: f64,
     /// 1 above the receiver's tangent plane, fading smoothly to 0 as the blocker sinks
     /// below it: smoothstep(−1, 1, (c − p)·n / h), h the blocker's half-extent along n.
@@ -78,37 +80,34 @@ impl Sphere {
     /// keeps a fitted sphere straddling its own surface from darkening its receivers in
     /// blotches (a hard cut leaves them).
     ///
-    /// A disc of radius r seen at distance d under an angle θ to its normal is taken as
-    /// the cap of sine r′/√(d² + r′²), r′ = r·√|cos θ|: exact on the disc's axis at any
-    /// distance, and of the disc's solid angle πr²|cos θ|/d² far away; a receiver in the
-    /// disc's plane (its own patch) sees nothing of it.
+    /// A disc is taken as the cap of its solid angle around the mean direction over it
+    /// ([`disc::disc_seen`]: a receiver just above a large disc sees it fill the
+    /// hemisphere below); a receiver in the disc's plane (its own patch) sees nothing of
+    /// it.
     pub fn cap_from(&self, p: glam::DVec3, n: glam::DVec3, min_cap_ratio: f64) -> Option<BlockerCap> {
         let offset = self.center.as_dvec3() - p;
         let radius = self.radius_m as f64;
         let distance2 = offset.length_squared();
-        let (ratio, half_extent) = if self.is_disc() {
-            if distance2 <= 0.0 {
-                return None;
-            }
+        let distance = distance2.sqrt();
+        let (ratio, direction, half_extent) = if self.is_disc() {
             let normal = self.disc_normal.as_dvec3();
-            let cos_view = offset.dot(normal).abs() / distance2.sqrt();
-            let seen_radius2 = radius * radius * cos_view;
+            let (solid_angle, direction) = disc::disc_seen(self.center.as_dvec3(), radius, normal, p);
             let tilt2 = (1.0 - n.dot(normal).powi(2)).max(0.0);
             (
-                (seen_radius2 / (distance2 + seen_radius2)).sqrt(),
+                disc::cap_sine_of_solid_angle(solid_angle),
+                direction,
                 radius * tilt2.sqrt().max(1e-4),
             )
         } else {
             if distance2 <= radius * radius {
                 return None;
             }
-            (radius / distance2.sqrt(), radius)
+            (radius / distance, offset / distance, radius)
         };
-        let distance = distance2.sqrt();
         let t = ((offset.dot(n) / half_extent + 1.0) / 2.0).clamp(0.0, 1.0);
         let horizon = t * t * (3.0 - 2.0 * t);
-        (ratio >= min_cap_ratio && horizon > 0.0).then(|| BlockerCap {
-            direction: offset / distance,
+        (ratio >= min_cap_ratio && horizon > 0.0).then_some(BlockerCap {
+            direction,
             distance_m: distance,
             ratio,
             horizon,
@@ -205,19 +204,22 @@ pub struct SceneBlockers {
 
 impl SceneBlockers {
     /// Every sphere of the scene, object after object.
+    /// (At most [`MAX_DISCS`] discs: [`within_disc_capacity`].)
     pub fn spheres(&self) -> Vec<Sphere> {
-        self.per_object.iter().flat_map(|s| s.spheres.iter().copied()).collect()
+        within_disc_capacity(self.per_object.iter().flat_map(|s| s.spheres.iter().copied()).collect())
     }
 
     /// The spheres of the objects `hidden` does not list (indices into the scene's
-    /// objects): hidden objects cast no shadow.
+    /// objects): hidden objects cast no shadow. (At most [`MAX_DISCS`] discs.)
     pub fn shown_spheres(&self, hidden: &std::collections::BTreeSet<usize>) -> Vec<Sphere> {
-        self.per_object
-            .iter()
-            .enumerate()
-            .filter(|(object, _)| !hidden.contains(object))
-            .flat_map(|(_, s)| s.spheres.iter().copied())
-            .collect()
+        within_disc_capacity(
+            self.per_object
+                .iter()
+                .enumerate()
+                .filter(|(object, _)| !hidden.contains(object))
+                .flat_map(|(_, s)| s.spheres.iter().copied())
+                .collect(),
+        )
     }
 
     pub fn sphere_count(&self) -> usize {
@@ -247,6 +249,32 @@ impl SceneBlockers {
             })
             .collect()
     }
+}
+
+/// Most disc blockers a frame shades: they are shaded in their own loop at every receiver
+/// (WGSL `ShadowParams.discs`), apart from the spheres' culled walk.
+pub const MAX_DISCS: usize = 64;
+
+/// `blockers` with at most [`MAX_DISCS`] discs: the largest are kept (the others, the
+/// smallest patches of open meshes, are dropped with a warning), spheres untouched.
+pub fn within_disc_capacity(mut blockers: Vec<Sphere>) -> Vec<Sphere> {
+    let discs = blockers.iter().filter(|b| b.is_disc()).count();
+    if discs <= MAX_DISCS {
+        return blockers;
+    }
+    let mut radii: Vec<f32> = blockers.iter().filter(|b| b.is_disc()).map(|b| b.radius_m).collect();
+    radii.sort_by(|a, b| b.total_cmp(a));
+    let smallest_kept = radii[MAX_DISCS - 1];
+    let mut kept = 0;
+    blockers.retain(|b| {
+        let keep = !b.is_disc() || (b.radius_m >= smallest_kept && kept < MAX_DISCS);
+        kept += (keep && b.is_disc()) as usize;
+        keep
+    });
+    log::warn!(
+        "{discs} disc blockers on open and thin meshes; the {MAX_DISCS} largest cast soft shadows, the others not"
+    );
+    blockers
 }
 
 /// Sphere counts tried, in order, under [`SphereBudget::FitError`].

@@ -257,10 +257,13 @@ pub struct GpuShadowParams {
     pub blocker_count: u32,
     pub ratio_attenuation: u32,
     pub group_count: u32,
-    pub _pad: [u32; 3],
+    /// Discs in `discs` (open and thin meshes' planar patches, shaded in their own loop).
+    pub disc_count: u32,
+    pub _pad: [u32; 2],
     /// k(s) at s = i/31 (`sh::cap_mass_scales`), four to a vec4; all 1 when the
     /// settings do not preserve the shadow mass.
     pub cap_mass_scale: [[f32; 4]; crate::sh::CAP_MASS_ENTRIES / 4],
+    pub discs: [GpuBlocker; crate::blockers::MAX_DISCS],
 }
 
 impl GpuShadowParams {

@@ -2,6 +2,7 @@
 //! bindings on the GPU: bind group 2 of logsh.wgsl and terrain.wgsl, shared by the shading
 //! pass and the per-vertex compute pass.
 
+use bytemuck::Zeroable;
 use wgpu::util::DeviceExt;
 
 use super::shadow_maps::ShadowMapBinding;
@@ -19,6 +20,10 @@ pub struct GpuBlockers {
     params: wgpu::Buffer,
     bind_group_layout: wgpu::BindGroupLayout,
     spheres: Vec<Sphere>,
+    /// The discs among `spheres` (at most `MAX_DISCS`), written with the parameters.
+    discs: Vec<GpuBlocker>,
+    /// The spheres the groups walk.
+    walked_count: usize,
     groups: Vec<GpuBlockerGroup>,
     /// The influence cut-off the groups were built for.
     grouped_for_min_cap_ratio: f32,
@@ -46,7 +51,10 @@ impl GpuBlockers {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (ordered, groups) = gpu_groups(spheres, settings);
+        // Discs are shaded in their own loop (from the parameters), spheres in the walk.
+        let blockers = crate::blockers::within_disc_capacity(spheres.to_vec());
+        let (discs, balls): (Vec<Sphere>, Vec<Sphere>) = blockers.into_iter().partition(Sphere::is_disc);
+        let (ordered, groups) = gpu_groups(&balls, settings);
         let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
         let [blockers_uniform, blockers_storage] = uniform_and_storage(device, "blockers", &ordered);
         let [groups_uniform, groups_storage] = uniform_and_storage(device, "blocker groups", &groups);
@@ -56,6 +64,8 @@ impl GpuBlockers {
             params,
             bind_group_layout: layout.clone(),
             spheres: spheres.to_vec(),
+            discs: discs.iter().map(GpuBlocker::new).collect(),
+            walked_count: ordered.len(),
             groups,
             grouped_for_min_cap_ratio: settings.min_cap_ratio,
             terrain_field: terrain.cloned(),
@@ -114,14 +124,18 @@ impl GpuBlockers {
     }
 
     fn write_params(&self, queue: &wgpu::Queue, settings: &ShadowSettings) {
+        let mut discs = [GpuBlocker::zeroed(); crate::blockers::MAX_DISCS];
+        discs[..self.discs.len()].copy_from_slice(&self.discs);
         let params = GpuShadowParams {
             ln_epsilon: settings.epsilon.ln(),
             min_cap_ratio: settings.min_cap_ratio,
-            blocker_count: self.spheres.len() as u32,
+            blocker_count: self.walked_count as u32,
             ratio_attenuation: settings.ratio_attenuation as u32,
             group_count: self.groups.len() as u32,
-            _pad: [0; 3],
+            disc_count: self.discs.len() as u32,
+            _pad: [0; 2],
             cap_mass_scale: GpuShadowParams::cap_mass_scale_for(settings),
+            discs,
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }

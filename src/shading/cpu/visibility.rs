@@ -45,7 +45,7 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
         let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
         t * t * (3.0 - 2.0 * t)
     };
-    with_groups(blockers, settings.min_cap_ratio, |ordered, groups| {
+    with_groups(blockers, settings.min_cap_ratio, |ordered, groups, discs| {
         for group in groups {
             let offset = group.center.as_dvec3() - p;
             let (extent, influence) = (group.extent_m as f64, group.influence_m as f64);
@@ -71,32 +71,38 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
                 add_cap(offset / distance, ratio, horizon * share);
             }
         }
+        // The discs, at every receiver (`add_discs`).
+        for cap in discs.iter().filter_map(|b| b.cap_from(p, n, min_cap_ratio)) {
+            add_cap(cap.direction, cap.ratio, cap.horizon);
+        }
     });
     f
 }
 
-/// Calls `f` with `blockers` grouped as the GPU groups them (`group_blockers`), the
-/// grouping of the last blocker list kept per thread: the twin shades pixel after pixel
-/// with one list.
+/// Calls `f` with the spheres of `blockers` grouped as the GPU groups them
+/// (`group_blockers`) and the discs (at most `MAX_DISCS`, shaded apart), the split of the
+/// last blocker list kept per thread: the twin shades pixel after pixel with one list.
 fn with_groups<R>(
     blockers: &[Sphere],
     min_cap_ratio: f32,
-    f: impl FnOnce(&[Sphere], &[crate::shading::blocker_groups::BlockerGroup]) -> R,
+    f: impl FnOnce(&[Sphere], &[crate::shading::blocker_groups::BlockerGroup], &[Sphere]) -> R,
 ) -> R {
     use crate::shading::blocker_groups::{BlockerGroup, group_blockers};
-    type Grouped = (Vec<Sphere>, u32, Vec<Sphere>, Vec<BlockerGroup>);
+    type Grouped = (Vec<Sphere>, u32, Vec<Sphere>, Vec<BlockerGroup>, Vec<Sphere>);
     thread_local! {
         static LAST: std::cell::RefCell<Option<Grouped>> = const { std::cell::RefCell::new(None) };
     }
     LAST.with(|last| {
         let mut last = last.borrow_mut();
-        let fresh = !matches!(&*last, Some((input, ratio, _, _)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits());
+        let fresh = !matches!(&*last, Some((input, ratio, ..)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits());
         if fresh {
-            let (ordered, groups) = group_blockers(blockers, min_cap_ratio);
-            *last = Some((blockers.to_vec(), min_cap_ratio.to_bits(), ordered, groups));
+            let kept = crate::blockers::within_disc_capacity(blockers.to_vec());
+            let (discs, spheres): (Vec<Sphere>, Vec<Sphere>) = kept.into_iter().partition(Sphere::is_disc);
+            let (ordered, groups) = group_blockers(&spheres, min_cap_ratio);
+            *last = Some((blockers.to_vec(), min_cap_ratio.to_bits(), ordered, groups, discs));
         }
-        let (_, _, ordered, groups) = last.as_ref().expect("just grouped");
-        f(ordered, groups)
+        let (_, _, ordered, groups, discs) = last.as_ref().expect("just grouped");
+        f(ordered, groups, discs)
     })
 }
 
