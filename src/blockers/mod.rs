@@ -561,6 +561,25 @@ mod tests {
     }
 
     #[test]
+    fn a_frame_keeps_the_largest_discs_and_every_sphere() {
+        let mut blockers: Vec<Sphere> = (0..MAX_DISCS + 6)
+            .map(|k| Sphere::disc(Vec3::new(k as f32, 0.0, 0.0), 0.1 + 0.01 * k as f32, Vec3::Y))
+            .collect();
+        blockers.extend((0..3).map(|k| Sphere::ball(Vec3::new(0.0, k as f32, 0.0), 0.01)));
+        let kept = within_disc_capacity(blockers.clone());
+        assert_eq!(kept.iter().filter(|b| b.is_disc()).count(), MAX_DISCS);
+        assert_eq!(kept.iter().filter(|b| !b.is_disc()).count(), 3);
+        // The six smallest went.
+        assert!(
+            kept.iter()
+                .filter(|b| b.is_disc())
+                .all(|b| b.radius_m > 0.1 + 0.01 * 5.5)
+        );
+        // Within the capacity nothing changes.
+        assert_eq!(within_disc_capacity(blockers[6..].to_vec()), blockers[6..].to_vec());
+    }
+
+    #[test]
     fn a_total_budget_is_shared_by_volume() {
         let big = shapes::uv_sphere(1.0, 32, 16);
         let small = shapes::uv_sphere(0.5, 32, 16).transformed(glam::Affine3A::from_translation(Vec3::X * 4.0));

@@ -428,9 +428,9 @@ mod tests {
             compiled(harmonics, 4, maps, &with_sphere, origin, f),
             (f, f, true, f, f)
         );
-        // Eleven point lights: ten cubes fill the 64 views, the eleventh takes the SH.
-        let eleven = vec![points[0].clone(); 11];
-        assert_eq!(compiled(auto, 4, maps, &eleven, origin, f), (f, f, true, true, f));
+        // One point light more than the views hold cubes: it takes the SH.
+        let more = vec![points[0].clone(); MAX_SHADOW_VIEWS / 6 + 1];
+        assert_eq!(compiled(auto, 4, maps, &more, origin, f), (f, f, true, true, f));
         let terrain = SceneLighting {
             has_environment: false,
             has_terrain: true,
@@ -450,10 +450,13 @@ mod tests {
     #[test]
     fn when_the_views_run_out_single_views_and_bright_lights_come_first() {
         use crate::scene::LightKind;
-        let mut lights: Vec<Light> = (0..12)
+        // Two more cubes than the views hold after the sun's one.
+        let cubes = (MAX_SHADOW_VIEWS - 1) / 6;
+        let points = cubes + 2;
+        let mut lights: Vec<Light> = (0..points)
             .map(|k| Light {
                 position: Vec3::new(k as f32, 2.0, 0.0),
-                ..light(LightKind::Point, 12.0 - k as f32)
+                ..light(LightKind::Point, points as f32 - k as f32)
             })
             .collect();
         lights.push(light(LightKind::Directional, 0.1));
@@ -463,12 +466,12 @@ mod tests {
         };
         let shaded = shading_lights(&lights, &settings, &LightPathContext::at(Vec3::ZERO));
         let paths: Vec<u32> = shaded.iter().map(|l| l.shadow_path).collect();
-        let mut expected = vec![SHADOW_PATH_MAP; 10];
+        let mut expected = vec![SHADOW_PATH_MAP; cubes];
         expected.extend([SHADOW_PATH_SH, SHADOW_PATH_SH, SHADOW_PATH_MAP]);
         assert_eq!(paths, expected);
-        assert_eq!(shaded[12].first_shadow_view, 0);
+        assert_eq!(shaded[points].first_shadow_view, 0);
         assert_eq!(shaded[0].first_shadow_view, 1);
-        assert_eq!(shaded[9].first_shadow_view, 55);
+        assert_eq!(shaded[cubes - 1].first_shadow_view as usize, 1 + 6 * (cubes - 1));
     }
 
     #[test]
