@@ -231,10 +231,12 @@ override EXACT_LIGHT_PATH: bool = true;
 // visibility SH would go unread and are not computed. Set likewise.
 override SH_VISIBILITY: bool = true;
 
-// Σ of the blockers' and the terrain's log-visibility seen from p with normal n. Skipped: blockers that
-// contain p (a sphere-fit artefact on the blocker's own surface), blockers too small in
-// the sky to matter, and blockers wholly below the tangent plane; blockers straddling it
-// are faded by smoothstep(−1, 1, (c − p)·n / r).
+// Σ of the blockers' and the terrain's log-visibility seen from p with normal n: the
+// spheres of the groups in reach (weighed against their group's stand-in), the groups'
+// stand-ins, then every disc. Skipped: spheres that contain p (a sphere-fit artefact on
+// the blocker's own surface), blockers too small in the sky to matter, and blockers
+// wholly below the tangent plane; blockers straddling it are faded by
+// smoothstep(−1, 1, (c − p)·n / h), h their half-extent along n.
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
     for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
@@ -320,13 +322,10 @@ fn add_blocker(f: Sh, b: Blocker, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh
     let seen = blocker_seen(b, p, n);
     let ratio = seen.x;
     let horizon = seen.y;
-    if ratio < shadow.min_cap_ratio || horizon <= 0.0 {
+    if ratio < shadow.min_cap_ratio || horizon <= 0.0 || weight <= 0.0 {
         return f;
     }
     var scale = shadow.ln_epsilon * horizon * weight * cap_mass_scale(ratio);
-    if weight <= 0.0 {
-        return f;
-    }
     if shadow.ratio_attenuation != 0u {
         scale *= ratio;
     }

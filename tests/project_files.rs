@@ -354,6 +354,28 @@ fn the_brdf_variant_is_saved_and_reopened() {
     }
 }
 
+/// Keeping the shadow mass is the default and is not written; turned off it is saved and
+/// reopens off, and a file without the field (every older project) opens with it on.
+#[test]
+fn the_shadow_mass_choice_is_saved_only_when_off() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut document = lightpaint::project::Document::open(&sample_project()).expect("sample");
+    assert!(document.settings.shadows.preserve_shadow_mass, "on when absent");
+    let saved = dir.path().join("mass.lightpaint");
+    document.save(&saved).expect("save");
+    let text = std::fs::read_to_string(&saved).expect("read");
+    assert!(!text.contains("preserve_shadow_mass"), "{text}");
+    document.settings.shadows.preserve_shadow_mass = false;
+    document.save(&saved).expect("save");
+    assert!(
+        std::fs::read_to_string(&saved)
+            .expect("read")
+            .contains("\"preserve_shadow_mass\": false")
+    );
+    let reopened = lightpaint::project::Document::open(&saved).expect("reopen");
+    assert!(!reopened.settings.shadows.preserve_shadow_mass);
+}
+
 /// Hidden objects are saved by index and reopen hidden; an index the scene does not have
 /// (the glTF changed) is dropped with a warning instead of failing the open.
 #[test]
