@@ -149,11 +149,7 @@ fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>) -> Sh {
     for (var i = 0u; i < shadow.disc_count; i++) {
         let seen = disc_cap_seen(shadow.discs[i], p, n);
         if seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0 {
-            var scale = shadow.ln_epsilon * seen.horizon * cap_mass_scale(seen.ratio);
-            if shadow.ratio_attenuation != 0u {
-                scale *= seen.ratio;
-            }
-            sum = sh_add_zonal(sum, sh_cap_zh(seen.ratio), scale, seen.direction);
+            sum = add_cap(sum, seen.direction, seen.ratio, seen.horizon);
         }
     }
     return sum;
@@ -278,8 +274,7 @@ fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>)
 
 // How much of a group's shadow at p its stand-in carries (blocker_groups.rs): 0 within
 // half its influence distance, 1 beyond it, smoothly between, where its blockers are
-// weighed 1 − share — so no ring shows where one takes over from the other; 0 for groups
-// without a stand-in (those with a disc).
+// weighed 1 − share — so no ring shows where one takes over from the other.
 fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
     if group.stand_in_radius_m <= 0.0 {
         return 0.0;
@@ -298,11 +293,7 @@ fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> Sh {
     if share <= 0.0 || ratio < shadow.min_cap_ratio || horizon <= 0.0 || group.count == 0u {
         return f;
     }
-    var scale = shadow.ln_epsilon * horizon * share * cap_mass_scale(ratio);
-    if shadow.ratio_attenuation != 0u {
-        scale *= ratio;
-    }
-    return sh_add_zonal(f, sh_cap_zh(ratio), scale, offset / distance);
+    return add_cap(f, offset / distance, ratio, horizon * share);
 }
 
 // k(s): the scale of a cap's log-visibility that keeps the light it blocks through the
@@ -325,11 +316,19 @@ fn add_blocker(f: Sh, b: Blocker, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh
     if ratio < shadow.min_cap_ratio || horizon <= 0.0 || weight <= 0.0 {
         return f;
     }
-    var scale = shadow.ln_epsilon * horizon * weight * cap_mass_scale(ratio);
+    return add_cap(f, (b.center_radius.xyz - p) / seen.z, ratio, horizon * weight);
+}
+
+// A blocker's cap of sine `ratio` toward unit `direction`, weighed by `weight` (its fade
+// below the tangent plane, and its share against a stand-in): ln ε · weight · k(s)
+// [· s with ratio attenuation] times the cap's ZH rotated there (shading::cpu::visibility's
+// add_cap is the twin).
+fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32) -> Sh {
+    var scale = shadow.ln_epsilon * weight * cap_mass_scale(ratio);
     if shadow.ratio_attenuation != 0u {
         scale *= ratio;
     }
-    return sh_add_zonal(f, sh_cap_zh(ratio), scale, (b.center_radius.xyz - p) / seen.z);
+    return sh_add_zonal(f, sh_cap_zh(ratio), scale, direction);
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'

@@ -1,5 +1,6 @@
-//! How a disc blocker looks from a receiver: its solid angle and the mean direction over
-//! it (the WGSL twin is `disc_seen` in logsh.wgsl).
+//! Disc blockers: how many a frame shades, apart from the spheres ([`spheres_and_discs`]),
+//! and how one looks from a receiver: its solid angle and the mean direction over it (the
+//! WGSL twin is `disc_seen` in logsh.wgsl).
 //!
 //! Within [`NEAR_FIELD_RADII`] radii the disc is the square of its area centred on it: its
 //! solid angle the sum over the square's two triangles of Van Oosterom and Strackee's
@@ -11,6 +12,8 @@
 //! that is exact on its axis and of its projected area, 2π(1 − d/√(d² + r²|cos θ|)).
 
 use glam::DVec3;
+
+use super::Sphere;
 
 /// Sides of the polygon standing for the disc: a square of its area is within 1 % of its
 /// solid angle on its axis at any distance (4 arcsin(a²/(a² + 4h²)) against
@@ -95,6 +98,41 @@ pub fn cap_sine_of_solid_angle(solid_angle: f64) -> f64 {
     (1.0 - cos * cos).max(0.0).sqrt()
 }
 
+/// Most disc blockers a frame shades: they are shaded in their own loop at every receiver
+/// (WGSL `ShadowParams.discs`), apart from the spheres' culled walk.
+pub const MAX_DISCS: usize = 64;
+
+/// `blockers` with at most [`MAX_DISCS`] discs: the largest are kept (the others, the
+/// smallest patches of open meshes, are dropped with a warning), spheres untouched.
+pub fn within_disc_capacity(mut blockers: Vec<Sphere>) -> Vec<Sphere> {
+    let discs = blockers.iter().filter(|b| b.is_disc()).count();
+    if discs <= MAX_DISCS {
+        return blockers;
+    }
+    let mut radii: Vec<f32> = blockers.iter().filter(|b| b.is_disc()).map(|b| b.radius_m).collect();
+    radii.sort_by(|a, b| b.total_cmp(a));
+    let smallest_kept = radii[MAX_DISCS - 1];
+    let mut kept = 0;
+    blockers.retain(|b| {
+        let keep = !b.is_disc() || (b.radius_m >= smallest_kept && kept < MAX_DISCS);
+        kept += (keep && b.is_disc()) as usize;
+        keep
+    });
+    log::warn!(
+        "{discs} disc blockers on open and thin meshes; the {MAX_DISCS} largest cast soft shadows, the others not"
+    );
+    blockers
+}
+
+/// `blockers` split as every shadow path shades them: the spheres, walked in culling groups,
+/// and the discs (at most [`MAX_DISCS`], [`within_disc_capacity`]), seen at every receiver.
+pub fn spheres_and_discs(blockers: &[Sphere]) -> (Vec<Sphere>, Vec<Sphere>) {
+    let (discs, spheres) = within_disc_capacity(blockers.to_vec())
+        .into_iter()
+        .partition(Sphere::is_disc);
+    (spheres, discs)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,5 +198,30 @@ mod tests {
         let alpha = 0.3f64;
         let omega = TAU * (1.0 - alpha.cos());
         assert!((cap_sine_of_solid_angle(omega) - alpha.sin()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_frame_keeps_the_largest_discs_and_every_sphere() {
+        let mut blockers: Vec<Sphere> = (0..MAX_DISCS + 6)
+            .map(|k| {
+                Sphere::disc(
+                    glam::Vec3::new(k as f32, 0.0, 0.0),
+                    0.1 + 0.01 * k as f32,
+                    glam::Vec3::Y,
+                )
+            })
+            .collect();
+        blockers.extend((0..3).map(|k| Sphere::ball(glam::Vec3::new(0.0, k as f32, 0.0), 0.01)));
+        let kept = within_disc_capacity(blockers.clone());
+        assert_eq!(kept.iter().filter(|b| b.is_disc()).count(), MAX_DISCS);
+        assert_eq!(kept.iter().filter(|b| !b.is_disc()).count(), 3);
+        // The six smallest went.
+        assert!(
+            kept.iter()
+                .filter(|b| b.is_disc())
+                .all(|b| b.radius_m > 0.1 + 0.01 * 5.5)
+        );
+        // Within the capacity nothing changes.
+        assert_eq!(within_disc_capacity(blockers[6..].to_vec()), blockers[6..].to_vec());
     }
 }

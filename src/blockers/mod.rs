@@ -21,6 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use glam::Vec3;
 
 use crate::scene::{MeshObject, Scene};
+pub use disc::{MAX_DISCS, spheres_and_discs, within_disc_capacity};
 use voxel::VoxelGrid;
 
 /// One blocker in world space: a sphere, or — with a nonzero `disc_normal` — a flat disc of
@@ -249,32 +250,6 @@ impl SceneBlockers {
             })
             .collect()
     }
-}
-
-/// Most disc blockers a frame shades: they are shaded in their own loop at every receiver
-/// (WGSL `ShadowParams.discs`), apart from the spheres' culled walk.
-pub const MAX_DISCS: usize = 64;
-
-/// `blockers` with at most [`MAX_DISCS`] discs: the largest are kept (the others, the
-/// smallest patches of open meshes, are dropped with a warning), spheres untouched.
-pub fn within_disc_capacity(mut blockers: Vec<Sphere>) -> Vec<Sphere> {
-    let discs = blockers.iter().filter(|b| b.is_disc()).count();
-    if discs <= MAX_DISCS {
-        return blockers;
-    }
-    let mut radii: Vec<f32> = blockers.iter().filter(|b| b.is_disc()).map(|b| b.radius_m).collect();
-    radii.sort_by(|a, b| b.total_cmp(a));
-    let smallest_kept = radii[MAX_DISCS - 1];
-    let mut kept = 0;
-    blockers.retain(|b| {
-        let keep = !b.is_disc() || (b.radius_m >= smallest_kept && kept < MAX_DISCS);
-        kept += (keep && b.is_disc()) as usize;
-        keep
-    });
-    log::warn!(
-        "{discs} disc blockers on open and thin meshes; the {MAX_DISCS} largest cast soft shadows, the others not"
-    );
-    blockers
 }
 
 /// Sphere counts tried, in order, under [`SphereBudget::FitError`].
@@ -558,25 +533,6 @@ mod tests {
             }
         }
         assert!(fitted.report(&scene).iter().all(|line| line.contains("on its surface")));
-    }
-
-    #[test]
-    fn a_frame_keeps_the_largest_discs_and_every_sphere() {
-        let mut blockers: Vec<Sphere> = (0..MAX_DISCS + 6)
-            .map(|k| Sphere::disc(Vec3::new(k as f32, 0.0, 0.0), 0.1 + 0.01 * k as f32, Vec3::Y))
-            .collect();
-        blockers.extend((0..3).map(|k| Sphere::ball(Vec3::new(0.0, k as f32, 0.0), 0.01)));
-        let kept = within_disc_capacity(blockers.clone());
-        assert_eq!(kept.iter().filter(|b| b.is_disc()).count(), MAX_DISCS);
-        assert_eq!(kept.iter().filter(|b| !b.is_disc()).count(), 3);
-        // The six smallest went.
-        assert!(
-            kept.iter()
-                .filter(|b| b.is_disc())
-                .all(|b| b.radius_m > 0.1 + 0.01 * 5.5)
-        );
-        // Within the capacity nothing changes.
-        assert_eq!(within_disc_capacity(blockers[6..].to_vec()), blockers[6..].to_vec());
     }
 
     #[test]

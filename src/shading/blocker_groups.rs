@@ -30,8 +30,8 @@ pub struct BlockerGroup {
     pub influence_m: f32,
     /// √Σ rᵢ²: the radius of one sphere at `center` with the projected area of the
     /// group's spheres, which takes over from them between half the influence distance
-    /// and `influence_m` (where each alone is too small to count); 0 for a group with a
-    /// disc, which keeps its blockers.
+    /// and `influence_m` (where each alone is too small to count). Groups hold spheres
+    /// only: discs are shaded apart (`blockers::spheres_and_discs`).
     pub stand_in_radius_m: f32,
     pub first: usize,
     pub count: usize,
@@ -85,11 +85,7 @@ fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32) -> BlockerGroup {
     } else {
         f32::INFINITY
     };
-    let stand_in_radius_m = if spheres.iter().any(Sphere::is_disc) {
-        0.0
-    } else {
-        spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt()
-    };
+    let stand_in_radius_m = spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt();
     BlockerGroup {
         center,
         extent_m,

@@ -52,8 +52,7 @@ impl GpuBlockers {
             mapped_at_creation: false,
         });
         // Discs are shaded in their own loop (from the parameters), spheres in the walk.
-        let blockers = crate::blockers::within_disc_capacity(spheres.to_vec());
-        let (discs, balls): (Vec<Sphere>, Vec<Sphere>) = blockers.into_iter().partition(Sphere::is_disc);
+        let (balls, discs) = crate::blockers::spheres_and_discs(spheres);
         let (ordered, groups) = gpu_groups(&balls, settings);
         let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
         let [blockers_uniform, blockers_storage] = uniform_and_storage(device, "blockers", &ordered);

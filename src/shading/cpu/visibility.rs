@@ -96,8 +96,7 @@ fn with_groups<R>(
         let mut last = last.borrow_mut();
         let fresh = !matches!(&*last, Some((input, ratio, ..)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits());
         if fresh {
-            let kept = crate::blockers::within_disc_capacity(blockers.to_vec());
-            let (discs, spheres): (Vec<Sphere>, Vec<Sphere>) = kept.into_iter().partition(Sphere::is_disc);
+            let (spheres, discs) = crate::blockers::spheres_and_discs(blockers);
             let (ordered, groups) = group_blockers(&spheres, min_cap_ratio);
             *last = Some((blockers.to_vec(), min_cap_ratio.to_bits(), ordered, groups, discs));
         }
