@@ -125,6 +125,60 @@ fn render_writes_a_png_of_the_requested_size() {
     assert_eq!((image.width(), image.height()), (160, 90));
 }
 
+/// `--time-frames` says the frames' mean time and, on a GPU with timestamps (lavapipe has
+/// them), each pass's: the reduced-resolution shading and the scene pass are named, and
+/// their times are positive and within the frame's.
+#[test]
+fn render_times_frames_and_their_passes() {
+    if common::no_gpu_wanted() {
+        eprintln!("GPU test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("sample.png");
+    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
+    let out = common::run_lightpaint(&[
+        OsStr::new("render"),
+        sample.as_os_str(),
+        OsStr::new("-o"),
+        out_png.as_os_str(),
+        OsStr::new("--width"),
+        OsStr::new("160"),
+        OsStr::new("--height"),
+        OsStr::new("90"),
+        OsStr::new("--time-frames"),
+        OsStr::new("2"),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let number_after = |text: &str, label: &str| -> f64 {
+        let rest = &text[text.find(label).unwrap_or_else(|| panic!("{label:?} in {text}")) + label.len()..];
+        let digits: String = rest
+            .trim_start()
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        digits
+            .parse()
+            .unwrap_or_else(|_| panic!("a number after {label:?} in {text}"))
+    };
+    let frame_ms = number_after(&stdout, "2 frames: mean");
+    let passes = stdout
+        .lines()
+        .find(|l| l.starts_with("GPU time per pass:"))
+        .expect("pass times");
+    let mut total_ms = 0.0;
+    for pass in ["low-resolution shading", "scene pass (depth, upsampling, shading)"] {
+        let ms = number_after(passes, pass);
+        assert!(ms > 0.0, "{passes}");
+        total_ms += ms;
+    }
+    assert!(
+        total_ms <= frame_ms,
+        "passes {total_ms} ms within the frame's {frame_ms} ms: {passes}"
+    );
+}
+
 /// The flags that change how a frame is shaded change the frame: `--per-vertex` (shadows
 /// interpolated from the vertices, under the default automatic light paths) and
 /// `--shadow-map-size 0` (the lights of no size on the SH path instead of the real

@@ -82,7 +82,8 @@ pub struct RenderArgs {
     /// shades). --no-shadows frames are multisampled.
     #[arg(long, default_value = "filter", value_parser = parse_anti_aliasing)]
     pub aa: AntiAliasing,
-    /// Also time this many more GPU frames (after one warm-up) and print ms per frame.
+    /// Also time this many more GPU frames (after one warm-up) and print ms per frame, and,
+    /// where the GPU has timestamps, the GPU time of each pass.
     #[arg(long, default_value_t = 0, conflicts_with_all = ["cpu", "no_shadows"])]
     pub time_frames: u32,
     /// Shade on the CPU in f64 (the reference), from surfaces rasterised on the GPU.

@@ -214,6 +214,7 @@ fn render_reference_png(
 fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
     let mut renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
     renderer.draw_and_wait()?;
+    let timed_passes = renderer.time_passes();
     let mut times_ms = Vec::with_capacity(count as usize);
     for _ in 0..count {
         let started = std::time::Instant::now();
@@ -226,6 +227,14 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
         "{count} frames: mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
         1000.0 / mean
     );
+    if timed_passes {
+        let passes: Vec<String> = renderer
+            .pass_times_ms()
+            .iter()
+            .map(|(pass, ms)| format!("{pass} {ms:.1} ms"))
+            .collect();
+        say!("GPU time per pass: {}", passes.join(", "));
+    }
     Ok(())
 }
 

@@ -22,6 +22,10 @@ impl GpuContext {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("lightpaint"),
             required_limits: wgpu::Limits::default().using_resolution(adapter.limits()),
+            // For `render --time-frames`' time per pass (render::pass_timer), where the
+            // adapter has them.
+            required_features: adapter.features()
+                & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS),
             ..Default::default()
         }))
         .map_err(|e| RenderError::Device(e.to_string()))?;

@@ -10,6 +10,7 @@
 mod context;
 pub mod descriptors;
 mod offscreen;
+pub mod pass_timer;
 pub mod passes;
 mod readback;
 pub mod renderer;

@@ -202,8 +202,19 @@ impl<'a> ShadowRenderer<'a> {
         self.gpu
             .device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RenderError::Readback(e.to_string()))
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        self.renderer.collect_pass_times()
+    }
+
+    /// Times each pass of the frames drawn from now on, if the GPU has timestamps (false:
+    /// it has not).
+    pub fn time_passes(&mut self) -> bool {
+        self.renderer.time_passes()
+    }
+
+    /// Mean GPU milliseconds per frame of each pass timed so far.
+    pub fn pass_times_ms(&self) -> Vec<(&'static str, f64)> {
+        self.renderer.pass_times_ms()
     }
 }
 

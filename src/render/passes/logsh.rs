@@ -8,6 +8,7 @@
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::reduced_shading::{LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout};
 use crate::render::descriptors::{create_module, depth_test, scene_triangles};
+use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{
     GpuBlockers, GpuScene, SceneLayouts, draw_object, draw_objects, shadow_layout, vertex_layout,
 };
@@ -223,7 +224,7 @@ impl LogShPipeline {
     /// the way `shading` says (per pixel where this pipeline cannot do it that way).
     pub fn draw(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
+        frame: &mut TimedEncoder,
         target: &RenderTarget,
         scene: &GpuScene,
         blockers: &GpuBlockers,
@@ -241,12 +242,13 @@ impl LogShPipeline {
             _ => None,
         };
         if let Some((visibility, (compute, _))) = per_vertex {
-            compute.run(encoder, &blockers.bind_group, visibility);
+            compute.run(frame.encoder, &blockers.bind_group, visibility);
+            frame.mark("per-vertex visibility");
         }
         if let Some((low, pipelines)) = reduced {
-            shade_low_resolution(encoder, pipelines, low, scene, blockers);
+            shade_low_resolution(frame, pipelines, low, scene, blockers);
         }
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("log-SH scene"),
             color_attachments: &[Some(target.color_attachment(background_linear))],
             depth_stencil_attachment: Some(target.depth_attachment()),
@@ -285,7 +287,11 @@ impl LogShPipeline {
             }
         }
         drop(pass);
-        target.finish(encoder);
+        frame.mark("scene pass (depth, upsampling, shading)");
+        target.finish(frame.encoder);
+        if target.has_edge_filter() {
+            frame.mark("edge filter");
+        }
     }
 }
 
@@ -300,7 +306,7 @@ fn shades_unmatched_exactly(samples: u32) -> bool {
 /// The reduced-resolution samples: a depth pass, then the shading of the visible
 /// surface into `low`'s images.
 fn shade_low_resolution(
-    encoder: &mut wgpu::CommandEncoder,
+    frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
     low: &LowResolutionTargets,
     scene: &GpuScene,
@@ -313,7 +319,7 @@ fn shade_low_resolution(
         ("low-resolution shading", &attachments[..], false, &pipelines.shade_low),
     ];
     for (label, color_attachments, depth_pass, pipeline) in passes {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
             color_attachments,
             depth_stencil_attachment: Some(low.depth_attachment(depth_pass)),
@@ -325,6 +331,8 @@ fn shade_low_resolution(
         pass.set_bind_group(2, &blockers.bind_group, &[]);
         pass.set_pipeline(pipeline);
         draw_objects(&mut pass, scene);
+        drop(pass);
+        frame.mark(label);
     }
 }
 

@@ -15,6 +15,7 @@ use std::sync::Arc;
 
 pub use pipeline_cache::{Compilation, PipelineKey};
 
+use super::pass_timer::{self, PassTimer, TimedEncoder};
 use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
@@ -95,6 +96,8 @@ pub struct SceneRenderer {
     /// The scene's bounds, which the maps' views cover.
     bounds: Aabb,
     target: Option<RenderTarget>,
+    /// The GPU time of each pass, when asked for ([`Self::time_passes`]).
+    pass_timer: Option<PassTimer>,
 }
 
 impl SceneRenderer {
@@ -167,6 +170,7 @@ impl SceneRenderer {
             maps_stale: false,
             bounds: scene.bounds(),
             target: None,
+            pass_timer: None,
         };
         renderer.write_lights();
         renderer
@@ -424,9 +428,11 @@ impl SceneRenderer {
         self.gpu_scene
             .write_frame(&self.queue, camera, size, settings.exposure_ev);
         let mut encoder = self.device.create_command_encoder(&Default::default());
+        pass_timer::mark(&mut self.pass_timer, &mut encoder, "frame start");
         let background = settings.background_linear();
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
             // The heat map replaces the shading.
+            pass_timer::mark(&mut self.pass_timer, &mut encoder, "heat map");
         } else if settings.shadows.enabled
             // While new shaders compile, the shadows keep their previous settings.
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
@@ -443,7 +449,10 @@ impl SceneRenderer {
                         .low_resolution_targets(&self.device, size, shadows.low_resolution.take());
             }
             shadows.pipeline.draw(
-                &mut encoder,
+                &mut TimedEncoder {
+                    encoder: &mut encoder,
+                    timer: &mut self.pass_timer,
+                },
                 target,
                 &self.gpu_scene,
                 &shadows.blockers,
@@ -452,9 +461,33 @@ impl SceneRenderer {
             );
         } else {
             self.raster.draw(&mut encoder, target, &self.gpu_scene, background);
+            pass_timer::mark(&mut self.pass_timer, &mut encoder, "plain raster");
         }
         self.queue.submit([encoder.finish()]);
         resized
+    }
+
+    /// From now on, times each pass of every frame on the GPU, if the device has
+    /// timestamps (false: it has not).
+    pub fn time_passes(&mut self) -> bool {
+        self.pass_timer = PassTimer::new(&self.device);
+        self.pass_timer.is_some()
+    }
+
+    /// Waits for the frames drawn so far and adds their passes' times up (nothing unless
+    /// [`Self::time_passes`]).
+    pub fn collect_pass_times(&mut self) -> Result<(), super::RenderError> {
+        match &mut self.pass_timer {
+            Some(timer) => timer
+                .collect(&self.device, &self.queue)
+                .map_err(|e| super::RenderError::Readback(e.to_string())),
+            None => Ok(()),
+        }
+    }
+
+    /// Mean GPU milliseconds per frame of each pass timed so far, in the order they run.
+    pub fn pass_times_ms(&self) -> Vec<(&'static str, f64)> {
+        self.pass_timer.as_ref().map(PassTimer::mean_ms).unwrap_or_default()
     }
 
     /// The last frame, read back from the GPU (None before the first frame).

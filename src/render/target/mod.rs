@@ -181,6 +181,11 @@ impl RenderTarget {
 
     /// Ends a frame drawn into [`Self::color_attachment`]: runs the edge filter into the
     /// colour texture where there is one.
+    /// Whether [`RenderTarget::finish`] runs the edge filter.
+    pub fn has_edge_filter(&self) -> bool {
+        self.edge_filter.is_some()
+    }
+
     pub fn finish(&self, encoder: &mut wgpu::CommandEncoder) {
         if let Some(filter) = &self.edge_filter {
             filter.run(encoder, &self.display_view);
