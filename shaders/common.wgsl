@@ -74,9 +74,11 @@ struct Light {
     first_shadow_view: u32,
     // 6: a cube of views (+x, −x, +y, −y, +z, −z); 1: one view; 0: no maps.
     shadow_view_count: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // Rect lights: half the width along the width axis, metres (three floats: a vec3
+    // would be aligned to 16 bytes); zero for other kinds (disks: area_frame's axes).
+    area_half_width_x: f32,
+    area_half_width_y: f32,
+    area_half_width_z: f32,
 };
 
 // One layer of the shadow-map array, seen from a light (src/shading/shadow_maps.rs).

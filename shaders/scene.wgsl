@@ -79,11 +79,15 @@ fn transform_vertex(v: VertexIn) -> VertexOut {
 @fragment
 fn fs_depth_only() {}
 
-// Irradiance (per unit area facing the light), the unit direction toward the light, and
-// the sine of the half-angle of the cap the light subtends (0 for point-like lights).
+// Irradiance (per unit area facing diffuse_to_light), the unit direction toward the
+// light's centre (shadows are looked up that way), and the sine of the half-angle of the
+// cap the light subtends (0 for point-like lights).
 struct Incidence {
     irradiance: vec3<f32>,
     to_light: vec3<f32>,
+    // Whose cosine with a receiver's normal scales `irradiance` to the receiver's:
+    // to_light, except near area lights (their vector irradiance's direction).
+    diffuse_to_light: vec3<f32>,
     cap_ratio: f32,
     // Distance to the light (the largest f32 for directional lights).
     distance: f32,
@@ -94,6 +98,7 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     result.cap_ratio = 0.0;
     if light.kind == LIGHT_DIRECTIONAL {
         result.to_light = -light.direction_range.xyz;
+        result.diffuse_to_light = result.to_light;
         result.irradiance = light.intensity_rgb.rgb;
         result.distance = 3.4e38;
         return result;
@@ -102,6 +107,7 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     let distance2 = max(dot(offset, offset), 1e-8);
     result.distance = sqrt(distance2);
     result.to_light = offset * inverseSqrt(distance2);
+    result.diffuse_to_light = result.to_light;
     var falloff = 1.0 / distance2;
     let range = light.direction_range.w;
     if range > 0.0 {
@@ -116,10 +122,16 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     }
     if light.kind == LIGHT_AREA {
         let cos_emitter = max(dot(-result.to_light, light.direction_range.xyz), 0.0);
-        falloff *= cos_emitter;
         // The cap of the same solid angle Ω = A·cos θ/d²: 1 − cos(half-angle) = Ω/(2π).
         let u = min(light.source_size * cos_emitter / distance2 / (2.0 * PI), 1.0);
         result.cap_ratio = sqrt(u * (2.0 - u));
+        // intensity = L·A; on the plane facing Φ the irradiance is L·|Φ|.
+        let phi = area_vector_irradiance(light, p);
+        let length_phi = length(phi);
+        falloff *= distance2 * length_phi / max(light.source_size, 1e-30);
+        if length_phi > 0.0 {
+            result.diffuse_to_light = phi / length_phi;
+        }
     }
     if light.kind == LIGHT_SPOT {
         let cos_angle = dot(-result.to_light, light.direction_range.xyz);
@@ -128,6 +140,65 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     }
     result.irradiance = light.intensity_rgb.rgb * falloff;
     return result;
+}
+
+// Sides of the regular polygon of equal area a disk light is taken as
+// (shading::cpu::area::DISK_LIGHT_SIDES).
+const DISK_LIGHT_SIDES: u32 = 8u;
+
+// The emitting plane's unit width axis for an emitting normal: reference × normal, the
+// reference +y, or +z within 8° of ±y (shading::cpu::area::area_frame).
+fn area_width_axis(normal: vec3<f32>) -> vec3<f32> {
+    let reference = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), abs(normal.y) > 0.99);
+    return normalize(cross(reference, normal));
+}
+
+// The vector irradiance at p of an area light of unit radiance, Φ = ½ Σ_edges γ·n̂
+// (Lambert's formula; Arvo 1994): E = L·Φ·n for a receiver whose horizon the light is
+// wholly above. Its polygon: a rect's 4 corners, or for a disk the regular polygon of
+// DISK_LIGHT_SIDES sides and equal area, on the ellipse centre + cos θ·U + sin θ·V
+// (shading::cpu::area: area_light_corners, polygon_vector_irradiance). Zero behind the
+// emitting side.
+fn area_vector_irradiance(light: Light, p: vec3<f32>) -> vec3<f32> {
+    let normal = light.direction_range.xyz;
+    let centre = light.position.xyz - p;
+    if dot(centre, normal) >= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
+    var u: vec3<f32>;
+    var v: vec3<f32>;
+    var sides = 4u;
+    var first_angle = 0.25 * PI;
+    if dot(half_width, half_width) > 0.0 {
+        let half_height = light.source_size / (4.0 * length(half_width));
+        u = half_width * sqrt(2.0);
+        v = normalize(cross(normal, half_width)) * (half_height * sqrt(2.0));
+    } else {
+        let n = f32(DISK_LIGHT_SIDES);
+        let circumradius = sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+        let width = area_width_axis(normal);
+        u = width * circumradius;
+        v = cross(normal, width) * circumradius;
+        sides = DISK_LIGHT_SIDES;
+        first_angle = 0.0;
+    }
+    var sum = vec3<f32>(0.0);
+    let step = 2.0 * PI / f32(sides);
+    var a = normalize(centre + u * cos(first_angle) + v * sin(first_angle));
+    for (var k = 1u; k <= sides; k++) {
+        let angle = first_angle + step * f32(k);
+        let b = normalize(centre + u * cos(angle) + v * sin(angle));
+        let edge_normal = cross(a, b);
+        let sine = length(edge_normal);
+        if sine > 0.0 {
+            // atan2 rather than acos: exact for the small angles of distant lights.
+            sum += edge_normal * (atan2(sine, dot(a, b)) / sine);
+        }
+        a = b;
+    }
+    let phi = 0.5 * sum;
+    return select(phi, -phi, dot(phi, centre) < 0.0);
 }
 
 // What the shading of a fragment needs to know about its surface.
@@ -179,10 +250,10 @@ fn pixel_footprint(p: vec3<f32>) -> f32 {
     return distance(frame.camera_position.xyz, p) * frame.pixel_angle_rad;
 }
 
-// A light's unshadowed diffuse and glossy factors, n·l/π and (r+1)/(2π)·max(ρ·l, 0)^r
-// (both 0 when the light is below the horizon).
+// A light's unshadowed diffuse and glossy factors, n·l_d/π and (r+1)/(2π)·max(ρ·l, 0)^r
+// with l_d = diffuse_to_light and l = to_light (both 0 below the horizon of l_d).
 fn direct_lobes(s: Surface, inc: Incidence) -> vec2<f32> {
-    let n_dot_l = dot(s.normal, inc.to_light);
+    let n_dot_l = dot(s.normal, inc.diffuse_to_light);
     if n_dot_l <= 0.0 {
         return vec2<f32>(0.0);
     }

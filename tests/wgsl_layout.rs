@@ -77,6 +77,9 @@ fn light_matches_wgsl() {
             ("shadow_path", offset_of!(GpuLight, shadow_path)),
             ("first_shadow_view", offset_of!(GpuLight, first_shadow_view)),
             ("shadow_view_count", offset_of!(GpuLight, shadow_view_count)),
+            ("area_half_width_x", offset_of!(GpuLight, area_half_width_m)),
+            ("area_half_width_y", offset_of!(GpuLight, area_half_width_m) + 4),
+            ("area_half_width_z", offset_of!(GpuLight, area_half_width_m) + 8),
         ],
     );
 }

@@ -111,9 +111,10 @@ pub struct UnitIncidence {
 impl Light {
     /// The incidence at `p` of a point source of this light at `source` (a point of its
     /// emitter): inverse square falloff, the glTF range window, the spot cone and, for
-    /// area lights, the emitter's cos θ times its whole area, so a single source at the
-    /// centre stands for the whole emitter (the renderer's `incidence` in scene.wgsl) and
-    /// an area sample drawn with density 1/A is an unbiased estimate.
+    /// area lights, the emitter's cos θ times its whole area, so that an area sample drawn
+    /// with density 1/A is an unbiased estimate (the path tracer, the bake) and, far away,
+    /// a source at the centre stands for the whole emitter (the renderers take its exact
+    /// polygon: `shading::cpu::area`).
     pub fn unit_incidence(&self, source: Vec3, p: Vec3) -> UnitIncidence {
         if self.kind == LightKind::Directional {
             return UnitIncidence {

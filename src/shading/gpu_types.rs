@@ -165,14 +165,16 @@ pub struct GpuLight {
     /// How many views its maps take (`shading::shadow_maps::view_count`): 6 for a cube
     /// (+x, −x, +y, −y, +z, −z), 1 for one view; 0 without maps.
     pub shadow_view_count: u32,
-    pub _pad: [u32; 3],
+    /// Rect lights: half the width along the width axis (`Light::area_axes`), metres;
+    /// zero for every other kind (a disk's polygon lies on `cpu::area::area_frame`).
+    pub area_half_width_m: [f32; 3],
 }
 
 impl GpuLight {
     pub fn new(light: &Light) -> GpuLight {
         // A sphere lights like a point at its centre (exact for unshadowed receivers it is
-        // wholly above the horizon of); an area light like a point whose intensity falls
-        // with the cosine to its normal, I(θ) = L·A·cos θ (exact in the far field).
+        // wholly above the horizon of); an area light carries L·A, its shape (area and
+        // width axis) giving its exact vector irradiance (`cpu::area`).
         let mut intensity_scale = 1.0;
         let mut source_size = 0.0;
         let (kind, spot_cone) = match light.kind {
@@ -203,7 +205,10 @@ impl GpuLight {
             shadow_path: SHADOW_PATH_SH,
             first_shadow_view: NO_SHADOW_VIEW,
             shadow_view_count: 0,
-            _pad: [0; 3],
+            area_half_width_m: match light.kind {
+                LightKind::Rect { width_m, .. } => (light.area_width_axis() * (0.5 * width_m)).to_array(),
+                _ => [0.0; 3],
+            },
         }
     }
 }

@@ -23,6 +23,7 @@
 //!
 //! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
 
+pub mod area;
 pub mod lobes;
 mod mapped;
 mod surface;

@@ -25,8 +25,14 @@ pub struct SurfacePoint {
 /// half-angle of the cap it subtends (`incidence` in scene.wgsl).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Incidence {
+    /// On the plane facing `diffuse_to_light`.
     pub irradiance: DVec3,
+    /// Toward the light's centre (its shadows are looked up that way).
     pub to_light: DVec3,
+    /// The direction whose cosine with a receiver's normal scales `irradiance` to the
+    /// receiver's: `to_light`, except for area lights, whose vector irradiance points
+    /// elsewhere near them (`area::area_vector_irradiance`).
+    pub diffuse_to_light: DVec3,
     pub cap_ratio: f64,
     /// Distance to the light (infinite for directional lights).
     pub distance_m: f64,
@@ -43,6 +49,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
         return Incidence {
             irradiance: intensity,
             to_light: -direction,
+            diffuse_to_light: -direction,
             cap_ratio: 0.0,
             distance_m: f64::INFINITY,
         };
@@ -59,14 +66,21 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
     }
     let size = light.source_size as f64;
     let mut cap_ratio = 0.0;
+    let mut diffuse_to_light = to_light;
     if light.kind == LIGHT_POINT && size > 0.0 {
         cap_ratio = (size / distance2.sqrt()).min(1.0);
     }
     if light.kind == LIGHT_AREA {
         let cos_emitter = (-to_light).dot(direction).max(0.0);
-        falloff *= cos_emitter;
         let u = (size * cos_emitter / distance2 / (2.0 * PI)).min(1.0);
         cap_ratio = (u * (2.0 - u)).sqrt();
+        // intensity = L·A; on the plane facing Φ the irradiance is L·|Φ|.
+        let phi = super::area::area_vector_irradiance(light, p);
+        let length = phi.length();
+        falloff *= distance2 * length / size.max(f64::MIN_POSITIVE);
+        if length > 0.0 {
+            diffuse_to_light = phi / length;
+        }
     }
     if light.kind == LIGHT_SPOT {
         let cos_angle = (-to_light).dot(direction);
@@ -76,6 +90,7 @@ pub fn incidence(light: &GpuLight, p: DVec3) -> Incidence {
     Incidence {
         irradiance: intensity * falloff,
         to_light,
+        diffuse_to_light,
         cap_ratio,
         distance_m: distance2.sqrt(),
     }
@@ -93,10 +108,11 @@ pub fn mirrored_view(s: &SurfacePoint, eye: DVec3) -> DVec3 {
     -to_eye - 2.0 * s.normal.dot(-to_eye) * s.normal
 }
 
-/// The unshadowed diffuse and glossy factors of a light, n·l/π and (r+1)/(2π)·(ρ·l)^r
-/// (0, 0 below the horizon): `direct_lobes` in scene.wgsl.
+/// The unshadowed diffuse and glossy factors of a light, n·l_d/π and (r+1)/(2π)·(ρ·l)^r
+/// with l_d = `diffuse_to_light` and l = `to_light` (0, 0 below the horizon of l_d):
+/// `direct_lobes` in scene.wgsl.
 pub fn direct_lobes(s: &SurfacePoint, inc: &Incidence, eye: DVec3) -> (f64, f64) {
-    let n_dot_l = s.normal.dot(inc.to_light);
+    let n_dot_l = s.normal.dot(inc.diffuse_to_light);
     if n_dot_l <= 0.0 {
         return (0.0, 0.0);
     }
