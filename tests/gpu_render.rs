@@ -286,6 +286,7 @@ fn area_lights_give_their_exact_light_near_the_floor() {
         kind: LightKind::Rect {
             width_m: 0.6,
             height_m: 0.4,
+            turn_rad: 0.0,
         },
         color: Vec3::ONE,
         intensity: luminance_nt as f32,

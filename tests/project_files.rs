@@ -235,7 +235,9 @@ fn open_old_fixture(version: u64) -> lightpaint::project::Document {
         current.settings.shadows
     };
     // Formats before 8 had no budget of exact lights: any number could go exact.
-    every_pixel.exact_light_budget = lightpaint::shading::MAX_EXACT_LIGHT_BUDGET;
+    if version < 8 {
+        every_pixel.exact_light_budget = lightpaint::shading::MAX_EXACT_LIGHT_BUDGET;
+    }
     // The format-7 fixture saved the shading resolution of its day, one pixel in 2 × 2.
     if version == 7 {
         every_pixel.shading_downsample = 2;
@@ -338,6 +340,80 @@ fn a_format_7_project_opens_with_the_brdf_outside_the_sh() {
         lightpaint::shading::BrdfShading::Separate
     );
     assert_eq!(document.settings.shadows.shading_downsample, 2);
+}
+
+/// Format 8 had no turn of rect lights: its rects open unturned, lying as they did (width
+/// along world up × direction), and a turned rect is saved as format 9 and reopens turned,
+/// its width along the former height axis after a quarter turn.
+#[test]
+fn a_format_8_project_opens_and_rect_lights_turn_about_their_normal() {
+    use lightpaint::scene::{Light, LightKind};
+    let document = open_old_fixture(8);
+    assert!(
+        document
+            .scene
+            .lights
+            .iter()
+            .all(|l| !matches!(l.kind, LightKind::Rect { .. }))
+    );
+    let dir = tempfile::tempdir().expect("temp dir");
+    let fixture = std::fs::read_to_string(common::repo_path("tests/fixtures/format-8.lightpaint")).expect("fixture");
+    let mut json: serde_json::Value = serde_json::from_str(&fixture).expect("JSON");
+    let rect = serde_json::json!({
+        "name": "Softbox",
+        "kind": { "type": "rect", "width_m": 0.8, "height_m": 0.3 },
+        "color": [1.0, 1.0, 1.0],
+        "intensity": 40.0,
+        "position": [0.0, 3.0, 0.0],
+        "direction": [0.6, -0.8, 0.0]
+    });
+    json["lights"].as_array_mut().expect("lights").push(rect);
+    let in_sample = |file: &str| {
+        serde_json::Value::from(
+            common::repo_path(&format!("projects/sample/{file}"))
+                .to_string_lossy()
+                .to_string(),
+        )
+    };
+    json["scene"]["gltf"] = in_sample("sample.glb");
+    json["environment"]["hdr"] = in_sample("sky.hdr");
+    let old = dir.path().join("format-8-rect.lightpaint");
+    std::fs::write(&old, serde_json::to_string_pretty(&json).expect("JSON")).expect("write");
+    let mut document = lightpaint::project::Document::open(&old).expect("a format-8 rect opens");
+    let light: Light = document.scene.lights.last().expect("the rect").clone();
+    assert_eq!(
+        light.kind,
+        LightKind::Rect {
+            width_m: 0.8,
+            height_m: 0.3,
+            turn_rad: 0.0
+        }
+    );
+    let direction = light.direction;
+    let untouched = glam::Vec3::Y.cross(direction).normalize();
+    assert!((light.area_width_axis() - untouched).length() < 1e-6);
+    let (_, height_axis) = light.area_axes();
+
+    let turned = Light {
+        kind: LightKind::Rect {
+            width_m: 0.8,
+            height_m: 0.3,
+            turn_rad: std::f32::consts::FRAC_PI_2,
+        },
+        ..light
+    };
+    *document.scene.lights.last_mut().expect("the rect") = turned.clone();
+    let saved = dir.path().join("turned.lightpaint");
+    document.save(&saved).expect("save");
+    assert_eq!(read_project_file(&saved).expect("reads").format_version, 9);
+    let reopened = lightpaint::project::Document::open(&saved).expect("reopen");
+    let light = reopened.scene.lights.last().expect("the rect");
+    assert_eq!(light, &turned);
+    assert!(
+        (light.area_width_axis() - height_axis).length() < 1e-5,
+        "a quarter turn lays the width along the former height axis"
+    );
+    assert!(light.area_width_axis().dot(direction).abs() < 1e-6);
 }
 
 /// The BRDF variant is saved and reopened.

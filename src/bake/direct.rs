@@ -52,7 +52,7 @@ fn emitter_samples(light: &Light, p: Vec3, samples: usize) -> Vec<EmitterSample>
                 })
                 .collect();
         }
-        LightKind::Rect { width_m, height_m } => {
+        LightKind::Rect { width_m, height_m, .. } => {
             let (u, v) = light.area_axes();
             let side = (n as f32).sqrt().ceil() as usize;
             (0..side * side)

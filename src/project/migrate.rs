@@ -25,6 +25,8 @@
 //!   light's exact BRDF through its visibility, which is what its absence means; and
 //!   `render.shadows.exact_light_budget` (at most so many exact lights under Auto): format
 //!   7 had no limit, so the largest budget.
+//! - 9: rect lights' `turn_rad` (a turn about their normal); format 8 rects lay on the
+//!   default width axis, which is what an absent turn means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -32,7 +34,7 @@
 use serde_json::Value;
 
 /// The format this build writes and the newest it reads: the one the migrations lead to.
-pub const FORMAT_VERSION: u64 = 8;
+pub const FORMAT_VERSION: u64 = 9;
 
 /// Brings `value`, a project of format `version` (1 ≤ version ≤ current), to the current
 /// format, one step at a time.
@@ -58,6 +60,9 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 8 {
         value = v7_to_v8(value);
+    }
+    if version < 9 {
+        set_format(&mut value, 9);
     }
     value
 }

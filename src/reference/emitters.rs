@@ -42,7 +42,7 @@ pub fn sample_light(light: &Light, p: Vec3, random: &mut SplitMix64) -> Option<E
             (incidence.to_light, incidence.distance_m, incidence.irradiance as f64)
         }
         LightKind::Sphere { radius_m } => sample_sphere(light, radius_m, p, random)?,
-        LightKind::Rect { width_m, height_m } => {
+        LightKind::Rect { width_m, height_m, .. } => {
             let (u, v) = light.area_axes();
             let a = (random.next_f64() as f32 - 0.5) * width_m;
             let b = (random.next_f64() as f32 - 0.5) * height_m;
@@ -155,6 +155,7 @@ mod tests {
             LightKind::Rect {
                 width_m: 2.0 * a as f32,
                 height_m: 2.0 * a as f32,
+                turn_rad: 0.0,
             },
             Vec3::new(0.0, h as f32, 0.0),
         );

@@ -41,6 +41,11 @@ pub enum LightKind {
     Rect {
         width_m: f32,
         height_m: f32,
+        /// Turn about `direction` (radians, right-handed about the way the light travels)
+        /// from the default width axis, perpendicular to the normal and world +y (+z when
+        /// the light faces straight up or down). Format 9; absent: 0.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        turn_rad: f32,
     },
     /// A one-sided Lambertian disk facing `direction`; `intensity` is its luminance in nits.
     Disk {
@@ -89,7 +94,7 @@ impl LightKind {
     /// Emitting area in m² of area lights (None for the others).
     pub fn emitting_area_m2(&self) -> Option<f32> {
         match *self {
-            LightKind::Rect { width_m, height_m } => Some(width_m * height_m),
+            LightKind::Rect { width_m, height_m, .. } => Some(width_m * height_m),
             LightKind::Disk { radius_m } => Some(std::f32::consts::PI * radius_m * radius_m),
             _ => None,
         }
@@ -152,14 +157,21 @@ impl Light {
     }
 
     /// The width axis of a rect light: perpendicular to its normal and to world +y (world +z
-    /// when the light faces straight up or down).
+    /// when the light faces straight up or down), turned about the normal by the rect's
+    /// `turn_rad`.
     pub fn area_width_axis(&self) -> Vec3 {
         let reference = if self.direction.y.abs() > 0.99 {
             Vec3::Z
         } else {
             Vec3::Y
         };
-        reference.cross(self.direction).normalize_or_zero()
+        let untouched = reference.cross(self.direction).normalize_or_zero();
+        match self.kind {
+            LightKind::Rect { turn_rad, .. } if turn_rad != 0.0 && self.direction.is_normalized() => {
+                (glam::Quat::from_axis_angle(self.direction, turn_rad) * untouched).normalize_or_zero()
+            }
+            _ => untouched,
+        }
     }
 
     /// The emitting plane's (width, height) unit axes of an area light: the width axis and
@@ -208,13 +220,18 @@ impl Light {
         }
         let sizes: &[(&str, f32)] = match &self.kind {
             LightKind::Sphere { radius_m } | LightKind::Disk { radius_m } => &[("radius_m", *radius_m)],
-            LightKind::Rect { width_m, height_m } => &[("width_m", *width_m), ("height_m", *height_m)],
+            LightKind::Rect { width_m, height_m, .. } => &[("width_m", *width_m), ("height_m", *height_m)],
             _ => &[],
         };
         for (name, size) in sizes {
             if !(size.is_finite() && *size > 0.0) {
                 problems.push(("kind", format!("{name} {size} must be a positive size in metres")));
             }
+        }
+        if let LightKind::Rect { turn_rad, .. } = self.kind
+            && !turn_rad.is_finite()
+        {
+            problems.push(("kind", format!("turn_rad {turn_rad} must be finite")));
         }
         if let Some(range) = self.range
             && !(range.is_finite() && range > 0.0)
@@ -223,4 +240,8 @@ impl Light {
         }
         problems
     }
+}
+
+fn is_zero(value: &f32) -> bool {
+    *value == 0.0
 }

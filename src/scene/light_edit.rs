@@ -18,6 +18,7 @@ pub const LIGHT_KINDS: [LightKind; 6] = [
     LightKind::Rect {
         width_m: 1.0,
         height_m: 1.0,
+        turn_rad: 0.0,
     },
     LightKind::Disk { radius_m: 0.25 },
 ];
@@ -139,6 +140,7 @@ mod tests {
                 LightKind::Rect {
                     width_m: 2.0,
                     height_m: 0.5,
+                    turn_rad: 0.0,
                 },
                 3.0,
             )

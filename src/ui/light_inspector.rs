@@ -217,13 +217,33 @@ fn shape_rows(ui: &mut egui::Ui, kind: &mut LightKind) {
             size_value(ui, radius_m, label);
             ui.end_row();
         }
-        LightKind::Rect { width_m, height_m } => {
+        LightKind::Rect {
+            width_m,
+            height_m,
+            turn_rad,
+        } => {
             let label = ui.label("size").id;
             ui.horizontal(|ui| {
                 size_value(ui, width_m, label);
                 ui.label("×");
                 size_value(ui, height_m, label);
             });
+            ui.end_row();
+            let label = ui.label("turn").id;
+            let mut turn_deg = turn_rad.to_degrees();
+            let response = ui
+                .add(
+                    egui::DragValue::new(&mut turn_deg)
+                        .range(-180.0..=180.0)
+                        .speed(0.5)
+                        .max_decimals(1)
+                        .suffix("°"),
+                )
+                .labelled_by(label)
+                .on_hover_text("Turns the rectangle about its normal (the way it faces stays)");
+            if response.changed() {
+                *turn_rad = turn_deg.to_radians();
+            }
             ui.end_row();
         }
         LightKind::Point | LightKind::Directional => {}

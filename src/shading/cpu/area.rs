@@ -152,6 +152,7 @@ mod tests {
             LightKind::Rect {
                 width_m: 0.6,
                 height_m: 0.4,
+                turn_rad: 0.0,
             },
             Vec3::NEG_Y,
         );
@@ -177,6 +178,44 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_quarter_turn_swaps_a_rects_width_and_height() {
+        let turned = area_light(
+            LightKind::Rect {
+                width_m: 0.6,
+                height_m: 0.4,
+                turn_rad: std::f32::consts::FRAC_PI_2,
+            },
+            Vec3::new(0.3, -1.0, 0.2).normalize(),
+        );
+        let swapped = area_light(
+            LightKind::Rect {
+                width_m: 0.4,
+                height_m: 0.6,
+                turn_rad: 0.0,
+            },
+            Vec3::new(0.3, -1.0, 0.2).normalize(),
+        );
+        for p in [
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.0, 0.5, -0.7),
+            DVec3::new(0.4, 1.8, -0.2),
+        ] {
+            let (a, b) = (area_vector_irradiance(&turned, p), area_vector_irradiance(&swapped, p));
+            assert!((a - b).length() < 1e-6 * b.length().max(1e-3), "{a} vs {b}");
+        }
+        let untouched = area_light(
+            LightKind::Rect {
+                width_m: 0.6,
+                height_m: 0.4,
+                turn_rad: 0.0,
+            },
+            Vec3::new(0.3, -1.0, 0.2).normalize(),
+        );
+        let p = DVec3::new(0.9, 1.7, 0.1);
+        assert!((area_vector_irradiance(&untouched, p) - area_vector_irradiance(&turned, p)).length() > 1e-3);
     }
 
     #[test]
@@ -207,6 +246,7 @@ mod tests {
             LightKind::Rect {
                 width_m: 0.2,
                 height_m: 0.1,
+                turn_rad: 0.0,
             },
             Vec3::new(0.0, -1.0, 1.0).normalize(),
         );
