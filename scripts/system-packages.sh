@@ -1,12 +1,14 @@
 # Installs, only when missing, the Debian packages lightpaint needs to run wgpu on Mesa's
 # lavapipe (software Vulkan, for machines without a GPU) and windows under Xvfb, plus the
-# screenshot tool the smoke test uses, and fontconfig with a font for the study's plot
-# (plotters draws text through font-kit). Sourced by run-editor.sh and test-all.sh.
+# screenshot tool the smoke test uses, fontconfig with a font for the study's plot
+# (plotters draws text through font-kit), and zenity, which the editor's file dialogs
+# fall back to where no desktop portal answers (rfd). Sourced by run-editor.sh and
+# test-all.sh.
 
 lightpaint_packages=(
     mesa-vulkan-drivers libvulkan1 xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1
     libxrandr2 libxi6 libgl1 libegl1 libwayland-client0 imagemagick x11-apps
-    pkg-config libfontconfig-dev fonts-dejavu-core
+    pkg-config libfontconfig-dev fonts-dejavu-core zenity
 )
 
 lightpaint_install_system_packages() {

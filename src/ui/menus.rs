@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use super::EditorApp;
 use super::unsaved_prompt::Pending;
+use super::{EditorApp, file_dialog};
 use crate::project::PROJECT_EXTENSION;
 
 impl EditorApp {
@@ -99,12 +99,30 @@ impl EditorApp {
     }
 
     fn save_as_dialog(&mut self) {
-        let picked = rfd::FileDialog::new()
-            .add_filter("lightpaint project", &[PROJECT_EXTENSION])
-            .set_file_name(format!("untitled.{PROJECT_EXTENSION}"))
-            .save_file();
-        if let Some(path) = picked {
+        let Some(document) = &self.document else { return };
+        let (folder, name) = file_dialog::save_as_start(document.project_path.as_deref(), &document.scene_path);
+        let dialog = rfd::FileDialog::new().add_filter("lightpaint project", &[PROJECT_EXTENSION]);
+        let dialog = file_dialog::start_in(dialog, &folder, &name);
+        if let Some(path) = self.ask(|| dialog.save_file()) {
             self.save_to(&path);
+        }
+    }
+
+    /// Runs a file dialog and returns what it chose; says in the window when no dialog
+    /// could open (see [`file_dialog`]), rather than doing nothing as a cancel does.
+    fn ask(&mut self, dialog: impl FnOnce() -> Option<std::path::PathBuf>) -> Option<std::path::PathBuf> {
+        if let Some(reason) = file_dialog::unavailable_here() {
+            self.report_error(reason);
+            return None;
+        }
+        let started = std::time::Instant::now();
+        let picked = dialog();
+        match file_dialog::outcome(picked, started.elapsed()) {
+            Ok(picked) => picked,
+            Err(message) => {
+                self.report_error(message);
+                None
+            }
         }
     }
 
@@ -120,7 +138,8 @@ impl EditorApp {
 
     /// Asks for a file of `extensions` and opens it (asking to save changes first).
     fn pick_and_open(&mut self, filter: &str, extensions: &[&str], render_state: Option<&egui_wgpu::RenderState>) {
-        if let Some(path) = rfd::FileDialog::new().add_filter(filter, extensions).pick_file() {
+        let dialog = rfd::FileDialog::new().add_filter(filter, extensions);
+        if let Some(path) = self.ask(|| dialog.pick_file()) {
             self.request_open(&path, render_state);
         }
     }
@@ -132,11 +151,14 @@ impl EditorApp {
             .and_then(|d| d.project_path.as_deref().or(Some(&d.scene_path)))
             .and_then(Path::file_stem)
             .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
-        let picked = rfd::FileDialog::new()
-            .add_filter("PNG image", &["png"])
-            .set_file_name(format!("{stem}.png"))
-            .save_file();
-        if let Some(path) = picked {
+        let folder = self
+            .document
+            .as_ref()
+            .map(|d| file_dialog::save_as_start(d.project_path.as_deref(), &d.scene_path).0)
+            .unwrap_or_else(|| std::path::PathBuf::from("."));
+        let dialog = rfd::FileDialog::new().add_filter("PNG image", &["png"]);
+        let dialog = file_dialog::start_in(dialog, &folder, &format!("{stem}.png"));
+        if let Some(path) = self.ask(|| dialog.save_file()) {
             self.export_png(&path);
         }
     }
