@@ -2,13 +2,13 @@
 # lavapipe (software Vulkan, for machines without a GPU) and windows under Xvfb, plus the
 # screenshot tool the smoke test uses, fontconfig with a font for the study's plot
 # (plotters draws text through font-kit), and zenity, which the editor's file dialogs
-# fall back to where no desktop portal answers (rfd). Sourced by run-editor.sh and
-# test-all.sh.
+# fall back to where no desktop portal answers (rfd), driven in the editor's smoke test
+# by xdotool. Sourced by run-editor.sh and test-all.sh.
 
 lightpaint_packages=(
     mesa-vulkan-drivers libvulkan1 xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1
     libxrandr2 libxi6 libgl1 libegl1 libwayland-client0 imagemagick x11-apps
-    pkg-config libfontconfig-dev fonts-dejavu-core zenity
+    pkg-config libfontconfig-dev fonts-dejavu-core zenity xdotool
 )
 
 lightpaint_install_system_packages() {

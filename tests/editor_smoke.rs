@@ -81,3 +81,89 @@ fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
     assert!((10.0..245.0).contains(&mean), "screenshot mean {mean}");
     eprintln!("screenshot: {}", shot.display());
 }
+
+const SAVE_AS_SCRIPT: &str = r#"
+timeout 300 "$LIGHTPAINT" "$PROJECT" > "$LOG" 2>&1 &
+pid=$!
+for _ in $(seq 1 1200); do
+    grep -q "first frame drawn" "$LOG" && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+done
+sleep 2
+# File ▸ Save As… (the menu bar's first entry; the sixth item of its menu).
+xdotool mousemove 20 12 click 1
+sleep 1
+xdotool mousemove 45 163 click 1
+# The system's dialog (zenity under Xvfb): its name field holds the project's name.
+for _ in $(seq 1 100); do
+    xdotool search --onlyvisible --class zenity >/dev/null 2>&1 && break
+    sleep 0.2
+done
+sleep 1
+import -window root "$SHOT"
+xdotool key --clearmodifiers ctrl+a
+xdotool type --delay 20 "$TARGET"
+xdotool key Return
+for _ in $(seq 1 100); do
+    [ -f "$TARGET" ] && break
+    sleep 0.2
+done
+touch "$CLOSE"
+wait "$pid"
+"#;
+
+/// File ▸ Save As through the system's file dialog, driven as a user would (xdotool under
+/// Xvfb, the README's set-up installing zenity): the dialog opens on the project's folder
+/// under its name, and the name typed there gets a project that opens.
+#[test]
+fn save_as_through_the_file_dialog_writes_the_project_under_xvfb() {
+    if common::no_gpu_wanted() {
+        eprintln!("editor smoke test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    for program in ["xvfb-run", "import", "xdotool", "zenity"] {
+        assert!(
+            have(program),
+            "{program} is missing: the README's test command installs it"
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let studio = dir.path().join("studio");
+    std::fs::create_dir(&studio).unwrap();
+    for entry in std::fs::read_dir(common::repo_path("projects/studio")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_file() {
+            std::fs::copy(&path, studio.join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    let target = dir.path().join("saved as.lightpaint");
+    let log = dir.path().join("editor.log");
+    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-save-as.png");
+    let status = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", SAVE_AS_SCRIPT])
+        .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
+        .env("PROJECT", studio.join("studio.lightpaint"))
+        .env("TARGET", &target)
+        .env("LOG", &log)
+        .env("SHOT", &shot)
+        .env("CLOSE", dir.path().join("close"))
+        .env("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS", dir.path().join("close"))
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .env("XDG_DATA_HOME", dir.path().join("data"))
+        .env("HOME", dir.path())
+        .env_remove("DBUS_SESSION_BUS_ADDRESS")
+        .status()
+        .expect("xvfb-run runs");
+    let log_text = std::fs::read_to_string(&log).unwrap_or_default();
+    assert!(status.success(), "editor exited with {status}; log:\n{log_text}");
+    assert!(!log_text.contains("panicked"), "{log_text}");
+    assert!(
+        target.is_file(),
+        "Save As wrote nothing (screenshot of the dialog: {}); log:\n{log_text}",
+        shot.display()
+    );
+    let saved = lightpaint::project::Document::open(&target).expect("the saved project opens");
+    let original = lightpaint::project::Document::open(&studio.join("studio.lightpaint")).expect("studio");
+    assert_eq!(saved.scene.lights, original.scene.lights);
+}
