@@ -2,11 +2,12 @@
 //! marker (its colour, ringed when selected); directional lights have a sun marker on a
 //! sphere around the view's pivot. The selected light gets a gizmo: three axis arrows
 //! that move it along world x, y and z, its marker moves it in the view plane, and an aim
-//! handle at the tip of its direction turns it. Dragging the sun turns a directional
-//! light. The geometry is pure functions of the view ([`View`]); this file also draws.
+//! handle at the tip of its direction turns it, and its shape is outlined (a spot's cone,
+//! an area light's emitter: `light_shape`). Dragging the sun turns a directional light. The geometry is pure functions of the view ([`View`]); this file also draws.
 
 use glam::{Vec2, Vec3};
 
+use super::light_shape::{Outline, light_outline};
 use super::viewport::screen_point;
 use crate::paint::View;
 use crate::scene::Light;
@@ -165,6 +166,11 @@ pub fn light_gizmo(
             }
             output.edited = Some((index, edited));
         }
+        if is_selected {
+            // What it lights reaches about as far as the view's pivot.
+            let reach_m = (pivot - light.position).length().max(0.5);
+            draw_outline(&painter, &light_outline(light, reach_m), to_screen);
+        }
         draw_marker(&painter, at, light, is_selected, response.hovered());
         if exact_path {
             painter.circle_stroke(
@@ -259,6 +265,18 @@ fn gizmo_handles(
         edited = Some(light);
     }
     edited
+}
+
+/// The selected light's shape ([`light_outline`]), its faint segments fainter; segments
+/// with an end behind the camera are left out.
+fn draw_outline(painter: &egui::Painter, outline: &Outline, to_screen: impl Fn(Vec3) -> Option<egui::Pos2>) {
+    for (segments, alpha) in [(&outline.solid, 150), (&outline.faint, 70)] {
+        for [a, b] in segments {
+            if let (Some(a), Some(b)) = (to_screen(*a), to_screen(*b)) {
+                painter.line_segment([a, b], egui::Stroke::new(1.0, egui::Color32::from_white_alpha(alpha)));
+            }
+        }
+    }
 }
 
 /// Where the pointer is while `response` is dragged, and where it was let go in the

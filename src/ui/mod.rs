@@ -12,6 +12,7 @@ mod history;
 mod inspector;
 mod light_gizmo;
 mod light_inspector;
+mod light_shape;
 mod menus;
 mod outliner;
 mod painting;
