@@ -93,6 +93,51 @@ fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
     let centred = harness.state().screen_position(chest).expect("in view");
     let middle = harness.state().viewport_rect().center();
     assert!(centred.distance(middle) < 2.0, "{centred:?} vs {middle:?}");
+
+    // The selected object's bounding box is drawn over the render: its edges' midpoints
+    // are lighter than with a light selected instead.
+    let selected = harness.render().expect("render");
+    let bounds = harness.state().document().expect("open").scene.objects[figure].bounds();
+    let corner = |k: usize| {
+        glam::Vec3::new(
+            if k & 1 == 0 { bounds.min.x } else { bounds.max.x },
+            if k & 2 == 0 { bounds.min.y } else { bounds.max.y },
+            if k & 4 == 0 { bounds.min.z } else { bounds.max.z },
+        )
+    };
+    let midpoints: Vec<egui::Pos2> = (0..8)
+        .flat_map(|k| {
+            [1, 2, 4]
+                .into_iter()
+                .filter(move |b| k & b == 0)
+                .map(move |b| (k, k | b))
+        })
+        .filter_map(|(a, b)| harness.state().screen_position(0.5 * (corner(a) + corner(b))))
+        .collect();
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    let other = harness.render().expect("render");
+    let brightest = |image: &image::RgbaImage, at: egui::Pos2| {
+        let (x, y) = (at.x.round() as i64, at.y.round() as i64);
+        (-1..=1)
+            .flat_map(|dy| (-1..=1).map(move |dx| (x + dx, y + dy)))
+            .filter(|&(x, y)| x >= 0 && y >= 0 && (x as u32) < image.width() && (y as u32) < image.height())
+            .map(|(x, y)| {
+                let p = image.get_pixel(x as u32, y as u32);
+                p[0] as i32 + p[1] as i32 + p[2] as i32
+            })
+            .max()
+            .unwrap_or(0)
+    };
+    let lighter = midpoints
+        .iter()
+        .filter(|&&at| brightest(&selected, at) > brightest(&other, at) + 30)
+        .count();
+    assert!(
+        midpoints.len() >= 8 && lighter * 4 >= midpoints.len() * 3,
+        "{lighter} of {} box edges drawn",
+        midpoints.len()
+    );
 }
 
 /// Dragging a light's marker moves the light in the view plane: it lands under the

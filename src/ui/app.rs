@@ -8,6 +8,7 @@ use super::brush_panel::tool_bar;
 use super::history::{History, Step};
 use super::light_gizmo::{GizmoLights, GizmoOutput, light_gizmo};
 use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
+use super::outlines::{box_outline, draw_outline};
 use super::painting::{Painting, Tool};
 use super::preferences::Preferences;
 use super::terrain_panel::{TerrainEdit, image_terrain};
@@ -1035,6 +1036,15 @@ impl eframe::App for EditorApp {
                             &self.blockers,
                             &document.hidden_objects,
                         );
+                    }
+                    if let Some(Selection::Object(index)) = self.selection
+                        && let Some(object) = document.scene.objects.get(index)
+                    {
+                        let view = viewport.view();
+                        let rect = response.rect;
+                        draw_outline(&ui.painter_at(rect), &box_outline(&object.bounds()), |p| {
+                            super::viewport::screen_point(&view, rect, p)
+                        });
                     }
                     if self.preferences.show_light_markers {
                         let selected = match self.selection {

@@ -3,11 +3,11 @@
 //! sphere around the view's pivot. The selected light gets a gizmo: three axis arrows
 //! that move it along world x, y and z, its marker moves it in the view plane, and an aim
 //! handle at the tip of its direction turns it, and its shape is outlined (a spot's cone,
-//! an area light's emitter: `light_shape`). Dragging the sun turns a directional light. The geometry is pure functions of the view ([`View`]); this file also draws.
+//! an area light's emitter: `outlines`). Dragging the sun turns a directional light. The geometry is pure functions of the view ([`View`]); this file also draws.
 
 use glam::{Vec2, Vec3};
 
-use super::light_shape::{Outline, light_outline};
+use super::outlines::{draw_outline, light_outline};
 use super::viewport::screen_point;
 use crate::paint::View;
 use crate::scene::Light;
@@ -265,18 +265,6 @@ fn gizmo_handles(
         edited = Some(light);
     }
     edited
-}
-
-/// The selected light's shape ([`light_outline`]), its faint segments fainter; segments
-/// with an end behind the camera are left out.
-fn draw_outline(painter: &egui::Painter, outline: &Outline, to_screen: impl Fn(Vec3) -> Option<egui::Pos2>) {
-    for (segments, alpha) in [(&outline.solid, 150), (&outline.faint, 70)] {
-        for [a, b] in segments {
-            if let (Some(a), Some(b)) = (to_screen(*a), to_screen(*b)) {
-                painter.line_segment([a, b], egui::Stroke::new(1.0, egui::Color32::from_white_alpha(alpha)));
-            }
-        }
-    }
 }
 
 /// Where the pointer is while `response` is dragged, and where it was let go in the

@@ -1,14 +1,15 @@
-//! The selected light's shape drawn over the viewport, as world-space line segments: a
-//! spot's outer cone out to what it lights (and its inner cone's rim, where the falloff
-//! starts), a rect's or a disk's emitting outline at its true size (turned as the renderer
-//! turns it: `Light::area_axes`), a sphere's three great circles. Points and the sun have
-//! no shape to show. Pure geometry; `light_gizmo` projects and draws it.
+//! What the selection looks like over the viewport, as world-space line segments: the
+//! selected light's shape — a spot's outer cone out to what it lights (and its inner
+//! cone's rim, where the falloff starts), a rect's or a disk's emitting outline at its
+//! true size (turned as the renderer turns it: `Light::area_axes`), a sphere's three great
+//! circles; points and the sun have none — and the selected object's bounding box. Pure
+//! geometry, and [`draw_outline`], which projects and draws it.
 
 use std::f32::consts::TAU;
 
 use glam::Vec3;
 
-use crate::scene::{Light, LightKind};
+use crate::scene::{Aabb, Light, LightKind};
 
 /// Segments per full circle.
 const CIRCLE_SEGMENTS: usize = 32;
@@ -57,6 +58,45 @@ pub fn light_outline(light: &Light, reach_m: f32) -> Outline {
         LightKind::Point | LightKind::Directional => {}
     }
     outline
+}
+
+/// The twelve edges of `bounds` (none when it is empty).
+pub fn box_outline(bounds: &Aabb) -> Outline {
+    if bounds.is_empty() {
+        return Outline::default();
+    }
+    let corner = |k: usize| {
+        Vec3::new(
+            if k & 1 == 0 { bounds.min.x } else { bounds.max.x },
+            if k & 2 == 0 { bounds.min.y } else { bounds.max.y },
+            if k & 4 == 0 { bounds.min.z } else { bounds.max.z },
+        )
+    };
+    // Corners differing in one bit share an edge.
+    let solid = (0..8)
+        .flat_map(|k| {
+            [1, 2, 4]
+                .into_iter()
+                .filter(move |bit| k & bit == 0)
+                .map(move |bit| [corner(k), corner(k | bit)])
+        })
+        .collect();
+    Outline {
+        solid,
+        faint: Vec::new(),
+    }
+}
+
+/// Draws `outline` with `to_screen`, its faint segments fainter; segments with an end
+/// behind the camera are left out.
+pub fn draw_outline(painter: &egui::Painter, outline: &Outline, to_screen: impl Fn(Vec3) -> Option<egui::Pos2>) {
+    for (segments, alpha) in [(&outline.solid, 150), (&outline.faint, 70)] {
+        for [a, b] in segments {
+            if let (Some(a), Some(b)) = (to_screen(*a), to_screen(*b)) {
+                painter.line_segment([a, b], egui::Stroke::new(1.0, egui::Color32::from_white_alpha(alpha)));
+            }
+        }
+    }
 }
 
 /// The ellipse centre + cos θ·a + sin θ·b as segments.
@@ -127,6 +167,17 @@ mod tests {
         }
         // The width follows the turn.
         assert!(width.dot(Vec3::X).abs() < 0.99);
+    }
+
+    #[test]
+    fn a_box_has_its_twelve_edges_each_along_one_axis() {
+        let bounds = Aabb::from_points(&[Vec3::new(-1.0, 0.0, 2.0), Vec3::new(0.5, 2.0, 3.0)]);
+        let outline = box_outline(&bounds);
+        assert_eq!(outline.solid.len(), 12);
+        let mut lengths: Vec<f32> = outline.solid.iter().map(|[a, b]| a.distance(*b)).collect();
+        lengths.sort_by(f32::total_cmp);
+        assert_eq!(lengths, [1.0, 1.0, 1.0, 1.0, 1.5, 1.5, 1.5, 1.5, 2.0, 2.0, 2.0, 2.0]);
+        assert_eq!(box_outline(&Aabb::EMPTY), Outline::default());
     }
 
     #[test]
