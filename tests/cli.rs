@@ -350,17 +350,45 @@ fn a_closed_stdout_is_not_a_crash() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
-/// A glTF without lights is no problem for `check` (the editor opens it): exit 0, with
-/// a note that says so.
+/// A glTF without lights is no problem for `check` (it opens lit by the default rig):
+/// exit 0, with a note that says so; `render` draws it lit and says so too.
 #[test]
-fn check_notes_a_scene_without_lights_and_passes_it() {
+fn a_scene_without_lights_opens_lit_by_the_default_rig() {
     let file = common::repo_path("tests/corpus/no-lights.glb");
     let out = common::run_lightpaint(&[OsStr::new("check"), file.as_os_str()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
-    assert!(stdout.contains("no lights yet"), "{stdout}");
+    assert!(stdout.contains("note:") && stdout.contains("default rig"), "{stdout}");
+    assert!(stdout.contains("2 lights"), "{stdout}");
     assert!(stdout.contains(": ok"), "{stdout}");
+    if common::no_gpu_wanted() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let image = dir.path().join("lit.png");
+    let out = common::run_lightpaint(&[
+        OsStr::new("render"),
+        file.as_os_str(),
+        OsStr::new("-o"),
+        image.as_os_str(),
+        OsStr::new("--width"),
+        OsStr::new("64"),
+        OsStr::new("--height"),
+        OsStr::new("64"),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("default rig"), "{stderr}");
+    // The triangle is lit: some pixel is well above the background's grey.
+    let brightest = image::open(&image)
+        .expect("a PNG")
+        .to_luma8()
+        .pixels()
+        .map(|p| p[0])
+        .max()
+        .unwrap_or(0);
+    assert!(brightest > 100, "brightest pixel {brightest}");
 }
 
 /// A headless session without XDG_RUNTIME_DIR (CI, ssh): `render` prints no complaint

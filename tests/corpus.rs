@@ -49,7 +49,8 @@ const CASES: &[(&str, Expect)] = &[
     ("zero-normals.glb", Expect::Warning("normals regenerated")),
     // A scene without lights is valid (the editor opens it and lights are added there):
     // no warning; `check` says so as a note (tests/cli.rs).
-    ("no-lights.glb", Expect::Opens { lights: 0 }),
+    // Lit by the default rig's two suns (project::default_rig).
+    ("no-lights.glb", Expect::Opens { lights: 2 }),
     ("5000-lights.glb", Expect::Opens { lights: 5000 }),
     (
         "newer-version.lightpaint",

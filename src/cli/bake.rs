@@ -2,15 +2,10 @@
 
 use std::path::Path;
 
-use lightpaint::project::Document;
-
 use super::CliError;
 
 pub fn bake(file: &Path, settings: &lightpaint::bake::BakeSettings) -> Result<(), CliError> {
-    let document = Document::open(file)?;
-    for warning in &document.warnings {
-        eprintln!("warning: {}: {warning}", file.display());
-    }
+    let document = super::open_document(file)?;
     let scene = &document.scene;
     let order = settings.order;
     let bar = indicatif::ProgressBar::new(scene.vertex_count() as u64);

@@ -35,12 +35,9 @@ pub fn check(file: &Path) -> Result<(), CliError> {
         scene.lights.len(),
         if scene.camera.is_some() { "camera" } else { "no camera" }
     );
-    if scene.lights.is_empty() {
-        // Not a problem: the editor opens it and lights are added there.
-        say!(
-            "note: {}: the scene has no lights yet (add some in the editor)",
-            file.display()
-        );
+    // Not problems: a glTF without lights opens lit by the default rig, and says so.
+    for note in &document.notes {
+        say!("note: {}: {note}", file.display());
     }
     if document.warnings.is_empty() {
         say!("{}: ok", file.display());

@@ -29,6 +29,19 @@ pub mod paint;
 pub mod render;
 pub mod study;
 
+/// Opens `file` as `render`, `paint` and `bake` do, telling its warnings and what was
+/// done on opening (a default light rig) on stderr.
+pub fn open_document(file: &std::path::Path) -> Result<lightpaint::project::Document, CliError> {
+    let document = lightpaint::project::Document::open(file)?;
+    for warning in &document.warnings {
+        eprintln!("warning: {}: {warning}", file.display());
+    }
+    for note in &document.notes {
+        eprintln!("note: {}: {note}", file.display());
+    }
+    Ok(document)
+}
+
 use args::{RenderArgs, parse_sample, parse_threshold};
 
 #[derive(Parser)]

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use lightpaint::project::{Document, sphere_cache};
+use lightpaint::project::sphere_cache;
 
 use super::CliError;
 
@@ -16,10 +16,7 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
             output.display()
         )));
     }
-    let mut document = Document::open(file)?;
-    for warning in &document.warnings {
-        eprintln!("warning: {}: {warning}", file.display());
-    }
+    let mut document = super::open_document(file)?;
     let script = Script::load(strokes)?;
     let camera = document.view().camera();
     let fallback = ViewRecord::of(&View {

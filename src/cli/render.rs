@@ -13,10 +13,7 @@ use super::CliError;
 use super::args::RenderArgs;
 
 pub fn render(args: &RenderArgs) -> Result<(), CliError> {
-    let document = Document::open(&args.file)?;
-    for warning in &document.warnings {
-        eprintln!("warning: {}: {warning}", args.file.display());
-    }
+    let document = super::open_document(&args.file)?;
     let mut settings = document.settings;
     if let Some(exposure) = args.exposure {
         settings.exposure_ev = exposure;

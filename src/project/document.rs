@@ -23,6 +23,9 @@ pub struct Document {
     pub project_path: Option<PathBuf>,
     /// Things the user should know that did not stop the document from opening.
     pub warnings: Vec<String>,
+    /// What was done for the user on opening, to say once (not problems: `check` passes
+    /// them), such as the default rig lighting a glTF that has no lights.
+    pub notes: Vec<String>,
     /// The stroke log, brush and painting strategies.
     pub painting: PaintingState,
     /// Indices of the objects hidden in the viewport (see [`ProjectFile::hidden_objects`]).
@@ -31,6 +34,32 @@ pub struct Document {
     /// to the scene's objects.
     pub object_names: std::collections::BTreeMap<usize, String>,
 }
+
+/// What a glTF without lights is lit by when it opens: a warm key sun from above and in
+/// front, a cool fill sun from the other side (directional lights, so they light a scene
+/// of any size alike), about 3 lx in all: a white surface facing the key shows
+/// mid-grey-to-light through the tone curve at exposure 0.
+pub fn default_rig() -> Vec<crate::scene::Light> {
+    use crate::scene::{Light, LightKind};
+    use glam::Vec3;
+    let sun = |name: &str, color: Vec3, lux: f32, direction: Vec3| Light {
+        name: name.into(),
+        kind: LightKind::Directional,
+        color,
+        intensity: lux,
+        position: Vec3::ZERO,
+        direction: direction.normalize(),
+        range: None,
+    };
+    vec![
+        sun("Key sun", Vec3::new(1.0, 0.95, 0.88), 2.5, Vec3::new(-0.4, -1.0, -0.6)),
+        sun("Fill sun", Vec3::new(0.85, 0.9, 1.0), 0.8, Vec3::new(0.6, -0.5, 0.4)),
+    ]
+}
+
+/// The note of a glTF that opened with [`default_rig`].
+pub const DEFAULT_RIG_NOTE: &str =
+    "the scene has no lights: it is lit by a default rig of two suns (Key sun, Fill sun) until you change it";
 
 /// Whether `path` names a project file (by extension) rather than a glTF scene.
 pub fn is_project_path(path: &Path) -> bool {
@@ -68,10 +97,17 @@ impl Document {
         }
     }
 
-    /// A new, unsaved document on a glTF scene, with default settings.
+    /// A new, unsaved document on a glTF scene, with default settings; a scene without
+    /// lights gets [`default_rig`] (and a note saying so), so it opens lit rather than
+    /// black.
     pub fn from_gltf(path: &Path) -> Result<Document, ProjectError> {
-        let scene = Scene::load(path)?;
+        let mut scene = Scene::load(path)?;
         let warnings = scene.warnings.clone();
+        let mut notes = Vec::new();
+        if scene.lights.is_empty() {
+            scene.lights = default_rig();
+            notes.push(DEFAULT_RIG_NOTE.to_string());
+        }
         Ok(Document {
             scene,
             scene_path: path.to_path_buf(),
@@ -79,6 +115,7 @@ impl Document {
             camera: None,
             project_path: None,
             warnings,
+            notes,
             painting: PaintingState::default(),
             hidden_objects: Default::default(),
             object_names: Default::default(),
@@ -164,6 +201,7 @@ impl Document {
             camera: file.camera,
             project_path: Some(path.to_path_buf()),
             warnings,
+            notes: Vec::new(),
             painting: file.painting,
             hidden_objects: hidden_objects.into_iter().collect(),
             object_names,
@@ -211,6 +249,7 @@ impl Document {
         scene.set_terrain(self.scene.terrain.as_ref().map(|t| (t.spec.clone(), t.field.clone())));
         Ok(Document {
             warnings: scene.warnings.clone(),
+            notes: Vec::new(),
             scene,
             scene_path: self.scene_path.clone(),
             settings: self.settings,

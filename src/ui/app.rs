@@ -242,7 +242,7 @@ impl EditorApp {
     fn install(&mut self, document: Document, what: &str, render_state: Option<&egui_wgpu::RenderState>) {
         let scene = &document.scene;
         self.message = format!(
-            "{what} — {} objects, {} vertices, {}{}",
+            "{what} — {} objects, {} vertices, {}{}{}",
             scene.objects.len(),
             scene.vertex_count(),
             match scene.lights.len() {
@@ -257,7 +257,12 @@ impl EditorApp {
                     document.warnings.len(),
                     document.warnings.join("; ")
                 )
-            }
+            },
+            document
+                .notes
+                .iter()
+                .map(|note| format!("; {note}"))
+                .collect::<String>()
         );
         let project = document.project_path.as_deref();
         self.blockers = sphere_cache::fit_with_cache(scene, &document.settings.blockers, project);
