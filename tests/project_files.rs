@@ -508,3 +508,59 @@ fn a_chosen_gltf_scene_is_saved_and_reopened() {
     let text = std::fs::read_to_string(&sample).unwrap();
     assert!(!text.contains("gltf_scene"), "one scene, nothing to choose");
 }
+
+/// A hand-written project needs only its format, its scene's glTF and its lights (each
+/// with a name, a kind and an intensity): everything else takes its documented default,
+/// and a file missing required fields is told all of them at once.
+#[test]
+fn a_minimal_hand_written_project_opens_and_every_missing_field_is_named() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::copy(
+        common::repo_path("projects/sample/sample.glb"),
+        dir.path().join("sample.glb"),
+    )
+    .expect("copy");
+    let minimal = dir.path().join("minimal.lightpaint");
+    std::fs::write(
+        &minimal,
+        r#"{
+  "format_version": 9,
+  "scene": { "gltf": "sample.glb" },
+  "lights": [ { "name": "bulb", "kind": { "type": "point" }, "intensity": 20.0, "position": [0.0, 3.0, 0.0] } ]
+}"#,
+    )
+    .expect("write");
+    let document = lightpaint::project::Document::open(&minimal).expect("a minimal project opens");
+    assert!(document.warnings.is_empty(), "{:?}", document.warnings);
+    assert_eq!(document.settings, lightpaint::shading::RenderSettings::default());
+    assert_eq!(document.camera, None);
+    assert!(document.painting.strokes.is_empty());
+    let bulb = &document.scene.lights[0];
+    assert_eq!((bulb.color, bulb.direction), (glam::Vec3::ONE, glam::Vec3::NEG_Y));
+
+    let broken = dir.path().join("broken.lightpaint");
+    std::fs::write(
+        &broken,
+        r#"{
+  "format_version": 9,
+  "scene": {},
+  "lights": [ { "kind": { "type": "disk" } }, { "name": "sun", "kind": { "type": "directional" }, "intensity": 3.0 } ]
+}"#,
+    )
+    .expect("write");
+    match lightpaint::project::Document::open(&broken) {
+        Err(lightpaint::project::ProjectError::Invalid { problems, .. }) => {
+            let fields: Vec<&str> = problems.iter().map(|p| p.field.as_str()).collect();
+            assert_eq!(
+                fields,
+                [
+                    "scene.gltf",
+                    "lights[0].name",
+                    "lights[0].intensity",
+                    "lights[0].kind.radius_m"
+                ]
+            );
+        }
+        other => panic!("expected every missing field, got {other:?}"),
+    }
+}

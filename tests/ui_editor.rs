@@ -508,7 +508,9 @@ fn the_outliner_picks_another_scene_of_the_gltf_file() {
     std::fs::write(&path, common::scenes::day_and_night()).unwrap();
     let mut harness = editor_on(path);
     harness.run();
-    harness.get_by_label("Lights (0)");
+    // The default scene, Night, has no lights: it opens lit by the default rig, and says so.
+    harness.get_by_label("Lights (2)");
+    harness.get_by_label_contains("default rig");
     harness
         .get_by_role_and_label(egui::accesskit::Role::ComboBox, "glTF scene")
         .click();

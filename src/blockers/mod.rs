@@ -128,7 +128,7 @@ pub enum SphereBudget {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct BlockerSettings {
     pub budget: SphereBudget,
     /// Most spheres for one mesh under [`SphereBudget::FitError`].

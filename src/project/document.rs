@@ -140,7 +140,7 @@ impl Document {
                 error,
             })?;
         let mut warnings = scene.warnings.clone();
-        if scene.source_hash.as_deref() != Some(file.scene.blake3.as_str()) {
+        if !file.scene.blake3.is_empty() && scene.source_hash.as_deref() != Some(file.scene.blake3.as_str()) {
             warnings.push(format!(
                 "{} changed since the project was saved; its lights and settings are kept",
                 scene_path.display()

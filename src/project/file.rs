@@ -24,13 +24,18 @@ pub struct ProjectFile {
     pub scene: SceneReference,
     /// The complete light list (the glTF's lights as imported, then edited).
     pub lights: Vec<Light>,
+    /// Absent: the defaults.
+    #[serde(default)]
     pub render: RenderSettings,
-    /// The editor's camera when the project was saved.
+    /// The editor's camera when the project was saved (absent: the scene's own camera,
+    /// else a view of the whole scene).
+    #[serde(default)]
     pub camera: Option<OrbitCamera>,
     /// Light from an equirectangular HDR image all around the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub environment: Option<EnvironmentReference>,
-    /// The strokes painted so far and the brush the next one uses.
+    /// The strokes painted so far and the brush the next one uses (absent: none yet).
+    #[serde(default)]
     pub painting: PaintingState,
     /// A height-field terrain under the scene (format 5); image paths relative to the
     /// project file's directory (or absolute).
@@ -53,9 +58,11 @@ pub struct ProjectFile {
 pub struct EnvironmentReference {
     /// Path of the .hdr, relative to the project file's directory (or absolute).
     pub hdr: PathBuf,
-    /// Multiplier on the image's radiance (≥ 0).
+    /// Multiplier on the image's radiance (≥ 0; absent: 1).
+    #[serde(default = "unit")]
     pub intensity: f32,
-    /// Rotation about world +y, radians.
+    /// Rotation about world +y, radians (absent: 0).
+    #[serde(default)]
     pub rotation_rad: f32,
 }
 
@@ -65,7 +72,9 @@ pub struct EnvironmentReference {
 pub struct SceneReference {
     /// Path of the .gltf/.glb, relative to the project file's directory (or absolute).
     pub gltf: PathBuf,
-    /// BLAKE3 hash (hex) of the glTF file when the project was saved.
+    /// BLAKE3 hash (hex) of the glTF file when the project was saved (absent: unknown,
+    /// and no warning that the file changed).
+    #[serde(default)]
     pub blake3: String,
     /// Which scene of a glTF file that has several (numbered from 0); absent: the file's
     /// default scene. Written whenever the file has more than one, so a later change of
@@ -171,7 +180,8 @@ impl ProjectFile {
                 });
             }
         }
-        if self.scene.blake3.len() != 64 || !self.scene.blake3.bytes().all(|b| b.is_ascii_hexdigit()) {
+        let blake3 = &self.scene.blake3;
+        if !blake3.is_empty() && (blake3.len() != 64 || !blake3.bytes().all(|b| b.is_ascii_hexdigit())) {
             problems.push(Problem {
                 field: "scene.blake3".into(),
                 message: "is not a 64-digit hexadecimal BLAKE3 hash".into(),
@@ -231,6 +241,23 @@ pub fn parse_project(path: &Path, bytes: &[u8]) -> Result<ProjectFile, ProjectEr
             supported: FORMAT_VERSION,
         });
     }
+    let missing = if version == FORMAT_VERSION {
+        super::required::missing_fields(&value)
+    } else {
+        Vec::new()
+    };
+    if !missing.is_empty() {
+        return Err(ProjectError::Invalid {
+            path: path.to_path_buf(),
+            problems: missing
+                .into_iter()
+                .map(|field| Problem {
+                    field,
+                    message: "missing (required)".into(),
+                })
+                .collect(),
+        });
+    }
     let project: ProjectFile = if version == FORMAT_VERSION {
         // Straight from the text, so errors carry line and column as well as the field path.
         let mut deserializer = serde_json::Deserializer::from_str(text);
@@ -262,6 +289,10 @@ pub fn parse_project(path: &Path, bytes: &[u8]) -> Result<ProjectFile, ProjectEr
         });
     }
     Ok(project)
+}
+
+fn unit() -> f32 {
+    1.0
 }
 
 /// 1-based line and column of byte `offset`.

@@ -8,6 +8,7 @@ mod error;
 mod file;
 mod migrate;
 mod painting_state;
+mod required;
 pub mod sphere_cache;
 
 pub use atomic::{backup_path, replace_atomically, write_atomically, write_atomically_with};

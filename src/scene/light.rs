@@ -8,14 +8,19 @@ use glam::Vec3;
 pub struct Light {
     pub name: String,
     pub kind: LightKind,
-    /// Linear RGB colour, multiplied by `intensity`.
+    /// Linear RGB colour, multiplied by `intensity` (absent in a project file: white).
+    #[serde(default = "white")]
     pub color: Vec3,
     /// Candela (point, spot, sphere), lux (directional) or nits (rect and disk area lights).
     pub intensity: f32,
-    /// World position (unused by directional lights).
+    /// World position (unused by directional lights; absent in a project file: the
+    /// origin).
+    #[serde(default)]
     pub position: Vec3,
     /// Unit direction the light travels (spot and directional lights; for area lights the
-    /// normal of the emitting side): the node's −z.
+    /// normal of the emitting side): the node's −z (absent in a project file: straight
+    /// down).
+    #[serde(default = "straight_down")]
     pub direction: Vec3,
     /// Distance beyond which a point or spot light has no effect (glTF `range`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -244,4 +249,12 @@ impl Light {
 
 fn is_zero(value: &f32) -> bool {
     *value == 0.0
+}
+
+fn white() -> Vec3 {
+    Vec3::ONE
+}
+
+fn straight_down() -> Vec3 {
+    Vec3::NEG_Y
 }

@@ -31,9 +31,10 @@ pub use settings::{
 };
 pub use shadow_path::{ShadowPath, light_paths_at, path_reason, paths_and_sizes_at};
 
-/// Settings that change how a frame looks, not what the scene is.
+/// Settings that change how a frame looks, not what the scene is. In a project file any
+/// field left out takes its default.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct RenderSettings {
     /// Exposure in stops: radiance is multiplied by 2^EV before tone mapping.
     pub exposure_ev: f32,

@@ -8,7 +8,7 @@ use crate::sh::{ExpMethod, MAX_REALTIME_ORDER};
 pub const MAX_SHADING_DOWNSAMPLE: u32 = 4;
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct ShadowSettings {
     /// Draw log-SH shadows (false: the plain raster pass).
     pub enabled: bool,
