@@ -576,3 +576,28 @@ fn opening_the_terrain_sample_leaves_it_unchanged() {
     );
     assert!(harness.query_all_by_label_contains("terrain updated").next().is_none());
 }
+
+/// The Painting section speaks plainly, and each of its choices explains itself on hover
+/// with the research name alongside.
+#[test]
+fn the_painting_controls_say_what_they_do() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    use egui::accesskit::Role;
+    for (role, control, explanation) in [
+        (Role::ComboBox, "lights changed", "Which of the lights reaching the painted area"),
+        (Role::ComboBox, "how they change", "How a stroke changes the lights"),
+        (Role::ComboBox, "judge lights by", "importance: received light or transfer"),
+        (Role::Slider, "keep: avoid lights", "penalty λ"),
+        (Role::Slider, "keep: allowed drift", "before a stroke is cut short"),
+    ] {
+        harness.get_by_role_and_label(role, control).scroll_to_me();
+        harness.run();
+        harness.get_by_role_and_label(role, control).hover();
+        harness.run();
+        harness.run();
+        harness.get_by_label_contains(explanation);
+    }
+}

@@ -1,6 +1,8 @@
 //! The inspector's Painting section and the tool bar: tool, brush, selection and
 //! modification strategies with every parameter, ranking, solve mode, constraints, and
-//! the bake (progress, ETA, cancel).
+//! the bake (progress, ETA, cancel). Every control says in plain words what it does and
+//! has a one-line tooltip; the research names (Rozon 2009) are in the tooltips and in
+//! docs/strokes.md, the long form.
 
 use super::painting::{Painting, Tool};
 use crate::paint::{BrushKind, Falloff, ModificationStrategy, Ranking, SelectionStrategy, SolveMode};
@@ -16,10 +18,14 @@ pub enum PaintAction {
 /// The tool buttons (also B, N, C and Escape for navigate).
 pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
     ui.horizontal(|ui| {
-        ui.selectable_value(tool, Tool::Navigate, "Navigate (Esc)");
-        ui.selectable_value(tool, Tool::Brush(BrushKind::Positive), "Brighten (B)");
-        ui.selectable_value(tool, Tool::Brush(BrushKind::Negative), "Darken (N)");
-        ui.selectable_value(tool, Tool::Brush(BrushKind::Constraint), "Keep (C)");
+        ui.selectable_value(tool, Tool::Navigate, "Navigate (Esc)")
+            .on_hover_text("Orbit (drag), pan (right drag), zoom (wheel) and select lights and objects");
+        ui.selectable_value(tool, Tool::Brush(BrushKind::Positive), "Brighten (B)")
+            .on_hover_text("Paint where the picture should be brighter: the lights reaching it go up");
+        ui.selectable_value(tool, Tool::Brush(BrushKind::Negative), "Darken (N)")
+            .on_hover_text("Paint where the picture should be darker: the lights reaching it go down");
+        ui.selectable_value(tool, Tool::Brush(BrushKind::Constraint), "Keep (C)")
+            .on_hover_text("Paint what should stay as it is: later strokes avoid the lights that reach it");
     });
 }
 
@@ -33,13 +39,17 @@ pub fn painting_section(
 ) -> Option<PaintAction> {
     let mut action = None;
     let brush = &mut painting.brush;
-    ui.add(egui::Slider::new(&mut brush.radius_px, 2.0..=200.0).text("radius (px)"));
+    ui.add(egui::Slider::new(&mut brush.radius_px, 2.0..=200.0).text("radius (px)"))
+        .on_hover_text("The brush's size on screen, in pixels");
     ui.horizontal(|ui| {
-        ui.label("falloff");
-        ui.selectable_value(&mut brush.falloff, Falloff::Smooth, "smooth");
-        ui.selectable_value(&mut brush.falloff, Falloff::Hard, "hard");
+        ui.label("edge");
+        ui.selectable_value(&mut brush.falloff, Falloff::Smooth, "soft")
+            .on_hover_text("Paints less toward the brush's rim");
+        ui.selectable_value(&mut brush.falloff, Falloff::Hard, "hard")
+            .on_hover_text("Paints the whole disc alike");
     });
-    ui.add(egui::Slider::new(&mut brush.strength, 0.05..=1.0).text("strength"));
+    ui.add(egui::Slider::new(&mut brush.strength, 0.05..=1.0).text("strength"))
+        .on_hover_text("How much of each stroke's change is applied (1: all of it)");
     let settings = &mut painting.settings;
     let target_speed = (brush.target_luminance_nits * 0.01).max(0.001);
     let target = egui::DragValue::new(&mut brush.target_luminance_nits)
@@ -49,39 +59,54 @@ pub fn painting_section(
     ui.add_enabled_ui(settings.modification.uses_target(), |ui| {
         ui.horizontal(|ui| {
             ui.label("target");
-            ui.add(target);
+            ui.add(target)
+                .on_hover_text("The luminance the painted area should reach (for 'set to the target' and 'toward the target')");
         });
     });
     selection_ui(ui, &mut settings.selection);
     modification_ui(ui, &mut settings.modification);
-    egui::ComboBox::from_label("rank lights by")
+    egui::ComboBox::from_label("judge lights by")
         .selected_text(match settings.ranking {
-            Ranking::Received => "light received",
-            Ranking::Transfer => "transfer (finds lights that are off)",
+            Ranking::Received => "the light they give here",
+            Ranking::Transfer => "how well they reach here",
         })
         .show_ui(ui, |ui| {
-            ui.selectable_value(&mut settings.ranking, Ranking::Received, "light received");
-            ui.selectable_value(
-                &mut settings.ranking,
-                Ranking::Transfer,
-                "transfer (finds lights that are off)",
-            );
-        });
+            ui.selectable_value(&mut settings.ranking, Ranking::Received, "the light they give here")
+                .on_hover_text("A light counts by how much light it puts on the painted area now");
+            ui.selectable_value(&mut settings.ranking, Ranking::Transfer, "how well they reach here")
+                .on_hover_text(
+                    "A light counts by how much it would give per unit of its intensity: finds lights that are off",
+                );
+        })
+        .response
+        .on_hover_text("How the lights a stroke may change are ranked (importance: received light or transfer)");
     ui.horizontal(|ui| {
-        ui.selectable_value(&mut settings.solve, SolveMode::Additive, "additive");
-        ui.selectable_value(&mut settings.solve, SolveMode::Global, "solve all strokes together");
+        ui.selectable_value(&mut settings.solve, SolveMode::Additive, "one stroke at a time")
+            .on_hover_text("Each stroke changes the lights from where the last one left them");
+        ui.selectable_value(&mut settings.solve, SolveMode::Global, "all strokes together")
+            .on_hover_text("Each stroke re-solves the lights so every stroke so far holds at once (least squares)");
     });
-    ui.add(egui::Slider::new(&mut settings.constraint_penalty, 0.0..=100.0).text("constraint penalty λ"));
+    ui.add(egui::Slider::new(&mut settings.constraint_penalty, 0.0..=100.0).text("keep: avoid lights"))
+        .on_hover_text("How strongly strokes avoid the lights that reach Keep areas (penalty λ; 0: not at all)");
     ui.add(
         egui::Slider::new(&mut settings.constraint_tolerance, 0.0..=0.5)
-            .text("constraint tolerance")
+            .text("keep: allowed drift")
             .custom_formatter(|v, _| format!("{:.0} %", 100.0 * v)),
-    );
+    )
+    .on_hover_text("How far a Keep area's light may change before a stroke is cut short");
     ui.horizontal(|ui| {
-        if ui.add_enabled(history.0, egui::Button::new("Undo")).clicked() {
+        if ui
+            .add_enabled(history.0, egui::Button::new("Undo"))
+            .on_hover_text("Undo the last stroke or light edit (Ctrl+Z)")
+            .clicked()
+        {
             action = Some(PaintAction::Undo);
         }
-        if ui.add_enabled(history.1, egui::Button::new("Redo")).clicked() {
+        if ui
+            .add_enabled(history.1, egui::Button::new("Redo"))
+            .on_hover_text("Redo what was undone (Ctrl+Shift+Z)")
+            .clicked()
+        {
             action = Some(PaintAction::Redo);
         }
     });
@@ -122,7 +147,11 @@ pub fn painting_section(
                     crate::bake::Precision::F32
                 };
             }
-            if ui.button("Bake importance maps").clicked() {
+            if ui
+                .button("Bake importance maps")
+                .on_hover_text("Trace which lights reach each vertex, bounces included, so strokes judge lights by the real light transport (in the background)")
+                .clicked()
+            {
                 action = Some(PaintAction::StartBake);
             }
         }
@@ -135,21 +164,27 @@ fn selection_ui(ui: &mut egui::Ui, selection: &mut SelectionStrategy) {
         SelectionStrategy::Histogram { share } => share,
         _ => 0.5,
     };
-    egui::ComboBox::from_label("selection")
-        .selected_text(selection.label())
+    egui::ComboBox::from_label("lights changed")
+        .selected_text(selection_words(selection))
         .show_ui(ui, |ui| {
-            ui.selectable_value(selection, SelectionStrategy::MostImportant, "most important");
-            ui.selectable_value(selection, SelectionStrategy::Histogram { share }, "histogram");
-            ui.selectable_value(selection, SelectionStrategy::RussianRoulette, "Russian roulette");
-        });
+            ui.selectable_value(selection, SelectionStrategy::MostImportant, "the strongest")
+                .on_hover_text("Only the light that matters most here (most important)");
+            ui.selectable_value(selection, SelectionStrategy::Histogram { share }, "the few strongest")
+                .on_hover_text("The fewest lights that together give a share of the light here (histogram)");
+            ui.selectable_value(selection, SelectionStrategy::RussianRoulette, "one, drawn by strength")
+                .on_hover_text("One light drawn at random, the stronger the likelier (Russian roulette)");
+        })
+        .response
+        .on_hover_text("Which of the lights reaching the painted area a stroke changes");
     if let SelectionStrategy::Histogram { share } = selection {
-        ui.add(egui::Slider::new(share, 0.05..=1.0).text("share τ"));
+        ui.add(egui::Slider::new(share, 0.05..=1.0).text("share of the light"))
+            .on_hover_text("Lights are taken, strongest first, until they give this share of the light here (τ)");
     }
 }
 
 fn modification_ui(ui: &mut egui::Ui, modification: &mut ModificationStrategy) {
-    egui::ComboBox::from_label("modification")
-        .selected_text(modification.label())
+    egui::ComboBox::from_label("how they change")
+        .selected_text(modification_words(modification))
         .show_ui(ui, |ui| {
             let choices = [
                 ModificationStrategy::Constant { amount: 1.0 },
@@ -159,22 +194,63 @@ fn modification_ui(ui: &mut egui::Ui, modification: &mut ModificationStrategy) {
             ];
             for choice in choices {
                 let same_kind = std::mem::discriminant(&choice) == std::mem::discriminant(modification);
-                if ui.selectable_label(same_kind, choice.label()).clicked() && !same_kind {
+                let tip = match choice {
+                    ModificationStrategy::Constant { .. } => {
+                        "Add (or take) a fixed amount of each light's unit (constant)"
+                    }
+                    ModificationStrategy::Double { .. } => "Multiply (or divide) the lights by a factor (double)",
+                    ModificationStrategy::Direct => {
+                        "Change the lights just enough that the area reaches the target luminance (direct)"
+                    }
+                    ModificationStrategy::FractionOfDirect { .. } => {
+                        "Go part of the way toward the target luminance (fraction of direct)"
+                    }
+                };
+                if ui
+                    .selectable_label(same_kind, modification_words(&choice))
+                    .on_hover_text(tip)
+                    .clicked()
+                    && !same_kind
+                {
                     *modification = choice;
                 }
             }
-        });
+        })
+        .response
+        .on_hover_text("How a stroke changes the lights it picked");
     match modification {
         ModificationStrategy::Constant { amount } => {
             let speed = (*amount * 0.01).max(1e-3);
-            ui.add(egui::DragValue::new(amount).range(1e-4..=1e6).speed(speed).prefix("± "));
+            ui.add(egui::DragValue::new(amount).range(1e-4..=1e6).speed(speed).prefix("± "))
+                .on_hover_text("Added by Brighten, taken by Darken, in each light's own unit");
         }
         ModificationStrategy::Double { factor } => {
-            ui.add(egui::Slider::new(factor, 1.05..=8.0).text("factor"));
+            ui.add(egui::Slider::new(factor, 1.05..=8.0).text("factor"))
+                .on_hover_text("Brighten multiplies by it, Darken divides");
         }
         ModificationStrategy::FractionOfDirect { fraction } => {
-            ui.add(egui::Slider::new(fraction, 0.01..=1.0).text("fraction"));
+            ui.add(egui::Slider::new(fraction, 0.01..=1.0).text("of the way"))
+                .on_hover_text("How far toward the target each stroke goes (1: all the way)");
         }
         ModificationStrategy::Direct => {}
+    }
+}
+
+/// The selection strategy in the panel's words.
+fn selection_words(selection: &SelectionStrategy) -> &'static str {
+    match selection {
+        SelectionStrategy::MostImportant => "the strongest",
+        SelectionStrategy::Histogram { .. } => "the few strongest",
+        SelectionStrategy::RussianRoulette => "one, drawn by strength",
+    }
+}
+
+/// The modification strategy in the panel's words.
+fn modification_words(modification: &ModificationStrategy) -> &'static str {
+    match modification {
+        ModificationStrategy::Constant { .. } => "add an amount",
+        ModificationStrategy::Double { .. } => "multiply",
+        ModificationStrategy::Direct => "set to the target",
+        ModificationStrategy::FractionOfDirect { .. } => "toward the target",
     }
 }
