@@ -587,9 +587,17 @@ fn the_painting_controls_say_what_they_do() {
     harness.run();
     use egui::accesskit::Role;
     for (role, control, explanation) in [
-        (Role::ComboBox, "lights changed", "Which of the lights reaching the painted area"),
+        (
+            Role::ComboBox,
+            "lights changed",
+            "Which of the lights reaching the painted area",
+        ),
         (Role::ComboBox, "how they change", "How a stroke changes the lights"),
-        (Role::ComboBox, "judge lights by", "importance: received light or transfer"),
+        (
+            Role::ComboBox,
+            "judge lights by",
+            "importance: received light or transfer",
+        ),
         (Role::Slider, "keep: avoid lights", "penalty λ"),
         (Role::Slider, "keep: allowed drift", "before a stroke is cut short"),
     ] {

@@ -615,3 +615,26 @@ fn the_editor_and_render_draw_the_same_pixels() {
         );
     }
 }
+
+/// A status message that no longer holds fades: "nothing to undo" once an edit has given
+/// something to undo. Long messages are cut at the window's edge, whole on hover.
+#[test]
+fn a_status_message_fades_once_it_no_longer_holds() {
+    let Some((_dir, _project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state().status_message(), "nothing to undo");
+    assert!(!harness.state().status_message_is_stale(), "fresh when said");
+    let mut light = harness.state().document().expect("open").scene.lights[0].clone();
+    light.intensity *= 1.5;
+    harness.state_mut().set_light(0, light);
+    harness.run();
+    assert!(harness.state().can_undo());
+    assert!(
+        harness.state().status_message() != "nothing to undo" || harness.state().status_message_is_stale(),
+        "\"nothing to undo\" no longer reads as news"
+    );
+}

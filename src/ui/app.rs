@@ -42,6 +42,18 @@ enum Direction {
     Redo,
 }
 
+/// How long a status message reads as news; after that, and once the undo history has
+/// changed under it, it is shown faded.
+const FRESH_MESSAGE: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// A status message as the status bar first showed it.
+struct SeenMessage {
+    text: String,
+    at: std::time::Instant,
+    /// (can undo, can redo) at that moment.
+    history: (bool, bool),
+}
+
 pub struct EditorApp {
     pub(super) document: Option<Document>,
     /// The project as last opened or saved, to tell whether there are unsaved changes.
@@ -53,6 +65,8 @@ pub struct EditorApp {
     pub(super) adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
     pub(super) message: String,
+    /// When the status bar first showed `message`, and the undo history then.
+    message_seen: SeenMessage,
     /// An error waiting to be acknowledged in a window.
     pub(super) error: Option<String>,
     pub(super) options: EditorOptions,
@@ -113,6 +127,11 @@ impl EditorApp {
             fitted_with: BlockerSettings::default(),
             adapter,
             message: String::new(),
+            message_seen: SeenMessage {
+                text: String::new(),
+                at: std::time::Instant::now(),
+                history: (false, false),
+            },
             error: None,
             options: options.clone(),
             frame_clock: Default::default(),
@@ -386,6 +405,20 @@ impl EditorApp {
         };
         self.message = format!("deleted {} (Ctrl+Z brings it back)", light.name);
         self.lights_edited(true);
+    }
+
+    /// The status bar's message, as it reads now.
+    pub fn status_message(&self) -> &str {
+        &self.message
+    }
+
+    /// Whether the status bar shows its message faded: shown more than [`FRESH_MESSAGE`]
+    /// ago, or the undo history changed since (a new message is fresh until the status
+    /// bar has shown it).
+    pub fn status_message_is_stale(&self) -> bool {
+        self.message_seen.text == self.message
+            && (self.message_seen.at.elapsed() > FRESH_MESSAGE
+                || self.message_seen.history != (self.can_undo(), self.can_redo()))
     }
 
     /// Replaces light `index` (a gizmo drag); values with problems are ignored.
@@ -876,7 +909,28 @@ impl EditorApp {
                     ui.colored_label(ui.visuals().warn_fg_color, "unsaved changes");
                     ui.separator();
                 }
-                ui.label(&self.message);
+                // A message stays until another replaces it; once it is old, or the undo
+                // history has changed since ("nothing to undo" after a new edit), it is
+                // shown faded: it describes a moment that has passed.
+                if self.message_seen.text != self.message {
+                    self.message_seen = SeenMessage {
+                        text: self.message.clone(),
+                        at: std::time::Instant::now(),
+                        history: (self.can_undo(), self.can_redo()),
+                    };
+                }
+                let stale = self.status_message_is_stale();
+                let color = if stale {
+                    ui.visuals().weak_text_color()
+                } else {
+                    ui.visuals().text_color()
+                };
+                // Cut at the window's edge with an ellipsis; the whole of it on hover.
+                ui.add(egui::Label::new(egui::RichText::new(&self.message).color(color)).truncate())
+                    .on_hover_text(&self.message);
+                if !stale {
+                    ui.ctx().request_repaint_after(FRESH_MESSAGE);
+                }
             });
         });
     }

@@ -59,8 +59,9 @@ pub fn painting_section(
     ui.add_enabled_ui(settings.modification.uses_target(), |ui| {
         ui.horizontal(|ui| {
             ui.label("target");
-            ui.add(target)
-                .on_hover_text("The luminance the painted area should reach (for 'set to the target' and 'toward the target')");
+            ui.add(target).on_hover_text(
+                "The luminance the painted area should reach (for 'set to the target' and 'toward the target')",
+            );
         });
     });
     selection_ui(ui, &mut settings.selection);
