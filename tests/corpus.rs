@@ -299,7 +299,7 @@ fn regenerate_corpus() {
     let mut document = Document::open(&dir.join("scene.glb")).unwrap();
     document.save(&dir.join("valid.lightpaint")).unwrap();
     let valid = std::fs::read_to_string(dir.join("valid.lightpaint")).unwrap();
-    let _ = std::fs::remove_file(dir.join("valid.lightpaint.bak"));
+    let _ = std::fs::remove_file(dir.join("valid.previous.lightpaint"));
     write(
         "newer-version.lightpaint",
         valid
@@ -352,5 +352,5 @@ fn regenerate_corpus() {
         with_environment("not-a-scene.txt").as_bytes(),
     );
     let _ = std::fs::remove_file(dir.join("valid.lightpaint"));
-    let _ = std::fs::remove_file(Path::new(&dir.join("scene.glb.bak")));
+    let _ = std::fs::remove_file(Path::new(&dir.join("scene.previous.glb")));
 }

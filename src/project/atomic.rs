@@ -1,14 +1,21 @@
 //! Saving without ever losing the previous file: write a temporary file beside the target,
-//! fsync it, keep a copy of the old file as `NAME.bak`, then rename over the target (atomic
-//! on POSIX file systems) and fsync the directory.
+//! fsync it, keep a copy of the old file as `STEM.previous.EXT` (`studio.previous.lightpaint`:
+//! still a project that opens, and not to be mistaken for the bake cache
+//! `studio.lightpaint.bake`), then rename over the target (atomic on POSIX file systems)
+//! and fsync the directory.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The backup kept of the previous version of `path`.
+/// The backup kept of the previous version of `path`: `STEM.previous.EXT` (or
+/// `NAME.previous` without an extension).
 pub fn backup_path(path: &Path) -> PathBuf {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".bak");
+    let mut name = path.file_stem().unwrap_or_default().to_os_string();
+    name.push(".previous");
+    if let Some(extension) = path.extension() {
+        name.push(".");
+        name.push(extension);
+    }
     path.with_file_name(name)
 }
 
@@ -74,6 +81,16 @@ fn write(
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_backup_keeps_the_extension_after_previous() {
+        use std::path::Path;
+        assert_eq!(
+            super::backup_path(Path::new("/p/studio.lightpaint")),
+            Path::new("/p/studio.previous.lightpaint")
+        );
+        assert_eq!(super::backup_path(Path::new("notes")), Path::new("notes.previous"));
+    }
+
     use super::*;
 
     #[test]
@@ -84,6 +101,12 @@ mod tests {
         write_atomically(&path, b"two").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"two");
         assert_eq!(std::fs::read(backup_path(&path)).unwrap(), b"one");
+        assert_eq!(backup_path(&path).file_name().unwrap(), {
+            let mut name = path.file_stem().unwrap().to_os_string();
+            name.push(".previous.");
+            name.push(path.extension().unwrap_or_default());
+            name
+        });
     }
 
     #[test]

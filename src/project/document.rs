@@ -265,7 +265,7 @@ impl Document {
         })
     }
 
-    /// Saves atomically to `project_path` (keeping a `.bak` of the previous file) and
+    /// Saves atomically to `project_path` (keeping the previous file as `STEM.previous.lightpaint`) and
     /// remembers it as the document's file.
     pub fn save(&mut self, project_path: &Path) -> Result<(), ProjectError> {
         let text = self.to_project_file(project_path).to_json();
