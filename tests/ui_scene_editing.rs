@@ -638,3 +638,59 @@ fn a_status_message_fades_once_it_no_longer_holds() {
         "\"nothing to undo\" no longer reads as news"
     );
 }
+
+/// File ▸ Export render as PNG asks the size: the window offers the viewport's and
+/// presets, and an export at another size than the viewport's is the frame `render`
+/// draws at that size, pixel for pixel; the viewport goes on at its own size.
+#[test]
+fn an_export_at_any_size_is_the_frame_render_draws() {
+    let Some((dir, project, mut harness)) = editor_on_copy(Sample::Sample) else {
+        return;
+    };
+    harness.run();
+    harness.get_by_label("File").click();
+    harness.run();
+    harness.get_by_label("Export render as PNG…").click();
+    harness.run();
+    assert!(harness.state().is_export_window_open());
+    harness.get_by_label("Full HD 1920 × 1080").click();
+    harness.run();
+    harness.get_by_label("as the viewport");
+
+    let (width, height) = (400u32, 240u32);
+    let exported = dir.path().join("export.png");
+    harness.state_mut().export_png_sized(&exported, [width, height]);
+    harness.run();
+    let exported = image::open(&exported).expect("exported").to_rgba8();
+    assert_eq!(exported.dimensions(), (width, height));
+    let rendered = dir.path().join("render.png");
+    let output = common::run_lightpaint(&[
+        "render".as_ref(),
+        project.as_os_str(),
+        "-o".as_ref(),
+        rendered.as_os_str(),
+        "--width".as_ref(),
+        width.to_string().as_ref(),
+        "--height".as_ref(),
+        height.to_string().as_ref(),
+    ]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let rendered = image::open(&rendered).expect("render wrote a PNG").to_rgba8();
+    let differing = exported.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
+    assert_eq!(differing, 0, "{differing} pixels differ between the export and render");
+
+    // The viewport draws at its own size again.
+    harness.run();
+    let viewport = dir.path().join("viewport.png");
+    harness.state_mut().export_png(&viewport);
+    let viewport = image::open(&viewport).expect("exported").to_rgba8();
+    let rect = harness.state().viewport_rect();
+    let ppp = harness.ctx.pixels_per_point();
+    assert_eq!(
+        viewport.dimensions(),
+        (
+            (rect.width() * ppp).round() as u32,
+            (rect.height() * ppp).round() as u32
+        )
+    );
+}

@@ -67,6 +67,9 @@ pub struct EditorApp {
     pub(super) message: String,
     /// When the status bar first showed `message`, and the undo history then.
     message_seen: SeenMessage,
+    /// The export window's size in pixels (kept between exports), and whether it is open.
+    pub(super) export_size: Option<[u32; 2]>,
+    pub(super) export_window_open: bool,
     /// An error waiting to be acknowledged in a window.
     pub(super) error: Option<String>,
     pub(super) options: EditorOptions,
@@ -133,6 +136,8 @@ impl EditorApp {
                 history: (false, false),
             },
             error: None,
+            export_size: None,
+            export_window_open: false,
             options: options.clone(),
             frame_clock: Default::default(),
             window_title: String::new(),
@@ -1154,6 +1159,7 @@ impl eframe::App for EditorApp {
             document.painting.settings = painting.settings;
         }
         self.error_window(&ctx);
+        self.export_window(&ctx);
         self.guard_unsaved_changes(&ctx, render_state.as_ref());
         if !self.first_frame_reported {
             self.first_frame_reported = true;

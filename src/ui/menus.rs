@@ -75,7 +75,7 @@ impl EditorApp {
             .add_enabled(self.viewport.is_some(), egui::Button::new("Export render as PNG…"))
             .clicked()
         {
-            self.export_dialog();
+            self.open_export_window(ui.ctx().pixels_per_point());
         }
         ui.separator();
         if ui.button("Quit").clicked() {
@@ -110,7 +110,7 @@ impl EditorApp {
 
     /// Runs a file dialog and returns what it chose; says in the window when no dialog
     /// could open (see [`file_dialog`]), rather than doing nothing as a cancel does.
-    fn ask(&mut self, dialog: impl FnOnce() -> Option<std::path::PathBuf>) -> Option<std::path::PathBuf> {
+    pub(super) fn ask(&mut self, dialog: impl FnOnce() -> Option<std::path::PathBuf>) -> Option<std::path::PathBuf> {
         if let Some(reason) = file_dialog::unavailable_here() {
             self.report_error(reason);
             return None;
@@ -144,25 +144,6 @@ impl EditorApp {
         }
     }
 
-    fn export_dialog(&mut self) {
-        let stem = self
-            .document
-            .as_ref()
-            .and_then(|d| d.project_path.as_deref().or(Some(&d.scene_path)))
-            .and_then(Path::file_stem)
-            .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
-        let folder = self
-            .document
-            .as_ref()
-            .map(|d| file_dialog::save_as_start(d.project_path.as_deref(), &d.scene_path).0)
-            .unwrap_or_else(|| std::path::PathBuf::from("."));
-        let dialog = rfd::FileDialog::new().add_filter("PNG image", &["png"]);
-        let dialog = file_dialog::start_in(dialog, &folder, &format!("{stem}.png"));
-        if let Some(path) = self.ask(|| dialog.save_file()) {
-            self.export_png(&path);
-        }
-    }
-
     /// Writes the image the viewport shows to `path` as PNG (atomically: a failed export
     /// leaves an existing file as it was).
     pub fn export_png(&mut self, path: &Path) {
@@ -174,16 +155,6 @@ impl EditorApp {
             Some(Err(e)) => return self.report_error(format!("could not read the render back: {e}")),
             None => return self.report_error("nothing to export yet: the viewport has not drawn".to_string()),
         };
-        let mut bytes = Vec::new();
-        let encoded = image::DynamicImage::ImageRgba8(image)
-            .to_rgb8()
-            .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png);
-        let written = encoded
-            .map_err(|e| e.to_string())
-            .and_then(|()| crate::project::replace_atomically(path, &bytes).map_err(|e| e.to_string()));
-        match written {
-            Ok(()) => self.message = format!("exported {}", path.display()),
-            Err(e) => self.report_error(format!("could not write {}: {e}", path.display())),
-        }
+        self.write_png(path, image);
     }
 }

@@ -6,6 +6,7 @@ mod bake_job;
 mod blocker_overlay;
 mod brush_input;
 mod brush_panel;
+mod export;
 mod file_dialog;
 mod frame_clock;
 mod history;

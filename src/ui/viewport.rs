@@ -133,6 +133,20 @@ impl Viewport {
         self.renderer.read_image()
     }
 
+    /// The frame the viewport shows, drawn again at `size` pixels (same camera, settings
+    /// and lights, full quality) and read back; the viewport draws at its own size again
+    /// when next shown.
+    pub fn render_image_at(
+        &mut self,
+        size: [u32; 2],
+        settings: &RenderSettings,
+    ) -> Option<Result<image::RgbaImage, crate::render::RenderError>> {
+        self.renderer
+            .render(&self.orbit.camera(), size, settings, FrameQuality::default());
+        self.rendered = None;
+        self.renderer.read_image()
+    }
+
     /// The camera and the viewport's size in points, as the brush and the gizmo see it.
     pub fn view(&self) -> crate::paint::View {
         crate::paint::View {
