@@ -63,7 +63,8 @@ pub enum Command {
     /// Measure the real-time renderer's knobs against the reference path tracer: CSV,
     /// markdown table, Pareto plot and side-by-side images in the output directory.
     Study {
-        /// A small grid (17 settings) on the sample at 160×90: seconds, not minutes.
+        /// A small grid of settings on the sample at 160×90, and the small-light suites at small
+        /// sizes: about a minute on 2 cores, not hours.
         #[arg(long)]
         quick: bool,
         /// Directory for study.csv, study.md, pareto.png and images/.

@@ -3,6 +3,16 @@
 //! other surface — never through the mesh). Rozon's ID-buffer picking under-selects dense
 //! meshes and misses sparse ones; projecting every vertex does neither and gives each hit
 //! its falloff weight.
+//!
+//! And the surface under the brush, whatever its tessellation: eye rays through a grid of
+//! points of the disc ([`SURFACE_SAMPLES_ACROSS`] across) hit the visible triangles, and
+//! each hit paints its triangle's three vertices with its falloff weight times their
+//! barycentric weights. A stroke on a wall of two triangles paints its corners in the
+//! proportions the painted point lies between them: what a stroke reads per vertex (the
+//! transfer) is interpolated linearly across a triangle, so the corners weighted by one
+//! point's barycentrics give that point's value. Each vertex keeps the largest weight any
+//! dab or sample gave it, which keeps the corners' weighted mean within the dab's
+//! footprint (tests below) rather than exactly at its centre.
 
 use std::collections::BTreeMap;
 
@@ -98,6 +108,10 @@ impl Hits {
     }
 }
 
+/// Points of the dab's disc sampled along its diameter (a square grid, those inside the
+/// disc kept: 21 of 25 at 5).
+pub const SURFACE_SAMPLES_ACROSS: usize = 5;
+
 /// Adds to `hits` the vertices one dab at `center_px` paints; the objects `hidden` lists
 /// are neither painted nor in the way.
 pub fn pick_dab(
@@ -143,6 +157,57 @@ pub fn pick_dab(
                 },
                 weight,
             );
+        }
+    }
+    pick_surface(scene, bvh, view, center_px, brush, hidden, hits);
+}
+
+/// The surface under the dab (see the module's comment): eye rays through the disc's
+/// grid points, each visible front-facing hit painting its triangle's corners.
+fn pick_surface(
+    scene: &Scene,
+    bvh: &SceneBvh,
+    view: &View,
+    center_px: Vec2,
+    brush: &Brush,
+    hidden: &[u32],
+    hits: &mut Hits,
+) {
+    let radius = brush.radius_px.max(0.5);
+    let step = 2.0 * radius / (SURFACE_SAMPLES_ACROSS - 1) as f32;
+    for i in 0..SURFACE_SAMPLES_ACROSS {
+        for j in 0..SURFACE_SAMPLES_ACROSS {
+            let offset = Vec2::new(i as f32, j as f32) * step - Vec2::splat(radius);
+            let Some(weight) = brush.weight(offset.length()) else {
+                continue;
+            };
+            let Some((origin, direction)) = view.ray_through(center_px + offset) else {
+                continue;
+            };
+            let Some(hit) = bvh.closest_hit_ignoring(origin, direction, f32::INFINITY, hidden) else {
+                continue;
+            };
+            let Some(corners) = scene
+                .objects
+                .get(hit.object)
+                .and_then(|o| o.indices.get(3 * hit.triangle..3 * hit.triangle + 3))
+            else {
+                continue;
+            };
+            if !hit.front_facing {
+                continue;
+            }
+            for (&vertex, share) in corners.iter().zip(hit.barycentric.to_array()) {
+                if share > 0.0 {
+                    hits.add(
+                        VertexRef {
+                            object: hit.object as u32,
+                            vertex,
+                        },
+                        weight * share,
+                    );
+                }
+            }
         }
     }
 }
@@ -200,6 +265,40 @@ mod tests {
         let q = view.project(Vec3::ZERO).unwrap();
         assert!((q - Vec2::new(100.0, 100.0)).length() < 1e-3);
         assert!(view.project(Vec3::new(0.0, 10.0, 0.0)).is_none());
+    }
+
+    /// A wall of two triangles whose corners all lie far outside the brush is painted:
+    /// its corners carry the stroke in the proportions of where it lies between them
+    /// (their weighted mean is the point under the brush), and nothing behind it is.
+    #[test]
+    fn a_dab_on_a_large_triangle_paints_its_corners_as_the_point_lies_between_them() {
+        let wall = shapes::plane(10.0, 1, 1.0).into_object("wall");
+        let behind = shapes::plane(10.0, 40, 1.0)
+            .transformed(Affine3A::from_translation(Vec3::new(0.0, -1.0, 0.0)))
+            .into_object("behind");
+        let scene = Scene {
+            objects: vec![wall, behind],
+            ..Default::default()
+        };
+        let bvh = SceneBvh::build(&scene);
+        let brush = Brush {
+            radius_px: 8.0,
+            ..Brush::new(BrushKind::Positive)
+        };
+        let view = view_down_from(5.0);
+        for pixel in [Vec2::new(100.0, 100.0), Vec2::new(70.0, 130.0), Vec2::new(150.0, 40.0)] {
+            let mut hits = Hits::default();
+            pick_dab(&scene, &bvh, &view, pixel, &brush, &[], &mut hits);
+            assert!(!hits.is_empty(), "the wall under {pixel} is painted");
+            assert!(hits.weights.keys().all(|v| v.object == 0), "nothing through the wall");
+            let (sum, total) = hits.weights.iter().fold((Vec3::ZERO, 0.0), |(sum, total), (v, w)| {
+                (sum + *w * scene.objects[0].positions[v.vertex as usize], total + w)
+            });
+            let (origin, direction) = view.ray_through(pixel).expect("a ray");
+            let under = origin + direction * (origin.y / -direction.y);
+            // Within the brush's footprint on the wall (8 px of 200 across 5.8 m: 0.23 m).
+            assert!((sum / total).distance(under) < 0.25, "{} vs {under}", sum / total);
+        }
     }
 
     #[test]
