@@ -197,6 +197,28 @@ pub struct SphereSet {
     pub on_surface: bool,
 }
 
+impl SphereSet {
+    /// What casts the object's soft shadows, in a few words: its spheres and their fit
+    /// error, its blockers on the surface (discs and spheres) and their silhouettes'
+    /// error, or why it has none (the CLI's summary and the inspector say the same).
+    pub fn describe(&self) -> String {
+        match &self.skipped {
+            Some(reason) => format!("no spheres ({reason})"),
+            None if self.on_surface => format!(
+                "{} blocker(s) on its surface ({} discs; it has no sphere-like inside), silhouette error {:.0} %",
+                self.spheres.len(),
+                self.spheres.iter().filter(|s| s.is_disc()).count(),
+                100.0 * self.fit_error
+            ),
+            None => format!(
+                "{} sphere(s), fit error {:.0} %",
+                self.spheres.len(),
+                100.0 * self.fit_error
+            ),
+        }
+    }
+}
+
 /// The sphere sets of every object of a scene, in object order.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SceneBlockers {
@@ -232,22 +254,7 @@ impl SceneBlockers {
         self.per_object
             .iter()
             .zip(&scene.objects)
-            .map(|(set, object)| match &set.skipped {
-                Some(reason) => format!("{}: no spheres ({reason})", object.name),
-                None if set.on_surface => format!(
-                    "{}: {} blocker(s) on its surface ({} discs; it has no sphere-like inside), silhouette error {:.0} %",
-                    object.name,
-                    set.spheres.len(),
-                    set.spheres.iter().filter(|s| s.is_disc()).count(),
-                    100.0 * set.fit_error
-                ),
-                None => format!(
-                    "{}: {} sphere(s), fit error {:.0} %",
-                    object.name,
-                    set.spheres.len(),
-                    100.0 * set.fit_error
-                ),
-            })
+            .map(|(set, object)| format!("{}: {}", object.name, set.describe()))
             .collect()
     }
 }

@@ -279,17 +279,10 @@ fn object_summary(ui: &mut egui::Ui, document: &mut Document, blockers: &crate::
         });
         ui.end_row();
         ui.label("shadow proxy");
-        let proxy = match blockers.per_object.get(index) {
-            Some(set) => match &set.skipped {
-                Some(reason) => format!("none: no soft shadow ({reason})"),
-                None => format!(
-                    "{} spheres, fit error {:.0} %",
-                    set.spheres.len(),
-                    100.0 * set.fit_error
-                ),
-            },
-            None => "none".to_string(),
-        };
+        let proxy = blockers
+            .per_object
+            .get(index)
+            .map_or_else(|| "none".to_string(), |set| set.describe());
         ui.label(proxy);
         ui.end_row();
     });
