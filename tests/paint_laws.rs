@@ -432,3 +432,63 @@ fn every_dab_over_a_visible_surface_paints_it() {
     }
     assert!(dabs_on_surfaces > 60, "{dabs_on_surfaces} dabs over surfaces");
 }
+
+/// A stroke says which light it changed, by name, in its unit, from what to what, and
+/// how much of the painted area's light it gave: under "the strongest" and "the light
+/// they give here" that is the light with the largest share (computed here from the
+/// transfer), raised by the factor.
+#[test]
+fn a_stroke_names_the_light_it_changed_and_why() {
+    let settings = PaintSettings {
+        modification: ModificationStrategy::Double { factor: 1.5 },
+        selection: SelectionStrategy::MostImportant,
+        ..PaintSettings::default()
+    };
+    let stroke = record(BrushKind::Positive, Vec3::new(-1.5, 0.0, 1.0), settings, 1);
+    let before = fixture().scene.light_intensities();
+    let mut p = before.clone();
+    let report = paint(&mut Painter::new(), &mut p, stroke.clone());
+    assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
+    assert_eq!(report.changes.len(), 1, "{report:?}");
+    let changed = report.changes[0].light as usize;
+    // Each light's light on the painted vertices, weighted as the stroke weighs them.
+    let f = fixture();
+    let transfer = BakedTransfer::new(&f.scene, &f.maps);
+    let mut hits = Hits::default();
+    for &dab in &stroke.dabs_px {
+        pick_dab(
+            &f.scene,
+            &f.bvh,
+            &stroke.view.view(),
+            dab,
+            &stroke.brush,
+            &[],
+            &mut hits,
+        );
+    }
+    let mut received = vec![0.0f64; before.len()];
+    for (&vertex, &w) in &hits.weights {
+        for (i, t) in transfer.vertex_transfer(vertex, stroke.view.eye) {
+            received[i as usize] += w as f64 * before[i as usize] as f64 * t;
+        }
+    }
+    let strongest = (0..received.len())
+        .max_by(|&a, &b| received[a].total_cmp(&received[b]))
+        .expect("lights");
+    assert_eq!(changed, strongest);
+    let share = received[strongest] / received.iter().sum::<f64>();
+    assert!(
+        (report.shares_before[strongest] - share).abs() < 1e-6,
+        "{} vs {share}",
+        report.shares_before[strongest]
+    );
+    let light = &f.scene.lights[changed];
+    assert!((p[changed] / before[changed] - 1.5).abs() < 1e-5);
+    let words = &report.message;
+    assert!(words.contains(&format!("raised {}", light.name)), "{words}");
+    assert!(words.contains(light.kind.intensity_unit()), "{words}");
+    assert!(
+        words.contains(&format!("{:.0} % of the light here", 100.0 * share)),
+        "{words}"
+    );
+}

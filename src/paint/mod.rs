@@ -21,5 +21,5 @@ pub use modify::ModificationStrategy;
 pub use pick::{Hits, VertexRef, View, pick_dab};
 pub use record::{PaintSettings, Ranking, SolveMode, StrokeRecord, ViewRecord, dabs_along};
 pub use select::SelectionStrategy;
-pub use session::{Edit, LightChange, Outcome, Painter, StrokeReport};
+pub use session::{Edit, LightChange, Outcome, Painter, StrokeReport, changes_in_words};
 pub use transfer::{BakedTransfer, Transfer};

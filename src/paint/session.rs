@@ -28,6 +28,42 @@ pub struct LightChange {
     pub after: f32,
 }
 
+/// Which lights a stroke changed and why, in words: "raised Rim left from 30 to 45 cd (62 % of
+/// the light here)", the three largest changes (by their share of the painted area's
+/// light) and how many more.
+pub fn changes_in_words(report: &StrokeReport, lights: &[crate::scene::Light]) -> String {
+    let mut changes = report.changes.clone();
+    let share = |c: &LightChange| report.shares_before.get(c.light as usize).copied().unwrap_or(0.0);
+    changes.sort_by(|a, b| share(b).total_cmp(&share(a)));
+    let mut words: Vec<String> = changes
+        .iter()
+        .take(3)
+        .map(|c| {
+            let light = lights.get(c.light as usize);
+            let name = light.map_or_else(|| format!("light {}", c.light), |l| l.name.clone());
+            let unit = light.map_or("", |l| l.kind.intensity_unit());
+            let verb = if c.after > c.before { "raised" } else { "lowered" };
+            format!(
+                "{verb} {name} from {} to {} {unit} ({:.0} % of the light here)",
+                significant(c.before),
+                significant(c.after),
+                100.0 * share(c)
+            )
+        })
+        .collect();
+    if changes.len() > 3 {
+        words.push(format!("and {} more", changes.len() - 3));
+    }
+    words.join(", ")
+}
+
+/// `value` with three significant digits, as the inspector shows intensities.
+fn significant(value: f32) -> String {
+    let magnitude = value.abs().max(1e-30).log10().floor() as i32;
+    let decimals = (2 - magnitude).clamp(0, 6) as usize;
+    format!("{value:.decimals$}")
+}
+
 /// A stroke's mean luminance as a linear function of the intensities, and the value the
 /// stroke settled on: one row of the global solve.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,6 +111,11 @@ pub struct StrokeReport {
     pub mean_after: f64,
     /// Whether the constraint guard shortened the step.
     pub limited_by_constraints: bool,
+    /// The lights the stroke changed, in light order.
+    pub changes: Vec<LightChange>,
+    /// Each light's share of the painted area's light before the stroke (Σ = 1 where any
+    /// light reaches it; the fixed light aside).
+    pub shares_before: Vec<f64>,
     pub message: String,
 }
 
@@ -88,6 +129,8 @@ impl StrokeReport {
             mean_before: mean,
             mean_after: mean,
             limited_by_constraints: false,
+            changes: Vec::new(),
+            shares_before: Vec::new(),
             message: message.into(),
         }
     }
@@ -190,7 +233,11 @@ impl Painter {
             pick_dab(scene, bvh, &view, dab, &record.brush, &record.hidden_objects, &mut hits);
         }
         let vertices_per_object: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
-        self.apply(transfer, &vertices_per_object, intensities, record, &hits)
+        let mut report = self.apply(transfer, &vertices_per_object, intensities, record, &hits);
+        if report.outcome == Outcome::Changed {
+            report.message = format!("{}; {}", changes_in_words(&report, &scene.lights), report.message);
+        }
+        report
     }
 
     /// Applies a stroke whose hit vertices are known.
@@ -320,6 +367,8 @@ impl Painter {
             })
             .collect();
         let limited = fraction < 1.0;
+        let received: Vec<f64> = p.iter().zip(&stroke.mean).map(|(p, t)| p * t).collect();
+        let total = received.iter().sum::<f64>();
         let mut report = StrokeReport {
             outcome: Outcome::Changed,
             hit_vertices: hits.len(),
@@ -328,6 +377,11 @@ impl Painter {
             mean_before,
             mean_after: mean_before,
             limited_by_constraints: limited,
+            changes: changes.clone(),
+            shares_before: received
+                .iter()
+                .map(|r| if total > 0.0 { r / total } else { 0.0 })
+                .collect(),
             message: String::new(),
         };
         if changes.is_empty() {
@@ -345,8 +399,7 @@ impl Painter {
         let after: Vec<f64> = intensities.iter().map(|&v| v as f64).collect();
         report.mean_after = stroke.fixed + mean_luminance(&after, &stroke.mean);
         report.message = format!(
-            "{} light(s) changed; painted luminance from {:.4} to {:.4} cd/m²{}{note}",
-            changes.len(),
+            "painted luminance from {:.4} to {:.4} cd/m²{}{note}",
             report.mean_before,
             report.mean_after,
             if limited { " (limited by constraints)" } else { "" }
