@@ -349,7 +349,14 @@ fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
                 modification: ModificationStrategy::Double { factor: 4.0 },
                 ..PaintSettings::default()
             };
-            paint(&mut painter, &mut p, record(kind, at, settings, k as u64));
+            let report = paint(&mut painter, &mut p, record(kind, at, settings, k as u64));
+            // A shortened stroke says by how much.
+            assert_eq!(
+                report.limited_by_constraints,
+                report.message.contains("the Keep areas allowed"),
+                "{}",
+                report.message
+            );
         }
     }
     let kept_after = painted_mean(&keep, &p);
@@ -490,5 +497,29 @@ fn a_stroke_names_the_light_it_changed_and_why() {
     assert!(
         words.contains(&format!("{:.0} % of the light here", 100.0 * share)),
         "{words}"
+    );
+}
+
+/// An absurd factor saturates a light at the largest intensity stored, and the stroke
+/// says so (the frame would otherwise just go white).
+#[test]
+fn a_saturated_light_is_reported() {
+    let settings = PaintSettings {
+        modification: ModificationStrategy::Double { factor: 1e300 },
+        selection: SelectionStrategy::MostImportant,
+        ..PaintSettings::default()
+    };
+    let mut p = fixture().scene.light_intensities();
+    let report = paint(
+        &mut Painter::new(),
+        &mut p,
+        record(BrushKind::Positive, Vec3::new(-1.5, 0.0, 1.0), settings, 1),
+    );
+    assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
+    assert!(p.iter().all(|v| v.is_finite()));
+    assert!(
+        report.message.contains("largest intensity stored"),
+        "{}",
+        report.message
     );
 }

@@ -398,11 +398,26 @@ impl Painter {
         }
         let after: Vec<f64> = intensities.iter().map(|&v| v as f64).collect();
         report.mean_after = stroke.fixed + mean_luminance(&after, &stroke.mean);
+        let limit = if limited {
+            format!(
+                " (the Keep areas allowed {:.0} % of the change)",
+                100.0 * fraction.clamp(0.0, 1.0)
+            )
+        } else {
+            String::new()
+        };
+        // An intensity that reached f32's largest value lights everything white: say so.
+        let saturated = changes.iter().filter(|c| c.after >= SATURATED_INTENSITY).count();
+        let saturation = if saturated > 0 {
+            format!(
+                "; {saturated} light(s) reached the largest intensity stored ({SATURATED_INTENSITY:e}): undo, or paint with a smaller factor or amount"
+            )
+        } else {
+            String::new()
+        };
         report.message = format!(
-            "painted luminance from {:.4} to {:.4} cd/m²{}{note}",
-            report.mean_before,
-            report.mean_after,
-            if limited { " (limited by constraints)" } else { "" }
+            "painted luminance from {:.4} to {:.4} cd/m²{limit}{note}{saturation}",
+            report.mean_before, report.mean_after,
         );
         self.push(Edit {
             record,
@@ -480,6 +495,10 @@ impl Painter {
 }
 
 /// Finite and ≥ 0 (NaN and negatives become 0, +∞ the largest f32).
+/// An intensity this large (a tenth of f32's largest value, far beyond any real light)
+/// is reported as saturated.
+const SATURATED_INTENSITY: f32 = f32::MAX / 10.0;
+
 fn sanitized(p: f64) -> f64 {
     if p.is_nan() { 0.0 } else { p.clamp(0.0, f32::MAX as f64) }
 }
