@@ -101,35 +101,12 @@ fn check_accepts_the_sample() {
     assert!(stdout.contains("ok"), "{stdout}");
 }
 
+/// `render` writes a PNG of the requested size; with `--time-frames` it also says the
+/// frames' mean time and, on a GPU with timestamps (lavapipe has them), each pass's: the
+/// reduced-resolution shading and the scene pass are named, and their times are positive
+/// and within the frame's.
 #[test]
-fn render_writes_a_png_of_the_requested_size() {
-    if common::no_gpu_wanted() {
-        eprintln!("GPU test not run: {}=1", common::NO_GPU_ENV);
-        return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let out_png = dir.path().join("sample.png");
-    let sample = common::repo_path(lightpaint::samples::SAMPLE_SCENE);
-    let out = common::run_lightpaint(&[
-        OsStr::new("render"),
-        sample.as_os_str(),
-        OsStr::new("-o"),
-        out_png.as_os_str(),
-        OsStr::new("--width"),
-        OsStr::new("160"),
-        OsStr::new("--height"),
-        OsStr::new("90"),
-    ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let image = image::open(&out_png).expect("a PNG was written");
-    assert_eq!((image.width(), image.height()), (160, 90));
-}
-
-/// `--time-frames` says the frames' mean time and, on a GPU with timestamps (lavapipe has
-/// them), each pass's: the reduced-resolution shading and the scene pass are named, and
-/// their times are positive and within the frame's.
-#[test]
-fn render_times_frames_and_their_passes() {
+fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
     if common::no_gpu_wanted() {
         eprintln!("GPU test not run: {}=1", common::NO_GPU_ENV);
         return;
@@ -151,6 +128,8 @@ fn render_times_frames_and_their_passes() {
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let image = image::open(&out_png).expect("a PNG was written");
+    assert_eq!((image.width(), image.height()), (160, 90));
     let number_after = |text: &str, label: &str| -> f64 {
         let rest = &text[text.find(label).unwrap_or_else(|| panic!("{label:?} in {text}")) + label.len()..];
         let digits: String = rest

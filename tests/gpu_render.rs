@@ -302,16 +302,25 @@ fn area_lights_give_their_exact_light_near_the_floor() {
     let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height_px).expect("surfaces");
     let settings = RenderSettings::default();
     let shadows = ShadowSettings::default().every_pixel();
-    let frame = ShadowFrame {
-        scene: &scene,
-        camera: &camera,
-        settings: &settings,
-        shadows: &shadows,
-        blockers: &[],
-        baked_indirect: None,
-        width,
-        height: height_px,
-    };
+    // Every frame of the test: these settings, no blockers, this size.
+    fn frame_of<'a>(
+        scene: &'a Scene,
+        camera: &'a lightpaint::scene::Camera,
+        settings: &'a RenderSettings,
+        shadows: &'a ShadowSettings,
+        size: (u32, u32),
+    ) -> ShadowFrame<'a> {
+        ShadowFrame {
+            scene,
+            camera,
+            settings,
+            shadows,
+            blockers: &[],
+            baked_indirect: None,
+            width: size.0,
+            height: size.1,
+        }
+    }
     let images = [
         (
             "raster",
@@ -319,7 +328,12 @@ fn area_lights_give_their_exact_light_near_the_floor() {
         ),
         (
             "log-SH",
-            render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("log-SH"),
+            render_logsh_image(
+                &gpu,
+                &frame_of(&scene, &camera, &settings, &shadows, (width, height_px)),
+                AntiAliasing::None,
+            )
+            .expect("log-SH"),
         ),
     ];
     let mut checked = 0;
@@ -360,17 +374,12 @@ fn area_lights_give_their_exact_light_near_the_floor() {
         direction: Vec3::NEG_Y,
         range: None,
     }];
-    let disk_frame = ShadowFrame {
-        scene: &scene,
-        camera: &camera,
-        settings: &settings,
-        shadows: &shadows,
-        blockers: &[],
-        baked_indirect: None,
-        width,
-        height: height_px,
-    };
-    let image = render_logsh_image(&gpu, &disk_frame, AntiAliasing::None).expect("disk");
+    let image = render_logsh_image(
+        &gpu,
+        &frame_of(&scene, &camera, &settings, &shadows, (width, height_px)),
+        AntiAliasing::None,
+    )
+    .expect("disk");
     let mut checked = 0;
     for (i, surface) in surfaces.iter().enumerate() {
         let Some(s) = surface.as_ref().filter(|s| s.position.y.abs() < 1e-4) else {

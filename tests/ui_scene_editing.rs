@@ -594,19 +594,7 @@ fn the_editor_and_render_draw_the_same_pixels() {
         harness.state_mut().export_png(&exported);
         harness.run();
         let viewport = image::open(&exported).expect("the viewport was exported").to_rgba8();
-        let rendered = dir.path().join("render.png");
-        let output = common::run_lightpaint(&[
-            "render".as_ref(),
-            project.as_os_str(),
-            "-o".as_ref(),
-            rendered.as_os_str(),
-            "--width".as_ref(),
-            viewport.width().to_string().as_ref(),
-            "--height".as_ref(),
-            viewport.height().to_string().as_ref(),
-        ]);
-        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-        let rendered = image::open(&rendered).expect("render wrote a PNG").to_rgba8();
+        let rendered = rendered_by_cli(&project, &dir.path().join("render.png"), viewport.dimensions());
         assert_eq!(rendered.dimensions(), viewport.dimensions());
         let differing = viewport.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
         assert_eq!(
@@ -663,19 +651,7 @@ fn an_export_at_any_size_is_the_frame_render_draws() {
     harness.run();
     let exported = image::open(&exported).expect("exported").to_rgba8();
     assert_eq!(exported.dimensions(), (width, height));
-    let rendered = dir.path().join("render.png");
-    let output = common::run_lightpaint(&[
-        "render".as_ref(),
-        project.as_os_str(),
-        "-o".as_ref(),
-        rendered.as_os_str(),
-        "--width".as_ref(),
-        width.to_string().as_ref(),
-        "--height".as_ref(),
-        height.to_string().as_ref(),
-    ]);
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let rendered = image::open(&rendered).expect("render wrote a PNG").to_rgba8();
+    let rendered = rendered_by_cli(&project, &dir.path().join("render.png"), (width, height));
     let differing = exported.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
     assert_eq!(differing, 0, "{differing} pixels differ between the export and render");
 
@@ -693,4 +669,20 @@ fn an_export_at_any_size_is_the_frame_render_draws() {
             (rect.height() * ppp).round() as u32
         )
     );
+}
+
+/// `lightpaint render PROJECT -o OUT --width W --height H`, read back.
+fn rendered_by_cli(project: &std::path::Path, out: &std::path::Path, (width, height): (u32, u32)) -> image::RgbaImage {
+    let output = common::run_lightpaint(&[
+        "render".as_ref(),
+        project.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--width".as_ref(),
+        width.to_string().as_ref(),
+        "--height".as_ref(),
+        height.to_string().as_ref(),
+    ]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    image::open(out).expect("render wrote a PNG").to_rgba8()
 }
