@@ -13,14 +13,19 @@ fn have(program: &str) -> bool {
         .is_ok_and(|o| o.status.success())
 }
 
-const SCRIPT: &str = r#"
-timeout 300 "$LIGHTPAINT" > "$LOG" 2>&1 &
+/// Starts the editor (on `$PROJECT` when set) and waits up to 2 minutes for its first
+/// frame; the scripts below go on from there.
+const START_EDITOR: &str = r#"
+timeout 300 "$LIGHTPAINT" ${PROJECT:+"$PROJECT"} > "$LOG" 2>&1 &
 pid=$!
 for _ in $(seq 1 1200); do
     grep -q "first frame drawn" "$LOG" && break
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.1
 done
+"#;
+
+const SCRIPT: &str = r#"
 # Let the viewport draw a few frames after the first; on a loaded machine the window can
 # take longer to show them, so look again (up to 30 s) while the screen is still blank.
 sleep 3
@@ -50,7 +55,14 @@ fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
     let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-smoke.png");
     let _ = std::fs::remove_file(&shot);
     let status = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", SCRIPT])
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            "bash",
+            "-c",
+            &format!("{START_EDITOR}{SCRIPT}"),
+        ])
         .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
         .env("LOG", &log)
         .env("SHOT", &shot)
@@ -83,13 +95,6 @@ fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
 }
 
 const SAVE_AS_SCRIPT: &str = r#"
-timeout 300 "$LIGHTPAINT" "$PROJECT" > "$LOG" 2>&1 &
-pid=$!
-for _ in $(seq 1 1200); do
-    grep -q "first frame drawn" "$LOG" && break
-    kill -0 "$pid" 2>/dev/null || break
-    sleep 0.1
-done
 sleep 2
 # File ▸ Save As… (the menu bar's first entry; the sixth item of its menu).
 xdotool mousemove 20 12 click 1
@@ -141,7 +146,14 @@ fn save_as_through_the_file_dialog_writes_the_project_under_xvfb() {
     let log = dir.path().join("editor.log");
     let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-save-as.png");
     let status = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", SAVE_AS_SCRIPT])
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            "bash",
+            "-c",
+            &format!("{START_EDITOR}{SAVE_AS_SCRIPT}"),
+        ])
         .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
         .env("PROJECT", studio.join("studio.lightpaint"))
         .env("TARGET", &target)
