@@ -120,7 +120,7 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
         // A sphere light: its cap has sin(half-angle) = radius / distance.
         result.cap_ratio = min(light.source_size * inverseSqrt(distance2), 1.0);
     }
-    if light.kind == LIGHT_AREA {
+    if AREA_LIGHTS && light.kind == LIGHT_AREA {
         let cos_emitter = max(dot(-result.to_light, light.direction_range.xyz), 0.0);
         // The cap of the same solid angle Ω = A·cos θ/d²: 1 − cos(half-angle) = Ω/(2π).
         let u = min(light.source_size * cos_emitter / distance2 / (2.0 * PI), 1.0);
@@ -141,6 +141,11 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     result.irradiance = light.intensity_rgb.rgb * falloff;
     return result;
 }
+
+// false: no light of the frame is a rect or a disk, and their vector irradiance is left
+// out (shading::compiled_paths; lavapipe pays for a branch's body whether or not a pixel
+// takes it).
+override AREA_LIGHTS: bool = true;
 
 // Sides of the regular polygon of equal area a disk light is taken as
 // (shading::cpu::area::DISK_LIGHT_SIDES).

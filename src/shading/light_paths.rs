@@ -147,6 +147,10 @@ pub struct CompiledPaths {
     pub harmonics: bool,
     /// The scene has a terrain (TERRAIN_SHADOWS).
     pub terrain: bool,
+    /// Some light is a rect or a disk: their exact vector irradiance is compiled in
+    /// (AREA_LIGHTS; on lavapipe its loop over the polygon's edges cost the studio, which
+    /// has none, 5–7 ms a frame when it was always there).
+    pub area_lights: bool,
     /// More lights than the shaders' uniform array holds: the rest are read from a storage
     /// buffer (LIGHT_OVERFLOW; [`UNIFORM_LIGHT_CAPACITY`]).
     pub light_overflow: bool,
@@ -168,6 +172,7 @@ impl CompiledPaths {
         exact_wide: true,
         harmonics: true,
         terrain: true,
+        area_lights: true,
         light_overflow: true,
         blocker_overflow: true,
         cull_back_faces: false,
@@ -181,6 +186,7 @@ impl CompiledPaths {
         exact_wide: false,
         harmonics: false,
         terrain: false,
+        area_lights: false,
         light_overflow: false,
         blocker_overflow: false,
         cull_back_faces: false,
@@ -228,6 +234,7 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
         terrain: lighting.has_terrain,
+        area_lights: shaded.iter().any(|light| light.kind == super::gpu_types::LIGHT_AREA),
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
         cull_back_faces: lighting.single_sided,

@@ -397,6 +397,7 @@ fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("SOFT_SHADOW_MAPS", flag(paths.soft_maps)),
         ("SH_VISIBILITY", flag(paths.harmonics)),
         ("TERRAIN_SHADOWS", flag(paths.terrain)),
+        ("AREA_LIGHTS", flag(paths.area_lights)),
         ("LIGHT_OVERFLOW", flag(paths.light_overflow)),
         ("BLOCKER_OVERFLOW", flag(paths.blocker_overflow)),
     ]
