@@ -117,11 +117,15 @@ fn blend(from: &[f64], to: &[f64], t: f64) -> Vec<f64> {
     from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect()
 }
 
-/// Direct: P_i ← P_i + δ·w_i over the selected lights, w_i = T_i/Σ_S T_j (a light adds in
-/// proportion to how much it reaches the stroke, so it works from P = 0), with δ such that
-/// Σ P_i T_i = target. Lights driven below zero are fixed at zero and δ is solved again
-/// for the rest, so the result is the reachable intensities closest to the target. A
-/// target on the wrong side (brighter than now for a negative brush) changes nothing.
+/// Direct: P_i ← P_i + δ·w_i over the selected lights, with δ such that Σ P_i T_i =
+/// target. The weights are unit-free: w_i = P_i, so each light's share of the change is
+/// its share of the light it already puts on the stroke (P_i·T_i) and every selected light
+/// is scaled by the same factor 1 + δ, whatever its unit (cd, lx or nits). Where the
+/// selected lights give nothing yet (all off), w_i = T_i: a light adds in proportion to
+/// how much it reaches the stroke (Rozon's share-out), so a stroke still turns them on.
+/// Lights driven below zero are fixed at zero and δ is solved again for the rest, so the
+/// result is the reachable intensities closest to the target. A target on the wrong side
+/// (brighter than now for a negative brush) changes nothing.
 fn direct(step: &Step, sign: f64) -> Vec<f64> {
     let mut out = step.intensities.to_vec();
     let current = mean_luminance(step.intensities, step.transfer);
@@ -136,15 +140,16 @@ fn direct(step: &Step, sign: f64) -> Vec<f64> {
         .copied()
         .filter(|&i| step.transfer[i] > 0.0)
         .collect();
+    let lit = active.iter().any(|&i| step.intensities[i] * step.transfer[i] > 0.0);
+    let weight = |i: usize| if lit { step.intensities[i] } else { step.transfer[i] };
     while !active.is_empty() {
         let now = mean_luminance(&out, step.transfer);
-        let weight_sum: f64 = active.iter().map(|&i| step.transfer[i]).sum();
-        let gain: f64 = active.iter().map(|&i| step.transfer[i] * step.transfer[i]).sum::<f64>() / weight_sum;
+        let gain: f64 = active.iter().map(|&i| weight(i) * step.transfer[i]).sum();
+        if gain <= 0.0 {
+            break;
+        }
         let delta = (wanted - now) / gain;
-        let trial: Vec<(usize, f64)> = active
-            .iter()
-            .map(|&i| (i, out[i] + delta * step.transfer[i] / weight_sum))
-            .collect();
+        let trial: Vec<(usize, f64)> = active.iter().map(|&i| (i, out[i] + delta * weight(i))).collect();
         let negative: Vec<usize> = trial.iter().filter(|(_, p)| *p < 0.0).map(|(i, _)| *i).collect();
         if negative.is_empty() {
             trial.into_iter().for_each(|(i, p)| out[i] = p);
@@ -227,6 +232,26 @@ mod tests {
         let down = modify(&s);
         assert!((mean_luminance(&down, &transfer) - 1.0).abs() < 1e-12, "{down:?}");
         assert!(down.iter().all(|p| *p >= 0.0));
+    }
+
+    /// Two lights each giving the stroke 1 cd/m², one in candela reaching it weakly (a
+    /// spot: T = 0.01 per cd, at 100 cd), one in lux reaching it strongly (a sun: T = 1 per
+    /// lx, at 1 lx): doubling the stroke's light doubles both, whatever their units. A
+    /// share-out by transfer per unit would have put 99 % of the change on the sun.
+    #[test]
+    fn direct_scales_lights_of_different_units_alike() {
+        let transfer = [0.01, 1.0];
+        let p = [100.0, 1.0];
+        let mut s = step(
+            BrushKind::Positive,
+            ModificationStrategy::Direct,
+            &p,
+            &transfer,
+            &[0, 1],
+        );
+        s.target_luminance = 4.0;
+        let up = modify(&s);
+        assert!((up[0] - 200.0).abs() < 1e-9 && (up[1] - 2.0).abs() < 1e-9, "{up:?}");
     }
 
     #[test]

@@ -494,11 +494,11 @@ impl Painter {
     }
 }
 
-/// Finite and ≥ 0 (NaN and negatives become 0, +∞ the largest f32).
 /// An intensity this large (a tenth of f32's largest value, far beyond any real light)
 /// is reported as saturated.
 const SATURATED_INTENSITY: f32 = f32::MAX / 10.0;
 
+/// Finite and ≥ 0 (NaN and negatives become 0, +∞ the largest f32).
 fn sanitized(p: f64) -> f64 {
     if p.is_nan() { 0.0 } else { p.clamp(0.0, f32::MAX as f64) }
 }
