@@ -715,13 +715,22 @@ impl EditorApp {
             self.history.settle(&document.scene.lights);
         }
         let step = self.history.undo();
-        self.message = self.carry_out(step, Direction::Undo);
+        let message = self.carry_out(step, Direction::Undo);
+        self.say_again(message);
     }
 
     /// Redoes the last undone stroke or light edit (Ctrl+Shift+Z or Ctrl+Y).
     pub fn redo(&mut self) {
         let step = self.history.redo();
-        self.message = self.carry_out(step, Direction::Redo);
+        let message = self.carry_out(step, Direction::Redo);
+        self.say_again(message);
+    }
+
+    /// Shows `message` as news even when it reads as the last one did ("nothing to undo"
+    /// twice): the status bar times it afresh.
+    fn say_again(&mut self, message: String) {
+        self.message = message;
+        self.message_seen.text.clear();
     }
 
     /// Whether Edit ▸ Undo and Redo have anything to do.
