@@ -85,14 +85,6 @@ fn triangle_solid_angle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> f32 {
     return 2.0 * atan2(numerator, denominator);
 }
 
-// An edge's share of the vector form factor: its angle times the unit normal of the
-// plane through the eye and the edge.
-fn edge_form_factor(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
-    let plane = cross(a, b);
-    let plane_length = length(plane);
-    return atan2(plane_length, dot(a, b)) * plane / max(plane_length, 1e-30);
-}
-
 // The solid angle a disc subtends from p (w, steradians) and the unit mean direction over
 // it (xyz); 0 from its own plane (blockers::disc::disc_seen).
 fn disc_seen(center: vec3<f32>, radius: f32, normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {

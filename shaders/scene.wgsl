@@ -158,6 +158,16 @@ fn area_width_axis(normal: vec3<f32>) -> vec3<f32> {
     return normalize(cross(reference, normal));
 }
 
+// An edge's share of a polygon's vector form factor seen from the origin: the angle the
+// edge a → b subtends times the unit normal of the plane through the origin and the edge
+// (blockers::disc::edge_form_factor); atan2 rather than acos, exact for the small angles
+// of distant polygons. Area lights here, disc blockers in logsh.wgsl.
+fn edge_form_factor(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    let plane = cross(a, b);
+    let plane_length = length(plane);
+    return atan2(plane_length, dot(a, b)) * plane / max(plane_length, 1e-30);
+}
+
 // The vector irradiance at p of an area light of unit radiance, Φ = ½ Σ_edges γ·n̂
 // (Lambert's formula; Arvo 1994): E = L·Φ·n for a receiver whose horizon the light is
 // wholly above. Its polygon: a rect's 4 corners, or for a disk the regular polygon of
@@ -190,16 +200,11 @@ fn area_vector_irradiance(light: Light, p: vec3<f32>) -> vec3<f32> {
     }
     var sum = vec3<f32>(0.0);
     let step = 2.0 * PI / f32(sides);
-    var a = normalize(centre + u * cos(first_angle) + v * sin(first_angle));
+    var a = centre + u * cos(first_angle) + v * sin(first_angle);
     for (var k = 1u; k <= sides; k++) {
         let angle = first_angle + step * f32(k);
-        let b = normalize(centre + u * cos(angle) + v * sin(angle));
-        let edge_normal = cross(a, b);
-        let sine = length(edge_normal);
-        if sine > 0.0 {
-            // atan2 rather than acos: exact for the small angles of distant lights.
-            sum += edge_normal * (atan2(sine, dot(a, b)) / sine);
-        }
+        let b = centre + u * cos(angle) + v * sin(angle);
+        sum += edge_form_factor(a, b);
         a = b;
     }
     let phi = 0.5 * sum;

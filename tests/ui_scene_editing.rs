@@ -98,13 +98,8 @@ fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
     // are lighter than with a light selected instead.
     let selected = harness.render().expect("render");
     let bounds = harness.state().document().expect("open").scene.objects[figure].bounds();
-    let corner = |k: usize| {
-        glam::Vec3::new(
-            if k & 1 == 0 { bounds.min.x } else { bounds.max.x },
-            if k & 2 == 0 { bounds.min.y } else { bounds.max.y },
-            if k & 4 == 0 { bounds.min.z } else { bounds.max.z },
-        )
-    };
+    let corners = bounds.corners();
+    let corner = |k: usize| corners[k];
     let midpoints: Vec<egui::Pos2> = (0..8)
         .flat_map(|k| {
             [1, 2, 4]

@@ -70,17 +70,23 @@ pub fn disc_seen(center: DVec3, radius: f64, normal: DVec3, p: DVec3) -> (f64, D
     let solid_angle = triangle_solid_angle(corners[0], corners[1], corners[2])
         + triangle_solid_angle(corners[0], corners[2], corners[3]);
     let form_factor: DVec3 = (0..DISC_SIDES)
-        .map(|k| {
-            let (a, b) = (corners[k], corners[(k + 1) % DISC_SIDES]);
-            let plane = a.cross(b);
-            plane.length().atan2(a.dot(b)) * plane.normalize_or_zero()
-        })
+        .map(|k| edge_form_factor(corners[k], corners[(k + 1) % DISC_SIDES]))
         .sum();
     let mut direction = form_factor.normalize_or(to_center / distance.max(1e-300));
     if direction.dot(to_center) < 0.0 {
         direction = -direction;
     }
     (solid_angle.abs().min(std::f64::consts::TAU), direction)
+}
+
+/// An edge's share of a polygon's vector form factor seen from the origin (Lambert): the
+/// angle the edge a → b subtends times the unit normal of the plane through the origin and
+/// the edge (zero for an edge seen end-on). Half the sum over a polygon's edges is its
+/// vector irradiance per unit radiance (`shading::cpu::area`); WGSL `edge_form_factor`.
+pub fn edge_form_factor(a: DVec3, b: DVec3) -> DVec3 {
+    let plane = a.cross(b);
+    // atan2 rather than acos: exact for the small angles of distant polygons.
+    plane.length().atan2(a.dot(b)) * plane.normalize_or_zero()
 }
 
 /// Signed solid angle of the triangle a, b, c seen from the origin (Van Oosterom and

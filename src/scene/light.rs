@@ -165,18 +165,21 @@ impl Light {
     /// when the light faces straight up or down), turned about the normal by the rect's
     /// `turn_rad`.
     pub fn area_width_axis(&self) -> Vec3 {
-        let reference = if self.direction.y.abs() > 0.99 {
-            Vec3::Z
-        } else {
-            Vec3::Y
-        };
-        let untouched = reference.cross(self.direction).normalize_or_zero();
+        let untouched = Light::unturned_width_axis(self.direction);
         match self.kind {
             LightKind::Rect { turn_rad, .. } if turn_rad != 0.0 && self.direction.is_normalized() => {
                 (glam::Quat::from_axis_angle(self.direction, turn_rad) * untouched).normalize_or_zero()
             }
             _ => untouched,
         }
+    }
+
+    /// The width axis of an area light facing `direction` before any turn: perpendicular to
+    /// it and to world +y (world +z within 8° of straight up or down). Disks lie on it too
+    /// (`shading::cpu::area::area_frame`; WGSL `area_width_axis`).
+    pub fn unturned_width_axis(direction: Vec3) -> Vec3 {
+        let reference = if direction.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        reference.cross(direction).normalize_or_zero()
     }
 
     /// The emitting plane's (width, height) unit axes of an area light: the width axis and

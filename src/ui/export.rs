@@ -20,13 +20,20 @@ const PRESETS: [(&str, [u32; 2]); 3] = [
 impl EditorApp {
     /// Opens the export window, sized as the viewport's pixels to begin with.
     pub fn open_export_window(&mut self, pixels_per_point: f32) {
-        let Some(viewport) = &self.viewport else {
+        let Some(size) = self.viewport_pixels(pixels_per_point) else {
             return self.report_error("nothing to export: no scene is shown".to_string());
         };
-        let size = [viewport.rect.width(), viewport.rect.height()]
-            .map(|side| ((side * pixels_per_point).round() as u32).clamp(1, MAX_EXPORT_SIDE_PX));
         self.export_size = Some(self.export_size.unwrap_or(size));
         self.export_window_open = true;
+    }
+
+    /// The viewport's size in pixels, within what an export may have (None: no viewport).
+    fn viewport_pixels(&self, pixels_per_point: f32) -> Option<[u32; 2]> {
+        let rect = self.viewport.as_ref()?.rect;
+        Some(
+            [rect.width(), rect.height()]
+                .map(|side| ((side * pixels_per_point).round() as u32).clamp(1, MAX_EXPORT_SIDE_PX)),
+        )
     }
 
     /// Whether the export window is open.
@@ -39,9 +46,7 @@ impl EditorApp {
             return;
         }
         let Some(mut size) = self.export_size else { return };
-        let viewport_size = self.viewport.as_ref().map(|v| {
-            [v.rect.width(), v.rect.height()].map(|side| ((side * ctx.pixels_per_point()).round() as u32).max(1))
-        });
+        let viewport_size = self.viewport_pixels(ctx.pixels_per_point());
         let mut open = true;
         let mut export = false;
         egui::Window::new("Export render as PNG")

@@ -26,8 +26,13 @@ pub fn unavailable_message() -> String {
 /// (the PATH variable) nor a session bus (`dbus`, DBUS_SESSION_BUS_ADDRESS) for a portal.
 pub fn unavailable_reason(path: Option<&OsStr>, dbus: Option<&OsStr>) -> Option<String> {
     let zenity = path.is_some_and(|path| std::env::split_paths(path).any(|dir| dir.join("zenity").is_file()));
-    let bus = dbus.is_some_and(|address| !address.is_empty());
-    (!zenity && !bus).then(unavailable_message)
+    (!zenity && !session_bus(dbus)).then(unavailable_message)
+}
+
+/// Whether a session bus address (DBUS_SESSION_BUS_ADDRESS) is given: a desktop portal
+/// may answer on it.
+fn session_bus(dbus: Option<&OsStr>) -> bool {
+    dbus.is_some_and(|address| !address.is_empty())
 }
 
 /// [`unavailable_reason`] for this process's environment.
@@ -53,8 +58,7 @@ pub fn outcome(picked: Option<PathBuf>, open_for: Duration) -> Result<Option<Pat
 /// opens a path given there in its folder: so where no session bus can reach a portal, the
 /// name carries the folder.
 pub fn start_in(dialog: rfd::FileDialog, folder: &Path, name: &str) -> rfd::FileDialog {
-    let bus = std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some_and(|a| !a.is_empty());
-    if bus {
+    if session_bus(std::env::var_os("DBUS_SESSION_BUS_ADDRESS").as_deref()) {
         dialog.set_directory(folder).set_file_name(name)
     } else {
         dialog.set_file_name(folder.join(name).to_string_lossy())

@@ -65,20 +65,15 @@ pub fn box_outline(bounds: &Aabb) -> Outline {
     if bounds.is_empty() {
         return Outline::default();
     }
-    let corner = |k: usize| {
-        Vec3::new(
-            if k & 1 == 0 { bounds.min.x } else { bounds.max.x },
-            if k & 2 == 0 { bounds.min.y } else { bounds.max.y },
-            if k & 4 == 0 { bounds.min.z } else { bounds.max.z },
-        )
-    };
-    // Corners differing in one bit share an edge.
+    // Aabb::corners numbers corner k by its bits (x, y, z: max where set): corners whose
+    // numbers differ in one bit share an edge.
+    let corners = bounds.corners();
     let solid = (0..8)
         .flat_map(|k| {
             [1, 2, 4]
                 .into_iter()
                 .filter(move |bit| k & bit == 0)
-                .map(move |bit| [corner(k), corner(k | bit)])
+                .map(move |bit| [corners[k], corners[k | bit]])
         })
         .collect();
     Outline {

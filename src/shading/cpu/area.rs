@@ -19,6 +19,7 @@ use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 
+use crate::blockers::disc::edge_form_factor;
 use crate::shading::gpu_types::GpuLight;
 
 /// The xyz of a GPU vector in f64.
@@ -30,12 +31,11 @@ fn v3(a: [f32; 4]) -> DVec3 {
 /// scene.wgsl).
 pub const DISK_LIGHT_SIDES: usize = 8;
 
-/// The emitting plane's unit (width, height) axes for an emitting `normal`: width =
-/// reference × normal (reference +y, or +z for a normal within 8° of ±y), height = normal
-/// × width (`Light::area_axes`; `area_frame` in scene.wgsl).
+/// The emitting plane's unit (width, height) axes for an emitting `normal`: width as an
+/// unturned rect's ([`crate::scene::Light::unturned_width_axis`]), height = normal × width
+/// (`Light::area_axes`; `area_width_axis` in scene.wgsl).
 pub fn area_frame(normal: DVec3) -> (DVec3, DVec3) {
-    let reference = if normal.y.abs() > 0.99 { DVec3::Z } else { DVec3::Y };
-    let width = reference.cross(normal).normalize_or_zero();
+    let width = crate::scene::Light::unturned_width_axis(normal.as_vec3()).as_dvec3();
     (width, normal.cross(width))
 }
 
@@ -81,17 +81,9 @@ pub fn area_light_corners(light: &GpuLight) -> ([DVec3; DISK_LIGHT_SIDES], usize
 /// with the polygon above its horizon; |Φ| is the projected solid angle on the plane
 /// facing Φ. Zero where p lies in the polygon's plane.
 pub fn polygon_vector_irradiance(corners: &[DVec3], p: DVec3) -> DVec3 {
-    let mut sum = DVec3::ZERO;
-    for k in 0..corners.len() {
-        let a = (corners[k] - p).normalize_or_zero();
-        let b = (corners[(k + 1) % corners.len()] - p).normalize_or_zero();
-        let normal = a.cross(b);
-        let sine = normal.length();
-        if sine > 0.0 {
-            // atan2 rather than acos: exact for the small angles of distant lights.
-            sum += normal / sine * sine.atan2(a.dot(b));
-        }
-    }
+    let sum: DVec3 = (0..corners.len())
+        .map(|k| edge_form_factor(corners[k] - p, corners[(k + 1) % corners.len()] - p))
+        .sum();
     let phi = 0.5 * sum;
     // The polygon's side: toward its centroid.
     let centroid = corners.iter().copied().sum::<DVec3>() / corners.len().max(1) as f64;
