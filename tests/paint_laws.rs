@@ -366,6 +366,64 @@ fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
     );
 }
 
+/// A Keep made before saving still protects its area after reopening: a new painter
+/// that takes up the saved log keeps the area within tolerance under strokes that, in a
+/// painter that forgot it, change the area far more.
+#[test]
+fn a_keep_from_an_earlier_session_holds_after_reopening() {
+    let f = fixture();
+    let transfer = BakedTransfer::new(&f.scene, &f.maps);
+    let mut p = f.scene.light_intensities();
+    let keep = record(
+        BrushKind::Constraint,
+        Vec3::new(-1.0, 0.0, 0.5),
+        PaintSettings::default(),
+        0,
+    );
+    let mut first_session = Painter::new();
+    paint(&mut first_session, &mut p, keep.clone());
+    let saved_log: Vec<StrokeRecord> = first_session.log().cloned().collect();
+    let saved = p.clone();
+    let kept = painted_mean(&keep, &saved);
+    let strokes: Vec<StrokeRecord> = [Vec3::new(-0.5, 0.0, 0.8), Vec3::new(-1.2, 0.0, 0.2)]
+        .into_iter()
+        .enumerate()
+        .map(|(k, at)| {
+            let settings = PaintSettings {
+                selection: SelectionStrategy::Histogram { share: 1.0 },
+                modification: ModificationStrategy::Double { factor: 4.0 },
+                ..PaintSettings::default()
+            };
+            record(BrushKind::Positive, at, settings, 10 + k as u64)
+        })
+        .collect();
+    // Reopened, taking up the saved log, and reopened forgetting it.
+    let drift = |carry: bool| {
+        let mut p = saved.clone();
+        let mut painter = Painter::new();
+        if carry {
+            let keeps = painter.carry_over(&f.scene, &f.bvh, &transfer, &p, &saved_log);
+            assert_eq!(keeps, 1);
+        }
+        for stroke in &strokes {
+            paint(&mut painter, &mut p, stroke.clone());
+        }
+        // Nothing carried over is undoable in the new session.
+        while painter.undo(&mut p) {}
+        assert_eq!(p, saved);
+        for stroke in &strokes {
+            paint(&mut painter, &mut p, stroke.clone());
+        }
+        (painted_mean(&keep, &p) / kept - 1.0).abs()
+    };
+    let (carried, forgotten) = (drift(true), drift(false));
+    assert!(carried <= 0.02 + 1e-9, "kept area drifted {carried}");
+    assert!(
+        forgotten > 0.1,
+        "the strokes would change the area without the Keep: {forgotten}"
+    );
+}
+
 #[test]
 fn the_global_solve_honours_two_strokes_that_the_additive_model_lets_fight() {
     // Darken the left, then brighten the middle: additively, the second stroke raises the

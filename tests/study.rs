@@ -113,6 +113,20 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
             assert!(row[6].parse::<f64>().unwrap() <= 1.001, "overshoot: {row:?}");
         }
     }
+    // The defaults fit one sphere to each ball and, those spheres being the balls, take
+    // the exact path for every light size: within the exact path's own error.
+    let defaults_rows: Vec<Vec<String>> = table
+        .lines()
+        .skip_while(|l| !l.starts_with("## Small lights"))
+        .filter(|l| l.starts_with("| ") && l.contains("| defaults: "))
+        .map(|l| l.split('|').map(|c| c.trim().to_string()).collect())
+        .collect();
+    assert_eq!(defaults_rows.len(), 5, "one per light size: {defaults_rows:?}");
+    for row in &defaults_rows {
+        assert_eq!(row[2], "defaults: exact", "{row:?}");
+        let rms: f64 = row[4].parse().expect("penumbra RMS");
+        assert!(rms <= 0.03, "{row:?}");
+    }
     // Small lights over meshes: one row per sphere budget, with the automatic fit, each
     // with a fit error in (0, 1] and finite errors.
     let fit_rows: Vec<Vec<String>> = table
@@ -207,8 +221,9 @@ fn penumbra_suite_at_full_size() {
     let Some(gpu) = common::gpu() else { return };
     for row in lightpaint::study::penumbra::measure_penumbrae(&gpu, false).expect("suite runs") {
         println!(
-            "| {} | {:?} | {} | {:.4} | {} | {:.1} | {:.4} |",
+            "| {} | {}{:?} | {} | {:.4} | {} | {:.1} | {:.4} |",
             row.light,
+            if row.defaults { "defaults: " } else { "" },
             row.path,
             row.penumbra_pixels,
             row.penumbra_rms,

@@ -74,6 +74,10 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
     let mut painter = Painter::new();
     {
         let transfer = transfer.as_ref();
+        let keeps = painter.carry_over(scene, &bvh, transfer, &intensities, &document.painting.strokes);
+        if keeps > 0 {
+            say!("{keeps} Keep area(s) of the saved strokes hold");
+        }
         for (k, record) in records.into_iter().enumerate() {
             let started = std::time::Instant::now();
             let report = painter.paint(scene, &bvh, transfer, &mut intensities, record);

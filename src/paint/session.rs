@@ -185,11 +185,34 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
     StrokeTransfer { vertices, mean, fixed }
 }
 
+/// The vertices of a Keep stroke, each holding the luminance `p` gives it.
+fn kept_vertices(stroke: StrokeTransfer, p: &[f64]) -> Vec<ConstrainedVertex> {
+    stroke
+        .vertices
+        .into_iter()
+        .map(|v| {
+            let mut c = ConstrainedVertex {
+                vertex: v.vertex,
+                weight: v.weight,
+                luminance: 0.0,
+                fixed: v.fixed,
+                transfer: v.transfer,
+            };
+            c.luminance = c.luminance_at(p);
+            c
+        })
+        .collect()
+}
+
 /// Strokes applied and undone.
 #[derive(Debug, Clone, Default)]
 pub struct Painter {
     done: Vec<Edit>,
     undone: Vec<Edit>,
+    /// What the strokes of earlier sessions still ask ([`Painter::carry_over`]): their
+    /// Keep areas and, for the global solve, their equations. Not undoable here: they
+    /// belong to the saved log, not to this session's history.
+    carried: Vec<Edit>,
 }
 
 impl Painter {
@@ -215,7 +238,57 @@ impl Painter {
     }
 
     fn constrained(&self) -> impl Iterator<Item = &ConstrainedVertex> + Clone {
-        self.done.iter().flat_map(|e| e.constrained.iter())
+        self.carried.iter().chain(&self.done).flat_map(|e| e.constrained.iter())
+    }
+
+    /// Takes up the strokes of earlier sessions (`earlier`, the saved log, oldest first)
+    /// so that they still hold: each Keep stroke's area keeps the luminance `intensities`
+    /// give it now, and each other stroke's area joins the global solve at its luminance
+    /// now. The lights are not changed (the saved intensities are those strokes'
+    /// result). Returns how many Keep areas were taken up.
+    pub fn carry_over(
+        &mut self,
+        scene: &Scene,
+        bvh: &SceneBvh,
+        transfer: &dyn Transfer,
+        intensities: &[f32],
+        earlier: &[StrokeRecord],
+    ) -> usize {
+        let p: Vec<f64> = intensities.iter().map(|&v| sanitized(v as f64)).collect();
+        if p.len() != transfer.light_count() {
+            return 0;
+        }
+        let mut keeps = 0;
+        for record in earlier.iter().filter(|r| r.problems().is_empty()) {
+            let view = record.view.view();
+            let mut hits = Hits::default();
+            for &dab in &record.dabs_px {
+                pick_dab(scene, bvh, &view, dab, &record.brush, &record.hidden_objects, &mut hits);
+            }
+            if hits.is_empty() {
+                continue;
+            }
+            let stroke = stroke_transfer(transfer, &hits, record.view.eye);
+            let (constrained, equation) = if record.brush.kind == BrushKind::Constraint {
+                keeps += 1;
+                (kept_vertices(stroke, &p), None)
+            } else {
+                let target = stroke.fixed + mean_luminance(&p, &stroke.mean);
+                let equation = Equation {
+                    transfer: stroke.mean,
+                    fixed: stroke.fixed,
+                    target,
+                };
+                (Vec::new(), Some(equation))
+            };
+            self.carried.push(Edit {
+                record: record.clone(),
+                changes: Vec::new(),
+                constrained,
+                equation,
+            });
+        }
+        keeps
     }
 
     /// Paints `record` on `scene`, reading and writing `intensities` (one per light).
@@ -274,21 +347,7 @@ impl Painter {
         let stroke = stroke_transfer(transfer, hits, record.view.eye);
         let mean_before = stroke.fixed + mean_luminance(&p, &stroke.mean);
         if record.brush.kind == BrushKind::Constraint {
-            let constrained: Vec<ConstrainedVertex> = stroke
-                .vertices
-                .into_iter()
-                .map(|v| {
-                    let mut c = ConstrainedVertex {
-                        vertex: v.vertex,
-                        weight: v.weight,
-                        luminance: 0.0,
-                        fixed: v.fixed,
-                        transfer: v.transfer,
-                    };
-                    c.luminance = c.luminance_at(&p);
-                    c
-                })
-                .collect();
+            let constrained = kept_vertices(stroke, &p);
             let count = constrained.len();
             self.push(Edit {
                 record,
@@ -445,7 +504,9 @@ impl Painter {
             }
             rows.push((a, weight * (target - fixed) / norm));
         };
-        let equations = self.done.iter().filter_map(|e| e.equation.as_ref()).chain([newest]);
+        let equations = (self.carried.iter().chain(&self.done))
+            .filter_map(|e| e.equation.as_ref())
+            .chain([newest]);
         for e in equations {
             add(e.transfer.iter().copied().enumerate().collect(), e.fixed, e.target, 1.0);
         }

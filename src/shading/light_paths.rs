@@ -3,7 +3,10 @@
 //! One choice per light for the whole frame (no receiver shows a seam where a light
 //! would change path), the same in the editor, the CLI, the CPU reference and painting:
 //! every light exact under [`LightPaths::Exact`], none under [`LightPaths::Harmonics`];
-//! under [`LightPaths::Auto`] with shadow maps on, first, as many as the shadow-map views
+//! under [`LightPaths::Auto`], first, sphere and area lights whose every blocker is a
+//! sphere that is its mesh ([`super::sphere_casters`]: balls) go exact at any size, up to
+//! the exact-light budget, brightest first (the closed form is their true shadow); then
+//! with shadow maps on, as many as the shadow-map views
 //! hold (lights of one view, then cubes, each brightest at the centre first), every
 //! point, spot and directional light and every sphere or area light up to
 //! [`super::shadow_maps::MAX_MAPPED_HALF_ANGLE_DEG`] in radius at the scene's centre
@@ -20,6 +23,7 @@ use super::gpu_types::{
     GpuLight, MAX_SHADOW_VIEWS, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH, UNIFORM_BLOCKER_CAPACITY,
     UNIFORM_LIGHT_CAPACITY,
 };
+use super::sphere_casters::SphereCasters;
 use super::{LightPaths, ShadowSettings};
 use crate::blockers::Sphere;
 use crate::scene::{Light, Scene};
@@ -46,6 +50,9 @@ pub struct LightPathContext {
     /// Surface points (position, unit normal); none: every light's shadows count alike.
     pub receivers: Vec<(Vec3, Vec3)>,
     pub blockers: Vec<Sphere>,
+    /// Which blockers are their meshes exactly (none known: every light's casters count
+    /// as approximate).
+    pub casters: SphereCasters,
 }
 
 impl LightPathContext {
@@ -83,6 +90,7 @@ impl LightPathContext {
         LightPathContext {
             receivers,
             blockers: blockers.to_vec(),
+            casters: SphereCasters::of_scene(scene, blockers),
             ..LightPathContext::of_bounds(&scene.bounds())
         }
     }
@@ -96,33 +104,56 @@ impl LightPathContext {
         }
     }
 
-    /// Share of the receivers that `light` lights and at which some blocker cuts its disc
-    /// (the exact path's cap test without the lens); 1 without receivers.
+    /// The receivers weighing one light: all of them, or with many blockers an even
+    /// spread of them, so the tests stay within `MAX_TESTS_PER_LIGHT`.
+    fn sampled_receivers(&self) -> impl Iterator<Item = &(Vec3, Vec3)> {
+        let affordable = (MAX_TESTS_PER_LIGHT / self.blockers.len().max(1)).max(MIN_RECEIVERS);
+        let stride = self.receivers.len().div_ceil(affordable).max(1);
+        self.receivers.iter().step_by(stride)
+    }
+
+    /// The blockers that cut `light`'s disc as the receiver at `p` facing `n` sees it (the
+    /// exact path's cap test without the lens); none where the light does not reach.
+    fn blockers_cutting(&self, light: &GpuLight, p: Vec3, n: Vec3, min_cap_ratio: f64) -> impl Iterator<Item = usize> {
+        let (p, n) = (p.as_dvec3(), n.as_dvec3());
+        let inc = super::cpu::incidence(light, p);
+        let lit = inc.irradiance != DVec3::ZERO && n.dot(inc.to_light) > 0.0;
+        let disc = inc.cap_ratio.clamp(0.0, 1.0).asin();
+        self.blockers.iter().enumerate().filter_map(move |(index, b)| {
+            let cap = b.cap_from(p, n, min_cap_ratio).filter(|_| lit)?;
+            (cap.distance_m - (b.radius_m as f64) < inc.distance_m
+                && cap.direction.angle_between(inc.to_light) < disc + cap.ratio.asin())
+            .then_some(index)
+        })
+    }
+
+    /// Share of the receivers that `light` lights and at which some blocker cuts its disc;
+    /// 1 without receivers.
     fn shadowed_share(&self, light: &GpuLight, min_cap_ratio: f64) -> f64 {
         if self.receivers.is_empty() {
             return 1.0;
         }
-        let affordable = (MAX_TESTS_PER_LIGHT / self.blockers.len().max(1)).max(MIN_RECEIVERS);
-        let stride = self.receivers.len().div_ceil(affordable).max(1);
-        let receivers: Vec<&(Vec3, Vec3)> = self.receivers.iter().step_by(stride).collect();
-        let shadowed = receivers
-            .iter()
-            .filter(|(p, n)| {
-                let (p, n) = (p.as_dvec3(), n.as_dvec3());
-                let inc = super::cpu::incidence(light, p);
-                if inc.irradiance == DVec3::ZERO || n.dot(inc.to_light) <= 0.0 {
-                    return false;
-                }
-                let disc = inc.cap_ratio.clamp(0.0, 1.0).asin();
-                self.blockers.iter().any(|b| {
-                    b.cap_from(p, n, min_cap_ratio).is_some_and(|cap| {
-                        cap.distance_m - (b.radius_m as f64) < inc.distance_m
-                            && cap.direction.angle_between(inc.to_light) < disc + cap.ratio.asin()
-                    })
-                })
+        let (mut shadowed, mut count) = (0, 0);
+        for (p, n) in self.sampled_receivers() {
+            count += 1;
+            if self.blockers_cutting(light, *p, *n, min_cap_ratio).next().is_some() {
+                shadowed += 1;
+            }
+        }
+        shadowed as f64 / count as f64
+    }
+
+    /// Whether every blocker that cuts `light`'s disc at the receivers is a sphere that is
+    /// its mesh ([`SphereCasters`]) and every mesh has blockers: then the exact path draws
+    /// the light's true shadows. False without receivers to look at.
+    fn shadowed_only_by_exact_spheres(&self, light: &GpuLight, min_cap_ratio: f64) -> bool {
+        !self.receivers.is_empty()
+            && !self.casters.unrepresented
+            && self.casters.exact.contains(&true)
+            && self.sampled_receivers().all(|(p, n)| {
+                self.blockers_cutting(light, *p, *n, min_cap_ratio)
+                    .all(|b| self.casters.is_exact(b))
             })
-            .count();
-        shadowed as f64 / receivers.len() as f64
     }
 }
 
@@ -246,7 +277,16 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
 /// shadow maps; see the module's documentation for the choice).
 pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &LightPathContext) -> Vec<GpuLight> {
     let mut gpu_lights: Vec<GpuLight> = lights.iter().map(GpuLight::new).collect();
-    let mut mapped = vec![false; lights.len()];
+    // Lights whose path is settled: exact ones shadowed by true spheres, then mapped ones.
+    let mut settled = vec![false; lights.len()];
+    let mut exact_budget = settings.exact_light_budget as usize;
+    if settings.light_paths == LightPaths::Auto {
+        for i in exact_sphere_lights(&gpu_lights, settings, context) {
+            gpu_lights[i].shadow_path = SHADOW_PATH_EXACT;
+            settled[i] = true;
+            exact_budget -= 1;
+        }
+    }
     if settings.light_paths == LightPaths::Auto && settings.shadow_map_size > 0 {
         // Lights of one view first (the sun, spots, far lights), then the cubes, each
         // group brightest at the centre first: when the views run out, the lights left
@@ -255,6 +295,7 @@ pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &Lig
         let mut wanted: Vec<(usize, usize, f64)> = gpu_lights
             .iter()
             .enumerate()
+            .filter(|&(i, _)| !settled[i])
             .filter_map(|(i, light)| {
                 let count = super::shadow_maps::view_count(light, context.centre, context.radius_m)?;
                 let brightness = crate::scene::luminance(super::cpu::incidence(light, centre).irradiance);
@@ -270,39 +311,59 @@ pub fn shading_lights(lights: &[Light], settings: &ShadowSettings, context: &Lig
                 light.first_shadow_view = views as u32;
                 light.shadow_view_count = count as u32;
                 views += count;
-                mapped[i] = true;
+                settled[i] = true;
             }
         }
     }
     let exact: Vec<bool> = match settings.light_paths {
         LightPaths::Exact => vec![true; lights.len()],
         LightPaths::Harmonics => vec![false; lights.len()],
-        LightPaths::Auto => auto_exact(&gpu_lights, settings, context, &mapped),
+        LightPaths::Auto => auto_exact(&gpu_lights, settings, context, &settled, exact_budget),
     };
-    for ((light, exact), mapped) in gpu_lights.iter_mut().zip(exact).zip(mapped) {
-        if !mapped {
+    for ((light, exact), settled) in gpu_lights.iter_mut().zip(exact).zip(settled) {
+        if !settled {
             light.shadow_path = if exact { SHADOW_PATH_EXACT } else { SHADOW_PATH_SH };
         }
     }
     gpu_lights
 }
 
-/// Auto's choice: which of `lights` go exact.
+/// Auto's first choice: the sized lights whose every blocker is a sphere that is its mesh
+/// ([`SphereCasters`]), brightest at the centre first, at most the exact-light budget. For
+/// them the exact path is the true shadow at any size, where maps would place a small
+/// light's edge only to a texel and the SH blur a large one's.
+fn exact_sphere_lights(lights: &[GpuLight], settings: &ShadowSettings, context: &LightPathContext) -> Vec<usize> {
+    let centre = context.centre();
+    let min_cap_ratio = settings.min_cap_ratio as f64;
+    let mut chosen: Vec<(usize, f64)> = (0..lights.len())
+        .filter(|&i| lights[i].source_size > 0.0)
+        .filter(|&i| context.shadowed_only_by_exact_spheres(&lights[i], min_cap_ratio))
+        .map(|i| {
+            let brightness = crate::scene::luminance(super::cpu::incidence(&lights[i], centre).irradiance);
+            (i, brightness)
+        })
+        .collect();
+    chosen.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    chosen.truncate(settings.exact_light_budget as usize);
+    chosen.into_iter().map(|(i, _)| i).collect()
+}
+
+/// Auto's choice among the lights not `settled`: which go exact, at most `budget`.
 fn auto_exact(
     lights: &[GpuLight],
     settings: &ShadowSettings,
     context: &LightPathContext,
-    mapped: &[bool],
+    settled: &[bool],
+    budget: usize,
 ) -> Vec<bool> {
     let centre = context.centre();
     let candidates: Vec<usize> = (0..lights.len())
-        .filter(|&i| !mapped[i])
+        .filter(|&i| !settled[i])
         .filter(|&i| {
             let light = &lights[i];
             light.source_size > 0.0 && LightPaths::Auto.is_exact(super::cpu::incidence(light, centre).cap_ratio)
         })
         .collect();
-    let budget = settings.exact_light_budget as usize;
     let mut exact = vec![false; lights.len()];
     // Within the budget every candidate goes: no need to weigh them.
     if candidates.len() <= budget {
@@ -560,6 +621,7 @@ mod tests {
             radius_m: 0.0,
             receivers,
             blockers: vec![ball],
+            ..LightPathContext::default()
         };
         // Without maps, which would take both small lights.
         let settings = ShadowSettings {
@@ -577,5 +639,61 @@ mod tests {
         assert_eq!(floor.shadowed_share(&GpuLight::new(&lights[1]), 0.03), 0.0);
         assert_eq!(exact(&floor), [1, 0]);
         assert_eq!(exact(&LightPathContext::at(Vec3::ZERO)), [0, 1]);
+    }
+
+    /// Balls over a floor: their fitted spheres are the balls, so a small light and a
+    /// wide one both go exact (maps would place the 1° edge only to a texel; the SH blurs
+    /// the 60° one). Cubes in their place: the small light takes maps, the wide one the SH.
+    #[test]
+    fn lights_shadowed_only_by_true_spheres_go_exact_at_any_size() {
+        use crate::blockers::{BlockerSettings, fit_scene};
+        use crate::scene::{LightKind, shapes};
+        let scene_with = |caster: &dyn Fn(Vec3) -> crate::scene::MeshObject| Scene {
+            objects: vec![
+                shapes::plane(8.0, 8, 1.0).into_object("floor"),
+                caster(Vec3::new(0.0, 0.6, 0.0)),
+                caster(Vec3::new(1.1, 0.4, 0.5)),
+            ],
+            ..Scene::default()
+        };
+        let balls = scene_with(&|at| {
+            shapes::uv_sphere(0.3, 48, 24)
+                .transformed(glam::Affine3A::from_translation(at))
+                .into_object("ball")
+        });
+        let cubes = scene_with(&|at| {
+            shapes::cuboid(Vec3::splat(0.3))
+                .transformed(glam::Affine3A::from_translation(at))
+                .into_object("cube")
+        });
+        // Sphere lights 10 m up, 1° and 60° in radius there.
+        let sized = |half_angle_deg: f32| Light {
+            position: Vec3::new(0.2, 10.0, 0.1),
+            ..light(
+                LightKind::Sphere {
+                    radius_m: 10.0 * half_angle_deg.to_radians().sin(),
+                },
+                300.0,
+            )
+        };
+        let settings = ShadowSettings::default();
+        assert!(settings.shadow_map_size > 0 && settings.light_paths == LightPaths::Auto);
+        let path = |scene: &Scene, half_angle_deg| {
+            let blockers = fit_scene(scene, &BlockerSettings::default()).spheres();
+            let context = LightPathContext::of_scene(scene, &blockers);
+            shading_lights(&[sized(half_angle_deg)], &settings, &context)[0].shadow_path
+        };
+        assert_eq!(path(&balls, 1.0), SHADOW_PATH_EXACT);
+        assert_eq!(path(&balls, 60.0), SHADOW_PATH_EXACT);
+        assert_eq!(path(&cubes, 1.0), SHADOW_PATH_MAP);
+        assert_eq!(path(&cubes, 60.0), SHADOW_PATH_SH);
+        // A light of no size keeps its maps (hard edges of the real triangles).
+        let blockers = fit_scene(&balls, &BlockerSettings::default()).spheres();
+        let context = LightPathContext::of_scene(&balls, &blockers);
+        let point = light(LightKind::Point, 1.0);
+        assert_eq!(
+            shading_lights(&[point], &settings, &context)[0].shadow_path,
+            SHADOW_PATH_MAP
+        );
     }
 }

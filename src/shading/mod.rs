@@ -16,6 +16,7 @@ pub mod paint_estimate;
 mod settings;
 pub mod shadow_maps;
 mod shadow_path;
+pub mod sphere_casters;
 pub mod terrain;
 pub mod wgsl;
 

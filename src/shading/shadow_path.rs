@@ -61,6 +61,11 @@ pub fn path_reason(path: ShadowPath, sized: bool, half_angle_deg: f64, settings:
         ShadowPath::Map if sized => "a small light: maps of the real triangles, penumbrae sized by the light",
         ShadowPath::Map => "a light of no size: maps of the real triangles, hard edges",
         ShadowPath::Exact if settings.light_paths == LightPaths::Exact => "every light is exact (light paths: exact)",
+        // Auto sends a light exact past the maps' size or before them only when its
+        // blockers are spheres that are their meshes (light_paths::exact_sphere_lights).
+        ShadowPath::Exact if (maps_on && mappable) || half_angle_deg >= super::AUTO_EXACT_BELOW_HALF_ANGLE_DEG => {
+            "its shadows come from meshes that are spheres (balls): the exact share they hide"
+        }
         ShadowPath::Exact => "a small light the maps do not take: the exact share the spheres hide",
         ShadowPath::Harmonics if settings.light_paths == LightPaths::Harmonics => {
             "every light is soft (light paths: harmonics)"
@@ -70,7 +75,7 @@ pub fn path_reason(path: ShadowPath, sized: bool, half_angle_deg: f64, settings:
         }
         ShadowPath::Harmonics if !sized && !maps_on => "shadow maps are off: soft shadows of the sphere blockers",
         ShadowPath::Harmonics if maps_on && mappable => {
-            "the shadow maps' 64 views are full: soft shadows of the spheres"
+            "the shadow maps' views are all taken: soft shadows of the spheres"
         }
         ShadowPath::Harmonics => "over the exact-light budget: soft shadows of the sphere blockers",
     }
@@ -103,8 +108,10 @@ mod tests {
         assert!(path_reason(map, true, 5.0, &auto).contains("penumbrae"));
         assert!(path_reason(map, false, 0.0, &auto).contains("hard"));
         assert!(path_reason(exact, true, 30.0, &auto).contains("do not take"));
+        assert!(path_reason(exact, true, 1.0, &auto).contains("spheres (balls)"));
+        assert!(path_reason(exact, true, 60.0, &auto).contains("spheres (balls)"));
         assert!(path_reason(soft, true, 60.0, &auto).contains("wide"));
-        assert!(path_reason(soft, false, 0.0, &auto).contains("full"));
+        assert!(path_reason(soft, false, 0.0, &auto).contains("all taken"));
         assert!(path_reason(soft, false, 0.0, &off).contains("off"));
         assert!(path_reason(soft, true, 10.0, &off).contains("budget"));
         assert!(path_reason(soft, true, 30.0, &auto).contains("budget"));

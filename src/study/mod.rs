@@ -300,8 +300,9 @@ pub fn run_study(
     }
     for row in penumbra::measure_penumbrae(gpu, options.quick)? {
         say(&format!(
-            "small lights, {} via {:?}: penumbra RMS {:.4} ({} px), umbra RMS {}, {:.1} ms",
+            "small lights, {} via {}{:?}: penumbra RMS {:.4} ({} px), umbra RMS {}, {:.1} ms",
             row.light,
+            if row.defaults { "defaults: " } else { "" },
             row.path,
             row.penumbra_rms,
             row.penumbra_pixels,

@@ -45,6 +45,9 @@ pub struct PenumbraRow {
     pub ms_per_frame: f64,
     /// RMS of the reference's own noise over the penumbra (from two halves).
     pub reference_noise: f64,
+    /// The default settings with the default sphere fit of the meshes drew it, `path`
+    /// being the one they chose for the light.
+    pub defaults: bool,
 }
 
 const HEIGHT_M: f32 = 10.0;
@@ -229,6 +232,20 @@ pub fn measure_penumbrae(gpu: &GpuContext, quick: bool) -> Result<Vec<PenumbraRo
             row.ms_per_frame = maps_frame_ms(gpu, &scene, &camera, size, if quick { 2 } else { 8 })?;
             rows.push(row);
         }
+        // What the defaults do, fitting spheres to the meshes as a loaded scene would.
+        if light.is_some() {
+            let (mut row, ms) = compare_defaults(
+                gpu,
+                (&scene, &open),
+                &surfaces,
+                &reference,
+                &camera,
+                (size, if quick { 2 } else { 8 }),
+            )?;
+            row.light = label.clone();
+            row.ms_per_frame = ms;
+            rows.push(row);
+        }
     }
     Ok(rows)
 }
@@ -334,10 +351,7 @@ pub(super) fn compare(
         terrain: None,
         ..inputs
     };
-    let path = match shadows.light_paths {
-        LightPaths::Exact => ShadowPath::Exact,
-        _ => ShadowPath::Harmonics,
-    };
+    let path = lights.first().map_or(ShadowPath::Harmonics, ShadowPath::of);
     errors(surfaces, reference, path, |_, s| {
         let unshadowed = luminance(cpu::shadowed_radiance(s, &open));
         (unshadowed > 1e-6).then(|| luminance(cpu::shadowed_radiance(s, &inputs)) / unshadowed)
@@ -345,11 +359,9 @@ pub(super) fn compare(
 }
 
 /// Errors of the shadow-map path against the reference over the floor's penumbra and
-/// umbra: GPU frames of `scene` and of `open` (the same without casters) with 1024² maps
-/// and no sphere blockers, their displayed pixels turned back into linear light
-/// ([`crate::shading::displayed_radiance`], within 8-bit rounding). The maps are the
-/// GPU's alone (their f64 twin casts rays, which is what they approximate), so they are
-/// measured on the GPU.
+/// umbra: GPU frames with 1024² maps and no sphere blockers. The maps are the GPU's alone
+/// (their f64 twin casts rays, which is what they approximate), so they are measured on
+/// the GPU.
 pub(super) fn compare_maps(
     gpu: &GpuContext,
     scene: &Scene,
@@ -359,15 +371,44 @@ pub(super) fn compare_maps(
     camera: &Camera,
     size: u32,
 ) -> Result<PenumbraRow, StudyError> {
-    let settings = RenderSettings::default();
     let shadows = maps_settings();
-    let linear_luminance = |scene: &Scene| -> Result<Vec<f64>, StudyError> {
+    let no_blockers = GpuFrameSetup {
+        shadows: &shadows,
+        blockers: &[],
+        open_blockers: &[],
+    };
+    compare_gpu(gpu, (scene, open), surfaces, reference, camera, size, &no_blockers)
+}
+
+/// What a GPU comparison draws with: settings, and the blockers of the scene with and
+/// without its casters.
+struct GpuFrameSetup<'a> {
+    shadows: &'a ShadowSettings,
+    blockers: &'a [Sphere],
+    open_blockers: &'a [Sphere],
+}
+
+/// Errors of the GPU frames of `scenes` (with and without the casters) as `setup` draws
+/// them, their displayed pixels turned back into linear light
+/// ([`crate::shading::displayed_radiance`], within 8-bit rounding); the row's path is the
+/// one the light takes.
+fn compare_gpu(
+    gpu: &GpuContext,
+    (scene, open): (&Scene, &Scene),
+    surfaces: &[Option<SurfacePoint>],
+    reference: &References,
+    camera: &Camera,
+    size: u32,
+    setup: &GpuFrameSetup,
+) -> Result<PenumbraRow, StudyError> {
+    let settings = RenderSettings::default();
+    let linear_luminance = |scene: &Scene, blockers: &[Sphere]| -> Result<Vec<f64>, StudyError> {
         let frame = ShadowFrame {
             scene,
             camera,
             settings: &settings,
-            shadows: &shadows,
-            blockers: &[],
+            shadows: setup.shadows,
+            blockers,
             baked_indirect: None,
             width: size,
             height: size,
@@ -383,10 +424,52 @@ pub(super) fn compare_maps(
             })
             .collect())
     };
-    let (shaded, unshadowed) = (linear_luminance(scene)?, linear_luminance(open)?);
-    Ok(errors(surfaces, reference, ShadowPath::Map, |i, _| {
+    let shaded = linear_luminance(scene, setup.blockers)?;
+    let unshadowed = linear_luminance(open, setup.open_blockers)?;
+    let context = crate::shading::LightPathContext::of_scene(scene, setup.blockers);
+    let path = crate::shading::shading_lights(&scene.lights, setup.shadows, &context)
+        .first()
+        .map_or(ShadowPath::Harmonics, ShadowPath::of);
+    Ok(errors(surfaces, reference, path, |i, _| {
         (unshadowed[i] > 1e-6).then(|| shaded[i] / unshadowed[i])
     }))
+}
+
+/// Errors of the default settings (every pixel shaded, as the suite's other rows are)
+/// with the blockers the default fit gives the balls' meshes and the floor, measured as
+/// the other rows of the path Auto chose: the f64 shading at pixel centres for the exact
+/// and SH paths, GPU frames for the maps. (The GPU's exact path widens each light's disc
+/// by half a pixel's footprint, so that a penumbra narrower than a pixel is spread over
+/// one rather than aliased; against the reference's point samples that spread counts as
+/// error where the penumbra is sub-pixel: docs/speed-accuracy.md.)
+fn compare_defaults(
+    gpu: &GpuContext,
+    scenes: (&Scene, &Scene),
+    surfaces: &[Option<SurfacePoint>],
+    reference: &References,
+    camera: &Camera,
+    (size, frames): (u32, u32),
+) -> Result<(PenumbraRow, f64), StudyError> {
+    let fit = |scene: &Scene| crate::blockers::fit_scene(scene, &crate::blockers::BlockerSettings::default()).spheres();
+    let (blockers, open_blockers) = (fit(scenes.0), fit(scenes.1));
+    let shadows = ShadowSettings::default().every_pixel();
+    let context = crate::shading::LightPathContext::of_scene(scenes.0, &blockers);
+    let path = crate::shading::shading_lights(&scenes.0.lights, &shadows, &context)
+        .first()
+        .map_or(ShadowPath::Harmonics, ShadowPath::of);
+    let mut row = if path == ShadowPath::Map {
+        let setup = GpuFrameSetup {
+            shadows: &shadows,
+            blockers: &blockers,
+            open_blockers: &open_blockers,
+        };
+        compare_gpu(gpu, scenes, surfaces, reference, camera, size, &setup)?
+    } else {
+        compare(scenes.0, surfaces, reference, &shadows, &blockers, camera)
+    };
+    row.defaults = true;
+    let ms = frame_ms(gpu, scenes.0, camera, &shadows, &blockers, size, frames)?;
+    Ok((row, ms))
 }
 
 /// The row of a path whose visibility at floor pixel `i` (surface point `s`) is
@@ -429,6 +512,7 @@ fn errors(
         max_over_unshadowed: samples.iter().map(|s| s.shaded_visibility).fold(0.0, f64::max),
         ms_per_frame: 0.0,
         reference_noise: rms(samples.iter().filter(in_penumbra).map(|s| s.noise).collect()),
+        defaults: false,
     }
 }
 

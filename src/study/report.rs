@@ -169,7 +169,8 @@ fn penumbra_markdown(results: &StudyResults) -> String {
     let mut text = String::from(
         "\n## Small lights: SH path against the exact path\n\nThree exact sphere blockers over a \
          white floor under one sphere light of the given angular radius (then a uniform sky); \
-         the shadow maps (up to the size Auto maps) see the balls' meshes instead; errors are the path's visibility minus the reference's (shares of the unshadowed light) \
+         the shadow maps (up to the size Auto maps) see the balls' meshes instead, and the \
+         defaults fit spheres to those meshes and choose each light's path themselves; errors are the path's visibility minus the reference's (shares of the unshadowed light) \
          over the floor's penumbra (reference visibility 5–95 %) and umbra (≤ 5 %); the \
          reference's own noise over the penumbra is given beside them.\n\n| light | path | penumbra px | penumbra RMS | umbra RMS | max / unshadowed | ms/frame | reference noise |\n\
          |---|---|---:|---:|---:|---:|---:|---:|\n",
@@ -179,10 +180,13 @@ fn penumbra_markdown(results: &StudyResults) -> String {
             text,
             "| {} | {} | {} | {:.4} | {} | {:.3} | {:.1} | {:.4} |",
             r.light,
-            match r.path {
-                crate::shading::ShadowPath::Exact => "exact",
-                crate::shading::ShadowPath::Harmonics => "SH",
-                crate::shading::ShadowPath::Map => "maps",
+            match (r.defaults, r.path) {
+                (false, crate::shading::ShadowPath::Exact) => "exact",
+                (false, crate::shading::ShadowPath::Harmonics) => "SH",
+                (false, crate::shading::ShadowPath::Map) => "maps",
+                (true, crate::shading::ShadowPath::Exact) => "defaults: exact",
+                (true, crate::shading::ShadowPath::Harmonics) => "defaults: SH",
+                (true, crate::shading::ShadowPath::Map) => "defaults: maps",
             },
             r.penumbra_pixels,
             r.penumbra_rms,

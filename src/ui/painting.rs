@@ -57,6 +57,9 @@ pub struct Painting {
     bake_key: Option<crate::project::bake_cache::BakeKey>,
     next_seed: u64,
     pub last_report: Option<StrokeReport>,
+    /// The intensities the project opened with, at which the strokes of earlier sessions
+    /// are taken up on the first stroke (`Painter::carry_over`), until they are.
+    opened_intensities: Option<Vec<f32>>,
 }
 
 impl Painting {
@@ -85,6 +88,7 @@ impl Painting {
             bake_key: None,
             next_seed: state.strokes.len() as u64 + 1,
             last_report: None,
+            opened_intensities: Some(document.scene.light_intensities()),
         }
     }
 
@@ -273,8 +277,20 @@ impl Painting {
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
             let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, blockers, shadows);
-            self.painter
-                .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
+            // The first stroke takes up what the saved strokes ask: their Keep areas.
+            let keeps = match self.opened_intensities.take() {
+                Some(opened) => self
+                    .painter
+                    .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier),
+                None => 0,
+            };
+            let mut report = self
+                .painter
+                .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
+            if keeps > 0 {
+                report.message = format!("{} ({keeps} Keep area(s) of earlier sessions hold)", report.message);
+            }
+            report
         };
         scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());
