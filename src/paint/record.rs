@@ -17,7 +17,8 @@ pub enum Ranking {
     /// Light the stroke receives now, P_i·T_i: "which light lights this spot".
     #[default]
     Received,
-    /// Transfer alone, T_i: also finds lights that are off (P = 0) but would reach it.
+    /// Transfer over reach, T_i/R_i (R_i the light's mean transfer over the scene): also
+    /// finds lights that are off (P = 0) but would reach it, whatever their unit.
     Transfer,
 }
 

@@ -76,7 +76,7 @@ pub fn painting_section(
                 .on_hover_text("A light counts by how much light it puts on the painted area now");
             ui.selectable_value(&mut settings.ranking, Ranking::Transfer, "how well they reach here")
                 .on_hover_text(
-                    "A light counts by how much it would give per unit of its intensity: finds lights that are off",
+                    "A light counts by how much more it reaches here than the rest of the scene, whatever its unit: finds lights that are off",
                 );
         })
         .response
