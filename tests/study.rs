@@ -161,7 +161,8 @@ fn the_quick_study_writes_its_table_plot_and_images_with_sane_numbers() {
     assert!(stdout.contains("study of"), "{stdout}");
 }
 
-/// `--knobs` measures only the settings it names, beside the baseline and the defaults,
+/// `--knobs` measures only the settings it names, beside the baseline and the defaults
+/// (every pixel shaded, and as shipped: one in 3 × 3, `-d3`),
 /// and skips the scene-independent suites.
 #[test]
 fn a_study_of_some_knobs_measures_them_beside_the_defaults() {
@@ -176,6 +177,7 @@ fn a_study_of_some_knobs_measures_them_beside_the_defaults() {
         [
             "no-shadows",
             "o4-hyb-e0.1",
+            "o4-hyb-e0.1-d3",
             "o4-hyb-e0.1-log-brdf",
             "o4-hyb-e0.1-product-brdf"
         ]

@@ -132,7 +132,17 @@ impl<'a> ProgressiveRender<'a> {
         seed: u64,
     ) -> Self {
         let height = (surfaces.len() / width.max(1) as usize) as u32;
-        ProgressiveRender::start(scene, Primary::Surfaces { surfaces, eye }, width, height, bounces, seed)
+        let mut render =
+            ProgressiveRender::start(scene, Primary::Surfaces { surfaces, eye }, width, height, bounces, seed);
+        // Each captured point as the eye sees it: a point the depth test kept inside other
+        // geometry (at a crack, where meshes meet) would otherwise be lit by nothing.
+        if let Primary::Surfaces { surfaces, eye } = &mut render.primary {
+            let tracer = &render.tracer;
+            surfaces
+                .par_iter_mut()
+                .for_each(|s| *s = s.map(|s| tracer.as_seen_from(*eye, s)));
+        }
+        render
     }
 
     fn start(scene: &'a Scene, primary: Primary, width: u32, height: u32, bounces: u32, seed: u64) -> Self {

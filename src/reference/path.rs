@@ -68,6 +68,32 @@ impl<'a> PathTracer<'a> {
         Some(self.radiance_leaving(surface, -direction, random))
     }
 
+    /// `captured`, a rasterised pixel's surface point, as a ray from `eye` toward it
+    /// meets the scene: where that ray meets a surface well before the point (it lies
+    /// inside other geometry, as where meshes interpenetrate or at a crack the depth test
+    /// resolved the other way), that surface, which the eye sees; otherwise the point,
+    /// with the face normal of the triangle the ray meets there for rays to leave by (the
+    /// capture keeps only the shading normal).
+    pub fn as_seen_from(&self, eye: Vec3, captured: SurfaceHit) -> SurfaceHit {
+        let offset = captured.position - eye;
+        let distance = offset.length();
+        if !(distance.is_finite() && distance > 0.0) {
+            return captured;
+        }
+        let direction = offset / distance;
+        let slack = (distance * 2e-5).max(4.0 * self.offset_m);
+        let Some(hit) = self.next_surface(eye, direction, 0.0, distance + slack) else {
+            return captured;
+        };
+        if (hit.position - eye).length() < distance - slack {
+            return hit;
+        }
+        SurfaceHit {
+            geometric_normal: hit.geometric_normal,
+            ..captured
+        }
+    }
+
     /// Radiance leaving `surface` toward unit `to_eye` (emission plus reflected light).
     pub fn radiance_leaving(&self, mut surface: SurfaceHit, mut to_eye: Vec3, random: &mut SplitMix64) -> DVec3 {
         let mut radiance = surface.emissive;

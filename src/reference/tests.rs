@@ -165,3 +165,50 @@ fn the_same_seed_gives_the_same_image_on_any_number_of_threads() {
     );
     assert_ne!(one.radiance, other.radiance, "another seed draws other paths");
 }
+
+/// A captured floor point that lies inside a box standing on the floor (as where a depth
+/// test kept the wrong side of a crack) is lit by nothing as captured; as the eye sees it
+/// it becomes the box's face in front of it, lit by the point light. A point the eye sees
+/// keeps its place and takes the face normal of its triangle.
+#[test]
+fn captured_points_are_taken_as_the_eye_sees_them() {
+    let mut scene = Scene::lambert_floor_under_point_light(4, Vec3::new(0.0, 1.5, 1.5), 7.0);
+    scene.objects.push(
+        shapes::cuboid(Vec3::splat(0.25))
+            .transformed(glam::Affine3A::from_translation(Vec3::new(0.0, 0.25, 0.0)))
+            .into_object("box"),
+    );
+    let tracer = PathTracer::new(&scene, 0);
+    let eye = Vec3::new(0.0, 0.3, 2.0);
+    let floor_point = |position: Vec3| SurfaceHit {
+        position,
+        geometric_normal: Vec3::Y,
+        normal: Vec3::Y,
+        reflectance: crate::scene::Reflectance {
+            k_d: DVec3::splat(0.5),
+            k_s: DVec3::ZERO,
+            phong_exponent: 1.0,
+        },
+        emissive: DVec3::ZERO,
+    };
+    let radiance = |surface: SurfaceHit| {
+        let mut random = SplitMix64(3);
+        tracer.radiance_leaving(surface, (eye - surface.position).normalize(), &mut random)
+    };
+    // 1 cm inside the box's front face (z = 0.25).
+    let hidden = floor_point(Vec3::new(0.0, 0.0, 0.24));
+    assert_eq!(radiance(hidden), DVec3::ZERO);
+    let seen = tracer.as_seen_from(eye, hidden);
+    assert!((seen.position.z - 0.25).abs() < 1e-4, "{:?}", seen.position);
+    assert!(seen.geometric_normal.z > 0.99, "{:?}", seen.geometric_normal);
+    assert!(radiance(seen).x > 0.0);
+    // In front of the box: kept where it is, with the floor's face normal.
+    let visible = SurfaceHit {
+        normal: Vec3::new(0.3, 0.95, 0.0).normalize(),
+        ..floor_point(Vec3::new(0.0, 0.0, 0.6))
+    };
+    let kept = tracer.as_seen_from(eye, visible);
+    assert_eq!(kept.position, visible.position);
+    assert_eq!(kept.normal, visible.normal);
+    assert!((kept.geometric_normal - Vec3::Y).length() < 1e-5);
+}

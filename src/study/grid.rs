@@ -41,6 +41,9 @@ impl Knobs {
         if s.per_vertex {
             label.push_str("-vertex");
         }
+        if s.shading_downsample > 1 {
+            label.push_str(&format!("-d{}", s.shading_downsample));
+        }
         if s.brdf != crate::shading::BrdfShading::Separate {
             label.push_str(&format!("-{}-brdf", s.brdf.name()));
         }
@@ -71,6 +74,15 @@ pub fn method_label(method: ExpMethod) -> String {
         ExpMethod::Hyb => "hyb".into(),
         ExpMethod::Ps(k) => format!("ps{k}"),
         ExpMethod::Reference => "ref".into(),
+    }
+}
+
+/// The defaults as the editor and `render` draw them (one pixel in d × d shaded).
+pub fn shipped_defaults(default_blockers: SphereBudget) -> Knobs {
+    Knobs {
+        shadows: Some(ShadowSettings::default()),
+        blockers: default_blockers,
+        lighting: Lighting::Direct,
     }
 }
 
@@ -109,11 +121,16 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget, terrain: bool) -> 
             lighting: Lighting::Direct,
         }
     };
-    let mut grid = vec![Knobs {
-        shadows: None,
-        blockers: default_blockers,
-        lighting: Lighting::Direct,
-    }];
+    // The settings' grid shades every pixel, as the CPU reference does; the shipped
+    // defaults shade one pixel in d × d and upsample the rest: what the editor shows.
+    let mut grid = vec![
+        Knobs {
+            shadows: None,
+            blockers: default_blockers,
+            lighting: Lighting::Direct,
+        },
+        shipped_defaults(default_blockers),
+    ];
     for &order in &orders {
         for &exp in &methods {
             // The CPU's exact exponential costs seconds a frame from order 7 on: up to

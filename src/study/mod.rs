@@ -78,7 +78,10 @@ impl StudyOptions {
             blockers: default_blockers,
             lighting: Lighting::Direct,
         };
-        knobs.shadows.is_none() || *knobs == defaults || knobs.label().contains(wanted.as_str())
+        knobs.shadows.is_none()
+            || *knobs == defaults
+            || *knobs == grid::shipped_defaults(default_blockers)
+            || knobs.label().contains(wanted.as_str())
     }
 
     fn size(&self) -> (u32, u32) {
@@ -249,12 +252,9 @@ pub fn run_study(
             gi: references.get(1),
         };
         let rows = scene_study.measure_grid(&references, &grid, &options.output_dir, &mut say)?;
-        let defaults = Some(ShadowSettings::default().every_pixel());
-        let default_row = rows.iter().find(|r| {
-            r.knobs.shadows == defaults
-                && r.knobs.blockers == document.settings.blockers.budget
-                && r.knobs.lighting == Lighting::Direct
-        });
+        // The frame the artist sees: the shipped defaults.
+        let shipped = grid::shipped_defaults(document.settings.blockers.budget);
+        let default_row = rows.iter().find(|r| r.knobs == shipped);
         if let Some(row) = default_row
             && let Some(target) = row.errors.shadow_rmse
         {
