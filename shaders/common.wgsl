@@ -125,6 +125,12 @@ struct UpsampleParams {
     plane_tolerance_px: f32,
     // Below this share of the bilinear weight matching, the pixel is shaded in full.
     min_matched_weight: f32,
+    // The nearest samples on the pixel's surface disagree, and the pixel is shaded in
+    // full, where the brightest one's lighting luminance exceeds this many times the
+    // darkest one's plus lighting_floor.
+    max_lighting_ratio: f32,
+    lighting_floor: f32,
+    _pad: vec2<f32>,
 };
 
 // A height-field terrain for terrain.wgsl (src/render/resources/terrain.rs fills it).

@@ -9,10 +9,10 @@
 // (in half floats: clamped where the tone curve is long saturated) and each
 // full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
 // material edges stay sharp at full resolution while only the smooth lighting is
-// interpolated, hard shadow-map edges included (shading those pixels in full doubled the
-// maps' cost and made renders differ run to run: docs/performance.md). Pixels that no
-// low-resolution sample matches (thin objects, silhouettes) are discarded by
-// fs_upsample_marking and shaded in full by fs_logsh right after: every
+// interpolated. Pixels that no
+// low-resolution sample matches (thin objects, silhouettes), and those whose nearest
+// samples on their surface disagree (an edge of the light runs between them), are
+// discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
 // pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
 // depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
 // pixel the full shading on a software GPU, which runs both sides of a divergent
@@ -100,6 +100,9 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     // The best-matching sample (by score), for pixels the 2 × 2 nearest do not match.
     var best_lighting = vec3<f32>(0.0);
     var best_match = 0.0;
+    // The darkest and brightest lighting among the 2 × 2 nearest samples on the surface.
+    var darkest = 3.0e38;
+    var brightest = 0.0;
     let side = select(2u, 4u, ring);
     let first = select(0, -1, ring);
     for (var k = 0u; k < side * side; k++) {
@@ -131,10 +134,19 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
         // in for the best match.
         let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
         let weight = tent.x * tent.y * geometry;
+        let nearest = all(step >= vec2<i32>(0)) && all(step <= vec2<i32>(1));
+        let counted = nearest && geometry > 0.5;
+        let brightness = dot(sample, vec3<f32>(0.2126, 0.7152, 0.0722));
+        darkest = select(darkest, min(darkest, brightness), counted);
+        brightest = select(brightest, max(brightest, brightness), counted);
         lighting += weight * sample;
         matched += weight;
     }
-    let matches = matched >= upsample.min_matched_weight;
+    // Samples on the surface that disagree straddle an edge of the light (a hard shadow's,
+    // a rim's) that interpolation would blur and misplace: shaded in full too. (Not when
+    // taking the best match: such pixels have no full shading to fall back on.)
+    let agree = brightest <= upsample.max_lighting_ratio * darkest + upsample.lighting_floor;
+    let matches = matched >= upsample.min_matched_weight && (ring || agree);
     if ring && !matches {
         lighting = best_lighting;
         matched = 1.0;

@@ -184,6 +184,8 @@ fn upsample_params_match_wgsl() {
             ("full_to_low", offset_of!(GpuUpsampleParams, full_to_low)),
             ("plane_tolerance_px", offset_of!(GpuUpsampleParams, plane_tolerance_px)),
             ("min_matched_weight", offset_of!(GpuUpsampleParams, min_matched_weight)),
+            ("max_lighting_ratio", offset_of!(GpuUpsampleParams, max_lighting_ratio)),
+            ("lighting_floor", offset_of!(GpuUpsampleParams, lighting_floor)),
         ],
     );
 }

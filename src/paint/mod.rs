@@ -15,6 +15,7 @@ pub mod script;
 pub mod select;
 pub mod session;
 pub mod transfer;
+mod transfer_ranking;
 
 pub use brush::{Brush, BrushKind, Falloff};
 pub use modify::ModificationStrategy;

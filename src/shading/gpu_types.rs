@@ -295,6 +295,9 @@ pub struct GpuUpsampleParams {
     pub full_to_low: [f32; 2],
     pub plane_tolerance_px: f32,
     pub min_matched_weight: f32,
+    pub max_lighting_ratio: f32,
+    pub lighting_floor: f32,
+    pub _pad: [f32; 2],
 }
 
 /// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).

@@ -11,6 +11,7 @@ pub mod blocker_groups;
 mod color;
 pub mod cpu;
 pub mod gpu_types;
+mod light_path_context;
 mod light_paths;
 pub mod paint_estimate;
 mod settings;
