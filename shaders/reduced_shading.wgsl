@@ -11,7 +11,8 @@
 // material edges stay sharp at full resolution while only the smooth lighting is
 // interpolated. Pixels that no
 // low-resolution sample matches (thin objects, silhouettes), and those whose nearest
-// samples on their surface disagree (an edge of the light runs between them), are
+// samples on their surface disagree (an edge of the light runs between them) or are fewer
+// than two, are
 // discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
 // pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
 // depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
@@ -100,9 +101,11 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     // The best-matching sample (by score), for pixels the 2 × 2 nearest do not match.
     var best_lighting = vec3<f32>(0.0);
     var best_match = 0.0;
-    // The darkest and brightest lighting among the 2 × 2 nearest samples on the surface.
+    // The darkest and brightest lighting among the 2 × 2 nearest samples on the surface,
+    // and how many lie on it.
     var darkest = 3.0e38;
     var brightest = 0.0;
+    var on_surface = 0u;
     let side = select(2u, 4u, ring);
     let first = select(0, -1, ring);
     for (var k = 0u; k < side * side; k++) {
@@ -138,14 +141,17 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
         let counted = nearest && geometry > 0.5;
         let brightness = dot(sample, vec3<f32>(0.2126, 0.7152, 0.0722));
         darkest = select(darkest, min(darkest, brightness), counted);
+        on_surface += select(0u, 1u, counted);
         brightest = select(brightest, max(brightest, brightness), counted);
         lighting += weight * sample;
         matched += weight;
     }
     // Samples on the surface that disagree straddle an edge of the light (a hard shadow's,
-    // a rim's) that interpolation would blur and misplace: shaded in full too. (Not when
-    // taking the best match: such pixels have no full shading to fall back on.)
-    let agree = brightest <= upsample.max_lighting_ratio * darkest + upsample.lighting_floor;
+    // a rim's) that interpolation would blur and misplace, and a lone one on the surface
+    // (a limb a few pixels wide) cannot tell: such pixels are shaded in full too. (Not
+    // when taking the best match: those pixels have no full shading to fall back on.)
+    let agree = on_surface >= 2u
+        && brightest <= upsample.max_lighting_ratio * darkest + upsample.lighting_floor;
     let matches = matched >= upsample.min_matched_weight && (ring || agree);
     if ring && !matches {
         lighting = best_lighting;

@@ -32,9 +32,9 @@ const MIN_MATCHED_WEIGHT: f32 = 0.15;
 /// ratio (brightest over darkest, luminance of the exposed lighting per unit
 /// reflectance, plus [`LIGHTING_FLOOR`]) lies where the light changes faster than the
 /// samples' spacing — a hard shadow's edge, a rim — and is shaded in full rather than
-/// interpolated. Measured on the studio and the sample against the path tracer
-/// (docs/speed-accuracy.md): 2 took the sample's shadowed-pixel error from 0.056 to
-/// 0.033 for 3 % more frame time, 1.5 to 0.031 for 8 %, 1.25 to 0.031 for 17 %.
+/// interpolated; so is a pixel with fewer than two of them on its surface (a limb a few
+/// pixels wide), where no disagreement can show. Measured on the studio and the sample
+/// against the path tracer (docs/speed-accuracy.md).
 const MAX_LIGHTING_RATIO: f32 = 1.5;
 
 /// What [`MAX_LIGHTING_RATIO`] forgives in the dark, in exposed lighting per unit
