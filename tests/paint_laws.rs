@@ -366,6 +366,49 @@ fn constrained_vertices_stay_within_tolerance_under_later_strokes() {
     );
 }
 
+/// Strokes that pull against each other, solved together, move each light at most four
+/// times (or a quarter) of its intensity beyond what the stroke itself asked: with
+/// "multiply by 2" the additive step moves a light ×2 or ÷2 at most, so brightening the
+/// box and darkening the floor around it, again and again, leaves every light within ×8
+/// either way of where each stroke found it; the report says when the solve held a light
+/// at its bound.
+#[test]
+fn the_global_solve_moves_each_light_within_bounds_when_strokes_conflict() {
+    let global = PaintSettings {
+        modification: ModificationStrategy::Double { factor: 2.0 },
+        selection: SelectionStrategy::Histogram { share: 1.0 },
+        solve: SolveMode::Global,
+        ..PaintSettings::default()
+    };
+    let mut p = fixture().scene.light_intensities();
+    let mut painter = Painter::new();
+    let mut held = 0;
+    let mut largest_step = 1.0f32;
+    for k in 0..12u64 {
+        let (kind, at) = if k % 2 == 0 {
+            (BrushKind::Positive, Vec3::new(0.0, 0.8, 0.45))
+        } else {
+            (BrushKind::Negative, Vec3::new(0.9, 0.0, 0.6))
+        };
+        let before = p.clone();
+        let report = paint(&mut painter, &mut p, record(kind, at, global, k));
+        held += usize::from(report.message.contains("the global solve held"));
+        for (i, (&a, &b)) in before.iter().zip(&p).enumerate() {
+            assert!(b.is_finite() && b >= 0.0, "light {i}: {b}");
+            if a > 0.0 {
+                let step = (b / a).max(a / b.max(1e-30));
+                largest_step = largest_step.max(step);
+                assert!(
+                    step <= 8.0 * 1.0001,
+                    "stroke {k}, light {i}: {a} -> {b} ({})",
+                    report.message
+                );
+            }
+        }
+    }
+    eprintln!("largest step ×{largest_step}, strokes held by the bound: {held}");
+}
+
 /// A Keep made before saving still protects its area after reopening: a new painter
 /// that takes up the saved log keeps the area within tolerance under strokes that, in a
 /// painter that forgot it, change the area far more.

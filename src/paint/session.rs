@@ -185,6 +185,10 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
     StrokeTransfer { vertices, mean, fixed }
 }
 
+/// How far the global solve may move a light in one stroke, as a factor either way of its
+/// intensity before the stroke (beyond what the stroke's own additive step asked).
+pub const MAX_GLOBAL_CHANGE: f64 = 4.0;
+
 /// The vertices of a Keep stroke, each holding the luminance `p` gives it.
 fn kept_vertices(stroke: StrokeTransfer, p: &[f64]) -> Vec<ConstrainedVertex> {
     stroke
@@ -416,7 +420,13 @@ impl Painter {
             target: stroke.fixed + mean_luminance(&new, &stroke.mean),
         };
         if settings.solve == SolveMode::Global {
-            new = self.solve_globally(&new, &equation);
+            let (solved, held) = self.solve_globally(&p, &new, &equation);
+            new = solved;
+            if held > 0 {
+                note.push_str(&format!(
+                    " (the global solve held {held} light(s) within {MAX_GLOBAL_CHANGE}× of their intensity)"
+                ));
+            }
         }
         let changes: Vec<LightChange> = new
             .iter()
@@ -493,10 +503,14 @@ impl Painter {
     }
 
     /// All recorded stroke equations plus the new one, and every constrained vertex, solved
-    /// together: min Σ rows² + μ Σ ((P_i − P̂_i)/s_i)², P ≥ 0, each row relative to its
-    /// target, unknowns scaled by s_i so lights of different units weigh alike; P̂ is the
-    /// additive result, the point the solve stays near where the equations say nothing.
-    fn solve_globally(&self, additive: &[f64], newest: &Equation) -> Vec<f64> {
+    /// together: min Σ rows² + μ Σ ((P_i − P̂_i)/s_i)², each row relative to its target,
+    /// unknowns scaled by s_i so lights of different units weigh alike; P̂ is the additive
+    /// result, the point the solve stays near where the equations say nothing. Each light
+    /// stays within [`MAX_GLOBAL_CHANGE`] times its intensity `before` the stroke either
+    /// way (and within reach of the additive result): conflicting strokes then move many
+    /// lights a little rather than switch most off and one up twentyfold. Returns the
+    /// intensities and how many lights ended at such a bound.
+    fn solve_globally(&self, before: &[f64], additive: &[f64], newest: &Equation) -> (Vec<f64>, usize) {
         let n = additive.len();
         let mean = additive.iter().sum::<f64>() / n.max(1) as f64;
         let scale: Vec<f64> = additive.iter().map(|&p| p.max(mean).max(1e-9)).collect();
@@ -523,11 +537,21 @@ impl Painter {
             add(coefficients, c.fixed, c.luminance, weight);
         }
         let x0: Vec<f64> = additive.iter().zip(&scale).map(|(p, s)| p / s).collect();
-        nnls::solve(&rows, 1e-4, &x0)
-            .into_iter()
-            .zip(&scale)
-            .map(|(x, s)| x * s)
-            .collect()
+        let bounds: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                let (p, a) = (before.get(i).copied().unwrap_or(0.0), additive[i]);
+                let lo = (p / MAX_GLOBAL_CHANGE).min(a);
+                let hi = (p * MAX_GLOBAL_CHANGE).max(a);
+                (lo / scale[i], hi / scale[i])
+            })
+            .collect();
+        let solved = nnls::solve_bounded(&rows, 1e-4, &x0, &bounds);
+        let held = solved
+            .iter()
+            .zip(&bounds)
+            .filter(|(x, (lo, hi))| lo < hi && (**x <= *lo * (1.0 + 1e-9) && *lo > 0.0 || **x >= *hi * (1.0 - 1e-9)))
+            .count();
+        (solved.into_iter().zip(&scale).map(|(x, s)| x * s).collect(), held)
     }
 
     fn push(&mut self, edit: Edit) {
