@@ -451,6 +451,41 @@ fn bake_reports_the_maps_of_the_sample() {
     assert_eq!(bad.status.code(), Some(2));
 }
 
+/// `paint` reads a project's bake cache baked in half precision rather than baking again
+/// in full precision, and leaves the input's cache as it was (writing the output's).
+#[test]
+fn paint_reads_a_half_precision_bake_cache_instead_of_baking_again() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let sample = lightpaint::samples::Sample::Sample.write(dir.path()).expect("sample");
+    let baked = common::run_lightpaint(&[OsStr::new("bake"), sample.as_os_str(), OsStr::new("--f16")]);
+    assert_eq!(
+        baked.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&baked.stderr)
+    );
+    let cache = lightpaint::project::bake_cache::cache_path(&sample);
+    let cached = std::fs::read(&cache).expect("the bake wrote its cache");
+    let script = r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 0.5, 0.0]]}]}"#;
+    let out_dir = tempfile::tempdir().expect("temp dir");
+    let (out, output) = run_paint(&sample, script, out_dir.path(), &["--bounces", "1"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("read the bake cache"), "{stdout}");
+    assert!(!stdout.contains("baked ("), "baked again: {stdout}");
+    assert_eq!(
+        std::fs::read(&cache).expect("cache"),
+        cached,
+        "the input's cache is untouched"
+    );
+    assert!(lightpaint::project::bake_cache::cache_path(&output).is_file());
+}
+
 /// Runs `lightpaint paint INPUT --strokes S -o DIR/painted.lightpaint EXTRA…` with the
 /// script text `script` written to DIR/strokes.json; the output and the project path.
 fn run_paint(input: &Path, script: &str, dir: &Path, extra: &[&str]) -> (std::process::Output, std::path::PathBuf) {

@@ -27,29 +27,10 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
     let records = script.records(strokes, fallback)?;
     let started = std::time::Instant::now();
     let scene = &document.scene;
-    let maps = bounces.map(|bounces| {
-        use lightpaint::project::bake_cache::{self, BakeKey, CacheLookup};
-        let settings = lightpaint::bake::BakeSettings {
-            bounces,
-            ..Default::default()
-        };
-        let key = BakeKey::of(scene, &settings);
-        let cached = document
-            .project_path
-            .as_deref()
-            .map(|p| bake_cache::load(&bake_cache::cache_path(p), &key));
-        let maps = match cached {
-            Some(CacheLookup::Fresh(maps)) => {
-                say!("read the bake cache of {}", file.display());
-                maps
-            }
-            _ => lightpaint::bake::bake_maps(scene, &settings),
-        };
-        if let Err(e) = bake_cache::save(&bake_cache::cache_path(output), &key, &maps) {
-            eprintln!("warning: {}: cannot write the bake cache: {e}", output.display());
-        }
-        maps
-    });
+    let maps = match bounces {
+        Some(bounces) => Some(baked_maps(&document, file, output, bounces)?),
+        None => None,
+    };
     // The estimate sees the blockers the editor shows (hidden objects cast none); a bake
     // needs none.
     let blockers = match &maps {
@@ -102,4 +83,37 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
         document.painting.strokes.len()
     );
     Ok(())
+}
+
+/// The maps of `document`'s scene with `bounces`: from the project's bake cache when it is
+/// fresh (in whatever precision it was baked; only changed lights re-baked), else baked;
+/// written to `output`'s cache, never to the input's.
+fn baked_maps(
+    document: &lightpaint::project::Document,
+    file: &Path,
+    output: &Path,
+    bounces: usize,
+) -> Result<lightpaint::bake::ImportanceMaps, CliError> {
+    use lightpaint::project::bake_cache::{self, CacheLookup};
+    let requested = lightpaint::bake::BakeSettings {
+        bounces,
+        ..Default::default()
+    };
+    let (found, settings) = match &document.project_path {
+        Some(project) => {
+            bake_cache::load_in_its_precision(&bake_cache::cache_path(project), &document.scene, &requested)
+        }
+        None => (CacheLookup::Missing, requested),
+    };
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let quiet = |_: usize, _: usize| {};
+    let Some((maps, what, _)) = bake_cache::maps_from(&document.scene, &settings, found, &quiet, &never) else {
+        return Err(CliError::Usage(format!("{}: the bake was cancelled", file.display())));
+    };
+    say!("{}: {what}", file.display());
+    let key = bake_cache::BakeKey::of(&document.scene, &settings);
+    if let Err(e) = bake_cache::save(&bake_cache::cache_path(output), &key, &maps) {
+        eprintln!("warning: {}: cannot write the bake cache: {e}", output.display());
+    }
+    Ok(maps)
 }

@@ -259,9 +259,49 @@ pub fn bake_with_cache(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Option<(ImportanceMaps, String)> {
-    let key = BakeKey::of(scene, settings);
-    let (maps, what) = match load(path, &key) {
-        CacheLookup::Fresh(maps) => return Some((maps, format!("read the bake cache {}", path.display()))),
+    let found = load(path, &BakeKey::of(scene, settings));
+    let (maps, what, fresh) = maps_from(scene, settings, found, progress, cancel)?;
+    if fresh {
+        return Some((maps, format!("{what} {}", path.display())));
+    }
+    let what = match save(path, &BakeKey::of(scene, settings), &maps) {
+        Ok(()) => format!("{what}; cache written to {}", path.display()),
+        Err(e) => format!("{what}; the cache could not be written to {}: {e}", path.display()),
+    };
+    Some((maps, what))
+}
+
+/// The cache at `path` for `scene`, counting one baked with `settings` in another
+/// precision (f16 or f32 coefficients) as theirs: for readers that ask for light
+/// transport, not for a storage (`lightpaint paint`). Also the settings to go on with:
+/// the cache's, precision included, when it was taken.
+pub fn load_in_its_precision(path: &Path, scene: &Scene, settings: &BakeSettings) -> (CacheLookup, BakeSettings) {
+    let effective = std::cell::Cell::new(*settings);
+    let found = lookup(path, |cached| {
+        let same_but_precision = BakeSettings {
+            precision: settings.precision,
+            ..*cached
+        } == *settings;
+        if same_but_precision {
+            effective.set(*cached);
+        }
+        BakeKey::of(scene, &effective.get())
+    });
+    (found, effective.get())
+}
+
+/// The maps `found` in a cache, completed (its changed lights re-baked) or replaced by a
+/// bake; None if cancelled. Then what happened ("read the bake cache", "re-baked N changed
+/// light(s)", "baked …") and whether the cache was fresh. Writes nothing.
+pub fn maps_from(
+    scene: &Scene,
+    settings: &BakeSettings,
+    found: CacheLookup,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(ImportanceMaps, String, bool)> {
+    let (maps, what) = match found {
+        CacheLookup::Fresh(maps) => return Some((maps, "read the bake cache".to_string(), true)),
         CacheLookup::LightsChanged { maps, lights } => {
             let count = lights.len();
             let maps = rebake_lights(scene, settings, &maps, &lights, progress, cancel)?;
@@ -272,11 +312,7 @@ pub fn bake_with_cache(
             bake_counting(scene, settings, progress, cancel, format!("baked again ({reason})"))?
         }
     };
-    let what = match save(path, &key, &maps) {
-        Ok(()) => format!("{what}; cache written to {}", path.display()),
-        Err(e) => format!("{what}; the cache could not be written to {}: {e}", path.display()),
-    };
-    Some((maps, what))
+    Some((maps, what, false))
 }
 
 /// A full bake, its `what` extended with the rays traced per second.
