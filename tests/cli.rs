@@ -468,14 +468,7 @@ fn paint_reads_a_half_precision_bake_cache_instead_of_baking_again() {
     let cached = std::fs::read(&cache).expect("the bake wrote its cache");
     let script = r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 0.5, 0.0]]}]}"#;
     let out_dir = tempfile::tempdir().expect("temp dir");
-    let (out, output) = run_paint(&sample, script, out_dir.path(), &["--bounces", "1"]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{stdout}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (stdout, output) = run_paint_ok(&sample, script, out_dir.path(), &["--bounces", "1"]);
     assert!(stdout.contains("read the bake cache"), "{stdout}");
     assert!(!stdout.contains("baked ("), "baked again: {stdout}");
     assert_eq!(
@@ -504,6 +497,19 @@ fn run_paint(input: &Path, script: &str, dir: &Path, extra: &[&str]) -> (std::pr
     (common::run_lightpaint(&args), output)
 }
 
+/// As [`run_paint`], checking that it succeeded; its standard output and the project path.
+fn run_paint_ok(input: &Path, script: &str, dir: &Path, extra: &[&str]) -> (String, std::path::PathBuf) {
+    let (out, output) = run_paint(input, script, dir, extra);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (stdout, output)
+}
+
 /// `paint` applies a script to the studio and writes a project whose log holds the
 /// strokes that changed something, with the positive stroke's lights brighter; the
 /// original project is untouched.
@@ -516,14 +522,7 @@ fn paint_applies_scripted_strokes_and_saves_them_in_the_project_log() {
             {"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 1.0, 0.3]]},
             {"brush": {"kind": "constraint", "radius_px": 30}, "world": [[1.0, 0.0, 1.0]]}
         ]}"#;
-    let (out, output) = run_paint(&studio, script, dir.path(), &["--bounces", "0"]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{stdout}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (stdout, output) = run_paint_ok(&studio, script, dir.path(), &["--bounces", "0"]);
     assert!(stdout.contains("stroke 0: Changed"), "{stdout}");
     assert_eq!(
         std::fs::read(&studio).expect("studio"),
