@@ -30,7 +30,7 @@ const MAX_LINES: usize = 600;
 const GENERATED: &[&str] = &["src/sh/ol_tables.rs"];
 /// Files still over [`MAX_LINES`], each to be split (issue: one renderer, clear rooms).
 /// The list may only shrink: a file on it that fits fails the test, so it is removed.
-const AWAITING_SPLIT: &[&str] = &["src/ui/app.rs"];
+const AWAITING_SPLIT: &[&str] = &[];
 
 struct Crate {
     root: PathBuf,
