@@ -624,3 +624,86 @@ fn a_saturated_light_is_reported() {
         report.message
     );
 }
+
+/// A "set to the target" stroke on a textured surface reaches the target the frame
+/// shows: a white-factored floor whose base-colour texture is a uniform grey of linear
+/// luminance τ, under a point light 2 m above, reflects L = τ/π · I/h² at its centre
+/// (Lambert, no glossy part), so painting it to T must give I = T·π·h²/τ. Reading the
+/// transfer of the colour factors alone gave I = T·π·h², 1/τ times too bright a frame.
+#[test]
+fn a_target_is_reached_on_a_textured_surface() {
+    use lightpaint::scene::TextureImage;
+    let grey = 137u8; // sRGB; linear ≈ 0.25
+    let tau = lightpaint::scene::srgb_to_linear(grey as f64 / 255.0);
+    let mut floor = shapes::plane(4.0, 40, 1.0).into_object("floor");
+    floor.material = 0;
+    let height = 2.0f32;
+    let scene = Scene {
+        objects: vec![floor],
+        materials: vec![Material {
+            base_color: glam::Vec4::ONE,
+            base_color_texture: Some(0),
+            metallic: 0.0,
+            specular: 0.0,
+            ..Material::default()
+        }],
+        textures: vec![TextureImage {
+            name: "grey".into(),
+            width: 4,
+            height: 4,
+            rgba8: [grey, grey, grey, 255].repeat(16),
+        }],
+        lights: vec![light(
+            "above",
+            LightKind::Point,
+            Vec3::new(0.0, height, 0.0),
+            10.0,
+            None,
+        )],
+        ..Scene::default()
+    };
+    let bvh = SceneBvh::build(&scene);
+    let camera = lightpaint::scene::Camera {
+        position: Vec3::new(0.0, 3.0, 0.001),
+        forward: Vec3::NEG_Y,
+        up: Vec3::NEG_Z,
+        yfov_rad: 60f32.to_radians(),
+        znear: 0.05,
+        zfar: None,
+    };
+    let view = ViewRecord::of(&lightpaint::paint::View {
+        camera,
+        width_px: 400,
+        height_px: 400,
+    });
+    let target = 0.5f32;
+    let stroke = StrokeRecord {
+        dabs_px: vec![Vec2::new(200.0, 200.0)],
+        brush: Brush {
+            kind: BrushKind::Positive,
+            radius_px: 10.0,
+            falloff: Falloff::Smooth,
+            strength: 1.0,
+            target_luminance_nits: target,
+        },
+        settings: PaintSettings {
+            modification: ModificationStrategy::Direct,
+            ..PaintSettings::default()
+        },
+        seed: 1,
+        hidden_objects: Vec::new(),
+        view,
+    };
+    let shadows = lightpaint::shading::ShadowSettings::default();
+    let transfer = lightpaint::shading::paint_estimate::transfer_for(None, &scene, &[], &shadows);
+    let mut p = scene.light_intensities();
+    let report = Painter::new().paint(&scene, &bvh, transfer.as_ref(), &mut p, stroke);
+    assert_eq!(report.outcome, Outcome::Changed, "{}", report.message);
+    let expected = target as f64 * std::f64::consts::PI * (height as f64).powi(2) / tau;
+    assert!(
+        (p[0] as f64 / expected - 1.0).abs() < 0.03,
+        "intensity {} cd, expected {expected:.2} (τ = {tau:.3}): {}",
+        p[0],
+        report.message
+    );
+}

@@ -87,10 +87,14 @@ impl View {
     }
 }
 
-/// The vertices a stroke painted, each with its largest dab weight, in vertex order.
+/// The vertices a stroke painted, each with its largest dab weight, in vertex order, and
+/// what the base-colour texture shows around each.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Hits {
     pub weights: BTreeMap<VertexRef, f32>,
+    /// Per vertex on a textured material: (Σ w·τ, Σ w) over the points of the surface that
+    /// painted it, τ the luminance of the base-colour texture there (linear).
+    texture: BTreeMap<VertexRef, (f64, f64)>,
 }
 
 impl Hits {
@@ -106,6 +110,38 @@ impl Hits {
         let entry = self.weights.entry(vertex).or_insert(0.0);
         *entry = entry.max(weight);
     }
+
+    /// Records that the texture shows luminance `texture` where `vertex` was painted with
+    /// `weight` (nothing for an untextured material: None).
+    fn add_texture(&mut self, vertex: VertexRef, weight: f32, texture: Option<f64>) {
+        if let Some(tau) = texture.filter(|t| t.is_finite())
+            && weight > 0.0
+        {
+            let entry = self.texture.entry(vertex).or_insert((0.0, 0.0));
+            entry.0 += weight as f64 * tau;
+            entry.1 += weight as f64;
+        }
+    }
+
+    /// What the base-colour texture multiplies `vertex`'s light by where it was painted:
+    /// the weighted mean of its luminance over the painted points (1 untextured). The
+    /// transfer of a vertex is per unit of the material's colour factors; the frame shows
+    /// it times the texture, so strokes read it times this (the diffuse and glossy parts
+    /// alike: glTF's texture colours the base colour, which the glossy lobe of a metal
+    /// takes too, and a dielectric's glossy part is small).
+    pub fn texture_factor(&self, vertex: VertexRef) -> f64 {
+        match self.texture.get(&vertex) {
+            Some(&(sum, weights)) if weights > 0.0 => sum / weights,
+            _ => 1.0,
+        }
+    }
+}
+
+/// The luminance of `object`'s base-colour texture at `uv` (linear), if it has one.
+fn texture_luminance(scene: &Scene, object: usize, uv: Vec2) -> Option<f64> {
+    let material = scene.materials.get(scene.objects.get(object)?.material)?;
+    let texture = scene.textures.get(material.base_color_texture?)?;
+    Some(crate::scene::luminance(texture.sample_bilinear(uv)))
 }
 
 /// Points of the dab's disc sampled along its diameter (a square grid, those inside the
@@ -150,13 +186,13 @@ pub fn pick_dab(
             })
             .collect();
         for (vertex, weight) in found {
-            hits.add(
-                VertexRef {
-                    object: o as u32,
-                    vertex,
-                },
-                weight,
-            );
+            let at = VertexRef {
+                object: o as u32,
+                vertex,
+            };
+            hits.add(at, weight);
+            let uv = object.uvs.get(vertex as usize).copied().unwrap_or(Vec2::ZERO);
+            hits.add_texture(at, weight, texture_luminance(scene, o, uv));
         }
     }
     pick_surface(scene, bvh, view, center_px, brush, hidden, hits);
@@ -197,15 +233,17 @@ fn pick_surface(
             if !hit.front_facing {
                 continue;
             }
+            let texture = scene.objects.get(hit.object).and_then(|object| {
+                texture_luminance(scene, hit.object, object.interpolated_uv(hit.triangle, hit.barycentric))
+            });
             for (&vertex, share) in corners.iter().zip(hit.barycentric.to_array()) {
                 if share > 0.0 {
-                    hits.add(
-                        VertexRef {
-                            object: hit.object as u32,
-                            vertex,
-                        },
-                        weight * share,
-                    );
+                    let at = VertexRef {
+                        object: hit.object as u32,
+                        vertex,
+                    };
+                    hits.add(at, weight * share);
+                    hits.add_texture(at, weight * share, texture);
                 }
             }
         }

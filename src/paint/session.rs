@@ -157,7 +157,12 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
     let vertices: Vec<PaintedVertex> = listed
         .par_iter()
         .map(|&(vertex, w)| {
-            let (fixed, entries) = transfer.vertex_shading(vertex, eye);
+            let (fixed, mut entries) = transfer.vertex_shading(vertex, eye);
+            // The frame shows the light through the base-colour texture.
+            let texture = hits.texture_factor(vertex);
+            if texture != 1.0 {
+                entries.iter_mut().for_each(|(_, t)| *t *= texture);
+            }
             PaintedVertex {
                 vertex,
                 weight: w as f64,

@@ -114,9 +114,62 @@ pub struct TextureImage {
     pub rgba8: Vec<u8>,
 }
 
+impl TextureImage {
+    /// Linear RGB at `uv`, bilinear between texel centres, repeating (the renderer's
+    /// sampler without its mip chain); white if the pixels are missing.
+    pub fn sample_bilinear(&self, uv: glam::Vec2) -> glam::DVec3 {
+        use glam::DVec3;
+        let (w, h) = (self.width.max(1) as usize, self.height.max(1) as usize);
+        if self.rgba8.len() < w * h * 4 || !uv.is_finite() {
+            return DVec3::ONE;
+        }
+        let x = uv.x as f64 * w as f64 - 0.5;
+        let y = uv.y as f64 * h as f64 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let texel = |i: f64, j: f64| {
+            let column = (i as i64).rem_euclid(w as i64) as usize;
+            let row = (j as i64).rem_euclid(h as i64) as usize;
+            let at = (row * w + column) * 4;
+            let c = &self.rgba8[at..at + 3];
+            DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64).map(|v| srgb_to_linear(v / 255.0))
+        };
+        let top = texel(x0, y0).lerp(texel(x0 + 1.0, y0), fx);
+        let bottom = texel(x0, y0 + 1.0).lerp(texel(x0 + 1.0, y0 + 1.0), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+/// sRGB electro-optical transfer: encoded [0, 1] → linear (IEC 61966-2-1).
+pub fn srgb_to_linear(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bilinear_sampling_returns_texels_at_their_centres_and_blends_between() {
+        use glam::{DVec3, Vec2};
+        // 2×1: black, white (sRGB 255 → linear 1).
+        let texture = TextureImage {
+            name: "ramp".into(),
+            width: 2,
+            height: 1,
+            rgba8: vec![0, 0, 0, 255, 255, 255, 255, 255],
+        };
+        assert!(texture.sample_bilinear(Vec2::new(0.25, 0.5)).length() < 1e-12);
+        assert!((texture.sample_bilinear(Vec2::new(0.75, 0.5)) - DVec3::ONE).length() < 1e-12);
+        let middle = texture.sample_bilinear(Vec2::new(0.5, 0.5));
+        assert!((middle - DVec3::splat(0.5)).length() < 1e-12, "{middle}");
+        // Repeats: u = 1.25 is u = 0.25.
+        assert!(texture.sample_bilinear(Vec2::new(1.25, 0.5)).length() < 1e-12);
+    }
 
     #[test]
     fn the_summary_names_the_values_and_their_mapping() {

@@ -1,14 +1,8 @@
 //! Colour transforms of the CPU side (the f64 shading reference, the path tracer, tests).
 //! The GPU versions live in `shaders/common.wgsl`.
 
-/// sRGB electro-optical transfer: encoded [0, 1] → linear (IEC 61966-2-1).
-pub fn srgb_to_linear(encoded: f64) -> f64 {
-    if encoded <= 0.04045 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
-}
+/// sRGB electro-optical transfer (written beside the textures it decodes, in `scene`).
+pub use crate::scene::srgb_to_linear;
 
 /// Inverse of [`srgb_to_linear`]: linear [0, 1] → encoded.
 pub fn linear_to_srgb(linear: f64) -> f64 {
