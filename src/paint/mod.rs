@@ -11,6 +11,7 @@ pub mod modify;
 pub mod nnls;
 pub mod pick;
 pub mod record;
+mod report;
 pub mod script;
 pub mod select;
 pub mod session;
