@@ -395,6 +395,33 @@ fn a_painted_project_reopens_exactly_as_saved() {
     assert_eq!(differing, 0, "the reopened viewport is pixel-identical");
 }
 
+/// A Keep area painted before saving still holds after reopening: the first stroke of
+/// the new session takes it up again and says so.
+#[test]
+fn a_keep_area_from_before_saving_holds_after_reopening() {
+    let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    harness.key_press(egui::Key::C);
+    harness.run();
+    let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
+    drag_through(&mut harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
+    harness.key_press(egui::Key::Escape);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    drop(harness);
+
+    let mut reopened = editor_on(project);
+    reopened.run();
+    reopened.key_press(egui::Key::B);
+    reopened.run();
+    let centre = reopened.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
+    drag_through(&mut reopened, &[centre, centre + egui::vec2(-40.0, 0.0)], 1);
+    let message = reopened.state().status_message().to_string();
+    assert!(message.contains("1 Keep area(s) of earlier sessions hold"), "{message}");
+}
+
 /// A corrupt project shows a readable error naming the file; the open document stays.
 #[test]
 fn opening_a_corrupt_file_shows_an_error_and_keeps_the_document() {
