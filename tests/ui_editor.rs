@@ -395,8 +395,9 @@ fn a_painted_project_reopens_exactly_as_saved() {
     assert_eq!(differing, 0, "the reopened viewport is pixel-identical");
 }
 
-/// A Keep area painted before saving still holds after reopening: the first stroke of
-/// the new session takes it up again and says so.
+/// A Keep area painted before saving is shown in the viewport and still holds after
+/// reopening: once the picking BVH is ready the reopened editor takes it up again, shows
+/// it and says so, before any stroke.
 #[test]
 fn a_keep_area_from_before_saving_holds_after_reopening() {
     let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
@@ -407,17 +408,31 @@ fn a_keep_area_from_before_saving_holds_after_reopening() {
     harness.run();
     let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
     drag_through(&mut harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
+    let kept = |harness: &mut egui_kittest::Harness<'_, lightpaint::ui::EditorApp>| {
+        let scene = harness.state().document().expect("open").scene.clone();
+        harness
+            .state_mut()
+            .painting_mut()
+            .expect("painting")
+            .kept_points(&scene)
+            .len()
+    };
+    let before = kept(&mut harness);
+    assert!(before > 0, "the Keep stroke holds some points");
     harness.key_press(egui::Key::Escape);
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
     harness.run();
     drop(harness);
 
     let mut reopened = editor_on(project);
-    reopened.run();
-    reopened.key_press(egui::Key::B);
-    reopened.run();
-    let centre = reopened.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
-    drag_through(&mut reopened, &[centre, centre + egui::vec2(-40.0, 0.0)], 1);
+    for _ in 0..200 {
+        reopened.run();
+        if kept(&mut reopened) > 0 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    assert_eq!(kept(&mut reopened), before, "the same points are held again");
     let message = reopened.state().status_message().to_string();
     assert!(message.contains("1 Keep area(s) of earlier sessions hold"), "{message}");
 }

@@ -159,6 +159,15 @@ impl Painter {
         !self.undone.is_empty()
     }
 
+    /// The vertices Keep strokes hold (this session's applied ones and those carried over),
+    /// each once.
+    pub fn kept_vertices(&self) -> Vec<VertexRef> {
+        let mut vertices: Vec<VertexRef> = self.constrained().map(|c| c.vertex).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        vertices
+    }
+
     fn constrained(&self) -> impl Iterator<Item = &ConstrainedVertex> + Clone {
         self.carried.iter().chain(&self.done).flat_map(|e| e.constrained.iter())
     }

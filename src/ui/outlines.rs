@@ -94,6 +94,22 @@ pub fn draw_outline(painter: &egui::Painter, outline: &Outline, to_screen: impl 
     }
 }
 
+/// The points Keep strokes hold, as small teal dots over the render (stronger while the
+/// Keep tool is in hand), so the artist sees which areas later strokes spare.
+pub fn draw_kept_points(
+    painter: &egui::Painter,
+    points: &[Vec3],
+    emphasised: bool,
+    to_screen: impl Fn(Vec3) -> Option<egui::Pos2>,
+) {
+    let colour = egui::Color32::from_rgba_unmultiplied(60, 220, 200, if emphasised { 230 } else { 120 });
+    for &p in points {
+        if let Some(at) = to_screen(p) {
+            painter.circle_filled(at, 2.0, colour);
+        }
+    }
+}
+
 /// The ellipse centre + cos θ·a + sin θ·b as segments.
 fn circle(centre: Vec3, a: Vec3, b: Vec3) -> Vec<[Vec3; 2]> {
     let point = |k: usize| {

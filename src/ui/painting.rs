@@ -277,7 +277,7 @@ impl Painting {
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
             let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, blockers, shadows);
-            // The first stroke takes up what the saved strokes ask: their Keep areas.
+            // Taken up before the first stroke if the frames have not done it yet.
             let keeps = match self.opened_intensities.take() {
                 Some(opened) => self
                     .painter
@@ -288,13 +288,55 @@ impl Painting {
                 .painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
             if keeps > 0 {
-                report.message = format!("{} ({keeps} Keep area(s) of earlier sessions hold)", report.message);
+                report.message = format!("{} ({})", report.message, keeps_hold(keeps));
             }
             report
         };
         scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());
         Some(report)
+    }
+
+    /// Takes up what the saved strokes ask (their Keep areas, and their rows of the global
+    /// solve: `Painter::carry_over`) at the intensities the project opened with, as soon
+    /// as the picking BVH has been built in the background; what to tell the user when it
+    /// did and there were Keep areas. Cheap while waiting or once done.
+    pub fn take_up_saved_strokes(
+        &mut self,
+        scene: &Scene,
+        blockers: impl FnOnce() -> Vec<Sphere>,
+        shadows: &ShadowSettings,
+    ) -> Option<String> {
+        let built = self.bvh.is_some() || self.bvh_job.as_ref().is_some_and(|job| job.is_finished());
+        if self.opened_intensities.is_none() || !built {
+            return None;
+        }
+        let opened = self.opened_intensities.take()?;
+        let bvh = self.picking_bvh(scene);
+        let fresh = self.maps_for(scene).is_some();
+        let maps = self.maps.as_ref().filter(|_| fresh);
+        let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, &blockers(), shadows);
+        let keeps = self
+            .painter
+            .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier);
+        (keeps > 0).then(|| keeps_hold(keeps))
+    }
+
+    /// The points of `scene` that Keep strokes hold (this session's and the saved ones
+    /// taken up), for the viewport to show.
+    pub fn kept_points(&self, scene: &Scene) -> Vec<glam::Vec3> {
+        self.painter
+            .kept_vertices()
+            .into_iter()
+            .filter_map(|v| {
+                scene
+                    .objects
+                    .get(v.object as usize)?
+                    .positions
+                    .get(v.vertex as usize)
+                    .copied()
+            })
+            .collect()
     }
 
     /// The transfer strokes read now: the baked maps when they are fresh for `scene`,
@@ -339,4 +381,9 @@ impl Painting {
         scene.set_light_intensities(&intensities);
         redone
     }
+}
+
+/// "N Keep area(s) of earlier sessions hold".
+fn keeps_hold(keeps: usize) -> String {
+    format!("{keeps} Keep area(s) of earlier sessions hold")
 }

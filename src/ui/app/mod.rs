@@ -12,7 +12,7 @@ use super::brush_panel::tool_bar;
 use super::history::{History, Step};
 use super::light_gizmo::{GizmoLights, GizmoOutput, light_gizmo};
 use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
-use super::outlines::{box_outline, draw_outline};
+use super::outlines::{box_outline, draw_kept_points, draw_outline};
 use super::painting::{Painting, Tool};
 use super::preferences::Preferences;
 use super::terrain_panel::{TerrainEdit, image_terrain};
@@ -263,6 +263,7 @@ impl eframe::App for EditorApp {
         let render_state = frame.wgpu_render_state().cloned();
         let ctx = ui.ctx().clone();
         self.handle_shortcuts_and_drops(&ctx, render_state.as_ref());
+        self.take_up_saved_strokes();
         self.menu_bar(ui, render_state.as_ref());
         self.tool_bar(ui);
         // Compared with the saved file once a frame, for the title and the status bar.
@@ -316,6 +317,14 @@ impl eframe::App for EditorApp {
                         let view = viewport.view();
                         let rect = response.rect;
                         draw_outline(&ui.painter_at(rect), &box_outline(&object.bounds()), |p| {
+                            super::viewport::screen_point(&view, rect, p)
+                        });
+                    }
+                    if let Some(painting) = &self.painting {
+                        let kept: Vec<glam::Vec3> = painting.kept_points(&document.scene);
+                        let (view, rect) = (viewport.view(), response.rect);
+                        let keeping = painting.tool == Tool::Brush(BrushKind::Constraint);
+                        draw_kept_points(&ui.painter_at(rect), &kept, keeping, |p| {
                             super::viewport::screen_point(&view, rect, p)
                         });
                     }

@@ -112,4 +112,21 @@ impl EditorApp {
         self.lights_changed();
         message
     }
+
+    /// Takes up the saved strokes' Keep areas once the picking BVH is ready (see
+    /// `Painting::take_up_saved_strokes`), saying so in the status bar.
+    pub(super) fn take_up_saved_strokes(&mut self) {
+        let (Some(document), Some(painting)) = (&self.document, &mut self.painting) else {
+            return;
+        };
+        let blockers = &self.blockers;
+        let hidden = &document.hidden_objects;
+        if let Some(message) = painting.take_up_saved_strokes(
+            &document.scene,
+            || blockers.shown_spheres(hidden),
+            &document.settings.shadows,
+        ) {
+            self.message = message;
+        }
+    }
 }
