@@ -9,11 +9,10 @@
 // (in half floats: clamped where the tone curve is long saturated) and each
 // full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
 // material edges stay sharp at full resolution while only the smooth lighting is
-// interpolated. Pixels that no
-// low-resolution sample matches (thin objects, silhouettes), and those whose nearest
-// samples on their surface disagree (an edge of the light runs between them) or are fewer
-// than two, are
-// discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
+// interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes),
+// and those whose nearest samples on their surface disagree (an edge of the light runs
+// between them) or are fewer than two, are discarded by fs_upsample_marking and shaded
+// in full by fs_logsh right after: every
 // pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
 // depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
 // pixel the full shading on a software GPU, which runs both sides of a divergent

@@ -38,8 +38,9 @@ const MIN_MATCHED_WEIGHT: f32 = 0.15;
 const MAX_LIGHTING_RATIO: f32 = 1.5;
 
 /// What [`MAX_LIGHTING_RATIO`] forgives in the dark, in exposed lighting per unit
-/// reflectance (0.02 is about 1/255 of display white at mid reflectance): differences
-/// of light too dim to see do not cost full shading.
+/// reflectance: on a mid-grey surface (reflectance 0.5) 0.02 displays as about 12/255
+/// after the tone curve and sRGB, so in deep shadow only differences larger than that
+/// cost full shading.
 const LIGHTING_FLOOR: f32 = 0.02;
 
 /// The size of the shaded image for a `width` × `height` frame shaded once per
