@@ -38,40 +38,58 @@ touch "$CLOSE"
 wait "$pid"
 "#;
 
-#[test]
-fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
+/// Whether the Xvfb tests run: not when GPU tests are opted out (said on stderr); else
+/// every one of `programs` must be installed (the README's test command installs them).
+fn xvfb_tools_present(programs: &[&str]) -> bool {
     if common::no_gpu_wanted() {
         eprintln!("editor smoke test not run: {}=1", common::NO_GPU_ENV);
-        return;
+        return false;
     }
-    for program in ["xvfb-run", "import"] {
+    for program in programs {
         assert!(
             have(program),
-            "{program} is missing: install xvfb and imagemagick (the README's test command does)"
+            "{program} is missing: the README's test command installs it (xvfb, imagemagick, xdotool, zenity)"
         );
     }
-    let dir = tempfile::tempdir().unwrap();
-    let log = dir.path().join("editor.log");
-    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-smoke.png");
-    let _ = std::fs::remove_file(&shot);
-    let status = Command::new("xvfb-run")
+    true
+}
+
+/// `xvfb-run` on a 1280 × 800 screen starting the editor (START_EDITOR) and then `script`,
+/// with its log in `dir`/editor.log, its screenshot to `shot`, closing once `dir`/close
+/// exists, and a private runtime, data and home directory under `dir` (no persisted
+/// window state or settings leak in or out).
+fn editor_under_xvfb(script: &str, dir: &std::path::Path, shot: &std::path::Path) -> Command {
+    let mut command = Command::new("xvfb-run");
+    command
         .args([
             "-a",
             "-s",
             "-screen 0 1280x800x24",
             "bash",
             "-c",
-            &format!("{START_EDITOR}{SCRIPT}"),
+            &format!("{START_EDITOR}{script}"),
         ])
         .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
-        .env("LOG", &log)
-        .env("SHOT", &shot)
-        .env("CLOSE", dir.path().join("close"))
-        .env("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS", dir.path().join("close"))
-        .env("XDG_RUNTIME_DIR", dir.path())
-        // A private data directory: no persisted window state or settings leak in or out.
-        .env("XDG_DATA_HOME", dir.path().join("data"))
-        .env("HOME", dir.path())
+        .env("LOG", dir.join("editor.log"))
+        .env("SHOT", shot)
+        .env("CLOSE", dir.join("close"))
+        .env("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS", dir.join("close"))
+        .env("XDG_RUNTIME_DIR", dir)
+        .env("XDG_DATA_HOME", dir.join("data"))
+        .env("HOME", dir);
+    command
+}
+
+#[test]
+fn editor_opens_the_sample_draws_and_closes_under_xvfb() {
+    if !xvfb_tools_present(&["xvfb-run", "import"]) {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("editor.log");
+    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-smoke.png");
+    let _ = std::fs::remove_file(&shot);
+    let status = editor_under_xvfb(SCRIPT, dir.path(), &shot)
         .status()
         .expect("xvfb-run runs");
     let log_text = std::fs::read_to_string(&log).unwrap_or_default();
@@ -123,15 +141,8 @@ wait "$pid"
 /// under its name, and the name typed there gets a project that opens.
 #[test]
 fn save_as_through_the_file_dialog_writes_the_project_under_xvfb() {
-    if common::no_gpu_wanted() {
-        eprintln!("editor smoke test not run: {}=1", common::NO_GPU_ENV);
+    if !xvfb_tools_present(&["xvfb-run", "import", "xdotool", "zenity"]) {
         return;
-    }
-    for program in ["xvfb-run", "import", "xdotool", "zenity"] {
-        assert!(
-            have(program),
-            "{program} is missing: the README's test command installs it"
-        );
     }
     let dir = tempfile::tempdir().unwrap();
     let studio = dir.path().join("studio");
@@ -145,25 +156,9 @@ fn save_as_through_the_file_dialog_writes_the_project_under_xvfb() {
     let target = dir.path().join("saved as.lightpaint");
     let log = dir.path().join("editor.log");
     let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("editor-save-as.png");
-    let status = Command::new("xvfb-run")
-        .args([
-            "-a",
-            "-s",
-            "-screen 0 1280x800x24",
-            "bash",
-            "-c",
-            &format!("{START_EDITOR}{SAVE_AS_SCRIPT}"),
-        ])
-        .env("LIGHTPAINT", env!("CARGO_BIN_EXE_lightpaint"))
+    let status = editor_under_xvfb(SAVE_AS_SCRIPT, dir.path(), &shot)
         .env("PROJECT", studio.join("studio.lightpaint"))
         .env("TARGET", &target)
-        .env("LOG", &log)
-        .env("SHOT", &shot)
-        .env("CLOSE", dir.path().join("close"))
-        .env("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS", dir.path().join("close"))
-        .env("XDG_RUNTIME_DIR", dir.path())
-        .env("XDG_DATA_HOME", dir.path().join("data"))
-        .env("HOME", dir.path())
         .env_remove("DBUS_SESSION_BUS_ADDRESS")
         .status()
         .expect("xvfb-run runs");

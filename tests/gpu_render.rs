@@ -269,7 +269,7 @@ fn parallel_rect_irradiance(x0: f64, x1: f64, z0: f64, z1: f64, c: f64) -> f64 {
 /// octagon of its area).
 #[test]
 fn area_lights_give_their_exact_light_near_the_floor() {
-    use lightpaint::render::{AntiAliasing, ShadowFrame, capture_surfaces, render_logsh_image};
+    use lightpaint::render::{AntiAliasing, capture_surfaces, render_logsh_image};
     use lightpaint::scene::{Light, LightKind};
     use lightpaint::shading::ShadowSettings;
     let Some(gpu) = common::gpu() else { return };
@@ -302,25 +302,7 @@ fn area_lights_give_their_exact_light_near_the_floor() {
     let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height_px).expect("surfaces");
     let settings = RenderSettings::default();
     let shadows = ShadowSettings::default().every_pixel();
-    // Every frame of the test: these settings, no blockers, this size.
-    fn frame_of<'a>(
-        scene: &'a Scene,
-        camera: &'a lightpaint::scene::Camera,
-        settings: &'a RenderSettings,
-        shadows: &'a ShadowSettings,
-        size: (u32, u32),
-    ) -> ShadowFrame<'a> {
-        ShadowFrame {
-            scene,
-            camera,
-            settings,
-            shadows,
-            blockers: &[],
-            baked_indirect: None,
-            width: size.0,
-            height: size.1,
-        }
-    }
+    use common::thin_casters::frame_of;
     let images = [
         (
             "raster",
