@@ -270,6 +270,9 @@ impl Painting {
         };
         self.next_seed += 1;
         let bvh = self.picking_bvh(scene);
+        // Taken up before the first stroke if the frames have not done it yet (the BVH is
+        // built now).
+        let taken_up = self.take_up_saved_strokes(scene, || blockers.to_vec(), shadows);
         let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
@@ -277,18 +280,11 @@ impl Painting {
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
             let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, blockers, shadows);
-            // Taken up before the first stroke if the frames have not done it yet.
-            let keeps = match self.opened_intensities.take() {
-                Some(opened) => self
-                    .painter
-                    .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier),
-                None => 0,
-            };
             let mut report = self
                 .painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
-            if keeps > 0 {
-                report.message = format!("{} ({})", report.message, keeps_hold(keeps));
+            if let Some(keeps) = taken_up {
+                report.message = format!("{} ({keeps})", report.message);
             }
             report
         };
@@ -319,7 +315,7 @@ impl Painting {
         let keeps = self
             .painter
             .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier);
-        (keeps > 0).then(|| keeps_hold(keeps))
+        (keeps > 0).then(|| format!("{keeps} Keep area(s) of earlier sessions hold"))
     }
 
     /// The points of `scene` that Keep strokes hold (this session's and the saved ones
@@ -381,9 +377,4 @@ impl Painting {
         scene.set_light_intensities(&intensities);
         redone
     }
-}
-
-/// "N Keep area(s) of earlier sessions hold".
-fn keeps_hold(keeps: usize) -> String {
-    format!("{keeps} Keep area(s) of earlier sessions hold")
 }
