@@ -121,11 +121,9 @@ fn record(kind: BrushKind, at: Vec3, settings: PaintSettings, seed: u64) -> Stro
     }
 }
 
-/// The stroke's hit vertices, picked again, and their weighted mean luminance under `p`,
-/// computed here from the transfer rather than taken from the engine's report.
-fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
+/// The fixture's vertices `record`'s dabs paint, picked again here.
+fn picked(record: &StrokeRecord) -> Hits {
     let f = fixture();
-    let transfer = BakedTransfer::new(&f.scene, &f.maps);
     let mut hits = Hits::default();
     for &dab in &record.dabs_px {
         pick_dab(
@@ -138,6 +136,15 @@ fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
             &mut hits,
         );
     }
+    hits
+}
+
+/// The stroke's hit vertices, picked again, and their weighted mean luminance under `p`,
+/// computed here from the transfer rather than taken from the engine's report.
+fn painted_mean(record: &StrokeRecord, p: &[f32]) -> f64 {
+    let f = fixture();
+    let transfer = BakedTransfer::new(&f.scene, &f.maps);
+    let hits = picked(record);
     let (mut sum, mut weights) = (0.0, 0.0);
     for (&vertex, &w) in &hits.weights {
         let y: f64 = transfer
@@ -562,18 +569,7 @@ fn a_stroke_names_the_light_it_changed_and_why() {
     // Each light's light on the painted vertices, weighted as the stroke weighs them.
     let f = fixture();
     let transfer = BakedTransfer::new(&f.scene, &f.maps);
-    let mut hits = Hits::default();
-    for &dab in &stroke.dabs_px {
-        pick_dab(
-            &f.scene,
-            &f.bvh,
-            &stroke.view.view(),
-            dab,
-            &stroke.brush,
-            &[],
-            &mut hits,
-        );
-    }
+    let hits = picked(&stroke);
     let mut received = vec![0.0f64; before.len()];
     for (&vertex, &w) in &hits.weights {
         for (i, t) in transfer.vertex_transfer(vertex, stroke.view.eye) {
