@@ -83,7 +83,7 @@ struct Light {
 
 // One layer of the shadow-map array, seen from a light (src/shading/shadow_maps.rs).
 struct ShadowView {
-    // World to clip space (depth 0 near, 1 far).
+    // World to clip space, depth reversed (1 near, 0 far: shading::shadow_maps).
     view_proj: mat4x4<f32>,
     // x: a texel's width per metre of distance from the eye (perspective), y: a texel's
     // width in metres (orthographic), z: 1 for perspective views, 0 for orthographic.

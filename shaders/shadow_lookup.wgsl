@@ -2,8 +2,8 @@
 // a light's maps into the share of it a surface point sees. Appended after scene.wgsl
 // (Light, Incidence, Surface) in the log-SH module.
 
-// The shadow maps of the lights on the shadow-map path: one depth layer per view, read
-// with a comparison sampler (linear: each read filters the 2 × 2 texels around) or, for
+// The shadow maps of the lights on the shadow-map path: one depth layer per view (depth
+// reversed: 1 nearest the light), read with a comparison sampler (linear: each read filters the 2 × 2 texels around) or, for
 // the blocker search, texel by texel; and the views' matrices.
 @group(2) @binding(7) var shadow_maps: texture_depth_2d_array;
 @group(2) @binding(8) var shadow_map_sampler: sampler_comparison;
@@ -55,10 +55,10 @@ fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
     let clip = view.view_proj * vec4<f32>(p, 1.0);
     let ndc = clip.xyz / clip.w;
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    if clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0 {
+    if clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0 {
         return 1.0;
     }
-    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, uv, i32(view_index), max(ndc.z, 0.0));
+    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, uv, i32(view_index), min(ndc.z, 1.0));
 }
 
 // The layer of `light`'s maps that sees the point p.
@@ -98,8 +98,8 @@ fn shadow_tap(light: Light, q: vec3<f32>) -> ShadowTap {
     let clip = shadow_views[index].view_proj * vec4<f32>(q, 1.0);
     let ndc = clip.xyz / clip.w;
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    let off = clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0;
-    return ShadowTap(i32(index), uv, max(ndc.z, 0.0), off);
+    let off = clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0;
+    return ShadowTap(i32(index), uv, min(ndc.z, 1.0), off);
 }
 
 // The point of the receiver's tangent plane (through p, normal n) seen from the light's
@@ -115,12 +115,12 @@ fn tap_on_plane(eye: vec3<f32>, ray: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> v
     return eye + ray * select(nominal, t, on_plane);
 }
 
-// The distance along a perspective view's axis of a depth the map holds (wgpu's depth
-// runs near → 0, far → 1: d = near·far / (far − z·(far − near))).
+// The distance along a perspective view's axis of a depth the map holds (reversed: near
+// → 1, far → 0, so d = near·far / (near + z·(far − near))).
 fn view_distance(view: ShadowView, depth: f32) -> f32 {
     let near = view.depth_range.x;
     let far = view.depth_range.y;
-    return near * far / (far - depth * (far - near));
+    return near * far / (near + depth * (far - near));
 }
 
 // Percentage-closer soft shadows (Fernando 2005) for a sphere or area light whose disc
@@ -175,7 +175,7 @@ fn soft_shadow_map_visibility(light: Light, p: vec3<f32>, n: vec3<f32>, cap_rati
         let distance = view_distance(shadow_views[tap.layer], stored);
         // In front of the receiver's plane and inside the cone to the light's disc, give or
         // take a texel (a penumbra narrower than a texel is the hard edge's).
-        if stored < tap.depth && (radius - view.texel.x) * distance < tan_light * (receiver_distance - distance) {
+        if stored > tap.depth && (radius - view.texel.x) * distance < tan_light * (receiver_distance - distance) {
             blockers += 1.0;
             blocker_distance += distance;
         }

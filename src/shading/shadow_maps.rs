@@ -10,9 +10,14 @@
 //! within 45° one perspective view aimed at it; the rest a cube of six 90° views (+x, −x,
 //! +y, −y, +z, −z; a receiver reads the face of its direction's largest component, ties
 //! to the earlier axis). Each perspective view is widened by [`FACE_MARGIN_TEXELS`]
-//! texels on every side, so taps near a cube face's edge stay inside that face, and its
-//! depth runs 0 at the near plane (at the scene's bounding sphere when the light is
-//! outside it) to 1 at the far one (wgpu's clip space).
+//! texels on every side, so taps near a cube face's edge stay inside that face. Depth is
+//! reversed: 1 at the near plane (at the scene's bounding sphere when the light is
+//! outside it) and 0 at the far one. A perspective depth z/w crowds its float steps
+//! toward 1, and reversing puts that end where the distance is small, so the steps stay
+//! about a constant share of the distance (Reed 2015, "Depth precision visualized"); with
+//! depth 0 at the near plane a light inside the scene (near plane at 1 mm) had steps of
+//! 1.5 mm at 5 m, coarser than a 4096² map's texels, and its receivers shadowed
+//! themselves in speckles.
 //!
 //! What the GPU adds to the exact visibility, and how it converges: the map quantises
 //! blockers' depths into texels of the receiver's view, so edges are placed within about
@@ -184,7 +189,8 @@ fn perspective_view(
     let nearest_m = (centre - eye).length() - radius;
     let near = (far * 1e-4).max(1e-3).max(0.99 * nearest_m);
     let view = glam::camera::rh::view::look_to_mat4(eye, forward, up);
-    let projection = glam::camera::rh::proj::directx::perspective(2.0 * tan_wide.atan(), 1.0, near, far);
+    // Near and far swapped: reversed depth (the module's documentation).
+    let projection = glam::camera::rh::proj::directx::perspective(2.0 * tan_wide.atan(), 1.0, far, near);
     let nearest = nearest_m.max(near);
     GpuShadowView {
         view_proj: (projection * view).to_cols_array_2d(),
@@ -200,7 +206,8 @@ fn orthographic_view(direction: Vec3, centre: Vec3, radius: f32, size: u32) -> G
     let eye = centre - direction * (radius * 1.01 + 1e-3);
     let view = glam::camera::rh::view::look_at_mat4(eye, centre, up);
     let depth = 2.0 * (radius * 1.01 + 1e-3);
-    let projection = glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, 0.0, depth);
+    // Reversed like the perspective views' (1 nearest the sun), so one comparison serves both.
+    let projection = glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, depth, 0.0);
     GpuShadowView {
         view_proj: (projection * view).to_cols_array_2d(),
         texel: [0.0, 2.0 * radius / size.max(1) as f32, 0.0, 0.0],
@@ -274,13 +281,40 @@ mod tests {
     }
 
     #[test]
-    fn depth_grows_with_distance_along_a_view() {
+    fn depth_falls_with_distance_along_a_view() {
         let light = mapped(crate::scene::LightKind::Point, Vec3::ZERO, Vec3::NEG_Y);
         let bounds = Aabb::from_points(&[Vec3::splat(-2.0), Vec3::splat(2.0)]);
         let views = shadow_views(&[light], &bounds, 512);
         let near = clip(&views[0], Vec3::new(0.5, 0.0, 0.0)).z;
         let far = clip(&views[0], Vec3::new(2.5, 0.0, 0.0)).z;
-        assert!(0.0 < near && near < far && far < 1.0, "{near} {far}");
+        assert!(1.0 > near && near > far && far > 0.0, "{near} {far}");
+    }
+
+    /// The distance a perspective view's depth stands for, as shadow_lookup.wgsl's
+    /// view_distance inverts it: d = near·far / (near + z·(far − near)).
+    fn view_distance(view: &GpuShadowView, depth: f32) -> f32 {
+        let [near, far, ..] = view.depth_range;
+        near * far / (near + depth * (far - near))
+    }
+
+    #[test]
+    fn depth_steps_stay_a_small_share_of_the_distance() {
+        // A light inside the scene: the near plane at a millimetre. One float step of the
+        // stored depth must stand for far less than a 4096² map's texel (about 0.05 % of
+        // the distance for a 90° face) at any distance in the scene.
+        let light = mapped(crate::scene::LightKind::Point, Vec3::ZERO, Vec3::NEG_Y);
+        let bounds = Aabb::from_points(&[Vec3::splat(-10.0), Vec3::splat(10.0)]);
+        let view = shadow_views(&[light], &bounds, 4096)[0];
+        for distance in [0.05_f32, 0.5, 2.0, 5.0, 12.0, 17.0] {
+            let z = clip(&view, Vec3::new(distance, 0.0, 0.0)).z;
+            let round_trip = view_distance(&view, z);
+            assert!(
+                (round_trip - distance).abs() < 1e-4 * distance,
+                "{distance} → {round_trip}"
+            );
+            let step = view_distance(&view, z - z * f32::EPSILON) - distance;
+            assert!(step.abs() < 2e-5 * distance, "a depth step at {distance} m is {step} m");
+        }
     }
 
     /// Every corner of `bounds` lands inside `view`'s clip volume.
@@ -304,8 +338,8 @@ mod tests {
         let bounds = Aabb::from_points(&[Vec3::new(-4.0, 0.0, -2.0), Vec3::new(4.0, 3.0, 2.0)]);
         let view = shadow_views(&[light], &bounds, 1024)[0];
         assert_sees_every_corner(&view, &bounds);
-        // Nearer the sun is shallower.
-        assert!(clip(&view, Vec3::new(0.0, 3.0, 0.0)).z < clip(&view, Vec3::ZERO).z);
+        // Depth is reversed: nearer the sun is deeper.
+        assert!(clip(&view, Vec3::new(0.0, 3.0, 0.0)).z > clip(&view, Vec3::ZERO).z);
     }
 
     #[test]

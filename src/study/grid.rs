@@ -47,6 +47,9 @@ impl Knobs {
         if s.brdf != crate::shading::BrdfShading::Separate {
             label.push_str(&format!("-{}-brdf", s.brdf.name()));
         }
+        if s.shadow_map_size != crate::shading::DEFAULT_SHADOW_MAP_SIZE {
+            label.push_str(&format!("-m{}", s.shadow_map_size));
+        }
         if let SphereBudget::Total(n) = self.blockers {
             label.push_str(&format!("-s{n}"));
         }
@@ -161,6 +164,17 @@ pub fn knob_grid(quick: bool, default_blockers: SphereBudget, terrain: bool) -> 
                 s.brdf = brdf;
             }));
         }
+    }
+    // The shadow maps' size, the knob that should take their shadows to the path
+    // tracer's as it rises (0: no maps, those lights take the exact path or the SH).
+    let map_sizes: Vec<u32> = if quick { vec![] } else { vec![0, 512, 2048, 4096] };
+    for size in map_sizes {
+        grid.push(with(&|s| s.shadow_map_size = size));
+        let mut shipped = shipped_defaults(default_blockers);
+        if let Some(s) = shipped.shadows.as_mut() {
+            s.shadow_map_size = size;
+        }
+        grid.push(shipped);
     }
     let per_vertex_orders: Vec<usize> = if quick { vec![4] } else { (2..=6).collect() };
     for order in per_vertex_orders {

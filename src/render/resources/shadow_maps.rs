@@ -68,7 +68,9 @@ impl ShadowMaps {
                 label: Some("shadow map"),
                 mag_filter: wgpu::FilterMode::Linear,
                 min_filter: wgpu::FilterMode::Linear,
-                compare: Some(wgpu::CompareFunction::LessEqual),
+                // Reversed depth (shading::shadow_maps): lit where the receiver is at least as
+                // near as what the map holds.
+                compare: Some(wgpu::CompareFunction::GreaterEqual),
                 ..Default::default()
             }),
             views,
@@ -127,7 +129,7 @@ impl ShadowMaps {
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &target,
                     depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
+                        load: wgpu::LoadOp::Clear(0.0),
                         store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
@@ -236,7 +238,7 @@ fn depth_pipeline(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> wgpu
         depth_stencil: Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
             depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_compare: Some(wgpu::CompareFunction::Greater),
             stencil: Default::default(),
             // No rasterised bias: a slope-scaled one pushed the side faces of thin bars,
             // seen edge-on from the light, beyond the floor, and their shadows came out
