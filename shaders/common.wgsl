@@ -44,6 +44,10 @@ struct Frame {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+    // The camera's ray through normalised device coordinates (x, y) is view_ray[2] +
+    // x·view_ray[0] + y·view_ray[1] (xyz): its point at view depth z (along the forward
+    // axis) is camera_position + z times it (shading::gpu_types::view_ray).
+    view_ray: array<vec4<f32>, 3>,
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
     // axes, polar axis +z (shading-model.md §3).
     environment_irradiance: array<vec4<f32>, 9>,

@@ -6,7 +6,7 @@
 //
 // The low-resolution samples carry the exposed lighting with the material divided out,
 //   lighting = 2^EV · (L − emission) / (k_d + k_s),
-// (in half floats: clamped where the tone curve is long saturated) and each
+// (clamped where the tone curve is long saturated) and each
 // full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
 // material edges stay sharp at full resolution while only the smooth lighting is
 // interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes),
@@ -20,20 +20,17 @@
 // best-matching sample nearby: lavapipe tests their depth after the fragment shader, so
 // a fs_logsh pass would shade every fragment in full.
 
-// Two images, so that the upsampling reads each sample with two texel fetches (on
-// lavapipe the fetches were most of its cost).
-struct LowResolutionSample {
-    // rgb: 2^EV · (radiance − material emission) / reflectance; a = 1 where a surface was
-    // shaded (the clear value 0 elsewhere).
-    @location(0) lighting: vec4<f32>,
-    // xyz: the bits of the world position (metres, f32); w: the unit shading normal,
-    // octahedral, two snorm16.
-    @location(1) surface: vec4<u32>,
-};
-
+// One texel per sample, so that the upsampling reads each with one texel fetch (on
+// lavapipe the fetches were most of its cost; two images took two):
+//   x: the view depth of the shaded point (f32 bits; metres along the camera's forward
+//      axis; 0, the clear value, where no surface was shaded) — the point is rebuilt on
+//      the ray through the sample's pixel centre (Frame.view_ray), exact in f32;
+//   y, z: lighting = 2^EV · (radiance − material emission) / reflectance, rgb, each the
+//      top 21 bits of its f32 (pack_lighting: a relative step of 2⁻¹³; half floats
+//      would need a capability not every device has);
+//   w: the unit shading normal, octahedral, two snorm16.
 @group(3) @binding(0) var<uniform> upsample: UpsampleParams;
-@group(3) @binding(1) var low_lighting: texture_2d<f32>;
-@group(3) @binding(2) var low_surface: texture_2d<u32>;
+@group(3) @binding(1) var low_samples: texture_2d<u32>;
 
 // The octahedral map of a unit vector into [-1, 1]²: the upper half projected onto the
 // octahedron |x| + |y| + |z| = 1, the lower half folded over its diagonals.
@@ -57,19 +54,62 @@ fn reflectance(s: Surface) -> vec3<f32> {
     return max(s.k_d + s.k_s, vec3<f32>(1e-3));
 }
 
-// Under the half float's 65504: lighting this bright is white after the tone curve even
-// on the darkest reflectance (1e-3 × 6e4 = 60, where the curve is saturated).
+// Lighting this bright is white after the tone curve even on the darkest reflectance
+// (1e-3 × 6e4 = 60, where the curve is saturated); the clamp keeps infinities out.
 const MAX_LIGHTING: f32 = 6e4;
 
 @fragment
-fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> LowResolutionSample {
+fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<u32> {
     let s = surface(in, front_facing);
     let radiance = shadowed_radiance(s) - material.emissive.rgb;
     let lighting = min(frame.exposure * radiance / reflectance(s), vec3<f32>(MAX_LIGHTING));
-    var out: LowResolutionSample;
-    out.lighting = vec4<f32>(lighting, 1.0);
-    out.surface = vec4<u32>(bitcast<vec3<u32>>(s.position), pack2x16snorm(octahedral_from_unit(s.normal)));
-    return out;
+    // Past the near plane, so above 0 (the mark of a shaded sample).
+    let view_depth = max(dot(s.position - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
+    let packed_lighting = pack_lighting(lighting);
+    return vec4<u32>(
+        bitcast<u32>(view_depth),
+        packed_lighting.x,
+        packed_lighting.y,
+        pack2x16snorm(octahedral_from_unit(s.normal)),
+    );
+}
+
+// Non-negative rgb in 63 bits: each channel's f32 without its sign bit and lowest 10
+// mantissa bits (8 exponent and 13 mantissa bits), r in bits 0–20 of x, g in bits 21–31
+// of x and 0–9 of y, b in bits 10–30 of y.
+fn pack_lighting(rgb: vec3<f32>) -> vec2<u32> {
+    let bits = bitcast<vec3<u32>>(max(rgb, vec3<f32>(0.0))) >> vec3<u32>(10u);
+    return vec2<u32>(bits.r | (bits.g << 21u), (bits.g >> 11u) | (bits.b << 10u));
+}
+
+fn unpack_lighting(packed: vec2<u32>) -> vec3<f32> {
+    let r = packed.x & 0x1fffffu;
+    let g = (packed.x >> 21u) | ((packed.y & 0x3ffu) << 11u);
+    let b = packed.y >> 10u;
+    return bitcast<vec3<f32>>(vec3<u32>(r, g, b) << vec3<u32>(10u));
+}
+
+// A low-resolution sample read back: whether a surface was shaded there, its point
+// (rebuilt from its view depth on the ray through its pixel's centre), normal and lighting.
+struct LowSample {
+    shaded: bool,
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    lighting: vec3<f32>,
+};
+
+fn low_sample(texel: vec2<i32>, low_size: vec2<f32>) -> LowSample {
+    let packed = textureLoad(low_samples, texel, 0);
+    let view_depth = bitcast<f32>(packed.x);
+    let ndc = vec2<f32>(2.0, -2.0) * (vec2<f32>(texel) + vec2<f32>(0.5)) / low_size + vec2<f32>(-1.0, 1.0);
+    let ray = frame.view_ray[2].xyz + ndc.x * frame.view_ray[0].xyz + ndc.y * frame.view_ray[1].xyz;
+    let lighting = unpack_lighting(packed.yz);
+    return LowSample(
+        view_depth > 0.0,
+        frame.camera_position.xyz + ray * view_depth,
+        unit_from_octahedral(unpack2x16snorm(packed.w)),
+        lighting,
+    );
 }
 
 fn pow2(x: f32) -> f32 {
@@ -88,7 +128,8 @@ struct Upsampled {
 // caller discards it). A constant at each call, so the compiler drops the unused half.
 fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     let s = surface(in, front_facing);
-    let last = vec2<i32>(textureDimensions(low_lighting)) - vec2<i32>(1);
+    let low_size = vec2<f32>(textureDimensions(low_samples));
+    let last = vec2<i32>(low_size) - vec2<i32>(1);
     let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
     // in.clip is the pixel centre in framebuffer pixels here; low-resolution texel centres
     // sit at integer + 0.5 in texel units.
@@ -110,13 +151,11 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     for (var k = 0u; k < side * side; k++) {
         let step = vec2<i32>(i32(k % side), i32(k / side)) + vec2<i32>(first);
         let texel = clamp(vec2<i32>(corner) + step, vec2<i32>(0), last);
-        let lit = textureLoad(low_lighting, texel, 0);
-        let sample = lit.rgb;
-        let shaded = lit.a > 0.5;
-        let packed = textureLoad(low_surface, texel, 0);
-        let position = bitcast<vec3<f32>>(packed.xyz);
-        let normal = unit_from_octahedral(unpack2x16snorm(packed.w));
-        let off_plane = dot(position - s.position, s.normal) / tolerance_m;
+        let low = low_sample(texel, low_size);
+        let sample = low.lighting;
+        let shaded = low.shaded;
+        let normal = low.normal;
+        let off_plane = dot(low.position - s.position, s.normal) / tolerance_m;
         // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
         // lighting of the rim of a curved object changes fast with its normal).
         let facing2 = pow2(max(dot(normal, s.normal), 0.0));

@@ -73,6 +73,12 @@ pub struct GpuFrame {
     /// Lights from this index to `first_exact_light` are shadowed by their shadow maps.
     pub first_mapped_light: u32,
     pub _pad: [u32; 3],
+    /// The camera's ray through a point of normalised device coordinates (x, y) is
+    /// `view_ray[2] + x·view_ray[0] + y·view_ray[1]` (xyz; w unused): the forward axis plus
+    /// the right and up axes scaled by the tangents of the half fields of view, so the
+    /// ray's point at view depth z (along the forward axis) is the camera position plus z
+    /// times it (see [`view_ray`]).
+    pub view_ray: [[f32; 4]; 3],
     /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
     pub environment_irradiance: [[f32; 4]; 9],
 }
@@ -97,6 +103,7 @@ impl GpuFrame {
             first_exact_light: first_exact_light.min(light_count) as u32,
             first_mapped_light: first_mapped_light.min(first_exact_light).min(light_count) as u32,
             _pad: [0; 3],
+            view_ray: view_ray(camera, width / height),
             environment_irradiance,
         }
     }
@@ -124,6 +131,20 @@ pub fn order_by_shadow_path(lights: &[GpuLight]) -> (Vec<GpuLight>, [usize; 2]) 
             .copied(),
     );
     (ordered, [first_mapped, first_exact])
+}
+
+/// `Frame::view_ray` of `camera` seen at `aspect` (width over height): right × tan(xfov/2),
+/// up × tan(yfov/2), forward (wgpu's normalised device coordinates: x right, y up).
+pub fn view_ray(camera: &Camera, aspect: f32) -> [[f32; 4]; 3] {
+    let forward = camera.forward.normalize_or(Vec3::NEG_Z);
+    let right = forward.cross(camera.up).normalize_or(Vec3::X);
+    let up = right.cross(forward);
+    let tan_y = (0.5 * camera.yfov_rad).tan();
+    [
+        (right * tan_y * aspect).extend(0.0).to_array(),
+        (up * tan_y).extend(0.0).to_array(),
+        forward.extend(0.0).to_array(),
+    ]
 }
 
 /// The angle (radians) one pixel subtends at the centre of an image `height_px` tall seen
@@ -358,6 +379,45 @@ impl GpuBlocker {
         GpuBlocker {
             center_radius: sphere.center.extend(sphere.radius_m).to_array(),
             disc_normal: sphere.disc_normal.extend(0.0).to_array(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_is_rebuilt_from_its_device_coordinates_and_view_depth() {
+        // What the upsampling does with each low-resolution sample: the point the
+        // projection puts at (x, y), at its depth along the forward axis.
+        let camera = Camera {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            forward: Vec3::new(-0.3, -0.4, -1.0).normalize(),
+            up: Vec3::Y,
+            yfov_rad: 0.8,
+            znear: 0.05,
+            zfar: None,
+        };
+        let aspect = 16.0 / 9.0;
+        let camera = Camera {
+            up: camera.forward.cross(Vec3::Y).cross(camera.forward).normalize(),
+            ..camera
+        };
+        let view_proj = camera.view_projection(aspect);
+        let [right, up, forward] = view_ray(&camera, aspect).map(|v| Vec3::from_slice(&v[..3]));
+        for p in [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(-2.0, 0.5, -4.0),
+            Vec3::new(0.7, 1.9, 2.0),
+            Vec3::new(-40.0, -10.0, -90.0),
+        ] {
+            let clip = view_proj * p.extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            assert!(ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0, "{p} is in view: {ndc}");
+            let depth = (p - camera.position).dot(camera.forward);
+            let rebuilt = camera.position + (forward + ndc.x * right + ndc.y * up) * depth;
+            assert!((rebuilt - p).length() < 1e-5 * (1.0 + depth), "{p} → {rebuilt}");
         }
     }
 }

@@ -14,10 +14,9 @@ use wgpu::util::DeviceExt;
 use crate::render::descriptors::{DEPTH_FORMAT, frame_texture, numbered_entries};
 use crate::shading::gpu_types::GpuUpsampleParams;
 
-/// Formats of fs_shade_low's targets: lighting, and position with the packed normal (see
-/// reduced_shading.wgsl). 24 bytes a sample, read with two texel fetches.
-pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 2] =
-    [wgpu::TextureFormat::Rgba16Float, wgpu::TextureFormat::Rgba32Uint];
+/// Formats of fs_shade_low's targets: one, holding view depth, lighting and the packed
+/// normal (see reduced_shading.wgsl). 16 bytes a sample, read with one texel fetch.
+pub const LOW_RESOLUTION_FORMATS: [wgpu::TextureFormat; 1] = [wgpu::TextureFormat::Rgba32Uint];
 
 /// A low-resolution sample counts as lying on a pixel's surface within this many pixel
 /// footprints of the pixel's tangent plane (per unit of downsampling: samples lie up to
@@ -75,8 +74,7 @@ pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 },
                 count: None,
             },
-            texture(1, wgpu::TextureSampleType::Float { filterable: false }),
-            texture(2, wgpu::TextureSampleType::Uint),
+            texture(1, wgpu::TextureSampleType::Uint),
         ],
     })
 }
@@ -88,7 +86,7 @@ pub struct LowResolutionTargets {
     pub full_size: [u32; 2],
     pub downsample: u32,
     pub size: [u32; 2],
-    views: [wgpu::TextureView; 2],
+    views: [wgpu::TextureView; 1],
     depth: wgpu::TextureView,
     pub(crate) bind_group: wgpu::BindGroup,
 }
@@ -112,8 +110,7 @@ impl LowResolutionTargets {
             frame_texture(device, label, extent, format, 1, usage, &[]).create_view(&Default::default())
         };
         let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-        let labels = ["low-resolution lighting", "low-resolution surface"];
-        let views = [0, 1].map(|i| texture(labels[i], LOW_RESOLUTION_FORMATS[i], sampled));
+        let views = LOW_RESOLUTION_FORMATS.map(|format| texture("low-resolution samples", format, sampled));
         let depth = texture(
             "low-resolution depth",
             DEPTH_FORMAT,
@@ -141,7 +138,6 @@ impl LowResolutionTargets {
             entries: &numbered_entries([
                 params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
             ]),
         });
         LowResolutionTargets {
@@ -179,7 +175,7 @@ impl LowResolutionTargets {
         }
     }
 
-    /// The sample attachments, cleared (lighting a = 0 marks "no surface").
+    /// The sample attachments, cleared (view depth 0 marks "no surface").
     pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
         self.views
             .iter()
