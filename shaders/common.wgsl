@@ -134,7 +134,12 @@ struct UpsampleParams {
     // darkest one's plus lighting_floor.
     max_lighting_ratio: f32,
     lighting_floor: f32,
-    _pad: vec2<f32>,
+    // Where a sample sits in its texel, in texels (0.5: at its centre; the soft layer's,
+    // taken at the top-left low-resolution texel of their 2 × 2 block, 0.25).
+    sample_offset: vec2<f32>,
+    // Sample texel (i, j) lies on the camera's ray through normalised device coordinates
+    // (i, j) · xy + zw.
+    texel_to_ndc: vec4<f32>,
 };
 
 // A height-field terrain for terrain.wgsl (src/render/resources/terrain.rs fills it).

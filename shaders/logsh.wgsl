@@ -430,16 +430,36 @@ fn mapped_lights_radiance(s: Surface) -> vec3<f32> {
     return radiance;
 }
 
-// Radiance of surface s lit through the lobes' SH by the lights before
-// frame.first_mapped_light; the lights from frame.first_exact_light on take the exact
-// path instead, eight at a time: their exact visibility (times the share above the
-// terrain's horizon) times their unshadowed radiance. The lights in between, on the
-// shadow-map path, are left to mapped_lights_radiance.
+// Radiance of surface s: its emission, the light the SH carries
+// (harmonic_radiance_through) and the lights on the exact path (exact_path_radiance).
+// The lights on the shadow-map path are left to mapped_lights_radiance.
 fn soft_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
-    var radiance = s.emissive + environment_through(s, lobes);
+    return s.emissive + harmonic_radiance_through(s, lobes) + exact_path_radiance(s);
+}
+
+// Radiance of surface s lit through the lobes' SH: the environment and the lights before
+// frame.first_mapped_light.
+fn harmonic_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
+    var radiance = environment_through(s, lobes);
     for (var i = 0u; i < frame.first_mapped_light; i++) {
         radiance += light_through(s, lobes, incidence(light_at(i), s.position));
     }
+    return radiance;
+}
+
+// harmonic_radiance_through with the blockers' and the terrain's visibility at s: the
+// light of soft shadows, which reduced_shading.wgsl may shade more coarsely than the rest.
+fn harmonic_radiance(s: Surface) -> vec3<f32> {
+    if !SH_VISIBILITY {
+        return harmonic_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+    }
+    return harmonic_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+}
+
+// The lights from frame.first_exact_light on, eight at a time: their exact visibility
+// (times the share above the terrain's horizon) times their unshadowed radiance.
+fn exact_path_radiance(s: Surface) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
     if EXACT_LIGHT_PATH {
         for (var first = frame.first_exact_light; first < frame.light_count; first += select(4u, 8u, EXACT_WIDE)) {
             radiance += exact_lights_radiance(s, first);

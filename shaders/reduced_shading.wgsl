@@ -1,24 +1,25 @@
-// Reduced-resolution shading (src/render/passes/reduced_shading.rs): a low-resolution pass shades
-// one pixel in every d × d block with the full log-SH shading of logsh.wgsl and keeps the
-// surface it shaded; the full-resolution pass draws the meshes again and, per pixel,
-// blends the low-resolution samples that lie on its own surface (a joint bilateral
-// upsampling guided by position and normal, Kopf et al. 2007). Appended after logsh.wgsl.
+// Reduced-resolution shading (src/render/passes/reduced_shading.rs): one sample in every
+// d × d block of pixels is shaded with the full log-SH shading of logsh.wgsl (deferred,
+// from a surface buffer: low_resolution.wgsl), and the full-resolution pass draws the
+// meshes again and, per pixel, blends the samples that lie on its own surface (a joint
+// bilateral upsampling guided by position and normal, Kopf et al. 2007). Appended after
+// logsh.wgsl. With two-level shading the light of soft shadows is shaded at every other
+// sample only and upsampled to the rest by the same function (upsampled_lighting).
 //
-// The low-resolution samples carry the exposed lighting with the material divided out,
+// The samples carry the exposed lighting with the material divided out,
 //   lighting = 2^EV · (L − emission) / (k_d + k_s),
-// (clamped where the tone curve is long saturated) and each
-// full-resolution pixel multiplies its own k_d + k_s back in: texture detail and
-// material edges stay sharp at full resolution while only the smooth lighting is
-// interpolated. Pixels that no low-resolution sample matches (thin objects, silhouettes),
-// and those whose nearest samples on their surface disagree (an edge of the light runs
-// between them) or are fewer than two, are discarded by fs_upsample_marking and shaded
-// in full by fs_logsh right after: every
-// pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so the
-// depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside the upsampling would cost every
-// pixel the full shading on a software GPU, which runs both sides of a divergent
-// branch.) Multisampled targets use fs_upsample, where such pixels take the
-// best-matching sample nearby: lavapipe tests their depth after the fragment shader, so
-// a fs_logsh pass would shade every fragment in full.
+// (clamped where the tone curve is long saturated) and each full-resolution pixel
+// multiplies its own k_d + k_s back in: texture detail and material edges stay sharp at
+// full resolution while only the smooth lighting is interpolated. Pixels that no sample
+// matches (thin objects, silhouettes), and those whose nearest samples on their surface
+// disagree (an edge of the light runs between them) or are fewer than two, are
+// discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
+// pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so
+// the depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside
+// the upsampling would cost every pixel the full shading on a software GPU, which runs
+// both sides of a divergent branch.) Multisampled targets use fs_upsample, where such
+// pixels take the best-matching sample nearby: lavapipe tests their depth after the
+// fragment shader, so a fs_logsh pass would shade every fragment in full.
 
 // One texel per sample, so that the upsampling reads each with one texel fetch (on
 // lavapipe the fetches were most of its cost; two images took two):
@@ -58,16 +59,12 @@ fn reflectance(s: Surface) -> vec3<f32> {
 // (1e-3 × 6e4 = 60, where the curve is saturated); the clamp keeps infinities out.
 const MAX_LIGHTING: f32 = 6e4;
 
-@fragment
-fn fs_shade_low(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<u32> {
-    let s = surface(in, front_facing);
-    let radiance = shadowed_radiance(s) - material.emissive.rgb;
-    let lighting = min(frame.exposure * radiance / reflectance(s), vec3<f32>(MAX_LIGHTING));
-    // Past the near plane, so above 0 (the mark of a shaded sample).
-    let view_depth = max(dot(s.position - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
-    let packed_lighting = pack_lighting(lighting);
+// The texel of a low-resolution sample of surface s with exposed `lighting` per unit
+// reflectance.
+fn low_sample_texel(s: Surface, lighting: vec3<f32>) -> vec4<u32> {
+    let packed_lighting = pack_lighting(min(lighting, vec3<f32>(MAX_LIGHTING)));
     return vec4<u32>(
-        bitcast<u32>(view_depth),
+        bitcast<u32>(view_depth_of(s.position)),
         packed_lighting.x,
         packed_lighting.y,
         pack2x16snorm(octahedral_from_unit(s.normal)),
@@ -98,10 +95,10 @@ struct LowSample {
     lighting: vec3<f32>,
 };
 
-fn low_sample(texel: vec2<i32>, low_size: vec2<f32>) -> LowSample {
+fn low_sample(texel: vec2<i32>) -> LowSample {
     let packed = textureLoad(low_samples, texel, 0);
     let view_depth = bitcast<f32>(packed.x);
-    let ndc = vec2<f32>(2.0, -2.0) * (vec2<f32>(texel) + vec2<f32>(0.5)) / low_size + vec2<f32>(-1.0, 1.0);
+    let ndc = vec2<f32>(texel) * upsample.texel_to_ndc.xy + upsample.texel_to_ndc.zw;
     let ray = frame.view_ray[2].xyz + ndc.x * frame.view_ray[0].xyz + ndc.y * frame.view_ray[1].xyz;
     let lighting = unpack_lighting(packed.yz);
     return LowSample(
@@ -123,17 +120,32 @@ struct Upsampled {
     matched: bool,
 };
 
+// The lighting (exposed, per unit reflectance) the samples give a pixel, and whether they
+// matched its surface and agreed.
+struct UpsampledLighting {
+    lighting: vec3<f32>,
+    matches: bool,
+};
+
+fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
+    let s = surface(in, front_facing);
+    let up = upsampled_lighting(in.clip.xy, s, ring);
+    let exposed = frame.exposure * material.emissive.rgb + reflectance(s) * up.lighting;
+    return Upsampled(vec4<f32>(tonemap_aces_fit(exposed), 1.0), up.matches);
+}
+
 // `ring`: also look at the ring of 12 samples around the 2 × 2 nearest for the best match
 // of a pixel they do not match (without it, such a pixel's colour is left undefined: the
 // caller discards it). A constant at each call, so the compiler drops the unused half.
-fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
-    let s = surface(in, front_facing);
+// `pixel`: the pixel's centre in its own image's pixels (in.clip.xy), which
+// upsample.full_to_low maps to the samples' image; s: its surface.
+fn upsampled_lighting(pixel: vec2<f32>, s: Surface, ring: bool) -> UpsampledLighting {
     let low_size = vec2<f32>(textureDimensions(low_samples));
     let last = vec2<i32>(low_size) - vec2<i32>(1);
     let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
     // in.clip is the pixel centre in framebuffer pixels here; low-resolution texel centres
     // sit at integer + 0.5 in texel units.
-    let at = in.clip.xy * upsample.full_to_low - vec2<f32>(0.5);
+    let at = pixel * upsample.full_to_low - upsample.sample_offset;
     let corner = floor(at);
     let t = at - corner;
     var lighting = vec3<f32>(0.0);
@@ -151,7 +163,7 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
     for (var k = 0u; k < side * side; k++) {
         let step = vec2<i32>(i32(k % side), i32(k / side)) + vec2<i32>(first);
         let texel = clamp(vec2<i32>(corner) + step, vec2<i32>(0), last);
-        let low = low_sample(texel, low_size);
+        let low = low_sample(texel);
         let sample = low.lighting;
         let shaded = low.shaded;
         let normal = low.normal;
@@ -195,8 +207,7 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
         lighting = best_lighting;
         matched = 1.0;
     }
-    let exposed = frame.exposure * material.emissive.rgb + reflectance(s) * lighting / matched;
-    return Upsampled(vec4<f32>(tonemap_aces_fit(exposed), 1.0), matches);
+    return UpsampledLighting(lighting / matched, matches);
 }
 
 // Upsampling into a multisampled target.

@@ -187,6 +187,8 @@ fn upsample_params_match_wgsl() {
             ("min_matched_weight", offset_of!(GpuUpsampleParams, min_matched_weight)),
             ("max_lighting_ratio", offset_of!(GpuUpsampleParams, max_lighting_ratio)),
             ("lighting_floor", offset_of!(GpuUpsampleParams, lighting_floor)),
+            ("sample_offset", offset_of!(GpuUpsampleParams, sample_offset)),
+            ("texel_to_ndc", offset_of!(GpuUpsampleParams, texel_to_ndc)),
         ],
     );
 }

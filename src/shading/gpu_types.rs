@@ -318,7 +318,11 @@ pub struct GpuUpsampleParams {
     pub min_matched_weight: f32,
     pub max_lighting_ratio: f32,
     pub lighting_floor: f32,
-    pub _pad: [f32; 2],
+    /// Where a sample sits in its texel, in texels.
+    pub sample_offset: [f32; 2],
+    /// Sample texel (i, j) lies on the camera's ray through normalised device
+    /// coordinates (i, j) · xy + zw.
+    pub texel_to_ndc: [f32; 4],
 }
 
 /// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).

@@ -4,6 +4,8 @@
 
 pub mod heat_map;
 pub mod logsh;
+mod low_resolution;
 pub mod per_vertex;
 pub mod raster;
 pub mod reduced_shading;
+mod scene_pipeline;

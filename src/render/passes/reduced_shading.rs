@@ -5,9 +5,23 @@
 //! (thin objects, silhouettes) are shaded in full on single-sampled targets, and take the
 //! best sample nearby on multisampled ones (see `logsh::shades_unmatched_exactly`).
 //!
-//! A frame is three render passes: the depth of the low-resolution image, its shading
-//! into [`LOW_RESOLUTION_FORMATS`] targets, then in the frame's [`crate::render::RenderTarget`] the
-//! depth pre-pass, the upsampling and the full shading of the unmatched pixels.
+//! A frame's passes (`low_resolution` draws the first three): the low-resolution surfaces
+//! rasterised into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with their depth; with
+//! two-level shading, the soft layer — the light of soft shadows (the environment's and
+//! the SH path's lights) at one sample per 2 × 2 low-resolution samples; the samples
+//! ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes reading the buffer (one
+//! level: in full; two levels: the soft layer upsampled plus the sharp lights, and in full
+//! where the soft layer does not match or disagrees); then, in the frame's
+//! [`crate::render::RenderTarget`], the depth pre-pass, the upsampling and the full
+//! shading of the unmatched pixels.
+//!
+//! Why deferred: rasterised at a third of the resolution, a figure's triangles are
+//! smaller than a sample, and lavapipe runs a fragment shader over blocks of pixels per
+//! triangle, so the full shading ran once per triangle for a pixel or less; a
+//! full-screen pass runs it once per sample. Why two levels: the soft shadows walk every
+//! blocker in reach, the costliest part of the shading, and change slowly enough across
+//! the image to be shaded at half the samples' resolution along each side. What each
+//! step saved: docs/performance.md (`render --time-frames` prints each pass's time).
 
 use wgpu::util::DeviceExt;
 
@@ -41,6 +55,16 @@ const MAX_LIGHTING_RATIO: f32 = 1.5;
 /// after the tone curve and sRGB, so in deep shadow only differences larger than that
 /// cost full shading.
 const LIGHTING_FLOOR: f32 = 0.02;
+
+/// [`MAX_LIGHTING_RATIO`] and [`LIGHTING_FLOOR`] of the soft layer (two-level shading):
+/// its light is dim beside the sharp lights' (a sky at a fraction of the key), so the
+/// floor that forgives differences in the dark at the last level forgave every
+/// difference of the soft light, and the floor along the backdrop's foot, where the sky's
+/// visibility halves within a few samples, was interpolated. These held the
+/// studio's error to that of shading it in one level (compared with the study's
+/// reference outside the study, so no figures in the docs) for 1 % more frame time.
+const SOFT_MAX_LIGHTING_RATIO: f32 = 1.25;
+const SOFT_LIGHTING_FLOOR: f32 = 0.005;
 
 /// The size of the shaded image for a `width` × `height` frame shaded once per
 /// `downsample` × `downsample` pixels (rounded up, so it covers every pixel).
@@ -79,83 +103,102 @@ pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// The low-resolution images of one frame size: where fs_shade_low writes and
-/// fs_upsample reads.
+/// Formats of the surface buffer fs_surface_buffer writes (see low_resolution.wgsl).
+pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureFormat::Rgba32Uint; 2];
+
+/// The bind group layout (group 1 of the full-screen passes, in place of the material)
+/// through which the low-resolution shading reads the surface buffer.
+pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let texture = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Uint,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("surface buffer"),
+        entries: &[texture(8), texture(9)],
+    })
+}
+
+/// The low-resolution images of one frame size: the surface buffer and its depth, the
+/// samples fs_shade_low writes and fs_upsample reads, and, with two-level shading, the
+/// soft layer beneath them.
 pub struct LowResolutionTargets {
     /// The full-resolution frame size these serve.
     pub full_size: [u32; 2],
     pub downsample: u32,
     pub size: [u32; 2],
-    views: [wgpu::TextureView; 1],
-    depth: wgpu::TextureView,
-    pub(crate) bind_group: wgpu::BindGroup,
+    pub(crate) surface: SurfaceBuffer,
+    pub(crate) samples: SampleImage,
+    /// The soft layer (fs_shade_soft), one sample per 2 × 2 low-resolution samples,
+    /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
+    /// in two levels.
+    pub(crate) soft: Option<SampleImage>,
 }
 
-impl LowResolutionTargets {
-    /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
-    /// pixels, read through `layout` ([`low_resolution_layout`]).
-    pub fn new(
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-        full_size: [u32; 2],
-        downsample: u32,
-    ) -> LowResolutionTargets {
-        let size = low_resolution_size(full_size[0], full_size[1], downsample);
-        let extent = wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
-            depth_or_array_layers: 1,
-        };
+fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width: size[0],
+        height: size[1],
+        depth_or_array_layers: 1,
+    }
+}
+
+const SAMPLED_TARGET: wgpu::TextureUsages =
+    wgpu::TextureUsages::RENDER_ATTACHMENT.union(wgpu::TextureUsages::TEXTURE_BINDING);
+
+/// The low-resolution surfaces: two images and their depth, and the bind group through
+/// which the full-screen passes read them.
+pub(crate) struct SurfaceBuffer {
+    views: [wgpu::TextureView; 2],
+    depth: wgpu::TextureView,
+    pub bind_group: wgpu::BindGroup,
+}
+
+impl SurfaceBuffer {
+    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2]) -> SurfaceBuffer {
         let texture = |label, format, usage| {
-            frame_texture(device, label, extent, format, 1, usage, &[]).create_view(&Default::default())
+            frame_texture(device, label, image_extent(size), format, 1, usage, &[]).create_view(&Default::default())
         };
-        let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-        let views = LOW_RESOLUTION_FORMATS.map(|format| texture("low-resolution samples", format, sampled));
+        let views = SURFACE_BUFFER_FORMATS.map(|format| texture("low-resolution surfaces", format, SAMPLED_TARGET));
         let depth = texture(
             "low-resolution depth",
             DEPTH_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        let params = GpuUpsampleParams {
-            full_to_low: [
-                size[0] as f32 / full_size[0].max(1) as f32,
-                size[1] as f32 / full_size[1].max(1) as f32,
-            ],
-            plane_tolerance_px: PLANE_TOLERANCE_PX_PER_DOWNSAMPLE * downsample as f32,
-            min_matched_weight: MIN_MATCHED_WEIGHT,
-            max_lighting_ratio: MAX_LIGHTING_RATIO,
-            lighting_floor: LIGHTING_FLOOR,
-            _pad: [0.0; 2],
-        };
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("upsample parameters"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("low-resolution samples"),
+            label: Some("surface buffer"),
             layout,
-            entries: &numbered_entries([
-                params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[0]),
-            ]),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&views[0]),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 9,
+                    resource: wgpu::BindingResource::TextureView(&views[1]),
+                },
+            ],
         });
-        LowResolutionTargets {
-            full_size,
-            downsample,
-            size,
+        SurfaceBuffer {
             views,
             depth,
             bind_group,
         }
     }
 
-    /// Whether these serve frames of `full_size` at `downsample`.
-    pub fn fits(&self, full_size: [u32; 2], downsample: u32) -> bool {
-        self.full_size == full_size && self.downsample == downsample
+    /// The surface images, cleared (view depth 0 marks "no surface").
+    pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
+        self.views.iter().map(cleared).collect()
     }
 
-    /// The depth attachment, cleared by the depth pass (`clear`) and kept for the shading.
+    /// The depth attachment: cleared and written by the surface pass (`clear`), then
+    /// tested, and written by the marking pass, in the shading pass.
     pub(crate) fn depth_attachment(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         wgpu::RenderPassDepthStencilAttachment {
             view: &self.depth,
@@ -174,23 +217,140 @@ impl LowResolutionTargets {
             stencil_ops: None,
         }
     }
+}
 
-    /// The sample attachments, cleared (view depth 0 marks "no surface").
-    pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
-        self.views
-            .iter()
-            .map(|view| {
-                Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            })
-            .collect()
+/// An attachment cleared to zero.
+fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}
+
+/// One image of samples (see reduced_shading.wgsl) and the bind group through which the
+/// next finer level reads it.
+pub(crate) struct SampleImage {
+    view: wgpu::TextureView,
+    pub bind_group: wgpu::BindGroup,
+}
+
+impl SampleImage {
+    /// An image of `size` samples, each the low-resolution surface at texel (i, j) ·
+    /// `stride` of an image of `low_size`, read by pixels of an image of `reader_size`
+    /// (each sample spans `spacing_px` pixels of the full-resolution frame), which treat
+    /// samples as disagreeing beyond [`max_lighting_ratio`, `lighting_floor`].
+    fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        label: &str,
+        [size, low_size, reader_size]: [[u32; 2]; 3],
+        [stride, spacing_px]: [u32; 2],
+        [max_lighting_ratio, lighting_floor]: [f32; 2],
+    ) -> SampleImage {
+        let view = frame_texture(
+            device,
+            label,
+            image_extent(size),
+            LOW_RESOLUTION_FORMATS[0],
+            1,
+            SAMPLED_TARGET,
+            &[],
+        )
+        .create_view(&Default::default());
+        let [low_width, low_height] = low_size.map(|v| v.max(1) as f32);
+        let [reader_width, reader_height] = reader_size.map(|v| v.max(1) as f32);
+        let stride = stride as f32;
+        let params = GpuUpsampleParams {
+            // A reader's pixel centre in low-resolution texels is centre · low / reader;
+            // in samples, that over the stride.
+            full_to_low: [low_width / reader_width / stride, low_height / reader_height / stride],
+            plane_tolerance_px: PLANE_TOLERANCE_PX_PER_DOWNSAMPLE * spacing_px as f32,
+            min_matched_weight: MIN_MATCHED_WEIGHT,
+            max_lighting_ratio,
+            lighting_floor,
+            // The centre of low-resolution texel i · stride, in samples.
+            sample_offset: [0.5 / stride; 2],
+            texel_to_ndc: [
+                2.0 * stride / low_width,
+                -2.0 * stride / low_height,
+                1.0 / low_width - 1.0,
+                1.0 - 1.0 / low_height,
+            ],
+        };
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("upsample parameters"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &numbered_entries([params.as_entire_binding(), wgpu::BindingResource::TextureView(&view)]),
+        });
+        SampleImage { view, bind_group }
+    }
+
+    /// The sample attachment, cleared (view depth 0 marks "no surface").
+    pub(crate) fn color_attachments(&self) -> [Option<wgpu::RenderPassColorAttachment<'_>>; 1] {
+        [cleared(&self.view)]
+    }
+}
+
+impl LowResolutionTargets {
+    /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
+    /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
+    /// surfaces through `surface_layout` ([`surface_buffer_layout`]); `soft_layer`: with
+    /// the soft layer at twice the spacing (two-level shading).
+    pub fn new(
+        device: &wgpu::Device,
+        [layout, surface_layout]: [&wgpu::BindGroupLayout; 2],
+        full_size: [u32; 2],
+        downsample: u32,
+        soft_layer: bool,
+    ) -> LowResolutionTargets {
+        let size = low_resolution_size(full_size[0], full_size[1], downsample);
+        let samples = SampleImage::new(
+            device,
+            layout,
+            "low-resolution samples",
+            [size, size, full_size],
+            [1, downsample],
+            [MAX_LIGHTING_RATIO, LIGHTING_FLOOR],
+        );
+        let soft = soft_layer.then(|| {
+            let soft_size = low_resolution_size(size[0], size[1], 2);
+            SampleImage::new(
+                device,
+                layout,
+                "soft layer samples",
+                [soft_size, size, size],
+                [2, 2 * downsample],
+                [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
+            )
+        });
+        LowResolutionTargets {
+            full_size,
+            downsample,
+            size,
+            surface: SurfaceBuffer::new(device, surface_layout, size),
+            samples,
+            soft,
+        }
+    }
+
+    /// Whether these serve frames of `full_size` at `downsample`, with a soft layer or not.
+    pub fn fits(&self, full_size: [u32; 2], downsample: u32, soft_layer: bool) -> bool {
+        self.full_size == full_size && self.downsample == downsample && self.soft.is_some() == soft_layer
+    }
+
+    /// The bind group through which the full-resolution pass reads the samples.
+    pub(crate) fn bind_group(&self) -> &wgpu::BindGroup {
+        &self.samples.bind_group
     }
 }
 

@@ -19,6 +19,7 @@ pub const LOGSH: &str = include_str!("../../../shaders/logsh.wgsl");
 pub const EXACT_LIGHTS: &str = include_str!("../../../shaders/exact_lights.wgsl");
 pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
+pub const LOW_RESOLUTION: &str = include_str!("../../../shaders/low_resolution.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
 pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
@@ -58,6 +59,6 @@ pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> Strin
     };
     let terrain = terrain::terrain_module(order);
     format!(
-        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{SHADOW_LOOKUP}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{per_vertex}"
+        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{SHADOW_LOOKUP}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{LOW_RESOLUTION}\n{per_vertex}"
     )
 }

@@ -1,0 +1,278 @@
+//! The low-resolution passes of reduced-resolution shading (see `reduced_shading` and
+//! shaders/low_resolution.wgsl): the surface buffer rasterised, then full-screen passes
+//! that shade it — in one level, or in two, the light of soft shadows at twice the
+//! spacing and the sharp lights added at every sample.
+
+use super::reduced_shading::{
+    LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout, surface_buffer_layout,
+};
+use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline};
+use crate::render::descriptors::depth_test;
+use crate::render::pass_timer::TimedEncoder;
+use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_objects};
+use crate::shading::CompiledPaths;
+
+/// The passes of reduced-resolution shading (see `reduced_shading`).
+pub(super) struct ReducedShadingPipelines {
+    pub downsample: u32,
+    pub low_resolution_layout: wgpu::BindGroupLayout,
+    pub surface_buffer_layout: wgpu::BindGroupLayout,
+    /// The low-resolution surfaces (fs_surface_buffer), rasterised.
+    surface_buffer: wgpu::RenderPipeline,
+    /// The low-resolution samples shaded in full (fs_shade_low), full-screen.
+    shade_low: wgpu::RenderPipeline,
+    /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
+    pub soft_layer: Option<SoftLayerPipelines>,
+    /// The upsampling, for objects with a base colour texture and for the others.
+    pub upsample: ByTexture,
+}
+
+/// Two-level reduced shading (see `reduced_shading`): the soft layer's samples
+/// (fs_shade_soft) and the low-resolution samples upsampled from them with the sharp
+/// lights added (fs_shade_sharp_marking; fs_shade_low then shades what it discarded).
+pub(super) struct SoftLayerPipelines {
+    shade_soft: wgpu::RenderPipeline,
+    shade_sharp: wgpu::RenderPipeline,
+}
+
+impl ReducedShadingPipelines {
+    /// The pipelines shading one sample per `downsample` × `downsample` pixels from
+    /// `module`, for targets and code as `variant` says.
+    pub fn new(
+        device: &wgpu::Device,
+        layouts: &SceneLayouts,
+        shadow_layout: &wgpu::BindGroupLayout,
+        module: &wgpu::ShaderModule,
+        downsample: u32,
+        variant: Variant,
+    ) -> ReducedShadingPipelines {
+        let paths = variant.paths;
+        let low_resolution_layout = low_resolution_layout(device);
+        let surface_buffer_layout = surface_buffer_layout(device);
+        let low_variant = Variant { samples: 1, ..variant };
+        let low = |stage| scene_pipeline(device, layouts, shadow_layout, module, stage, low_variant);
+        let full_screen = |entry_point, samples, depth| {
+            full_screen_pipeline(
+                device,
+                [&layouts.frame, &surface_buffer_layout, shadow_layout],
+                module,
+                FullScreenPass {
+                    entry_point,
+                    samples,
+                    depth,
+                },
+                paths,
+            )
+        };
+        ReducedShadingPipelines {
+            downsample,
+            surface_buffer: low(Stage::SurfaceBuffer),
+            shade_low: full_screen("fs_shade_low", None, FullScreenDepth::Unmarked),
+            soft_layer: two_level(paths).then(|| SoftLayerPipelines {
+                shade_soft: full_screen("fs_shade_soft", None, FullScreenDepth::None),
+                shade_sharp: full_screen(
+                    "fs_shade_sharp_marking",
+                    Some(&low_resolution_layout),
+                    FullScreenDepth::Marking,
+                ),
+            }),
+            upsample: ByTexture::new(|textured| {
+                scene_pipeline(
+                    device,
+                    layouts,
+                    shadow_layout,
+                    module,
+                    Stage::Upsample(&low_resolution_layout),
+                    Variant { textured, ..variant },
+                )
+            }),
+            low_resolution_layout,
+            surface_buffer_layout,
+        }
+    }
+}
+
+/// Whether reduced-resolution shading goes in two levels with `paths` compiled in: when
+/// there is light of soft shadows (the SH path's) beside light of sharp ones (shadow maps,
+/// the exact path), the first is shaded at twice the samples' spacing (see
+/// `reduced_shading`).
+fn two_level(paths: CompiledPaths) -> bool {
+    paths.harmonics && (paths.maps || paths.exact)
+}
+
+/// The reduced-resolution samples: the surface buffer rasterised, then (two-level) the
+/// soft layer and the samples shaded from it, else the samples shaded in full, by
+/// full-screen passes reading the buffer.
+pub(super) fn shade_low_resolution(
+    frame: &mut TimedEncoder,
+    pipelines: &ReducedShadingPipelines,
+    low: &LowResolutionTargets,
+    scene: &GpuScene,
+    blockers: &GpuBlockers,
+) {
+    let surfaces = low.surface.color_attachments();
+    let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("low-resolution surfaces"),
+        color_attachments: &surfaces,
+        depth_stencil_attachment: Some(low.surface.depth_attachment(true)),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+    pass.set_bind_group(2, &blockers.bind_group, &[]);
+    pass.set_pipeline(&pipelines.surface_buffer);
+    draw_objects(&mut pass, scene);
+    drop(pass);
+    frame.mark("low-resolution surfaces");
+
+    let bound = Bound { scene, blockers, low };
+    let samples = low.samples.color_attachments();
+    match (&pipelines.soft_layer, &low.soft) {
+        (Some(soft_pipelines), Some(soft)) => {
+            bound.full_screen(
+                frame,
+                "soft layer shading",
+                (&soft.color_attachments(), None),
+                None,
+                &[&soft_pipelines.shade_soft],
+            );
+            // The sharp pass marks what it shaded (depth 1), so the full shading after it
+            // shades only the samples it discarded.
+            bound.full_screen(
+                frame,
+                "low-resolution shading",
+                (&samples, Some(low.surface.depth_attachment(false))),
+                Some(&soft.bind_group),
+                &[&soft_pipelines.shade_sharp, &pipelines.shade_low],
+            );
+        }
+        _ => bound.full_screen(
+            frame,
+            "low-resolution shading",
+            (&samples, Some(low.surface.depth_attachment(false))),
+            None,
+            &[&pipelines.shade_low],
+        ),
+    }
+}
+
+/// What every full-screen pass binds: the frame, the surface buffer, the blockers.
+struct Bound<'a> {
+    scene: &'a GpuScene,
+    blockers: &'a GpuBlockers,
+    low: &'a LowResolutionTargets,
+}
+
+impl Bound<'_> {
+    /// One render pass named `label` into `targets` (colour, depth) drawing the full-screen
+    /// triangle with each of `shading` in turn, the `coarser` samples bound as group 3.
+    fn full_screen(
+        &self,
+        frame: &mut TimedEncoder,
+        label: &'static str,
+        targets: (
+            &[Option<wgpu::RenderPassColorAttachment<'_>>],
+            Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
+        ),
+        coarser: Option<&wgpu::BindGroup>,
+        shading: &[&wgpu::RenderPipeline],
+    ) {
+        let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: targets.0,
+            depth_stencil_attachment: targets.1,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.scene.frame_bind_group, &[]);
+        pass.set_bind_group(1, &self.low.surface.bind_group, &[]);
+        pass.set_bind_group(2, &self.blockers.bind_group, &[]);
+        if let Some(coarser) = coarser {
+            pass.set_bind_group(3, coarser, &[]);
+        }
+        for pipeline in shading {
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..1);
+        }
+        drop(pass);
+        frame.mark(label);
+    }
+}
+
+/// How a full-screen pass of the low-resolution shading meets the surface pass's depth
+/// (its triangle lies at depth 1; see low_resolution.wgsl).
+#[derive(Clone, Copy)]
+enum FullScreenDepth {
+    /// No depth attachment (the soft layer, which reads the buffer itself).
+    None,
+    /// Only where a surface was drawn and no marking pass has shaded: depth < 1.
+    Unmarked,
+    /// As `Unmarked`, and it writes depth 1 where it shades.
+    Marking,
+}
+
+/// A full-screen pass of the low-resolution shading.
+struct FullScreenPass<'a> {
+    entry_point: &'static str,
+    /// The coarser samples it reads (group 3), if any.
+    samples: Option<&'a wgpu::BindGroupLayout>,
+    depth: FullScreenDepth,
+}
+
+/// A pipeline drawing vs_full_screen's triangle into one [`LOW_RESOLUTION_FORMATS`]
+/// target with `pass.entry_point`, bind groups `groups` (frame, surface buffer, shadow)
+/// and the coarser samples, with `paths` compiled in.
+fn full_screen_pipeline(
+    device: &wgpu::Device,
+    groups: [&wgpu::BindGroupLayout; 3],
+    module: &wgpu::ShaderModule,
+    pass: FullScreenPass,
+    paths: CompiledPaths,
+) -> wgpu::RenderPipeline {
+    let mut bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.into_iter().map(Some).collect();
+    bind_group_layouts.push(pass.samples);
+    if pass.samples.is_none() {
+        bind_group_layouts.pop();
+    }
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(pass.entry_point),
+        bind_group_layouts: &bind_group_layouts,
+        immediate_size: 0,
+    });
+    let depth_stencil = match pass.depth {
+        FullScreenDepth::None => None,
+        FullScreenDepth::Unmarked => Some(depth_test(false, wgpu::CompareFunction::Greater)),
+        FullScreenDepth::Marking => Some(depth_test(true, wgpu::CompareFunction::Greater)),
+    };
+    let constants = path_constants(paths);
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(pass.entry_point),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_full_screen"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(pass.entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            targets: &[Some(wgpu::ColorTargetState {
+                format: LOW_RESOLUTION_FORMATS[0],
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

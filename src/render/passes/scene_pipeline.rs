@@ -1,0 +1,216 @@
+//! The log-SH scene pipelines, one per stage of a frame (depth, shading, per-vertex
+//! shading, surface channels, the low-resolution surface buffer, the upsampling), built
+//! from one module with the shading paths compiled in: what `logsh` and
+//! `low_resolution` share.
+
+use super::per_vertex::PerVertexCompute;
+use super::reduced_shading::SURFACE_BUFFER_FORMATS;
+use crate::render::descriptors::{depth_test, scene_triangles};
+use crate::render::resources::{GpuScene, SceneLayouts, draw_object, vertex_layout};
+use crate::shading::CompiledPaths;
+
+/// A pipeline for textured objects and its twin for untextured ones, compiled without the
+/// texture sample (BASE_COLOR_TEXTURE in scene.wgsl).
+pub(super) struct ByTexture {
+    textured: wgpu::RenderPipeline,
+    untextured: wgpu::RenderPipeline,
+}
+
+impl ByTexture {
+    pub(super) fn new(make: impl Fn(bool) -> wgpu::RenderPipeline) -> ByTexture {
+        ByTexture {
+            textured: make(true),
+            untextured: make(false),
+        }
+    }
+
+    /// Draws every visible object with the pipeline for its material.
+    pub(super) fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+        for textured in [true, false] {
+            pass.set_pipeline(if textured { &self.textured } else { &self.untextured });
+            for object in scene.objects.iter().filter(|o| !o.hidden && o.textured == textured) {
+                draw_object(pass, scene, object);
+            }
+        }
+    }
+}
+
+/// What a pipeline's fragment stage is for.
+#[derive(Clone, Copy)]
+pub(super) enum Stage<'a> {
+    DepthOnly,
+    Shade,
+    /// Shading through per-vertex visibility attributes of this order.
+    ShadePerVertex(usize),
+    /// One surface channel (fs_surface) as raw f32.
+    Surface(u32, &'a str),
+    /// The reduced-resolution surfaces (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
+    SurfaceBuffer,
+    /// Full-resolution pixels from the reduced-resolution samples (fs_upsample), which
+    /// reads them through bind group 3 of this layout.
+    Upsample(&'a wgpu::BindGroupLayout),
+}
+
+/// Whether reduced-resolution shading shades the pixels no sample matches in full, after
+/// the upsampling (see reduced_shading.wgsl): only where lavapipe tests depth before the
+/// fragment shader, which it does without multisampling; with it, they take the best
+/// sample nearby.
+pub(super) fn shades_unmatched_exactly(samples: u32) -> bool {
+    samples == 1
+}
+
+/// Format of the surface channels read back for the CPU reference.
+pub const SURFACE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// What a pipeline is compiled for besides its stage.
+#[derive(Clone, Copy)]
+pub(super) struct Variant {
+    pub samples: u32,
+    /// The shading paths compiled in ([`path_constants`]).
+    pub paths: CompiledPaths,
+    /// false: compiled without the base colour texture, for untextured objects.
+    pub textured: bool,
+}
+
+/// The override constants that compile `paths` in (see [`CompiledPaths`]).
+pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
+    let flag = |on: bool| f64::from(u8::from(on));
+    vec![
+        ("EXACT_LIGHT_PATH", flag(paths.exact)),
+        ("EXACT_WIDE", flag(paths.exact_wide)),
+        ("SHADOW_MAPS", flag(paths.maps)),
+        ("SOFT_SHADOW_MAPS", flag(paths.soft_maps)),
+        ("SH_VISIBILITY", flag(paths.harmonics)),
+        ("TERRAIN_SHADOWS", flag(paths.terrain)),
+        ("AREA_LIGHTS", flag(paths.area_lights)),
+        ("LIGHT_OVERFLOW", flag(paths.light_overflow)),
+        ("BLOCKER_OVERFLOW", flag(paths.blocker_overflow)),
+    ]
+}
+
+/// The upsampling that leaves unmatched pixels to a full shading pass marks the pixels it
+/// writes by moving their depth this many depth steps nearer (see reduced_shading.wgsl):
+/// a constant bias, so its shader need not write depth, which would have lavapipe test
+/// depth only after running it on every hidden fragment as well.
+const MARKED_DEPTH_STEPS: i32 = 8;
+
+fn depth_bias(stage: Stage, samples: u32) -> wgpu::DepthBiasState {
+    let marking = wgpu::DepthBiasState {
+        constant: -MARKED_DEPTH_STEPS,
+        slope_scale: 0.0,
+        clamp: 0.0,
+    };
+    match stage {
+        Stage::Upsample(_) if shades_unmatched_exactly(samples) => marking,
+        _ => wgpu::DepthBiasState::default(),
+    }
+}
+
+pub(super) fn scene_pipeline(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    shadow_layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    stage: Stage,
+    variant: Variant,
+) -> wgpu::RenderPipeline {
+    let samples = variant.samples;
+    let mut bind_group_layouts = vec![Some(&layouts.frame), Some(&layouts.material), Some(shadow_layout)];
+    if let Stage::Upsample(samples) = stage {
+        bind_group_layouts.push(Some(samples));
+    }
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("log-SH"),
+        bind_group_layouts: &bind_group_layouts,
+        immediate_size: 0,
+    });
+    let visibility_attributes = match stage {
+        Stage::ShadePerVertex(order) => PerVertexCompute::attributes(order),
+        _ => Vec::new(),
+    };
+    let visibility_layout = wgpu::VertexBufferLayout {
+        array_stride: 16 * visibility_attributes.len() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &visibility_attributes,
+    };
+    let (vertex_entry, buffers) = match stage {
+        Stage::ShadePerVertex(_) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
+        _ => ("vs_main", vec![Some(vertex_layout())]),
+    };
+    let color = |format| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })
+    };
+    let depth_only = Some(wgpu::ColorTargetState {
+        format: crate::render::descriptors::COLOR_FORMAT,
+        blend: None,
+        write_mask: wgpu::ColorWrites::empty(),
+    });
+    let shaded = color(crate::render::descriptors::COLOR_FORMAT);
+    let (entry_point, targets, depth_write, compare) = match stage {
+        Stage::DepthOnly => ("fs_depth_only", vec![depth_only], true, wgpu::CompareFunction::Less),
+        Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        // Marks the pixels it did by moving their depth nearer (see reduced_shading.wgsl).
+        Stage::Upsample(_) if shades_unmatched_exactly(samples) => (
+            "fs_upsample_marking",
+            vec![shaded],
+            true,
+            wgpu::CompareFunction::LessEqual,
+        ),
+        Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        Stage::SurfaceBuffer => (
+            "fs_surface_buffer",
+            SURFACE_BUFFER_FORMATS.map(color).to_vec(),
+            true,
+            wgpu::CompareFunction::Less,
+        ),
+        Stage::Surface(..) => (
+            "fs_surface",
+            vec![color(SURFACE_FORMAT)],
+            true,
+            wgpu::CompareFunction::Less,
+        ),
+    };
+    let mut constants = path_constants(variant.paths);
+    if let Stage::Surface(channel, name) = stage {
+        constants.push((name, channel as f64));
+    }
+    if !variant.textured {
+        constants.push(("BASE_COLOR_TEXTURE", 0.0));
+    }
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(vertex_entry),
+            compilation_options: Default::default(),
+            buffers: &buffers,
+        },
+        primitive: scene_triangles(variant.paths.cull_back_faces),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            bias: depth_bias(stage, samples),
+            ..depth_test(depth_write, compare)
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        // A depth-only pass needs no fragment stage.
+        fragment: (!entry_point.is_empty()).then(|| wgpu::FragmentState {
+            module,
+            entry_point: Some(entry_point),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
