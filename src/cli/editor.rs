@@ -28,6 +28,12 @@ pub fn editor(file: Option<PathBuf>) -> Result<(), CliError> {
         close_when_file_exists: std::env::var_os("LIGHTPAINT_CLOSE_WHEN_FILE_EXISTS").map(PathBuf::from),
         // Screenshots for the docs leave out the numbers that change from run to run.
         hide_frame_timings: std::env::var_os("LIGHTPAINT_HIDE_FRAME_TIMINGS").is_some_and(|v| v == "1"),
+        // scripts/editor-frame-rate.sh: the editor's own frame rate.
+        measure_frame_rate: match std::env::var("LIGHTPAINT_MEASURE_FRAME_RATE").as_deref() {
+            Ok("1") => lightpaint::ui::FrameRateMeasurement::WholeFrame,
+            Ok("interface") => lightpaint::ui::FrameRateMeasurement::InterfaceOnly,
+            _ => lightpaint::ui::FrameRateMeasurement::Off,
+        },
     };
     lightpaint::ui::run_editor(options).map_err(|e| CliError::Editor(e.to_string()))
 }

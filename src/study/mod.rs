@@ -259,13 +259,15 @@ pub fn run_study(
             && let Some(target) = row.errors.shadow_rmse
         {
             let max_spp = if options.quick { 64 } else { options.reference_spp() / 4 };
-            let (spp, trace_ms) = scene_study.equal_error_spp(references.direct, target, max_spp);
+            let trace = scene_study.equal_error_spp(references.direct, target, max_spp);
+            let (spp, trace_ms) = (trace.samples_per_pixel, trace.trace_ms);
             let entry = EqualError {
                 scene: sample.name().into(),
                 frame_shadow_rmse: target,
                 frame_ms: row.ms_per_frame,
                 samples_per_pixel: spp,
                 trace_ms,
+                curve: trace.curve,
             };
             say(&format!(
                 "{}: the path tracer matches the default frame's shadow RMSE {:.4} at {} spp in {:.0} ms ({:.1}× the frame's {:.1} ms)",

@@ -143,19 +143,26 @@ fn equal_error_markdown(results: &StudyResults) -> String {
         "\n## Path tracing to the same shadow error\n\nThe fewest samples per pixel (powers of \
          two) at which an independent path-traced image of direct light is as close to the \
          converged reference over the shadowed pixels as the default real-time frame, and \
-         its tracing time (all cores) against the frame's.\n\n| scene | frame shadow RMSE | \
-         frame ms | path tracer spp | path tracer ms | ratio |\n|---|---:|---:|---:|---:|---:|\n",
+         its tracing time (all cores) against the frame's; then the path tracer's own \
+         shadowed-pixel RMSE at each count tried, to one past the match.\n\n| scene | frame \
+         shadow RMSE | frame ms | path tracer spp | path tracer ms | ratio | path tracer \
+         (spp: RMSE) |\n|---|---:|---:|---:|---:|---:|---|\n",
     );
     for e in &results.equal_error {
         let _ = writeln!(
             text,
-            "| {} | {:.4} | {:.1} | {} | {:.0} | {:.1}× |",
+            "| {} | {:.4} | {:.1} | {} | {:.0} | {:.1}× | {} |",
             e.scene,
             e.frame_shadow_rmse,
             e.frame_ms,
             e.samples_per_pixel.map_or("not reached".into(), |n| n.to_string()),
             e.trace_ms,
-            e.trace_ms / e.frame_ms.max(1e-3)
+            e.trace_ms / e.frame_ms.max(1e-3),
+            e.curve
+                .iter()
+                .map(|(spp, rmse)| format!("{spp}: {rmse:.4}"))
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     text

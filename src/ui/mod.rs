@@ -23,7 +23,7 @@ mod terrain_panel;
 mod unsaved_prompt;
 mod viewport;
 
-pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE};
+pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE, FrameRateMeasurement};
 pub use outliner::Selection;
 pub use painting::Tool;
 pub use viewport::Viewport;

@@ -118,6 +118,11 @@ impl Viewport {
 
     /// Whether shaders for new shadow settings are being compiled (the viewport shows
     /// the previous settings until they are ready).
+    /// Draw the frame anew next time even if nothing changed (frame-rate measurements).
+    pub fn draw_again(&mut self) {
+        self.rendered = None;
+    }
+
     pub fn is_compiling_shaders(&self) -> bool {
         self.renderer.compiling().is_some()
     }

@@ -10,6 +10,7 @@ pub fn editor_on(project: std::path::PathBuf) -> Harness<'static, EditorApp> {
         file: project,
         close_when_file_exists: None,
         hide_frame_timings: true,
+        measure_frame_rate: lightpaint::ui::FrameRateMeasurement::Off,
     };
     Harness::builder()
         .with_size(egui::vec2(1280.0, 800.0))

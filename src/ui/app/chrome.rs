@@ -202,6 +202,39 @@ impl EditorApp {
         }
     }
 
+    /// Measurement runs: the editor draws every frame — with the viewport's frame drawn
+    /// anew (as if the scene changed, at full quality: the camera is not moving) or only
+    /// the interface around the frame drawn before — and every two seconds the status
+    /// bar's frame time goes to stderr with the viewport's size in pixels.
+    pub(super) fn measure_frame_rate(&mut self, ctx: &egui::Context) {
+        if self.options.measure_frame_rate == FrameRateMeasurement::Off {
+            return;
+        }
+        let Some(viewport) = &mut self.viewport else {
+            return;
+        };
+        if self.options.measure_frame_rate == FrameRateMeasurement::WholeFrame {
+            viewport.draw_again();
+        }
+        ctx.request_repaint();
+        let now = Instant::now();
+        if self
+            .frame_rate_printed_at
+            .is_none_or(|at| now.duration_since(at) >= std::time::Duration::from_secs(2))
+        {
+            self.frame_rate_printed_at = Some(now);
+            if let Some(ms) = self.frame_clock.ms_per_frame() {
+                let view = viewport.view();
+                eprintln!(
+                    "lightpaint: {ms:.1} ms per frame ({:.1} fps), viewport {}×{} px",
+                    1000.0 / ms.max(1e-3),
+                    view.width_px,
+                    view.height_px
+                );
+            }
+        }
+    }
+
     pub(super) fn scripted_close(&mut self, ctx: &egui::Context) {
         if let Some(path) = &self.options.close_when_file_exists {
             if path.exists() {

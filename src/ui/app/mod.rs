@@ -38,6 +38,22 @@ pub struct EditorOptions {
     pub close_when_file_exists: Option<PathBuf>,
     /// Leave frame timings out of the status bar, so screenshots are reproducible.
     pub hide_frame_timings: bool,
+    /// Measurement runs (scripts/editor-frame-rate.sh): draw every frame and print the
+    /// frame rate on stderr every two seconds.
+    pub measure_frame_rate: FrameRateMeasurement,
+}
+
+/// What a measurement run of the editor draws every frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrameRateMeasurement {
+    /// Nothing: frames follow input, as usual.
+    #[default]
+    Off,
+    /// The viewport's frame anew, at full quality, and the interface.
+    WholeFrame,
+    /// The interface around the frame drawn before: what the editor costs besides the
+    /// renderer.
+    InterfaceOnly,
 }
 
 /// Line printed on stderr once the first frame with the scene has been drawn; scripts
@@ -86,6 +102,8 @@ pub struct EditorApp {
     /// The window's title as last sent (sent again only when it changes).
     window_title: String,
     pub(super) first_frame_reported: bool,
+    /// When the frame rate was last printed (EditorOptions::measure_frame_rate).
+    pub(super) frame_rate_printed_at: Option<std::time::Instant>,
     /// The document's painting state (None without a document).
     pub(super) painting: Option<Painting>,
     pub(super) brush_input: BrushInput,
@@ -151,6 +169,7 @@ impl EditorApp {
             frame_clock: Default::default(),
             window_title: String::new(),
             first_frame_reported: false,
+            frame_rate_printed_at: None,
             painting: None,
             brush_input: BrushInput::default(),
             pending: None,
@@ -384,6 +403,7 @@ impl eframe::App for EditorApp {
             eprintln!("{FIRST_FRAME_LINE}");
         }
         self.scripted_close(&ctx);
+        self.measure_frame_rate(&ctx);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

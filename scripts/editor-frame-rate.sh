@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The editor's own frame rate at full quality: the studio sample in a window sized so the
+# viewport is about 960×540, under Xvfb, drawing its frame anew every frame
+# (LIGHTPAINT_MEASURE_FRAME_RATE=1: the camera rests, so each frame is the defaults' full
+# frame, not the cheaper one shown while the camera moves), egui's work included. Prints
+# the status bar's frame time every two seconds for SECONDS (default 20) after the first
+# frame. MEASURE=interface draws only the interface around the frame drawn before: what
+# the editor costs besides the renderer. For docs/performance.md; run it on an otherwise
+# idle machine. Usage: [MEASURE=interface] scripts/editor-frame-rate.sh [PROJECT]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+project="$(realpath "${1:-projects/studio/studio.lightpaint}")"
+command -v xdotool >/dev/null || { echo "xdotool is missing: apt-get install xdotool" >&2; exit 1; }
+source scripts/system-packages.sh
+lightpaint_install_system_packages
+lightpaint_runtime_dir
+cargo build --quiet --bin lightpaint
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+export XDG_DATA_HOME="$scratch/data" LIGHTPAINT_MEASURE_FRAME_RATE="${MEASURE:-1}"
+export BIN="${CARGO_TARGET_DIR}/debug/lightpaint" PROJECT="$project" LOG="$scratch/editor.log"
+export MEASURE_SECONDS="${SECONDS_TO_MEASURE:-20}"
+xvfb-run -a -s "-screen 0 1920x1080x24" bash -c '
+    set -euo pipefail
+    "$BIN" "$PROJECT" 2>"$LOG" &
+    editor=$!
+    for _ in $(seq 1 180); do grep -q "first frame drawn" "$LOG" && break; sleep 1; done
+    # The outliner (about 217 px) and the inspector (about 336 px) beside the viewport,
+    # the menu, tool and status bars (about 78 px) above and below it.
+    xdotool search --sync --name lightpaint windowsize 1513 618 >/dev/null
+    sleep "$MEASURE_SECONDS"
+    kill "$editor"
+    wait "$editor" || true
+'
+grep "ms per frame" "$LOG"
