@@ -232,9 +232,8 @@ fn full_screen_pipeline(
     paths: CompiledPaths,
 ) -> wgpu::RenderPipeline {
     let mut bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.into_iter().map(Some).collect();
-    bind_group_layouts.push(pass.samples);
-    if pass.samples.is_none() {
-        bind_group_layouts.pop();
+    if let Some(samples) = pass.samples {
+        bind_group_layouts.push(Some(samples));
     }
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(pass.entry_point),
