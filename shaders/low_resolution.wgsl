@@ -10,9 +10,9 @@
 // The buffer, two Rgba32Uint texels per sample:
 //   a: x view depth (f32 bits, 0 where no surface was drawn), y the octahedral normal
 //      (two snorm16), zw k_d (pack_lighting);
-//   b: xy the emission beyond the material's own — the baked indirect light —
+//   b: xy the emission — the material's own and the baked indirect light —
 //      (pack_lighting), z k_s (three unorm10), w the Phong exponent (f32 bits).
-// The material's own emission is left out: the samples carry the lighting without it.
+// The samples carry the light of the lights alone; each pixel adds its own emission.
 
 @group(1) @binding(8) var surface_buffer_a: texture_2d<u32>;
 @group(1) @binding(9) var surface_buffer_b: texture_2d<u32>;
@@ -26,7 +26,7 @@ struct SurfaceTexels {
 fn fs_surface_buffer(in: VertexOut, @builtin(front_facing) front_facing: bool) -> SurfaceTexels {
     let s = surface(in, front_facing);
     let k_d = pack_lighting(s.k_d);
-    let beyond = pack_lighting(s.emissive - material.emissive.rgb);
+    let emission = pack_lighting(s.emissive);
     let k_s = vec3<u32>(round(clamp(s.k_s, vec3<f32>(0.0), vec3<f32>(1.0)) * 1023.0));
     return SurfaceTexels(
         vec4<u32>(
@@ -35,7 +35,7 @@ fn fs_surface_buffer(in: VertexOut, @builtin(front_facing) front_facing: bool) -
             k_d.x,
             k_d.y,
         ),
-        vec4<u32>(beyond.x, beyond.y, k_s.r | (k_s.g << 10u) | (k_s.b << 20u), bitcast<u32>(s.phong_exponent)),
+        vec4<u32>(emission.x, emission.y, k_s.r | (k_s.g << 10u) | (k_s.b << 20u), bitcast<u32>(s.phong_exponent)),
     );
 }
 
@@ -86,7 +86,7 @@ fn vs_full_screen(@builtin(vertex_index) index: u32) -> FullScreen {
 @fragment
 fn fs_shade_low(in: FullScreen) -> @location(0) vec4<u32> {
     let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
-    return low_sample_texel(s, frame.exposure * shadowed_radiance(s) / reflectance(s));
+    return low_sample_texel(s, frame.exposure * (shadowed_radiance(s) - s.emissive) / reflectance(s));
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the
@@ -103,9 +103,8 @@ fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
 }
 
 // A low-resolution sample from the soft layer upsampled to it (group 3 then holds the
-// soft layer) plus what is shaded here: the lights of sharp shadows, the shadow-map and
-// exact paths, and the emission beyond the material's (the baked indirect light, read
-// from the buffer, so interpolating it would gain nothing). Samples the soft layer does not match, or whose soft samples disagree, are
+// soft layer) plus the lights of sharp shadows, the shadow-map and exact paths, shaded
+// here. Samples the soft layer does not match, or whose soft samples disagree, are
 // discarded, and fs_shade_low shades them in full right after: this pass writes depth 1
 // where it shades (its pipeline's depth write), which fs_shade_low's test then skips.
 @fragment
@@ -115,6 +114,30 @@ fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
     if !soft.matches {
         discard;
     }
-    let sharp = s.emissive + mapped_lights_radiance(s) + exact_path_radiance(s);
+    let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
     return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
+}
+
+// The full-resolution frame deferred too (single-sampled targets): the surface buffer at
+// full resolution, then the upsampling and the full shading of the pixels it leaves as
+// full-screen passes, as at low resolution. A mesh of triangles a few pixels wide (a
+// terrain) had each rasterised pass pay per triangle.
+
+// A pixel from the low-resolution samples (group 3), or discarded for fs_logsh_deferred
+// where they do not match or disagree; writes depth 1 where it shades (its pipeline).
+@fragment
+fn fs_upsample_deferred_marking(in: FullScreen) -> @location(0) vec4<f32> {
+    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
+    let up = upsampled_lighting(in.clip.xy, s, false);
+    if !up.matches {
+        discard;
+    }
+    return vec4<f32>(tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting), 1.0);
+}
+
+// A pixel shaded in full: fs_logsh from the surface buffer.
+@fragment
+fn fs_logsh_deferred(in: FullScreen) -> @location(0) vec4<f32> {
+    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
+    return vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0);
 }

@@ -1,32 +1,32 @@
 // Reduced-resolution shading (src/render/passes/reduced_shading.rs): one sample in every
-// d × d block of pixels is shaded with the full log-SH shading of logsh.wgsl (deferred,
-// from a surface buffer: low_resolution.wgsl), and the full-resolution pass draws the
-// meshes again and, per pixel, blends the samples that lie on its own surface (a joint
-// bilateral upsampling guided by position and normal, Kopf et al. 2007). Appended after
-// logsh.wgsl. With two-level shading the light of soft shadows is shaded at every other
-// sample only and upsampled to the rest by the same function (upsampled_lighting).
+// d × d block of pixels is shaded with the full log-SH shading of logsh.wgsl, and every
+// pixel blends the samples that lie on its own surface (a joint bilateral upsampling
+// guided by position and normal, Kopf et al. 2007). Both are deferred on single-sampled
+// targets (low_resolution.wgsl: surface buffers, full-screen passes). With two-level
+// shading the light of soft shadows is shaded at every other sample only and upsampled
+// to the rest by the same function (upsampled_lighting). Appended after logsh.wgsl.
 //
-// The samples carry the exposed lighting with the material divided out,
+// The samples carry the exposed light of the lights with the material divided out,
 //   lighting = 2^EV · (L − emission) / (k_d + k_s),
-// (clamped where the tone curve is long saturated) and each full-resolution pixel
-// multiplies its own k_d + k_s back in: texture detail and material edges stay sharp at
-// full resolution while only the smooth lighting is interpolated. Pixels that no sample
-// matches (thin objects, silhouettes), and those whose nearest samples on their surface
-// disagree (an edge of the light runs between them) or are fewer than two, are
-// discarded by fs_upsample_marking and shaded in full by fs_logsh right after: every
-// pixel done here moves its depth a few steps nearer (a depth bias of its pipeline), so
-// the depth test leaves only the discarded ones to fs_logsh. (A fallback branch inside
-// the upsampling would cost every pixel the full shading on a software GPU, which runs
-// both sides of a divergent branch.) Multisampled targets use fs_upsample, where such
-// pixels take the best-matching sample nearby: lavapipe tests their depth after the
-// fragment shader, so a fs_logsh pass would shade every fragment in full.
+// clamped where the tone curve is long saturated; each pixel multiplies its own k_d + k_s
+// back in and adds its own emission (the material's and the baked indirect light):
+// texture detail and material edges stay sharp at full resolution while only the smooth
+// lighting is interpolated. Pixels that no sample matches (thin objects, silhouettes),
+// and those whose nearest samples on their surface disagree (an edge of the light runs
+// between them) or are fewer than two, are discarded by the upsampling and shaded in
+// full right after: the upsampling writes depth 1 where it draws, so the depth test
+// leaves only the discarded ones to the full shading. (A fallback branch inside the upsampling would cost every pixel the full
+// shading on a software GPU, which runs both sides of a divergent branch.) Multisampled
+// targets use the rasterised fs_upsample, where such pixels take the best-matching
+// sample nearby: lavapipe tests their depth after the fragment shader, so a full shading
+// pass would shade every fragment.
 
 // One texel per sample, so that the upsampling reads each with one texel fetch (on
 // lavapipe the fetches were most of its cost; two images took two):
 //   x: the view depth of the shaded point (f32 bits; metres along the camera's forward
 //      axis; 0, the clear value, where no surface was shaded) — the point is rebuilt on
 //      the ray through the sample's pixel centre (Frame.view_ray), exact in f32;
-//   y, z: lighting = 2^EV · (radiance − material emission) / reflectance, rgb, each the
+//   y, z: lighting = 2^EV · (radiance − emission) / reflectance, rgb, each the
 //      top 21 bits of its f32 (pack_lighting: a relative step of 2⁻¹³; half floats
 //      would need a capability not every device has);
 //   w: the unit shading normal, octahedral, two snorm16.
@@ -113,13 +113,6 @@ fn pow2(x: f32) -> f32 {
     return x * x;
 }
 
-// A full-resolution pixel rebuilt from the low-resolution samples, and whether they
-// matched its surface (else it took the best match).
-struct Upsampled {
-    color: vec4<f32>,
-    matched: bool,
-};
-
 // The lighting (exposed, per unit reflectance) the samples give a pixel, and whether they
 // matched its surface and agreed.
 struct UpsampledLighting {
@@ -127,11 +120,12 @@ struct UpsampledLighting {
     matches: bool,
 };
 
-fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> Upsampled {
+// A full-resolution pixel rebuilt from the samples (the best match nearby where none
+// matches its surface: `ring`), rasterised.
+fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> vec4<f32> {
     let s = surface(in, front_facing);
     let up = upsampled_lighting(in.clip.xy, s, ring);
-    let exposed = frame.exposure * material.emissive.rgb + reflectance(s) * up.lighting;
-    return Upsampled(vec4<f32>(tonemap_aces_fit(exposed), 1.0), up.matches);
+    return vec4<f32>(tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting), 1.0);
 }
 
 // `ring`: also look at the ring of 12 samples around the 2 × 2 nearest for the best match
@@ -213,19 +207,5 @@ fn upsampled_lighting(pixel: vec2<f32>, s: Surface, ring: bool) -> UpsampledLigh
 // Upsampling into a multisampled target.
 @fragment
 fn fs_upsample(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    return upsampled(in, front_facing, true).color;
-}
-
-// Upsampling into a single-sampled target, leaving the unmatched pixels to fs_logsh. Its
-// pipeline moves the depth of every pixel it writes a few steps nearer (a constant depth
-// bias, src/render/passes/logsh.rs), so the fs_logsh pass (depth test ≤) skips those pixels while
-// fragments behind them still fail. No frag_depth here: a shader writing depth has
-// lavapipe test depth after the shader, which would upsample every hidden fragment too.
-@fragment
-fn fs_upsample_marking(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    let pixel = upsampled(in, front_facing, false);
-    if !pixel.matched {
-        discard;
-    }
-    return pixel.color;
+    return upsampled(in, front_facing, true);
 }

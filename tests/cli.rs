@@ -103,8 +103,8 @@ fn check_accepts_the_sample() {
 
 /// `render` writes a PNG of the requested size; with `--time-frames` it also says the
 /// frames' mean time and, on a GPU with timestamps (lavapipe has them), each pass's: the
-/// reduced-resolution shading and the scene pass are named, and their times are positive
-/// and within the frame's.
+/// reduced-resolution shading, the full-resolution surfaces and the scene pass are named,
+/// and their times are positive and within the frame's.
 #[test]
 fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
     if common::no_gpu_wanted() {
@@ -147,7 +147,11 @@ fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
         .find(|l| l.starts_with("GPU time per pass:"))
         .expect("pass times");
     let mut total_ms = 0.0;
-    for pass in ["low-resolution shading", "scene pass (depth, upsampling, shading)"] {
+    for pass in [
+        "low-resolution shading",
+        "full-resolution surfaces",
+        "scene pass (upsampling, shading)",
+    ] {
         let ms = number_after(passes, pass);
         assert!(ms > 0.0, "{passes}");
         total_ms += ms;

@@ -5,11 +5,11 @@
 //! The SH order and exponentiation method are baked into the module at creation
 //! (generated WGSL, `shading::wgsl::sh`).
 
-use super::low_resolution::{ReducedShadingPipelines, shade_low_resolution};
+use super::low_resolution::{ReducedShadingPipelines, draw_full_resolution, shade_low_resolution};
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::reduced_shading::LowResolutionTargets;
 pub use super::scene_pipeline::SURFACE_FORMAT;
-use super::scene_pipeline::{Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
+use super::scene_pipeline::{Stage, Variant, path_constants, scene_pipeline};
 use crate::render::descriptors::create_module;
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_object, draw_objects, shadow_layout};
@@ -139,13 +139,13 @@ impl LogShPipeline {
     ) -> Option<LowResolutionTargets> {
         let reduced = self.reduced.as_ref()?;
         match reuse {
-            Some(targets) if targets.fits(full_size, reduced.downsample, reduced.soft_layer.is_some()) => Some(targets),
+            Some(targets) if targets.fits(full_size, reduced.downsample, reduced.levels()) => Some(targets),
             _ => Some(LowResolutionTargets::new(
                 device,
                 [&reduced.low_resolution_layout, &reduced.surface_buffer_layout],
                 full_size,
                 reduced.downsample,
-                reduced.soft_layer.is_some(),
+                reduced.levels(),
             )),
         }
     }
@@ -184,6 +184,14 @@ impl LogShPipeline {
         }
         if let Some((low, pipelines)) = reduced {
             shade_low_resolution(frame, pipelines, low, scene, blockers);
+            let drawn = (target, background_linear);
+            if draw_full_resolution(frame, pipelines, low, drawn, scene, blockers) {
+                target.finish(frame.encoder);
+                if target.has_edge_filter() {
+                    frame.mark("edge filter");
+                }
+                return;
+            }
         }
         let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("log-SH scene"),
@@ -211,12 +219,9 @@ impl LogShPipeline {
             }
             (None, Some((low, pipelines))) => {
                 pass.set_bind_group(3, low.bind_group(), &[]);
+                // Multisampled: every pixel from the samples, the best match nearby where
+                // none matches (single-sampled frames were drawn deferred above).
                 pipelines.upsample.draw_objects(&mut pass, scene);
-                // The pixels the upsampling left (it moved the others' depth nearer).
-                if shades_unmatched_exactly(self.samples) {
-                    pass.set_pipeline(&self.shade);
-                    draw_objects(&mut pass, scene);
-                }
             }
             (None, None) => {
                 pass.set_pipeline(&self.shade);

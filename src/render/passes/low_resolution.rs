@@ -4,12 +4,13 @@
 //! spacing and the sharp lights added at every sample.
 
 use super::reduced_shading::{
-    LOW_RESOLUTION_FORMATS, LowResolutionTargets, low_resolution_layout, surface_buffer_layout,
+    LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, surface_buffer_layout,
 };
-use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline};
-use crate::render::descriptors::depth_test;
+use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
+use crate::render::descriptors::{COLOR_FORMAT, depth_test};
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_objects};
+use crate::render::target::RenderTarget;
 use crate::shading::CompiledPaths;
 
 /// The passes of reduced-resolution shading (see `reduced_shading`).
@@ -23,6 +24,8 @@ pub(super) struct ReducedShadingPipelines {
     shade_low: wgpu::RenderPipeline,
     /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
     pub soft_layer: Option<SoftLayerPipelines>,
+    /// The full-resolution frame deferred too (single-sampled targets).
+    pub full_resolution: Option<FullResolutionPipelines>,
     /// The upsampling, for objects with a base colour texture and for the others.
     pub upsample: ByTexture,
 }
@@ -33,6 +36,14 @@ pub(super) struct ReducedShadingPipelines {
 pub(super) struct SoftLayerPipelines {
     shade_soft: wgpu::RenderPipeline,
     shade_sharp: wgpu::RenderPipeline,
+}
+
+/// The full-resolution frame from the surface buffer at full resolution (drawn by
+/// `surface_buffer` too): the upsampling (fs_upsample_deferred_marking), then the pixels
+/// it left shaded in full (fs_logsh_deferred), both full-screen.
+pub(super) struct FullResolutionPipelines {
+    upsample: wgpu::RenderPipeline,
+    shade: wgpu::RenderPipeline,
 }
 
 impl ReducedShadingPipelines {
@@ -51,7 +62,7 @@ impl ReducedShadingPipelines {
         let surface_buffer_layout = surface_buffer_layout(device);
         let low_variant = Variant { samples: 1, ..variant };
         let low = |stage| scene_pipeline(device, layouts, shadow_layout, module, stage, low_variant);
-        let full_screen = |entry_point, samples, depth| {
+        let full_screen_into = |format, entry_point, samples, depth| {
             full_screen_pipeline(
                 device,
                 [&layouts.frame, &surface_buffer_layout, shadow_layout],
@@ -60,10 +71,13 @@ impl ReducedShadingPipelines {
                     entry_point,
                     samples,
                     depth,
+                    format,
                 },
                 paths,
             )
         };
+        let full_screen =
+            |entry_point, samples, depth| full_screen_into(LOW_RESOLUTION_FORMATS[0], entry_point, samples, depth);
         ReducedShadingPipelines {
             downsample,
             surface_buffer: low(Stage::SurfaceBuffer),
@@ -75,6 +89,17 @@ impl ReducedShadingPipelines {
                     Some(&low_resolution_layout),
                     FullScreenDepth::Marking,
                 ),
+            }),
+            // Multisampled targets keep the rasterised passes (fs_upsample takes the best
+            // sample nearby where the samples do not match).
+            full_resolution: shades_unmatched_exactly(variant.samples).then(|| FullResolutionPipelines {
+                upsample: full_screen_into(
+                    COLOR_FORMAT,
+                    "fs_upsample_deferred_marking",
+                    Some(&low_resolution_layout),
+                    FullScreenDepth::Marking,
+                ),
+                shade: full_screen_into(COLOR_FORMAT, "fs_logsh_deferred", None, FullScreenDepth::Unmarked),
             }),
             upsample: ByTexture::new(|textured| {
                 scene_pipeline(
@@ -89,6 +114,14 @@ impl ReducedShadingPipelines {
             low_resolution_layout,
             surface_buffer_layout,
         }
+    }
+}
+
+impl ReducedShadingPipelines {
+    /// What its targets need besides the samples ([`LowResolutionTargets::new`]): a soft
+    /// layer, a full-resolution surface buffer.
+    pub fn levels(&self) -> [bool; 2] {
+        [self.soft_layer.is_some(), self.full_resolution.is_some()]
     }
 }
 
@@ -110,23 +143,20 @@ pub(super) fn shade_low_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) {
-    let surfaces = low.surface.color_attachments();
-    let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("low-resolution surfaces"),
-        color_attachments: &surfaces,
-        depth_stencil_attachment: Some(low.surface.depth_attachment(true)),
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-    pass.set_bind_group(2, &blockers.bind_group, &[]);
-    pass.set_pipeline(&pipelines.surface_buffer);
-    draw_objects(&mut pass, scene);
-    drop(pass);
-    frame.mark("low-resolution surfaces");
+    draw_surfaces(
+        frame,
+        "low-resolution surfaces",
+        (&low.surface, low.surface.depth_attachment(true)),
+        &pipelines.surface_buffer,
+        scene,
+        blockers,
+    );
 
-    let bound = Bound { scene, blockers, low };
+    let bound = Bound {
+        scene,
+        blockers,
+        surface: &low.surface,
+    };
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
         (Some(soft_pipelines), Some(soft)) => {
@@ -157,11 +187,81 @@ pub(super) fn shade_low_resolution(
     }
 }
 
-/// What every full-screen pass binds: the frame, the surface buffer, the blockers.
+/// Rasterises the visible surfaces into `surface` (with `depth`, cleared) by
+/// fs_surface_buffer.
+fn draw_surfaces(
+    frame: &mut TimedEncoder,
+    label: &'static str,
+    (surface, depth): (&SurfaceBuffer, wgpu::RenderPassDepthStencilAttachment<'_>),
+    pipeline: &wgpu::RenderPipeline,
+    scene: &GpuScene,
+    blockers: &GpuBlockers,
+) {
+    let surfaces = surface.color_attachments();
+    let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &surfaces,
+        depth_stencil_attachment: Some(depth),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
+    pass.set_bind_group(2, &blockers.bind_group, &[]);
+    pass.set_pipeline(pipeline);
+    draw_objects(&mut pass, scene);
+    drop(pass);
+    frame.mark(label);
+}
+
+/// The full-resolution frame deferred: the surfaces into `low`'s full-resolution buffer
+/// with `target`'s depth, then the upsampling and the full shading of what it left into
+/// `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
+/// `pipelines` or `low` have no deferred full-resolution frame.
+pub(super) fn draw_full_resolution(
+    frame: &mut TimedEncoder,
+    pipelines: &ReducedShadingPipelines,
+    low: &LowResolutionTargets,
+    (target, background_linear): (&RenderTarget, [f64; 3]),
+    scene: &GpuScene,
+    blockers: &GpuBlockers,
+) -> bool {
+    let (Some(full), Some(surface)) = (&pipelines.full_resolution, &low.full_surface) else {
+        return false;
+    };
+    draw_surfaces(
+        frame,
+        "full-resolution surfaces",
+        (surface, target.depth_attachment_kept(true)),
+        &pipelines.surface_buffer,
+        scene,
+        blockers,
+    );
+    // The upsampling marks what it drew (depth 1), so the full shading after it shades
+    // only the pixels it discarded.
+    Bound {
+        scene,
+        blockers,
+        surface,
+    }
+    .full_screen(
+        frame,
+        "scene pass (upsampling, shading)",
+        (
+            &[Some(target.color_attachment(background_linear))],
+            Some(target.depth_attachment_kept(false)),
+        ),
+        Some(low.bind_group()),
+        &[&full.upsample, &full.shade],
+    );
+    true
+}
+
+/// What every full-screen pass binds: the frame, a surface buffer, the blockers.
 struct Bound<'a> {
     scene: &'a GpuScene,
     blockers: &'a GpuBlockers,
-    low: &'a LowResolutionTargets,
+    surface: &'a SurfaceBuffer,
 }
 
 impl Bound<'_> {
@@ -187,7 +287,7 @@ impl Bound<'_> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.scene.frame_bind_group, &[]);
-        pass.set_bind_group(1, &self.low.surface.bind_group, &[]);
+        pass.set_bind_group(1, &self.surface.bind_group, &[]);
         pass.set_bind_group(2, &self.blockers.bind_group, &[]);
         if let Some(coarser) = coarser {
             pass.set_bind_group(3, coarser, &[]);
@@ -213,16 +313,17 @@ enum FullScreenDepth {
     Marking,
 }
 
-/// A full-screen pass of the low-resolution shading.
+/// A full-screen pass of the deferred shading.
 struct FullScreenPass<'a> {
     entry_point: &'static str,
+    /// Its one target's format.
+    format: wgpu::TextureFormat,
     /// The coarser samples it reads (group 3), if any.
     samples: Option<&'a wgpu::BindGroupLayout>,
     depth: FullScreenDepth,
 }
 
-/// A pipeline drawing vs_full_screen's triangle into one [`LOW_RESOLUTION_FORMATS`]
-/// target with `pass.entry_point`, bind groups `groups` (frame, surface buffer, shadow)
+/// A pipeline drawing vs_full_screen's triangle into one target with `pass.entry_point`, bind groups `groups` (frame, surface buffer, shadow)
 /// and the coarser samples, with `paths` compiled in.
 fn full_screen_pipeline(
     device: &wgpu::Device,
@@ -266,7 +367,7 @@ fn full_screen_pipeline(
                 ..Default::default()
             },
             targets: &[Some(wgpu::ColorTargetState {
-                format: LOW_RESOLUTION_FORMATS[0],
+                format: pass.format,
                 blend: None,
                 write_mask: wgpu::ColorWrites::ALL,
             })],

@@ -5,20 +5,23 @@
 //! (thin objects, silhouettes) are shaded in full on single-sampled targets, and take the
 //! best sample nearby on multisampled ones (see `logsh::shades_unmatched_exactly`).
 //!
-//! A frame's passes (`low_resolution` draws the first three): the low-resolution surfaces
-//! rasterised into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with their depth; with
-//! two-level shading, the soft layer — the light of soft shadows (the environment's and
-//! the SH path's lights) at one sample per 2 × 2 low-resolution samples; the samples
-//! ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes reading the buffer (one
-//! level: in full; two levels: the soft layer upsampled plus the sharp lights, and in full
-//! where the soft layer does not match or disagrees); then, in the frame's
-//! [`crate::render::RenderTarget`], the depth pre-pass, the upsampling and the full
-//! shading of the unmatched pixels.
+//! A frame's passes (`low_resolution` draws them on single-sampled targets): the
+//! low-resolution surfaces rasterised into a surface buffer ([`SURFACE_BUFFER_FORMATS`])
+//! with their depth; with two-level shading, the soft layer — the light of soft shadows
+//! (the environment's and the SH path's lights) at one sample per 2 × 2 low-resolution
+//! samples; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
+//! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the
+//! sharp lights, and in full where the soft layer does not match or disagrees); then the
+//! full-resolution surfaces into a buffer of their own with the frame's depth, and in
+//! the frame's [`crate::render::RenderTarget`] the upsampling and the full shading of the
+//! pixels it left, full-screen as well. Multisampled targets draw the full-resolution
+//! frame rasterised instead: a depth pre-pass, fs_upsample and nothing shaded in full.
 //!
 //! Why deferred: rasterised at a third of the resolution, a figure's triangles are
 //! smaller than a sample, and lavapipe runs a fragment shader over blocks of pixels per
 //! triangle, so the full shading ran once per triangle for a pixel or less; a
-//! full-screen pass runs it once per sample. Why two levels: the soft shadows walk every
+//! full-screen pass runs it once per sample. At full resolution a fine mesh (a terrain)
+//! paid likewise in the upsampling and the full shading of edge pixels. Why two levels: the soft shadows walk every
 //! blocker in reach, the costliest part of the shading, and change slowly enough across
 //! the image to be shaded at half the samples' resolution along each side. What each
 //! step saved: docs/performance.md (`render --time-frames` prints each pass's time).
@@ -139,6 +142,8 @@ pub struct LowResolutionTargets {
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
+    /// The surfaces at full resolution, when the frame is deferred too.
+    pub(crate) full_surface: Option<SurfaceBuffer>,
 }
 
 fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
@@ -305,13 +310,14 @@ impl LowResolutionTargets {
     /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
     /// surfaces through `surface_layout` ([`surface_buffer_layout`]); `soft_layer`: with
-    /// the soft layer at twice the spacing (two-level shading).
+    /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: with a
+    /// surface buffer at full resolution.
     pub fn new(
         device: &wgpu::Device,
         [layout, surface_layout]: [&wgpu::BindGroupLayout; 2],
         full_size: [u32; 2],
         downsample: u32,
-        soft_layer: bool,
+        [soft_layer, deferred_frame]: [bool; 2],
     ) -> LowResolutionTargets {
         let size = low_resolution_size(full_size[0], full_size[1], downsample);
         let samples = SampleImage::new(
@@ -340,12 +346,17 @@ impl LowResolutionTargets {
             surface: SurfaceBuffer::new(device, surface_layout, size),
             samples,
             soft,
+            full_surface: deferred_frame.then(|| SurfaceBuffer::new(device, surface_layout, full_size)),
         }
     }
 
-    /// Whether these serve frames of `full_size` at `downsample`, with a soft layer or not.
-    pub fn fits(&self, full_size: [u32; 2], downsample: u32, soft_layer: bool) -> bool {
-        self.full_size == full_size && self.downsample == downsample && self.soft.is_some() == soft_layer
+    /// Whether these serve frames of `full_size` at `downsample`, with a soft layer and a
+    /// full-resolution surface buffer or without.
+    pub fn fits(&self, full_size: [u32; 2], downsample: u32, [soft_layer, deferred_frame]: [bool; 2]) -> bool {
+        self.full_size == full_size
+            && self.downsample == downsample
+            && self.soft.is_some() == soft_layer
+            && self.full_surface.is_some() == deferred_frame
     }
 
     /// The bind group through which the full-resolution pass reads the samples.

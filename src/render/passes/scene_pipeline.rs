@@ -88,24 +88,6 @@ pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
     ]
 }
 
-/// The upsampling that leaves unmatched pixels to a full shading pass marks the pixels it
-/// writes by moving their depth this many depth steps nearer (see reduced_shading.wgsl):
-/// a constant bias, so its shader need not write depth, which would have lavapipe test
-/// depth only after running it on every hidden fragment as well.
-const MARKED_DEPTH_STEPS: i32 = 8;
-
-fn depth_bias(stage: Stage, samples: u32) -> wgpu::DepthBiasState {
-    let marking = wgpu::DepthBiasState {
-        constant: -MARKED_DEPTH_STEPS,
-        slope_scale: 0.0,
-        clamp: 0.0,
-    };
-    match stage {
-        Stage::Upsample(_) if shades_unmatched_exactly(samples) => marking,
-        _ => wgpu::DepthBiasState::default(),
-    }
-}
-
 pub(super) fn scene_pipeline(
     device: &wgpu::Device,
     layouts: &SceneLayouts,
@@ -154,13 +136,6 @@ pub(super) fn scene_pipeline(
         Stage::DepthOnly => ("fs_depth_only", vec![depth_only], true, wgpu::CompareFunction::Less),
         Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
-        // Marks the pixels it did by moving their depth nearer (see reduced_shading.wgsl).
-        Stage::Upsample(_) if shades_unmatched_exactly(samples) => (
-            "fs_upsample_marking",
-            vec![shaded],
-            true,
-            wgpu::CompareFunction::LessEqual,
-        ),
         Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::SurfaceBuffer => (
             "fs_surface_buffer",
@@ -193,7 +168,6 @@ pub(super) fn scene_pipeline(
         },
         primitive: scene_triangles(variant.paths.cull_back_faces),
         depth_stencil: Some(wgpu::DepthStencilState {
-            bias: depth_bias(stage, samples),
             ..depth_test(depth_write, compare)
         }),
         multisample: wgpu::MultisampleState {

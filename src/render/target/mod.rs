@@ -149,6 +149,23 @@ impl RenderTarget {
         }
     }
 
+    /// The depth attachment, cleared to the far plane (`clear`) or as the previous pass
+    /// left it, and kept for the next pass.
+    pub fn depth_attachment_kept(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        wgpu::RenderPassDepthStencilAttachment {
+            view: &self.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: if clear {
+                    wgpu::LoadOp::Clear(1.0)
+                } else {
+                    wgpu::LoadOp::Load
+                },
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }
+    }
+
     /// The depth attachment, cleared to the far plane.
     pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         wgpu::RenderPassDepthStencilAttachment {
