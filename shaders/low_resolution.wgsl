@@ -1,13 +1,14 @@
-// The low-resolution samples of reduced-resolution shading, shaded deferred
-// (src/render/passes/reduced_shading.rs): the meshes are rasterised once into a surface
-// buffer by a cheap shader (fs_surface_buffer), and the costly shading runs in
-// full-screen passes that read it. lavapipe runs a fragment shader over blocks of pixels
-// per triangle, so a mesh whose triangles are smaller than the samples' spacing (a
-// figure's limbs at a third of the resolution) had the full shading run once per
-// triangle for a pixel or less; a full-screen pass runs it once per sample. Appended
-// after reduced_shading.wgsl.
+// Reduced-resolution shading deferred (src/render/passes/reduced_shading.rs): the meshes
+// are rasterised once into a surface buffer by a cheap shader (fs_surface_buffer), and
+// the costly work runs in full-screen passes that read it — the samples' shading at low
+// resolution, and on single-sampled targets the upsampling and the full shading of the
+// pixels it leaves at full resolution. lavapipe runs a fragment shader over blocks of
+// pixels per triangle, so a mesh whose triangles are smaller than the samples' spacing
+// (a figure's limbs at a third of the resolution, a fine terrain at full resolution) had
+// the shading run once per triangle for a pixel or less; a full-screen pass runs it once
+// per pixel. Appended after reduced_shading.wgsl.
 //
-// The buffer, two Rgba32Uint texels per sample:
+// The buffer, two Rgba32Uint texels per pixel:
 //   a: x view depth (f32 bits, 0 where no surface was drawn), y the octahedral normal
 //      (two snorm16), zw k_d (pack_lighting);
 //   b: xy the emission — the material's own and the baked indirect light —

@@ -1,7 +1,9 @@
-//! The low-resolution passes of reduced-resolution shading (see `reduced_shading` and
-//! shaders/low_resolution.wgsl): the surface buffer rasterised, then full-screen passes
-//! that shade it — in one level, or in two, the light of soft shadows at twice the
-//! spacing and the sharp lights added at every sample.
+//! The deferred passes of reduced-resolution shading (see `reduced_shading` and
+//! shaders/low_resolution.wgsl): the low-resolution surface buffer rasterised, then
+//! full-screen passes that shade it — in one level, or in two, the light of soft
+//! shadows at twice the spacing and the sharp lights added at every sample — and on
+//! single-sampled targets the full-resolution frame likewise: its surface buffer, then
+//! the upsampling and the full shading of the pixels it leaves.
 
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, surface_buffer_layout,
