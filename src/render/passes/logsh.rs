@@ -186,10 +186,7 @@ impl LogShPipeline {
             shade_low_resolution(frame, pipelines, low, scene, blockers);
             let drawn = (target, background_linear);
             if draw_full_resolution(frame, pipelines, low, drawn, scene, blockers) {
-                target.finish(frame.encoder);
-                if target.has_edge_filter() {
-                    frame.mark("edge filter");
-                }
+                finish(frame, target);
                 return;
             }
         }
@@ -230,10 +227,15 @@ impl LogShPipeline {
         }
         drop(pass);
         frame.mark("scene pass (depth, upsampling, shading)");
-        target.finish(frame.encoder);
-        if target.has_edge_filter() {
-            frame.mark("edge filter");
-        }
+        finish(frame, target);
+    }
+}
+
+/// Resolves or filters `target`'s frame (see [`RenderTarget::finish`]), timed.
+fn finish(frame: &mut TimedEncoder, target: &RenderTarget) {
+    target.finish(frame.encoder);
+    if target.has_edge_filter() {
+        frame.mark("edge filter");
     }
 }
 

@@ -3,7 +3,7 @@
 //! pixel from the samples on its own surface (joint bilateral upsampling guided by world
 //! position and normal), multiplying its own material back in. Pixels no sample matches
 //! (thin objects, silhouettes) are shaded in full on single-sampled targets, and take the
-//! best sample nearby on multisampled ones (see `logsh::shades_unmatched_exactly`).
+//! best sample nearby on multisampled ones (see `scene_pipeline::shades_unmatched_exactly`).
 //!
 //! A frame's passes (`low_resolution` draws them on single-sampled targets): the
 //! low-resolution surfaces rasterised into a surface buffer ([`SURFACE_BUFFER_FORMATS`])
