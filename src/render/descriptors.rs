@@ -21,6 +21,27 @@ pub fn scene_triangles(cull_back_faces: bool) -> wgpu::PrimitiveState {
     }
 }
 
+/// A depth attachment of `view`: cleared to `clear`, or as the previous pass left it
+/// (None), and stored for a later pass if `keep`.
+pub fn depth_attachment(
+    view: &wgpu::TextureView,
+    clear: Option<f32>,
+    keep: bool,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
+            store: if keep {
+                wgpu::StoreOp::Store
+            } else {
+                wgpu::StoreOp::Discard
+            },
+        }),
+        stencil_ops: None,
+    }
+}
+
 /// A [`DEPTH_FORMAT`] depth test with `compare`, writing depth if `write`.
 pub fn depth_test(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {

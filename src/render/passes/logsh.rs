@@ -5,7 +5,7 @@
 //! The SH order and exponentiation method are baked into the module at creation
 //! (generated WGSL, `shading::wgsl::sh`).
 
-use super::low_resolution::{ReducedShadingPipelines, draw_full_resolution, shade_low_resolution};
+use super::low_resolution::{FullResolution, ReducedShadingPipelines, draw_full_resolution, shade_low_resolution};
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::reduced_shading::LowResolutionTargets;
 pub use super::scene_pipeline::SURFACE_FORMAT;
@@ -215,10 +215,12 @@ impl LogShPipeline {
                 }
             }
             (None, Some((low, pipelines))) => {
-                pass.set_bind_group(3, low.bind_group(), &[]);
                 // Multisampled: every pixel from the samples, the best match nearby where
                 // none matches (single-sampled frames were drawn deferred above).
-                pipelines.upsample.draw_objects(&mut pass, scene);
+                if let FullResolution::Rasterised(upsample) = &pipelines.full_resolution {
+                    pass.set_bind_group(3, low.bind_group(), &[]);
+                    upsample.draw_objects(&mut pass, scene);
+                }
             }
             (None, None) => {
                 pass.set_pipeline(&self.shade);

@@ -26,10 +26,18 @@ pub(super) struct ReducedShadingPipelines {
     shade_low: wgpu::RenderPipeline,
     /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
     pub soft_layer: Option<SoftLayerPipelines>,
-    /// The full-resolution frame deferred too (single-sampled targets).
-    pub full_resolution: Option<FullResolutionPipelines>,
-    /// The upsampling, for objects with a base colour texture and for the others.
-    pub upsample: ByTexture,
+    /// How the full-resolution frame is drawn from the samples.
+    pub full_resolution: FullResolution,
+}
+
+/// The full-resolution frame's pipelines: deferred on single-sampled targets, rasterised
+/// on multisampled ones (where lavapipe tests depth after the fragment shader, so no pass
+/// could shade only the pixels the upsampling left: fs_upsample takes the best sample
+/// nearby instead). Only the one a pipeline's targets use is compiled.
+pub(super) enum FullResolution {
+    Deferred(FullResolutionPipelines),
+    /// The rasterised upsampling, for objects with a base colour texture and for the others.
+    Rasterised(ByTexture),
 }
 
 /// Two-level reduced shading (see `reduced_shading`): the soft layer's samples
@@ -92,27 +100,28 @@ impl ReducedShadingPipelines {
                     FullScreenDepth::Marking,
                 ),
             }),
-            // Multisampled targets keep the rasterised passes (fs_upsample takes the best
-            // sample nearby where the samples do not match).
-            full_resolution: shades_unmatched_exactly(variant.samples).then(|| FullResolutionPipelines {
-                upsample: full_screen_into(
-                    COLOR_FORMAT,
-                    "fs_upsample_deferred_marking",
-                    Some(&low_resolution_layout),
-                    FullScreenDepth::Marking,
-                ),
-                shade: full_screen_into(COLOR_FORMAT, "fs_logsh_deferred", None, FullScreenDepth::Unmarked),
-            }),
-            upsample: ByTexture::new(|textured| {
-                scene_pipeline(
-                    device,
-                    layouts,
-                    shadow_layout,
-                    module,
-                    Stage::Upsample(&low_resolution_layout),
-                    Variant { textured, ..variant },
-                )
-            }),
+            full_resolution: if shades_unmatched_exactly(variant.samples) {
+                FullResolution::Deferred(FullResolutionPipelines {
+                    upsample: full_screen_into(
+                        COLOR_FORMAT,
+                        "fs_upsample_deferred_marking",
+                        Some(&low_resolution_layout),
+                        FullScreenDepth::Marking,
+                    ),
+                    shade: full_screen_into(COLOR_FORMAT, "fs_logsh_deferred", None, FullScreenDepth::Unmarked),
+                })
+            } else {
+                FullResolution::Rasterised(ByTexture::new(|textured| {
+                    scene_pipeline(
+                        device,
+                        layouts,
+                        shadow_layout,
+                        module,
+                        Stage::Upsample(&low_resolution_layout),
+                        Variant { textured, ..variant },
+                    )
+                }))
+            },
             low_resolution_layout,
             surface_buffer_layout,
         }
@@ -123,7 +132,10 @@ impl ReducedShadingPipelines {
     /// What its targets need besides the samples ([`LowResolutionTargets::new`]): a soft
     /// layer, a full-resolution surface buffer.
     pub fn levels(&self) -> [bool; 2] {
-        [self.soft_layer.is_some(), self.full_resolution.is_some()]
+        [
+            self.soft_layer.is_some(),
+            matches!(self.full_resolution, FullResolution::Deferred(_)),
+        ]
     }
 }
 
@@ -228,13 +240,13 @@ pub(super) fn draw_full_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) -> bool {
-    let (Some(full), Some(surface)) = (&pipelines.full_resolution, &low.full_surface) else {
+    let (FullResolution::Deferred(full), Some(surface)) = (&pipelines.full_resolution, &low.full_surface) else {
         return false;
     };
     draw_surfaces(
         frame,
         "full-resolution surfaces",
-        (surface, target.depth_attachment_kept(true)),
+        (surface, target.depth_attachment_for(true, true)),
         &pipelines.surface_buffer,
         scene,
         blockers,
@@ -251,7 +263,7 @@ pub(super) fn draw_full_resolution(
         "scene pass (upsampling, shading)",
         (
             &[Some(target.color_attachment(background_linear))],
-            Some(target.depth_attachment_kept(false)),
+            Some(target.depth_attachment_for(false, false)),
         ),
         Some(low.bind_group()),
         &[&full.upsample, &full.shade],

@@ -28,7 +28,7 @@
 
 use wgpu::util::DeviceExt;
 
-use crate::render::descriptors::{DEPTH_FORMAT, frame_texture, numbered_entries};
+use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture, numbered_entries};
 use crate::shading::gpu_types::GpuUpsampleParams;
 
 /// Formats of fs_shade_low's targets: one, holding view depth, lighting and the packed
@@ -205,22 +205,7 @@ impl SurfaceBuffer {
     /// The depth attachment: cleared and written by the surface pass (`clear`), then
     /// tested, and written by the marking pass, in the shading pass.
     pub(crate) fn depth_attachment(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        wgpu::RenderPassDepthStencilAttachment {
-            view: &self.depth,
-            depth_ops: Some(wgpu::Operations {
-                load: if clear {
-                    wgpu::LoadOp::Clear(1.0)
-                } else {
-                    wgpu::LoadOp::Load
-                },
-                store: if clear {
-                    wgpu::StoreOp::Store
-                } else {
-                    wgpu::StoreOp::Discard
-                },
-            }),
-            stencil_ops: None,
-        }
+        depth_attachment(&self.depth, clear.then_some(1.0), clear)
     }
 }
 

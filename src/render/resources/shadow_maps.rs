@@ -10,7 +10,7 @@ use wgpu::util::DeviceExt;
 
 use super::layouts::vertex_layout;
 use super::scene::GpuScene;
-use crate::render::descriptors::{DEPTH_FORMAT, create_module};
+use crate::render::descriptors::{DEPTH_FORMAT, create_module, depth_attachment};
 use crate::shading::gpu_types::{GpuShadowView, MAX_SHADOW_VIEWS};
 use crate::shading::wgsl;
 
@@ -126,14 +126,8 @@ impl ShadowMaps {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
                 color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &target,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                // Reversed depth: cleared to the far plane, 0.
+                depth_stencil_attachment: Some(depth_attachment(&target, Some(0.0), true)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,

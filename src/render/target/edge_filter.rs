@@ -9,7 +9,8 @@
 //! upsampling must search wider for the pixels it cannot match.
 
 use crate::render::descriptors::{
-    COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, create_module, depth_test, frame_texture, numbered_entries,
+    COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, create_module, depth_attachment, depth_test, frame_texture,
+    numbered_entries,
 };
 use crate::shading::wgsl;
 
@@ -165,14 +166,7 @@ impl EdgeFilterPass {
                     store: wgpu::StoreOp::Store,
                 },
             })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &self.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(depth_attachment(&self.depth_view, Some(1.0), false)),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,

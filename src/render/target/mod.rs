@@ -3,7 +3,9 @@
 
 pub mod edge_filter;
 
-use crate::render::descriptors::{COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, SAMPLE_COUNT, frame_texture};
+use crate::render::descriptors::{
+    COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, SAMPLE_COUNT, depth_attachment, frame_texture,
+};
 use edge_filter::{EdgeFilter, EdgeFilterPass};
 
 /// How a frame's silhouettes and other edges are smoothed.
@@ -150,32 +152,14 @@ impl RenderTarget {
     }
 
     /// The depth attachment, cleared to the far plane (`clear`) or as the previous pass
-    /// left it, and kept for the next pass.
-    pub fn depth_attachment_kept(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        wgpu::RenderPassDepthStencilAttachment {
-            view: &self.depth_view,
-            depth_ops: Some(wgpu::Operations {
-                load: if clear {
-                    wgpu::LoadOp::Clear(1.0)
-                } else {
-                    wgpu::LoadOp::Load
-                },
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }
+    /// left it, and kept for a later pass if `keep`.
+    pub fn depth_attachment_for(&self, clear: bool, keep: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        depth_attachment(&self.depth_view, clear.then_some(1.0), keep)
     }
 
-    /// The depth attachment, cleared to the far plane.
+    /// The depth attachment, cleared to the far plane, for one pass.
     pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        wgpu::RenderPassDepthStencilAttachment {
-            view: &self.depth_view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Discard,
-            }),
-            stencil_ops: None,
-        }
+        self.depth_attachment_for(true, false)
     }
 
     /// Writes `rgba8` (sRGB-encoded bytes, row by row) as the frame drawn so far, in place
