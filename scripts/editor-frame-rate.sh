@@ -3,22 +3,19 @@
 # viewport is about 960×540, under Xvfb, drawing its frame anew every frame
 # (LIGHTPAINT_MEASURE_FRAME_RATE=1: the camera rests, so each frame is the defaults' full
 # frame, not the cheaper one shown while the camera moves), egui's work included. Prints
-# the status bar's frame time every two seconds for SECONDS (default 20) after the first
-# frame. MEASURE=interface draws only the interface around the frame drawn before: what
+# the status bar's frame time every two seconds for SECONDS_TO_MEASURE seconds (default
+# 20) after the first frame. MEASURE=interface draws only the interface around the frame drawn before: what
 # the editor costs besides the renderer. For docs/performance.md; run it on an otherwise
 # idle machine. Usage: [MEASURE=interface] scripts/editor-frame-rate.sh [PROJECT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 project="$(realpath "${1:-projects/studio/studio.lightpaint}")"
-command -v xdotool >/dev/null || { echo "xdotool is missing: apt-get install xdotool" >&2; exit 1; }
 source scripts/system-packages.sh
-lightpaint_install_system_packages
-lightpaint_runtime_dir
-cargo build --quiet --bin lightpaint
+lightpaint_build_to_run
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 export XDG_DATA_HOME="$scratch/data" LIGHTPAINT_MEASURE_FRAME_RATE="${MEASURE:-1}"
-export BIN="${CARGO_TARGET_DIR}/debug/lightpaint" PROJECT="$project" LOG="$scratch/editor.log"
+export BIN="$LIGHTPAINT_BIN" PROJECT="$project" LOG="$scratch/editor.log"
 export MEASURE_SECONDS="${SECONDS_TO_MEASURE:-20}"
 xvfb-run -a -s "-screen 0 1920x1080x24" bash -c '
     set -euo pipefail

@@ -2,16 +2,13 @@
 # Screenshots the editor under Xvfb in the middle of a stroke, for
 # docs/images/editor-painting.png: the studio sample, the left rim light selected (its gizmo
 # showing), one stroke painted and the brighten brush held down halfway through a second. The pointer is driven
-# with xdotool (`apt-get install xdotool`), so the picture is the real window with real
+# with xdotool (installed with the other packages), so the picture is the real window with real
 # input. Usage: scripts/editor-screenshot.sh [OUT.png]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="$(realpath -m "${1:-docs/images/editor-painting.png}")"
-command -v xdotool >/dev/null || { echo "xdotool is missing: apt-get install xdotool" >&2; exit 1; }
 source scripts/system-packages.sh
-lightpaint_install_system_packages
-lightpaint_runtime_dir
-cargo build --quiet --bin lightpaint
+lightpaint_build_to_run
 # A scratch copy of the sample, and no preferences or window size from earlier runs.
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
@@ -20,7 +17,7 @@ cp -r projects/studio "$scratch/"
 sed -i 's/"brush": null/"brush": {"kind": "positive", "radius_px": 36, "falloff": "smooth", "strength": 1.0, "target_luminance_nits": 1.0}/' \
     "$scratch/studio/studio.lightpaint"
 export XDG_DATA_HOME="$scratch/data" LIGHTPAINT_HIDE_FRAME_TIMINGS=1
-export BIN="${CARGO_TARGET_DIR}/debug/lightpaint" PROJECT="$scratch/studio/studio.lightpaint" OUT="$out"
+export BIN="$LIGHTPAINT_BIN" PROJECT="$scratch/studio/studio.lightpaint" OUT="$out"
 xvfb-run -a -s "-screen 0 1280x800x24" bash -c '
     set -euo pipefail
     "$BIN" "$PROJECT" 2>"$OUT.log" &

@@ -5,9 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/system-packages.sh
-lightpaint_runtime_dir
-cargo build --quiet --bin lightpaint
-bin="${CARGO_TARGET_DIR}/debug/lightpaint"
+lightpaint_build_to_run
+bin="$LIGHTPAINT_BIN"
 frames="${FRAMES:-10}"
 out="$(mktemp -d)"
 row() {

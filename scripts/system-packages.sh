@@ -3,7 +3,7 @@
 # screenshot tool the smoke test uses, fontconfig with a font for the study's plot
 # (plotters draws text through font-kit), and zenity, which the editor's file dialogs
 # fall back to where no desktop portal answers (rfd), driven in the editor's smoke test
-# by xdotool. Sourced by run-editor.sh and test-all.sh.
+# by xdotool. Sourced by every script here that builds or runs lightpaint.
 
 lightpaint_packages=(
     mesa-vulkan-drivers libvulkan1 xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1
@@ -32,6 +32,15 @@ lightpaint_runtime_dir() {
         chmod 700 "$XDG_RUNTIME_DIR"
         export XDG_RUNTIME_DIR
     fi
+}
+
+# What the scripts that run the built binary need: the packages, a runtime directory and
+# the binary, whose path goes to LIGHTPAINT_BIN.
+lightpaint_build_to_run() {
+    lightpaint_install_system_packages
+    lightpaint_runtime_dir
+    cargo build --quiet --bin lightpaint
+    LIGHTPAINT_BIN="${CARGO_TARGET_DIR}/debug/lightpaint"
 }
 
 # Builds go to a fixed directory outside the checkout, so fresh clones reuse them.
