@@ -361,17 +361,23 @@ fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
     assert_eq!(differing, 0, "undo restores the viewport image exactly");
 }
 
+/// Picks the tool of `key` (B, N, C) and paints one short stroke on the floor below the
+/// viewport's centre.
+fn stroke_on_the_floor(harness: &mut Harness<'static, EditorApp>, key: egui::Key) {
+    harness.run();
+    harness.key_press(key);
+    harness.run();
+    let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
+    drag_through(harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
+}
+
 /// Paint, save, reopen: the same intensities, the same stroke history, the same image.
 #[test]
 fn a_painted_project_reopens_exactly_as_saved() {
     let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
         return;
     };
-    harness.run();
-    harness.key_press(egui::Key::B);
-    harness.run();
-    let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
-    drag_through(&mut harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
+    stroke_on_the_floor(&mut harness, egui::Key::B);
     let painted = harness.state().light_intensities();
     let strokes = harness.state().document().expect("open").painting.strokes.clone();
     assert_eq!(strokes.len(), 1, "one stroke in the history");
@@ -403,11 +409,7 @@ fn a_keep_area_from_before_saving_holds_after_reopening() {
     let Some((_dir, project, mut harness)) = editor_on_sample_copy() else {
         return;
     };
-    harness.run();
-    harness.key_press(egui::Key::C);
-    harness.run();
-    let centre = harness.state().viewport_rect().center() + egui::vec2(0.0, 120.0);
-    drag_through(&mut harness, &[centre, centre + egui::vec2(40.0, 0.0)], 1);
+    stroke_on_the_floor(&mut harness, egui::Key::C);
     let kept = |harness: &mut egui_kittest::Harness<'_, lightpaint::ui::EditorApp>| {
         let scene = harness.state().document().expect("open").scene.clone();
         harness
