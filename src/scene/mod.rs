@@ -18,6 +18,7 @@ mod mesh;
 mod reflectance;
 pub mod shapes;
 pub mod terrain;
+pub mod texture_mips;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};

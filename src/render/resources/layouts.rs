@@ -85,7 +85,8 @@ impl SceneLayouts {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             // Trilinear, not anisotropic: lavapipe's anisotropic filter loops over a weight
             // table per sample and cost the studio's default frame 12 % (87 against 99 ms,
-            // 2026-12-02), for floor textures a little sharper at grazing angles.
+            // 2026-12-02). The shader sharpens grazing floors itself, at a third of that
+            // cost (`sample_base_color` in shaders/scene.wgsl).
             anisotropy_clamp: 1,
             ..Default::default()
         });

@@ -300,15 +300,16 @@ fn frame_bind_group(
     })
 }
 
-/// Uploads an sRGB texture with a full mip chain (box-filtered on the CPU), so distant
-/// and grazing texels average instead of aliasing.
+/// Uploads an sRGB texture with a full mip chain (averaged in linear light on the CPU:
+/// [`crate::scene::texture_mips`]), so distant and grazing texels average instead of
+/// aliasing.
 fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureImage) -> wgpu::TextureView {
-    let levels = mip_chain(texture);
+    let levels = crate::scene::texture_mips::mip_chain(texture);
     let gpu_texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some(&texture.name),
         size: wgpu::Extent3d {
-            width: texture.width,
-            height: texture.height,
+            width: levels[0].width(),
+            height: levels[0].height(),
             depth_or_array_layers: 1,
         },
         mip_level_count: levels.len() as u32,
@@ -340,21 +341,6 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureI
         );
     }
     gpu_texture.create_view(&wgpu::TextureViewDescriptor::default())
-}
-
-fn mip_chain(texture: &TextureImage) -> Vec<image::RgbaImage> {
-    let base = image::RgbaImage::from_raw(texture.width, texture.height, texture.rgba8.clone())
-        .unwrap_or_else(|| image::RgbaImage::from_pixel(1, 1, image::Rgba([255; 4])));
-    let mut levels = vec![base];
-    loop {
-        let last = &levels[levels.len() - 1];
-        if last.width() == 1 && last.height() == 1 {
-            break levels;
-        }
-        let (w, h) = ((last.width() / 2).max(1), (last.height() / 2).max(1));
-        let next = image::imageops::resize(last, w, h, image::imageops::FilterType::Triangle);
-        levels.push(next);
-    }
 }
 
 /// Draws every shown object of `scene` into `pass` (pipeline and group 0 set).
