@@ -5,7 +5,7 @@
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
 //       + the terrain's log-visibility (terrain.wgsl)
 //   G = exp*(F)                                                     (visibility SH)
-//   L = emissive + environment · ⟨G, cos⟩ + Σ_lights direct · clamp(mean of G over the
+//   L = emissive + ⟨G · cos⁺/π, L_env⟩ + Σ_lights direct · clamp(mean of G over the
 //       light's cap, 0, 1) (the default separate BRDF; the log and product variants
 //       below carry the BRDF in the SH), or, for lights on the exact path,
 //       direct · Π_blockers (1 − share of the light's disc the blocker hides) · share of
@@ -401,11 +401,16 @@ fn light_through(s: Surface, lobes: LobeVisibility, inc: Incidence) -> vec3<f32>
     return inc.irradiance * (s.k_d * clamp(diffuse_mean, 0.0, direct.x) + s.k_s * specular);
 }
 
-// The environment's diffuse light at s through the lobes' SH.
+// The environment's diffuse light at s through the lobes' SH, ⟨V · cos⁺/π, L_env⟩: the
+// visibility weighted by where the environment is bright. (Scaling the unshadowed light
+// by the cosine-weighted mean of V, as the separate BRDF does for each light, dimmed a
+// wall standing on a floor by as much again as the floor really hides under a sky
+// brighter above than below: the floor hides the dim half.) Clamped to the unshadowed
+// light, which it equals where nothing blocks.
 fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     let unshadowed = environment_irradiance_at(s) / PI;
     if BRDF_SHADING == BRDF_SEPARATE {
-        return s.k_d * unshadowed * clamp(sh_visibility_cosine(lobes.diffuse, s.normal), 0.0, 1.0);
+        return s.k_d * clamp(sh_environment_through_cosine(lobes.diffuse, s.normal), vec3<f32>(0.0), unshadowed);
     }
     return s.k_d * clamp(sh_dot_environment(lobes.diffuse), vec3<f32>(0.0), unshadowed);
 }

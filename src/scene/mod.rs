@@ -22,7 +22,7 @@ pub mod texture_mips;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
-pub use environment::Environment;
+pub use environment::{Environment, equirect_direction, project_equirect};
 pub use error::SceneError;
 pub use gltf_import::{load_gltf, load_gltf_scene, parse_gltf, parse_gltf_scene};
 pub use light::{Light, LightKind, UnitIncidence};

@@ -156,8 +156,7 @@ impl<'a> DirectEstimate<'a> {
     fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
         let mut radiance = s.emissive;
         if self.scene.environment.is_some() {
-            let visible = cpu::visibility_cosine(g.at(s), s.normal).clamp(0.0, 1.0);
-            radiance += cpu::environment_radiance(s, &self.environment) * visible;
+            radiance += cpu::environment_through_visibility(s, &self.environment, g.at(s));
         }
         luminance(radiance)
     }

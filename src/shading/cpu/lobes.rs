@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::surface::{Incidence, SurfacePoint, direct_lobes, environment_irradiance_at, mirrored_view};
-use super::visibility::{visibility_cosine, visibility_toward};
+use super::visibility::visibility_toward;
 use crate::sh;
 use crate::shading::{BrdfShading, ShadowSettings};
 
@@ -127,11 +127,24 @@ pub fn environment_through(
     irradiance_sh: &[[f32; 4]; 9],
     lobes: &LobeVisibility,
 ) -> DVec3 {
-    let diffuse_unshadowed = environment_irradiance_at(s.normal, irradiance_sh) / PI;
     if settings.brdf == BrdfShading::Separate {
-        return s.k_d * diffuse_unshadowed * visibility_cosine(&lobes.diffuse, s.normal).clamp(0.0, 1.0);
+        return environment_through_visibility(s, irradiance_sh, &lobes.diffuse);
     }
+    let diffuse_unshadowed = environment_irradiance_at(s.normal, irradiance_sh) / PI;
     let through = dot_environment_radiance(&lobes.diffuse, irradiance_sh);
+    s.k_d * through.clamp(DVec3::ZERO, diffuse_unshadowed)
+}
+
+/// The environment's diffuse light through the visibility SH `g`, ⟨g ∗ cos⁺/π, L_env⟩:
+/// the visibility weighted by where the environment is bright, clamped to the unshadowed
+/// light (logsh.wgsl's `environment_through` with the separate BRDF). A wall standing on
+/// a floor under a sky brighter above than below loses the dim half the floor hides, not
+/// the floor's share of the cosine-weighted hemisphere.
+pub fn environment_through_visibility(s: &SurfacePoint, irradiance_sh: &[[f32; 4]; 9], g: &[f64]) -> DVec3 {
+    let order = sh::order_of(g.len()).unwrap_or(0);
+    let cosine = sh::rotate_zh(&sh::phong_lobe_zh(order, 1.0), s.normal);
+    let through = dot_environment_radiance(&sh::product(order, g, &cosine), irradiance_sh);
+    let diffuse_unshadowed = environment_irradiance_at(s.normal, irradiance_sh) / PI;
     s.k_d * through.clamp(DVec3::ZERO, diffuse_unshadowed)
 }
 

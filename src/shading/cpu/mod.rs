@@ -43,6 +43,7 @@ use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
 use crate::terrain::TerrainShadow;
+pub use lobes::environment_through_visibility;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
 use visibility::exp_for_shading;
 

@@ -8,7 +8,11 @@
 //! - `sh_times_lobe(g, lobe)`: the SH product (only the product variant compiles it; the
 //!   others get the identity, which they never call);
 //! - `sh_dot_environment(g)`: ⟨g, L_env⟩ with the environment's radiance SH
-//!   L_lm = E_lm / Â_l over the bands both carry.
+//!   L_lm = E_lm / Â_l over the bands both carry;
+//! - `sh_environment_through_cosine(g, n)`: ⟨g ∗ (cos⁺/π about n), L_env⟩, the
+//!   environment's diffuse light through the visibility g, weighted by where the
+//!   environment is bright (`sh_dot_environment` of the product, with only the product's
+//!   bands the environment carries computed).
 
 use std::f64::consts::PI;
 use std::fmt::Write;
@@ -41,6 +45,7 @@ pub fn lobes_module(order: usize, method: ExpMethod, brdf: BrdfShading) -> Strin
     out += &log_phong_lobe_fn(order);
     out += &times_lobe_fn(order, method, brdf);
     out += &environment_fn(order);
+    out += &environment_through_cosine_fn(order);
     out
 }
 
@@ -130,6 +135,51 @@ fn environment_fn(order: usize) -> String {
         s += &format!(
             "    sum += frame.environment_irradiance[{i}].rgb * (g{} * {});\n",
             slot(i),
+            lit(1.0 / a_hat)
+        );
+    }
+    s + "    return sum;\n}\n"
+}
+
+/// `fn sh_environment_through_cosine(g, n) -> vec3<f32>`: Σ_{i < 9} L_i Σ_jk Γ_ijk g_j c_k
+/// with c the normalised clamped cosine about n, the same as
+/// `sh_dot_environment(sh_product(g, c))` but for the product's bands above the
+/// environment's, which the dot product drops.
+fn environment_through_cosine_fn(order: usize) -> String {
+    let cosine = sh::phong_lobe_zh(3, 1.0);
+    let kept = sh::coefficient_count(order.min(3));
+    let n = sh::coefficient_count(order);
+    let gaunt = sh::gaunt(order);
+    let mut s = String::from(
+        "fn sh_environment_through_cosine(g: Sh, n: vec3<f32>) -> vec3<f32> {
+    let c = sh_add_zonal(sh_zero(), sh_phong_lobe_zh(1.0), 1.0, n);
+",
+    );
+    for i in 0..n {
+        s += &format!(
+            "    let g{i} = g{};
+    let c{i} = c{};
+",
+            slot(i),
+            slot(i)
+        );
+    }
+    s += "    var sum = vec3<f32>(0.0);\n";
+    for i in 0..kept {
+        let terms: Vec<String> = gaunt
+            .entries
+            .iter()
+            .filter(|e| e.0 as usize == i)
+            .map(|&(_, j, k, value)| format!("{} * g{j} * c{k}", lit(value)))
+            .collect();
+        if terms.is_empty() {
+            continue;
+        }
+        let l = (i as f64).sqrt() as usize;
+        let a_hat = (4.0 * PI / (2 * l + 1) as f64).sqrt() * cosine[l] * PI;
+        s += &format!(
+            "    sum += frame.environment_irradiance[{i}].rgb * (({}) * {});\n",
+            terms.join(" + "),
             lit(1.0 / a_hat)
         );
     }
