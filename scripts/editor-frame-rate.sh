@@ -6,7 +6,8 @@
 # the status bar's frame time every two seconds for SECONDS_TO_MEASURE seconds (default
 # 20) after the first frame. MEASURE=interface draws only the interface around the frame drawn before: what
 # the editor costs besides the renderer. For docs/performance.md; run it on an otherwise
-# idle machine. Usage: [MEASURE=interface] scripts/editor-frame-rate.sh [PROJECT]
+# idle machine. WINDOW_SIZE="W H" sizes the window otherwise (default "1513 618").
+# Usage: [MEASURE=interface] [WINDOW_SIZE="W H"] scripts/editor-frame-rate.sh [PROJECT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 project="$(realpath "${1:-projects/studio/studio.lightpaint}")"
@@ -16,7 +17,7 @@ scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 export XDG_DATA_HOME="$scratch/data" LIGHTPAINT_MEASURE_FRAME_RATE="${MEASURE:-1}"
 export BIN="$LIGHTPAINT_BIN" PROJECT="$project" LOG="$scratch/editor.log"
-export MEASURE_SECONDS="${SECONDS_TO_MEASURE:-20}"
+export MEASURE_SECONDS="${SECONDS_TO_MEASURE:-20}" WINDOW_SIZE="${WINDOW_SIZE:-1513 618}"
 xvfb-run -a -s "-screen 0 1920x1080x24" bash -c '
     set -euo pipefail
     "$BIN" "$PROJECT" 2>"$LOG" &
@@ -24,7 +25,8 @@ xvfb-run -a -s "-screen 0 1920x1080x24" bash -c '
     for _ in $(seq 1 180); do grep -q "first frame drawn" "$LOG" && break; sleep 1; done
     # The outliner (about 217 px) and the inspector (about 336 px) beside the viewport,
     # the menu, tool and status bars (about 78 px) above and below it.
-    xdotool search --sync --name lightpaint windowsize 1513 618 >/dev/null
+    # shellcheck disable=SC2086 # "W H": two arguments
+    xdotool search --sync --name lightpaint windowsize $WINDOW_SIZE >/dev/null
     sleep "$MEASURE_SECONDS"
     kill "$editor"
     wait "$editor" || true
