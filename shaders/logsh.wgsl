@@ -130,7 +130,8 @@ fn disc_cap_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> SeenDisc {
     let ratio = sqrt(max(1.0 - cos_cap * cos_cap, 0.0));
     let tilt = sqrt(max(1.0 - dot(n, normal) * dot(n, normal), 0.0));
     let offset = b.center_radius.xyz - p;
-    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / (radius * max(tilt, 1e-4)));
+    // Unfaded while any of it can be above the tangent plane (Sphere::cap_from says why).
+    let horizon = select(0.0, 1.0, dot(offset, n) > -radius * max(tilt, 1e-4));
     return SeenDisc(seen.xyz, ratio, horizon, length(offset));
 }
 

@@ -124,12 +124,14 @@ fn shading_one_pixel_per_block_looks_like_shading_every_pixel_on_the_samples() {
             // the sample and the studio — with the soft layer at half the samples'
             // resolution, which two-level shading adds here — against 95.4–96.4 and
             // 98.3–98.9 % when those pixels were interpolated too; without maps 97.4–99.1
-            // and 99.1–99.8 %, the lowest with 4 samples per pixel, where no pixel is
-            // shaded in full: 97.7 % before base colour textures were filtered over their
-            // footprint's area, which sharpens the sample's grazing checker floor, so the
-            // material a sample divides out, taken over its own coarser footprint, differs
-            // more from its pixels').
-            let (least_2, least_8) = if map_size == 0 { (0.97, 0.99) } else { (0.96, 0.99) };
+            // and 99.0–99.8 %, the lowest with 4 samples per pixel, where no pixel is
+            // shaded in full: 97.7 and 99.1 % before base colour textures were filtered
+            // over their footprint's area, which sharpens the sample's grazing checker
+            // floor, so the material a sample divides out, taken over its own coarser
+            // footprint, differs more from its pixels', and before the discs stopped
+            // fading toward their receivers' horizon, which deepens the sky's shadows
+            // beside the objects).
+            let (least_2, least_8) = if map_size == 0 { (0.97, 0.985) } else { (0.96, 0.99) };
             assert!(
                 within_2 >= least_2,
                 "{label}: only {:.3} % within 2/255",

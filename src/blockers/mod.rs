@@ -84,7 +84,11 @@ impl Sphere {
     /// A disc is taken as the cap of its solid angle around the mean direction over it
     /// ([`disc::disc_seen`]: a receiver just above a large disc sees it fill the
     /// hemisphere below); a receiver in the disc's plane (its own patch) sees nothing of
-    /// it.
+    /// it. A disc is not faded: its solid angle is its own, and it lies in no surface
+    /// of its receivers (faded like a sphere over its radius, the floor's and the walls'
+    /// discs counted only in part for the surfaces standing on them, whose foot then
+    /// saw too much sky against the path tracer). It counts while any of it can be above
+    /// the tangent plane.
     pub fn cap_from(&self, p: glam::DVec3, n: glam::DVec3, min_cap_ratio: f64) -> Option<BlockerCap> {
         let offset = self.center.as_dvec3() - p;
         let radius = self.radius_m as f64;
@@ -106,7 +110,11 @@ impl Sphere {
             (radius / distance, offset / distance, radius)
         };
         let t = ((offset.dot(n) / half_extent + 1.0) / 2.0).clamp(0.0, 1.0);
-        let horizon = t * t * (3.0 - 2.0 * t);
+        let horizon = if self.is_disc() {
+            if t > 0.0 { 1.0 } else { 0.0 }
+        } else {
+            t * t * (3.0 - 2.0 * t)
+        };
         (ratio >= min_cap_ratio && horizon > 0.0).then_some(BlockerCap {
             direction,
             distance_m: distance,
