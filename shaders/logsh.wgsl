@@ -104,8 +104,11 @@ fn disc_seen(center: vec3<f32>, radius: f32, normal: vec3<f32>, p: vec3<f32>) ->
     let a = -1.0 / (sign + normal.z);
     let b = normal.x * normal.y * a;
     let reach = radius * POLYGON_SCALE;
-    let u = reach * vec3<f32>(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
-    let v = reach * vec3<f32>(b, sign + normal.y * normal.y * a, -normal.y);
+    let frame_u = vec3<f32>(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
+    let frame_v = vec3<f32>(b, sign + normal.y * normal.y * a, -normal.y);
+    // Corners on the frame's diagonals: the square's edges along its axes (disc_seen).
+    let u = (reach * 0.70710678) * (frame_u + frame_v);
+    let v = (reach * 0.70710678) * (frame_v - frame_u);
     let q0 = to_center + u;
     let q1 = to_center + v;
     let q2 = to_center - u;

@@ -59,7 +59,16 @@ pub fn disc_seen(center: DVec3, radius: f64, normal: DVec3, p: DVec3) -> (f64, D
         let solid_angle = std::f64::consts::TAU * (1.0 - distance / (distance * distance + seen_radius2).sqrt());
         return (solid_angle, to_center / distance);
     }
-    let (u, v) = disc_frame(normal);
+    // The square's corners on the diagonals of the frame, so its edges run along the
+    // frame's axes: for a disc facing a world axis (most walls, floors and shelves) those
+    // are the world's axes, along the mesh's own edges. (Corners on the axes, as until
+    // 2026-12-04, turned the square 45° to them: where a 2 m wall met the floor it
+    // spanned 0.84 m of it.)
+    let (frame_u, frame_v) = disc_frame(normal);
+    let (u, v) = (
+        (frame_u + frame_v) * std::f64::consts::FRAC_1_SQRT_2,
+        (frame_v - frame_u) * std::f64::consts::FRAC_1_SQRT_2,
+    );
     let reach = radius * POLYGON_SCALE;
     let corners = [
         to_center + reach * u,
