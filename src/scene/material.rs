@@ -149,6 +149,15 @@ pub fn srgb_to_linear(encoded: f64) -> f64 {
     }
 }
 
+/// Inverse of [`srgb_to_linear`]: linear [0, 1] → encoded.
+pub fn linear_to_srgb(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

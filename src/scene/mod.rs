@@ -27,7 +27,7 @@ pub use error::SceneError;
 pub use gltf_import::{load_gltf, load_gltf_scene, parse_gltf, parse_gltf_scene};
 pub use light::{Light, LightKind, UnitIncidence};
 pub use light_edit::{LIGHT_KINDS, direction_angles_deg, direction_from_angles_deg};
-pub use material::{Material, TextureImage, luminance, srgb_to_linear};
+pub use material::{Material, TextureImage, linear_to_srgb, luminance, srgb_to_linear};
 pub use mesh::MeshObject;
 pub use reflectance::Reflectance;
 pub use terrain::{Terrain, TerrainSource, TerrainSpec};

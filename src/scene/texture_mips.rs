@@ -9,7 +9,7 @@
 //! its codes are averaged), which the path tracer, averaging the linear colours its
 //! samples meet, does not. Alpha is linear and averaged as it is.
 
-use super::material::{TextureImage, srgb_to_linear};
+use super::material::{TextureImage, linear_to_srgb, srgb_to_linear};
 
 /// Every level from `texture` itself down to 1 × 1, as RGBA8 images (sRGB colour,
 /// linear alpha). A texture whose pixels are missing gives one white texel.
@@ -95,7 +95,11 @@ fn encode(linear: &[[f32; 4]], (width, height): (usize, usize)) -> image::RgbaIm
     let bytes = linear
         .iter()
         .flat_map(|t| {
-            let colour = |v: f32| (linear_to_srgb(v as f64) * 255.0).round().clamp(0.0, 255.0) as u8;
+            let colour = |v: f32| {
+                (linear_to_srgb((v as f64).clamp(0.0, 1.0)) * 255.0)
+                    .round()
+                    .clamp(0.0, 255.0) as u8
+            };
             [
                 colour(t[0]),
                 colour(t[1]),
@@ -105,16 +109,6 @@ fn encode(linear: &[[f32; 4]], (width, height): (usize, usize)) -> image::RgbaIm
         })
         .collect();
     image::RgbaImage::from_raw(width as u32, height as u32, bytes).unwrap_or_else(|| image::RgbaImage::new(1, 1))
-}
-
-/// sRGB opto-electronic transfer: linear [0, 1] → encoded (IEC 61966-2-1).
-fn linear_to_srgb(linear: f64) -> f64 {
-    let linear = linear.clamp(0.0, 1.0);
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 #[cfg(test)]

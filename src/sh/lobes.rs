@@ -64,6 +64,13 @@ pub fn phong_lobe_zh(order: usize, exponent: f64) -> Vec<f64> {
     zh_from_moments(order, &moments)
 }
 
+/// Â_l = √(4π/(2l+1)) · π · (ZH of cos θ/π)_l: how the clamped cosine scales band l of a
+/// radiance SH into irradiance (E_lm = Â_l L_lm, Funk–Hecke), the factor the environment's
+/// radiance is recovered from its irradiance SH by.
+pub fn irradiance_band_scale(l: usize) -> f64 {
+    (4.0 * PI / (2 * l + 1) as f64).sqrt() * phong_lobe_zh(l + 1, 1.0)[l] * PI
+}
+
 /// ZH of ln max((r+1)/(2π) · cos^r θ, ε) on the upper hemisphere and ln ε below (shading-model.md
 /// §4's log-BRDF; r = 1 is its diffuse ln max(cos θ/π, ε)). With the peak P = (r+1)/(2π),
 /// q = min(ln(ε/P), 0) and the kink t₀ = e^{q/r} where the lobe meets ε:
@@ -108,6 +115,15 @@ pub fn max_carried_phong_exponent(order: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn irradiance_band_scales_are_ramamoorthi_and_hanrahans() {
+        // Ramamoorthi and Hanrahan 2001: Â_0 = π, Â_1 = 2π/3, Â_2 = π/4.
+        for (l, expected) in [(0, PI), (1, 2.0 * PI / 3.0), (2, PI / 4.0)] {
+            assert!((irradiance_band_scale(l) - expected).abs() < 1e-12, "band {l}");
+        }
+    }
+
     use super::*;
     use crate::sh::{clamped_cosine_zh, log_diffuse_zh, log_phong_zh, zh_of_function};
 

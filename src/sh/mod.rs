@@ -30,7 +30,8 @@ pub use exp::{
 pub use gaunt::{Gaunt, gaunt, product, product_matrix};
 pub use legendre::{legendre, legendre_derivative};
 pub use lobes::{
-    LOG_LOBE_MIN_EXPONENT, legendre_monomials, log_phong_lobe_zh, max_carried_phong_exponent, phong_lobe_zh,
+    LOG_LOBE_MIN_EXPONENT, irradiance_band_scale, legendre_monomials, log_phong_lobe_zh, max_carried_phong_exponent,
+    phong_lobe_zh,
 };
 pub use log::{LOG_STAR_EIGEN_CLAMP, log_naive, log_star};
 pub use quadrature::{SphereQuadrature, gauss_legendre};

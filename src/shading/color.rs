@@ -1,17 +1,9 @@
 //! Colour transforms of the CPU side (the f64 shading reference, the path tracer, tests).
 //! The GPU versions live in `shaders/common.wgsl`.
 
-/// sRGB electro-optical transfer (written beside the textures it decodes, in `scene`).
-pub use crate::scene::srgb_to_linear;
-
-/// Inverse of [`srgb_to_linear`]: linear [0, 1] → encoded.
-pub fn linear_to_srgb(linear: f64) -> f64 {
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
-}
+/// The sRGB transfer both ways (written beside the textures they decode and whose mip
+/// levels they encode, in `scene`).
+pub use crate::scene::{linear_to_srgb, srgb_to_linear};
 
 /// Narkowicz's (2015) fit of the ACES filmic curve, clamped to [0, 1].
 pub fn tonemap_aces_fit(x: f64) -> f64 {

@@ -150,13 +150,11 @@ pub fn environment_through_visibility(s: &SurfacePoint, irradiance_sh: &[[f32; 4
 
 /// ⟨g, L_env⟩ per channel with L_lm = E_lm / Â_l over the bands both carry.
 pub fn dot_environment_radiance(g: &[f64], irradiance_sh: &[[f32; 4]; 9]) -> DVec3 {
-    let cosine = sh::phong_lobe_zh(3, 1.0);
     g.iter()
         .zip(irradiance_sh)
         .enumerate()
         .fold(DVec3::ZERO, |sum, (i, (gi, e))| {
-            let l = (i as f64).sqrt() as usize;
-            let a_hat = (4.0 * PI / (2 * l + 1) as f64).sqrt() * cosine[l] * PI;
+            let a_hat = sh::irradiance_band_scale((i as f64).sqrt() as usize);
             sum + DVec3::new(e[0] as f64, e[1] as f64, e[2] as f64) * (*gi / a_hat)
         })
 }

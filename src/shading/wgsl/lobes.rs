@@ -127,11 +127,9 @@ fn times_lobe_fn(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
 
 /// `fn sh_dot_environment(g) -> vec3<f32>`.
 fn environment_fn(order: usize) -> String {
-    let cosine = sh::phong_lobe_zh(3, 1.0);
     let mut s = String::from("fn sh_dot_environment(g: Sh) -> vec3<f32> {\n    var sum = vec3<f32>(0.0);\n");
     for i in 0..sh::coefficient_count(order.min(3)) {
-        let l = (i as f64).sqrt() as usize;
-        let a_hat = (4.0 * PI / (2 * l + 1) as f64).sqrt() * cosine[l] * PI;
+        let a_hat = sh::irradiance_band_scale((i as f64).sqrt() as usize);
         s += &format!(
             "    sum += frame.environment_irradiance[{i}].rgb * (g{} * {});\n",
             slot(i),
@@ -146,7 +144,6 @@ fn environment_fn(order: usize) -> String {
 /// `sh_dot_environment(sh_product(g, c))` but for the product's bands above the
 /// environment's, which the dot product drops.
 fn environment_through_cosine_fn(order: usize) -> String {
-    let cosine = sh::phong_lobe_zh(3, 1.0);
     let kept = sh::coefficient_count(order.min(3));
     let n = sh::coefficient_count(order);
     let gaunt = sh::gaunt(order);
@@ -175,8 +172,7 @@ fn environment_through_cosine_fn(order: usize) -> String {
         if terms.is_empty() {
             continue;
         }
-        let l = (i as f64).sqrt() as usize;
-        let a_hat = (4.0 * PI / (2 * l + 1) as f64).sqrt() * cosine[l] * PI;
+        let a_hat = sh::irradiance_band_scale((i as f64).sqrt() as usize);
         s += &format!(
             "    sum += frame.environment_irradiance[{i}].rgb * (({}) * {});\n",
             terms.join(" + "),
