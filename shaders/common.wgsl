@@ -122,7 +122,9 @@ struct ShadowParams {
 
 // Parameters of the reduced-resolution shading's upsampling (reduced_shading.wgsl).
 struct UpsampleParams {
-    // Low-resolution texels per full-resolution pixel along x and y (≈ 1/d).
+    // Sample texels per pixel of the reader's image along x and y (1/d for the
+    // full-resolution frame reading the low-resolution samples, 1/2 for those reading
+    // the soft layer).
     full_to_low: vec2<f32>,
     // A sample counts as on this pixel's surface within this many full-resolution pixel
     // footprints of its tangent plane (Gaussian falloff).
@@ -134,12 +136,17 @@ struct UpsampleParams {
     // darkest one's plus lighting_floor.
     max_lighting_ratio: f32,
     lighting_floor: f32,
-    // Where a sample sits in its texel, in texels (0.5: at its centre; the soft layer's,
-    // taken at the top-left low-resolution texel of their 2 × 2 block, 0.25).
+    // Where a sample sits, in sample texels, for the reader's pixel centre p (in its own
+    // image's pixels): sample texel p · full_to_low − sample_offset (integers at the
+    // samples).
     sample_offset: vec2<f32>,
-    // Sample texel (i, j) lies on the camera's ray through normalised device coordinates
-    // (i, j) · xy + zw.
-    texel_to_ndc: vec4<f32>,
+    // Sample texel (i, j) is the surface of full-resolution pixel
+    // min((i, j) · x + y, zw) (low_resolution.wgsl's level_pixel: x the samples'
+    // spacing in pixels, y the offset of its middle pixel, zw the last pixel).
+    sample_pixel: vec4<f32>,
+    // Full-resolution pixel (i, j)'s centre lies on the camera's ray through normalised
+    // device coordinates (i, j) · xy + zw.
+    pixel_to_ndc: vec4<f32>,
 };
 
 // A height-field terrain for terrain.wgsl (src/render/resources/terrain.rs fills it).

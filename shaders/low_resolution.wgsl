@@ -1,12 +1,15 @@
 // Reduced-resolution shading deferred (src/render/passes/reduced_shading.rs): the meshes
-// are rasterised once into a surface buffer by a cheap shader (fs_surface_buffer), and
-// the costly work runs in full-screen passes that read it — the samples' shading at low
-// resolution, and on single-sampled targets the upsampling and the full shading of the
-// pixels it leaves at full resolution. lavapipe runs a fragment shader over blocks of
-// pixels per triangle, so a mesh whose triangles are smaller than the samples' spacing
-// (a figure's limbs at a third of the resolution, a fine terrain at full resolution) had
-// the shading run once per triangle for a pixel or less; a full-screen pass runs it once
-// per pixel. Appended after reduced_shading.wgsl.
+// are rasterised once, at full resolution, into a surface buffer by a cheap shader
+// (fs_surface_buffer), and the costly work runs in full-screen passes that read it — the
+// samples' shading at low resolution (each sample the surface of one pixel of the
+// buffer: `level_pixel`), the upsampling and the full shading of the pixels it leaves at
+// full resolution. lavapipe runs a fragment shader over blocks of pixels per triangle, so
+// a mesh whose triangles are smaller than the samples' spacing (a figure's limbs at a
+// third of the resolution, a fine terrain at full resolution) had the shading run once
+// per triangle for a pixel or less; a full-screen pass runs it once per pixel. Taking
+// the samples' surfaces from the full-resolution buffer also spares a second geometry
+// pass at low resolution, and each sample is exactly the surface of the pixel it sits
+// on. Appended after reduced_shading.wgsl.
 //
 // The buffer, two Rgba32Uint texels per pixel:
 //   a: x view depth (f32 bits, 0 where no surface was drawn), y the octahedral normal
@@ -46,6 +49,22 @@ fn view_depth_of(p: vec3<f32>) -> f32 {
     return max(dot(p - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
 }
 
+// Full-resolution pixels per sample along each side in the image a full-screen pass draws
+// (1: the full-resolution frame; the shading downsample d for the low-resolution
+// samples; 2d for the soft layer).
+override LEVEL_STRIDE_PX: u32 = 1u;
+
+// The pixel of the surface buffer that sample `texel` of an image of samples spaced
+// `stride_px` pixels apart shades: the middle pixel of its block (the left or upper of
+// the two middle ones for even strides), clamped into the buffer where the last block
+// runs past the frame's edge. UpsampleParams.sample_pixel says the same to the samples'
+// readers.
+fn level_pixel(texel: vec2<i32>, stride_px: u32) -> vec2<i32> {
+    let last = vec2<i32>(textureDimensions(surface_buffer_a)) - vec2<i32>(1);
+    let stride = i32(stride_px);
+    return min(texel * stride + vec2<i32>(stride / 2), last);
+}
+
 // The surface the buffer holds at `texel`, and whether one was drawn there.
 struct BufferedSurface {
     s: Surface,
@@ -70,6 +89,41 @@ fn buffered_surface(texel: vec2<i32>) -> BufferedSurface {
     return BufferedSurface(s, view_depth > 0.0);
 }
 
+// The surface of sample `texel` of an image of samples spaced `stride_px` pixels apart
+// (level_pixel's pixel), with the diffuse reflectance k_d averaged over the
+// `span_px` × `span_px` pixels around it that lie on its surface (normals within about
+// 2° in the octahedral map, view depths within 10 %: a cheap test, as this runs span_px²
+// times a sample). The samples carry their lighting divided by k_d + k_s, which each
+// pixel multiplies by its own: exact where the two reflectances' diffuse and glossy
+// shares agree, so a sample on one texel of a texture (a black stripe, whose light is
+// mostly the glossy lobe's) would carry its texel's shares to its neighbours. The mean
+// over the d × d pixels a low-resolution sample stands for is what a texture filtered
+// over its footprint gives (the mip level rasterising the samples at their own
+// resolution would pick); tests/texture_filtering.rs measures the striped floor's mean.
+fn sample_surface(texel: vec2<i32>, stride_px: u32, span_px: u32) -> BufferedSurface {
+    let centre = level_pixel(texel, stride_px);
+    var buffered = buffered_surface(centre);
+    let centre_texel = textureLoad(surface_buffer_a, centre, 0);
+    let centre_normal = unpack2x16snorm(centre_texel.y);
+    let centre_depth = bitcast<f32>(centre_texel.x);
+    let last = vec2<i32>(textureDimensions(surface_buffer_a)) - vec2<i32>(1);
+    let first = centre - vec2<i32>(i32(span_px / 2u));
+    var k_d_sum = vec3<f32>(0.0);
+    var count = 0.0;
+    for (var k = 0u; k < span_px * span_px; k++) {
+        let pixel = clamp(first + vec2<i32>(i32(k % span_px), i32(k / span_px)), vec2<i32>(0), last);
+        let a = textureLoad(surface_buffer_a, pixel, 0);
+        let on_surface = all(abs(unpack2x16snorm(a.y) - centre_normal) < vec2<f32>(0.03))
+            && abs(bitcast<f32>(a.x) - centre_depth) < 0.1 * centre_depth;
+        k_d_sum += select(vec3<f32>(0.0), unpack_lighting(a.zw), on_surface);
+        count += select(0.0, 1.0, on_surface);
+    }
+    if count > 0.0 {
+        buffered.s.k_d = k_d_sum / count;
+    }
+    return buffered;
+}
+
 // A triangle covering the target, at depth 1: with the depth test "greater" it reaches
 // only the samples where the surface buffer's pass drew something (depth < 1), and
 // those a marking pass has not yet set to 1.
@@ -83,21 +137,32 @@ fn vs_full_screen(@builtin(vertex_index) index: u32) -> FullScreen {
     return FullScreen(vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 1.0, 1.0));
 }
 
+// Marks the low-resolution samples that lie on a surface: depth 0 there (the low
+// depth is cleared to 1), so that the shading passes' triangle at depth 1 with the test
+// "greater" reaches only them.
+@fragment
+fn fs_mark_surface_samples(in: FullScreen) -> @builtin(frag_depth) f32 {
+    if textureLoad(surface_buffer_a, level_pixel(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX), 0).x == 0u {
+        discard;
+    }
+    return 0.0;
+}
+
 // A low-resolution sample shaded in full.
 @fragment
 fn fs_shade_low(in: FullScreen) -> @location(0) vec4<u32> {
-    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
+    let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
     return low_sample_texel(s, frame.exposure * (shadowed_radiance(s) - s.emissive) / reflectance(s));
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the
-// environment's and the SH path's lights through the blockers' visibility — of the
-// low-resolution surface at the top-left of each 2 × 2 block (UpsampleParams.
-// sample_offset and texel_to_ndc say so to its readers).
+// environment's and the SH path's lights through the blockers' visibility — at twice
+// the low-resolution samples' spacing (LEVEL_STRIDE_PX is 2d here).
 @fragment
 fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
-    let last = vec2<i32>(textureDimensions(surface_buffer_a)) - vec2<i32>(1);
-    let buffered = buffered_surface(min(2 * vec2<i32>(in.clip.xy), last));
+    // The soft samples' k_d averaged over the d × d pixels around them, as the
+    // low-resolution samples' (fewer fetches; the soft light is smooth).
+    let buffered = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX / 2u);
     let s = buffered.s;
     let texel = low_sample_texel(s, frame.exposure * harmonic_radiance(s) / reflectance(s));
     return select(vec4<u32>(0u), texel, buffered.drawn);
@@ -110,7 +175,7 @@ fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
 // where it shades (its pipeline's depth write), which fs_shade_low's test then skips.
 @fragment
 fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
-    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
+    let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
     let soft = upsampled_lighting(in.clip.xy, s, false);
     if !soft.matches {
         discard;
@@ -119,10 +184,10 @@ fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
     return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
 }
 
-// The full-resolution frame deferred too (single-sampled targets): the surface buffer at
-// full resolution, then the upsampling and the full shading of the pixels it leaves as
-// full-screen passes, as at low resolution. A mesh of triangles a few pixels wide (a
-// terrain) had each rasterised pass pay per triangle.
+// The full-resolution frame deferred too (single-sampled targets): the upsampling and the
+// full shading of the pixels it leaves as full-screen passes over the surface buffer, as
+// at low resolution. A mesh of triangles a few pixels wide (a terrain) had each
+// rasterised pass pay per triangle.
 
 // A pixel from the low-resolution samples (group 3), or discarded for fs_logsh_deferred
 // where they do not match or disagree; writes depth 1 where it shades (its pipeline).

@@ -98,7 +98,9 @@ struct LowSample {
 fn low_sample(texel: vec2<i32>) -> LowSample {
     let packed = textureLoad(low_samples, texel, 0);
     let view_depth = bitcast<f32>(packed.x);
-    let ndc = vec2<f32>(texel) * upsample.texel_to_ndc.xy + upsample.texel_to_ndc.zw;
+    // The full-resolution pixel the sample shaded (low_resolution.wgsl's level_pixel).
+    let pixel = min(vec2<f32>(texel) * upsample.sample_pixel.x + upsample.sample_pixel.y, upsample.sample_pixel.zw);
+    let ndc = pixel * upsample.pixel_to_ndc.xy + upsample.pixel_to_ndc.zw;
     let ray = frame.view_ray[2].xyz + ndc.x * frame.view_ray[0].xyz + ndc.y * frame.view_ray[1].xyz;
     let lighting = unpack_lighting(packed.yz);
     return LowSample(

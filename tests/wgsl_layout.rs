@@ -188,7 +188,8 @@ fn upsample_params_match_wgsl() {
             ("max_lighting_ratio", offset_of!(GpuUpsampleParams, max_lighting_ratio)),
             ("lighting_floor", offset_of!(GpuUpsampleParams, lighting_floor)),
             ("sample_offset", offset_of!(GpuUpsampleParams, sample_offset)),
-            ("texel_to_ndc", offset_of!(GpuUpsampleParams, texel_to_ndc)),
+            ("sample_pixel", offset_of!(GpuUpsampleParams, sample_pixel)),
+            ("pixel_to_ndc", offset_of!(GpuUpsampleParams, pixel_to_ndc)),
         ],
     );
 }

@@ -318,11 +318,13 @@ pub struct GpuUpsampleParams {
     pub min_matched_weight: f32,
     pub max_lighting_ratio: f32,
     pub lighting_floor: f32,
-    /// Where a sample sits in its texel, in texels.
+    /// A reader's pixel centre p lies at sample texel p · full_to_low − sample_offset.
     pub sample_offset: [f32; 2],
-    /// Sample texel (i, j) lies on the camera's ray through normalised device
-    /// coordinates (i, j) · xy + zw.
-    pub texel_to_ndc: [f32; 4],
+    /// Sample texel (i, j) is the surface of full-resolution pixel min((i, j) · x + y, zw).
+    pub sample_pixel: [f32; 4],
+    /// Full-resolution pixel (i, j)'s centre lies on the camera's ray through normalised
+    /// device coordinates (i, j) · xy + zw.
+    pub pixel_to_ndc: [f32; 4],
 }
 
 /// Levels of the terrain pyramid the GPU can hold (WGSL `TerrainParams`).

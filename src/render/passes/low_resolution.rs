@@ -1,9 +1,9 @@
 //! The deferred passes of reduced-resolution shading (see `reduced_shading` and
-//! shaders/low_resolution.wgsl): the low-resolution surface buffer rasterised, then
-//! full-screen passes that shade it — in one level, or in two, the light of soft
-//! shadows at twice the spacing and the sharp lights added at every sample — and on
-//! single-sampled targets the full-resolution frame likewise: its surface buffer, then
-//! the upsampling and the full shading of the pixels it leaves.
+//! shaders/low_resolution.wgsl): the surface buffer rasterised at full resolution, then
+//! full-screen passes that shade samples of it at low resolution — in one level, or in
+//! two, the light of soft shadows at twice the spacing and the sharp lights added at
+//! every sample — and on single-sampled targets the full-resolution frame likewise: the
+//! upsampling and the full shading of the pixels it leaves.
 
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, surface_buffer_layout,
@@ -11,7 +11,7 @@ use super::reduced_shading::{
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
 use crate::render::descriptors::{COLOR_FORMAT, depth_test};
 use crate::render::pass_timer::TimedEncoder;
-use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_objects};
+use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
 use crate::render::target::RenderTarget;
 use crate::shading::CompiledPaths;
 
@@ -20,8 +20,12 @@ pub(super) struct ReducedShadingPipelines {
     pub downsample: u32,
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
-    /// The low-resolution surfaces (fs_surface_buffer), rasterised.
-    surface_buffer: wgpu::RenderPipeline,
+    /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
+    /// and the others.
+    surface_buffer: ByTexture,
+    /// The low-resolution samples on a surface marked in the low depth
+    /// (fs_mark_surface_samples).
+    mark_surface_samples: wgpu::RenderPipeline,
     /// The low-resolution samples shaded in full (fs_shade_low), full-screen.
     shade_low: wgpu::RenderPipeline,
     /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
@@ -48,8 +52,7 @@ pub(super) struct SoftLayerPipelines {
     shade_sharp: wgpu::RenderPipeline,
 }
 
-/// The full-resolution frame from the surface buffer at full resolution (drawn by
-/// `surface_buffer` too): the upsampling (fs_upsample_deferred_marking), then the pixels
+/// The full-resolution frame from the surface buffer: the upsampling (fs_upsample_deferred_marking), then the pixels
 /// it left shaded in full (fs_logsh_deferred), both full-screen.
 pub(super) struct FullResolutionPipelines {
     upsample: wgpu::RenderPipeline,
@@ -70,9 +73,8 @@ impl ReducedShadingPipelines {
         let paths = variant.paths;
         let low_resolution_layout = low_resolution_layout(device);
         let surface_buffer_layout = surface_buffer_layout(device);
-        let low_variant = Variant { samples: 1, ..variant };
-        let low = |stage| scene_pipeline(device, layouts, shadow_layout, module, stage, low_variant);
-        let full_screen_into = |format, entry_point, samples, depth| {
+        let surface_variant = Variant { samples: 1, ..variant };
+        let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
             full_screen_pipeline(
                 device,
                 [&layouts.frame, &surface_buffer_layout, shadow_layout],
@@ -82,33 +84,61 @@ impl ReducedShadingPipelines {
                     samples,
                     depth,
                     format,
+                    stride_px,
                 },
                 paths,
             )
         };
-        let full_screen =
-            |entry_point, samples, depth| full_screen_into(LOW_RESOLUTION_FORMATS[0], entry_point, samples, depth);
+        let low_samples = Some(LOW_RESOLUTION_FORMATS[0]);
         ReducedShadingPipelines {
             downsample,
-            surface_buffer: low(Stage::SurfaceBuffer),
-            shade_low: full_screen("fs_shade_low", None, FullScreenDepth::Unmarked),
+            surface_buffer: ByTexture::new(|textured| {
+                let variant = Variant {
+                    textured,
+                    ..surface_variant
+                };
+                scene_pipeline(device, layouts, shadow_layout, module, Stage::SurfaceBuffer, variant)
+            }),
+            mark_surface_samples: full_screen(
+                "fs_mark_surface_samples",
+                (None, downsample),
+                None,
+                FullScreenDepth::MarkSurfaces,
+            ),
+            shade_low: full_screen(
+                "fs_shade_low",
+                (low_samples, downsample),
+                None,
+                FullScreenDepth::Unmarked,
+            ),
             soft_layer: two_level(paths).then(|| SoftLayerPipelines {
-                shade_soft: full_screen("fs_shade_soft", None, FullScreenDepth::None),
+                shade_soft: full_screen(
+                    "fs_shade_soft",
+                    (low_samples, 2 * downsample),
+                    None,
+                    FullScreenDepth::None,
+                ),
                 shade_sharp: full_screen(
                     "fs_shade_sharp_marking",
+                    (low_samples, downsample),
                     Some(&low_resolution_layout),
                     FullScreenDepth::Marking,
                 ),
             }),
             full_resolution: if shades_unmatched_exactly(variant.samples) {
                 FullResolution::Deferred(FullResolutionPipelines {
-                    upsample: full_screen_into(
-                        COLOR_FORMAT,
+                    upsample: full_screen(
                         "fs_upsample_deferred_marking",
+                        (Some(COLOR_FORMAT), 1),
                         Some(&low_resolution_layout),
                         FullScreenDepth::Marking,
                     ),
-                    shade: full_screen_into(COLOR_FORMAT, "fs_logsh_deferred", None, FullScreenDepth::Unmarked),
+                    shade: full_screen(
+                        "fs_logsh_deferred",
+                        (Some(COLOR_FORMAT), 1),
+                        None,
+                        FullScreenDepth::Unmarked,
+                    ),
                 })
             } else {
                 FullResolution::Rasterised(ByTexture::new(|textured| {
@@ -147,30 +177,36 @@ fn two_level(paths: CompiledPaths) -> bool {
     paths.harmonics && (paths.maps || paths.exact)
 }
 
-/// The reduced-resolution samples: the surface buffer rasterised, then (two-level) the
-/// soft layer and the samples shaded from it, else the samples shaded in full, by
-/// full-screen passes reading the buffer.
+/// The reduced-resolution samples: the surface buffer rasterised at full resolution
+/// (into `target`'s depth when the frame is deferred too, else into the buffer's own),
+/// the samples on a surface marked in the low depth, then (two-level) the soft layer and
+/// the samples shaded from it, else the samples shaded in full, by full-screen passes
+/// reading the buffer.
 pub(super) fn shade_low_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
     low: &LowResolutionTargets,
-    scene: &GpuScene,
-    blockers: &GpuBlockers,
+    target: &RenderTarget,
+    (scene, blockers): (&GpuScene, &GpuBlockers),
 ) {
-    draw_surfaces(
-        frame,
-        "low-resolution surfaces",
-        (&low.surface, low.surface.depth_attachment(true)),
-        &pipelines.surface_buffer,
-        scene,
-        blockers,
-    );
+    let depth = low
+        .surface
+        .own_depth_attachment()
+        .unwrap_or_else(|| target.depth_attachment_for(true, true));
+    draw_surfaces(frame, (&low.surface, depth), &pipelines.surface_buffer, scene, blockers);
 
     let bound = Bound {
         scene,
         blockers,
         surface: &low.surface,
     };
+    bound.full_screen(
+        frame,
+        "low-resolution depth",
+        (&[], Some(low.low_depth_attachment(true))),
+        None,
+        &[&pipelines.mark_surface_samples],
+    );
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
         (Some(soft_pipelines), Some(soft)) => {
@@ -186,7 +222,7 @@ pub(super) fn shade_low_resolution(
             bound.full_screen(
                 frame,
                 "low-resolution shading",
-                (&samples, Some(low.surface.depth_attachment(false))),
+                (&samples, Some(low.low_depth_attachment(false))),
                 Some(&soft.bind_group),
                 &[&soft_pipelines.shade_sharp, &pipelines.shade_low],
             );
@@ -194,7 +230,7 @@ pub(super) fn shade_low_resolution(
         _ => bound.full_screen(
             frame,
             "low-resolution shading",
-            (&samples, Some(low.surface.depth_attachment(false))),
+            (&samples, Some(low.low_depth_attachment(false))),
             None,
             &[&pipelines.shade_low],
         ),
@@ -205,15 +241,15 @@ pub(super) fn shade_low_resolution(
 /// fs_surface_buffer.
 fn draw_surfaces(
     frame: &mut TimedEncoder,
-    label: &'static str,
     (surface, depth): (&SurfaceBuffer, wgpu::RenderPassDepthStencilAttachment<'_>),
-    pipeline: &wgpu::RenderPipeline,
+    pipelines: &ByTexture,
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) {
+    const LABEL: &str = "surfaces";
     let surfaces = surface.color_attachments();
     let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some(label),
+        label: Some(LABEL),
         color_attachments: &surfaces,
         depth_stencil_attachment: Some(depth),
         timestamp_writes: None,
@@ -222,16 +258,15 @@ fn draw_surfaces(
     });
     pass.set_bind_group(0, &scene.frame_bind_group, &[]);
     pass.set_bind_group(2, &blockers.bind_group, &[]);
-    pass.set_pipeline(pipeline);
-    draw_objects(&mut pass, scene);
+    pipelines.draw_objects(&mut pass, scene);
     drop(pass);
-    frame.mark(label);
+    frame.mark(LABEL);
 }
 
-/// The full-resolution frame deferred: the surfaces into `low`'s full-resolution buffer
-/// with `target`'s depth, then the upsampling and the full shading of what it left into
+/// The full-resolution frame deferred: from the surface buffer `shade_low_resolution`
+/// drew with `target`'s depth, the upsampling and the full shading of what it left into
 /// `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
-/// `pipelines` or `low` have no deferred full-resolution frame.
+/// `pipelines` have no deferred full-resolution frame.
 pub(super) fn draw_full_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
@@ -240,23 +275,15 @@ pub(super) fn draw_full_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) -> bool {
-    let (FullResolution::Deferred(full), Some(surface)) = (&pipelines.full_resolution, &low.full_surface) else {
+    let FullResolution::Deferred(full) = &pipelines.full_resolution else {
         return false;
     };
-    draw_surfaces(
-        frame,
-        "full-resolution surfaces",
-        (surface, target.depth_attachment_for(true, true)),
-        &pipelines.surface_buffer,
-        scene,
-        blockers,
-    );
     // The upsampling marks what it drew (depth 1), so the full shading after it shades
     // only the pixels it discarded.
     Bound {
         scene,
         blockers,
-        surface,
+        surface: &low.surface,
     }
     .full_screen(
         frame,
@@ -315,12 +342,14 @@ impl Bound<'_> {
     }
 }
 
-/// How a full-screen pass of the low-resolution shading meets the surface pass's depth
-/// (its triangle lies at depth 1; see low_resolution.wgsl).
+/// How a full-screen pass of the low-resolution shading meets the surfaces' depth (its
+/// triangle lies at depth 1; see low_resolution.wgsl).
 #[derive(Clone, Copy)]
 enum FullScreenDepth {
     /// No depth attachment (the soft layer, which reads the buffer itself).
     None,
+    /// Writes depth 0 wherever it does not discard (fs_mark_surface_samples).
+    MarkSurfaces,
     /// Only where a surface was drawn and no marking pass has shaded: depth < 1.
     Unmarked,
     /// As `Unmarked`, and it writes depth 1 where it shades.
@@ -330,8 +359,10 @@ enum FullScreenDepth {
 /// A full-screen pass of the deferred shading.
 struct FullScreenPass<'a> {
     entry_point: &'static str,
-    /// Its one target's format.
-    format: wgpu::TextureFormat,
+    /// Its one target's format, if it has one.
+    format: Option<wgpu::TextureFormat>,
+    /// Full-resolution pixels per pixel of its image along each side (LEVEL_STRIDE_PX).
+    stride_px: u32,
     /// The coarser samples it reads (group 3), if any.
     samples: Option<&'a wgpu::BindGroupLayout>,
     depth: FullScreenDepth,
@@ -357,10 +388,17 @@ fn full_screen_pipeline(
     });
     let depth_stencil = match pass.depth {
         FullScreenDepth::None => None,
+        FullScreenDepth::MarkSurfaces => Some(depth_test(true, wgpu::CompareFunction::Always)),
         FullScreenDepth::Unmarked => Some(depth_test(false, wgpu::CompareFunction::Greater)),
         FullScreenDepth::Marking => Some(depth_test(true, wgpu::CompareFunction::Greater)),
     };
-    let constants = path_constants(paths);
+    let mut constants = path_constants(paths);
+    constants.push(("LEVEL_STRIDE_PX", f64::from(pass.stride_px)));
+    let targets = [pass.format.map(|format| wgpu::ColorTargetState {
+        format,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    })];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(pass.entry_point),
         layout: Some(&layout),
@@ -380,11 +418,7 @@ fn full_screen_pipeline(
                 constants: &constants,
                 ..Default::default()
             },
-            targets: &[Some(wgpu::ColorTargetState {
-                format: pass.format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+            targets: if pass.format.is_some() { &targets } else { &[] },
         }),
         multiview_mask: None,
         cache: None,

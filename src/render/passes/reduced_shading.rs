@@ -5,14 +5,15 @@
 //! (thin objects, silhouettes) are shaded in full on single-sampled targets, and take the
 //! best sample nearby on multisampled ones (see `scene_pipeline::shades_unmatched_exactly`).
 //!
-//! A frame's passes (`low_resolution` draws them on single-sampled targets): the
-//! low-resolution surfaces rasterised into a surface buffer ([`SURFACE_BUFFER_FORMATS`])
-//! with their depth; with two-level shading, the soft layer — the light of soft shadows
-//! (the environment's and the SH path's lights) at one sample per 2 × 2 low-resolution
-//! samples; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
+//! A frame's passes (`low_resolution` draws them): the surfaces rasterised at full
+//! resolution into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with the frame's depth
+//! (multisampled frames: the buffer's own); the low-resolution samples on a surface
+//! marked in a low-resolution depth, each sample the surface of the middle pixel of its
+//! d × d block ([`upsample_params`]); with two-level shading, the soft layer — the light
+//! of soft shadows (the environment's and the SH path's lights) at twice the samples'
+//! spacing; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
 //! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the
-//! sharp lights, and in full where the soft layer does not match or disagrees); then the
-//! full-resolution surfaces into a buffer of their own with the frame's depth, and in
+//! sharp lights, and in full where the soft layer does not match or disagrees); then in
 //! the frame's [`crate::render::RenderTarget`] the upsampling and the full shading of the
 //! pixels it left, full-screen as well. Multisampled targets draw the full-resolution
 //! frame rasterised instead: a depth pre-pass, fs_upsample and nothing shaded in full.
@@ -21,7 +22,9 @@
 //! smaller than a sample, and lavapipe runs a fragment shader over blocks of pixels per
 //! triangle, so the full shading ran once per triangle for a pixel or less; a
 //! full-screen pass runs it once per sample. At full resolution a fine mesh (a terrain)
-//! paid likewise in the upsampling and the full shading of edge pixels. Why two levels: the soft shadows walk every
+//! paid likewise in the upsampling and the full shading of edge pixels. Why the samples
+//! from the full-resolution buffer: a second geometry pass at low resolution cost about
+//! as much as the passes that shade the samples. Why two levels: the soft shadows walk every
 //! blocker in reach, the costliest part of the shading, and change slowly enough across
 //! the image to be shaded at half the samples' resolution along each side. What each
 //! step saved: docs/performance.md (`render --time-frames` prints each pass's time).
@@ -128,22 +131,25 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// The low-resolution images of one frame size: the surface buffer and its depth, the
-/// samples fs_shade_low writes and fs_upsample reads, and, with two-level shading, the
-/// soft layer beneath them.
+/// The images of reduced-resolution shading for one frame size: the surface buffer at
+/// full resolution, the low-resolution depth that marks which samples lie on a surface,
+/// the samples fs_shade_low writes and the upsampling reads, and, with two-level shading,
+/// the soft layer beneath them.
 pub struct LowResolutionTargets {
     /// The full-resolution frame size these serve.
     pub full_size: [u32; 2],
     pub downsample: u32,
     pub size: [u32; 2],
+    /// The surfaces at full resolution, of which each sample shades one pixel.
     pub(crate) surface: SurfaceBuffer,
+    /// The low-resolution depth: 0 at samples on a surface, 1 elsewhere and where a
+    /// marking pass has shaded.
+    low_depth: wgpu::TextureView,
     pub(crate) samples: SampleImage,
     /// The soft layer (fs_shade_soft), one sample per 2 × 2 low-resolution samples,
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
-    /// The surfaces at full resolution, when the frame is deferred too.
-    pub(crate) full_surface: Option<SurfaceBuffer>,
 }
 
 fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
@@ -157,25 +163,42 @@ fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
 const SAMPLED_TARGET: wgpu::TextureUsages =
     wgpu::TextureUsages::RENDER_ATTACHMENT.union(wgpu::TextureUsages::TEXTURE_BINDING);
 
-/// The low-resolution surfaces: two images and their depth, and the bind group through
-/// which the full-screen passes read them.
+fn depth_view(device: &wgpu::Device, label: &str, size: [u32; 2]) -> wgpu::TextureView {
+    frame_texture(
+        device,
+        label,
+        image_extent(size),
+        DEPTH_FORMAT,
+        1,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        &[],
+    )
+    .create_view(&Default::default())
+}
+
+/// The full-resolution surfaces: two images, their own depth where the frame's depth
+/// cannot serve (a multisampled frame), and the bind group through which the
+/// full-screen passes read them.
 pub(crate) struct SurfaceBuffer {
     views: [wgpu::TextureView; 2],
-    depth: wgpu::TextureView,
+    own_depth: Option<wgpu::TextureView>,
     pub bind_group: wgpu::BindGroup,
 }
 
 impl SurfaceBuffer {
-    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2]) -> SurfaceBuffer {
-        let texture = |label, format, usage| {
-            frame_texture(device, label, image_extent(size), format, 1, usage, &[]).create_view(&Default::default())
-        };
-        let views = SURFACE_BUFFER_FORMATS.map(|format| texture("low-resolution surfaces", format, SAMPLED_TARGET));
-        let depth = texture(
-            "low-resolution depth",
-            DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        );
+    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2], own_depth: bool) -> SurfaceBuffer {
+        let views = SURFACE_BUFFER_FORMATS.map(|format| {
+            frame_texture(
+                device,
+                "surface buffer",
+                image_extent(size),
+                format,
+                1,
+                SAMPLED_TARGET,
+                &[],
+            )
+            .create_view(&Default::default())
+        });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("surface buffer"),
             layout,
@@ -192,7 +215,7 @@ impl SurfaceBuffer {
         });
         SurfaceBuffer {
             views,
-            depth,
+            own_depth: own_depth.then(|| depth_view(device, "surface buffer depth", size)),
             bind_group,
         }
     }
@@ -202,10 +225,11 @@ impl SurfaceBuffer {
         self.views.iter().map(cleared).collect()
     }
 
-    /// The depth attachment: cleared and written by the surface pass (`clear`), then
-    /// tested, and written by the marking pass, in the shading pass.
-    pub(crate) fn depth_attachment(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        depth_attachment(&self.depth, clear.then_some(1.0), clear)
+    /// Its own depth attachment, cleared, if it has one (else the frame's serves).
+    pub(crate) fn own_depth_attachment(&self) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
+        self.own_depth
+            .as_ref()
+            .map(|view| depth_attachment(view, Some(1.0), false))
     }
 }
 
@@ -222,6 +246,37 @@ fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'
     })
 }
 
+/// Where the samples of one image sit and how a finer image's pixels find them (see
+/// low_resolution.wgsl's `level_pixel`): sample texel i shades full-resolution pixel
+/// `stride_px` · i + ⌊`stride_px` / 2⌋ (clamped into the frame), and a reader whose pixel
+/// k shades full-resolution pixel `reader_stride_px` · k + ⌊`reader_stride_px` / 2⌋
+/// finds it at sample texel (that pixel − the sample's offset) / `stride_px`.
+fn upsample_params(
+    full_size: [u32; 2],
+    [reader_stride_px, stride_px]: [u32; 2],
+    [max_lighting_ratio, lighting_floor]: [f32; 2],
+) -> GpuUpsampleParams {
+    let [width, height] = full_size.map(|v| v.max(1) as f32);
+    let reader_stride = reader_stride_px.max(1);
+    let stride = stride_px.max(1);
+    let reader_offset_px = (reader_stride / 2) as f32;
+    let offset_px = (stride / 2) as f32;
+    let (reader_stride, stride) = (reader_stride as f32, stride as f32);
+    // Reader pixel centre p = k + 0.5 shades full-resolution pixel R(p − 0.5) + h_R, at
+    // sample texel (R(p − 0.5) + h_R − h_s) / s = p · R/s − (R/2 − h_R + h_s) / s.
+    let sample_offset = (0.5 * reader_stride - reader_offset_px + offset_px) / stride;
+    GpuUpsampleParams {
+        full_to_low: [reader_stride / stride; 2],
+        plane_tolerance_px: PLANE_TOLERANCE_PX_PER_DOWNSAMPLE * stride,
+        min_matched_weight: MIN_MATCHED_WEIGHT,
+        max_lighting_ratio,
+        lighting_floor,
+        sample_offset: [sample_offset; 2],
+        sample_pixel: [stride, offset_px, width - 1.0, height - 1.0],
+        pixel_to_ndc: [2.0 / width, -2.0 / height, 1.0 / width - 1.0, 1.0 - 1.0 / height],
+    }
+}
+
 /// One image of samples (see reduced_shading.wgsl) and the bind group through which the
 /// next finer level reads it.
 pub(crate) struct SampleImage {
@@ -230,17 +285,13 @@ pub(crate) struct SampleImage {
 }
 
 impl SampleImage {
-    /// An image of `size` samples, each the low-resolution surface at texel (i, j) ·
-    /// `stride` of an image of `low_size`, read by pixels of an image of `reader_size`
-    /// (each sample spans `spacing_px` pixels of the full-resolution frame), which treat
-    /// samples as disagreeing beyond [`max_lighting_ratio`, `lighting_floor`].
+    /// An image of `size` samples with `params` ([`upsample_params`]).
     fn new(
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         label: &str,
-        [size, low_size, reader_size]: [[u32; 2]; 3],
-        [stride, spacing_px]: [u32; 2],
-        [max_lighting_ratio, lighting_floor]: [f32; 2],
+        size: [u32; 2],
+        params: GpuUpsampleParams,
     ) -> SampleImage {
         let view = frame_texture(
             device,
@@ -252,26 +303,6 @@ impl SampleImage {
             &[],
         )
         .create_view(&Default::default());
-        let [low_width, low_height] = low_size.map(|v| v.max(1) as f32);
-        let [reader_width, reader_height] = reader_size.map(|v| v.max(1) as f32);
-        let stride = stride as f32;
-        let params = GpuUpsampleParams {
-            // A reader's pixel centre in low-resolution texels is centre · low / reader;
-            // in samples, that over the stride.
-            full_to_low: [low_width / reader_width / stride, low_height / reader_height / stride],
-            plane_tolerance_px: PLANE_TOLERANCE_PX_PER_DOWNSAMPLE * spacing_px as f32,
-            min_matched_weight: MIN_MATCHED_WEIGHT,
-            max_lighting_ratio,
-            lighting_floor,
-            // The centre of low-resolution texel i · stride, in samples.
-            sample_offset: [0.5 / stride; 2],
-            texel_to_ndc: [
-                2.0 * stride / low_width,
-                -2.0 * stride / low_height,
-                1.0 / low_width - 1.0,
-                1.0 - 1.0 / low_height,
-            ],
-        };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("upsample parameters"),
             contents: bytemuck::bytes_of(&params),
@@ -295,8 +326,9 @@ impl LowResolutionTargets {
     /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
     /// surfaces through `surface_layout` ([`surface_buffer_layout`]); `soft_layer`: with
-    /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: with a
-    /// surface buffer at full resolution.
+    /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: the
+    /// full-resolution frame is deferred too, its surfaces drawn with the frame's depth
+    /// (else the surface buffer has its own).
     pub fn new(
         device: &wgpu::Device,
         [layout, surface_layout]: [&wgpu::BindGroupLayout; 2],
@@ -309,44 +341,52 @@ impl LowResolutionTargets {
             device,
             layout,
             "low-resolution samples",
-            [size, size, full_size],
-            [1, downsample],
-            [MAX_LIGHTING_RATIO, LIGHTING_FLOOR],
+            size,
+            upsample_params(full_size, [1, downsample], [MAX_LIGHTING_RATIO, LIGHTING_FLOOR]),
         );
         let soft = soft_layer.then(|| {
-            let soft_size = low_resolution_size(size[0], size[1], 2);
             SampleImage::new(
                 device,
                 layout,
                 "soft layer samples",
-                [soft_size, size, size],
-                [2, 2 * downsample],
-                [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
+                low_resolution_size(size[0], size[1], 2),
+                upsample_params(
+                    full_size,
+                    [downsample, 2 * downsample],
+                    [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
+                ),
             )
         });
         LowResolutionTargets {
             full_size,
             downsample,
             size,
-            surface: SurfaceBuffer::new(device, surface_layout, size),
+            surface: SurfaceBuffer::new(device, surface_layout, full_size, !deferred_frame),
+            low_depth: depth_view(device, "low-resolution depth", size),
             samples,
             soft,
-            full_surface: deferred_frame.then(|| SurfaceBuffer::new(device, surface_layout, full_size)),
         }
     }
 
     /// Whether these serve frames of `full_size` at `downsample`, with a soft layer and a
-    /// full-resolution surface buffer or without.
+    /// deferred full-resolution frame or without.
     pub fn fits(&self, full_size: [u32; 2], downsample: u32, [soft_layer, deferred_frame]: [bool; 2]) -> bool {
         self.full_size == full_size
             && self.downsample == downsample
             && self.soft.is_some() == soft_layer
-            && self.full_surface.is_some() == deferred_frame
+            && self.surface.own_depth.is_none() == deferred_frame
     }
 
     /// The bind group through which the full-resolution pass reads the samples.
     pub(crate) fn bind_group(&self) -> &wgpu::BindGroup {
         &self.samples.bind_group
+    }
+
+    /// The low-resolution depth: cleared and written by the pass marking the samples on
+    /// a surface (`clear`), then tested, and written by the marking passes, in the
+    /// shading passes.
+    pub(crate) fn low_depth_attachment(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        depth_attachment(&self.low_depth, clear.then_some(1.0), true)
     }
 }
 
@@ -361,5 +401,51 @@ mod tests {
         assert_eq!(low_resolution_size(5, 3, 4), [2, 1]);
         assert_eq!(low_resolution_size(1, 1, 4), [1, 1]);
         assert_eq!(low_resolution_size(7, 7, 1), [7, 7]);
+    }
+
+    /// The full-resolution pixel a sample shades (low_resolution.wgsl's level_pixel,
+    /// unclamped).
+    fn shaded_pixel(texel: u32, stride_px: u32) -> u32 {
+        texel * stride_px + stride_px / 2
+    }
+
+    #[test]
+    fn a_reader_on_a_samples_pixel_finds_that_sample_exactly() {
+        for (reader_stride, stride) in [(1, 1), (1, 2), (1, 3), (1, 4), (2, 4), (3, 6), (4, 8), (5, 10)] {
+            let params = upsample_params([960, 540], [reader_stride, stride], [1.5, 0.02]);
+            for sample in 0..20 {
+                let pixel = shaded_pixel(sample, stride);
+                // The reader pixel on that full-resolution pixel, where one exists.
+                let Some(reader) = (0..200).find(|&k| shaded_pixel(k, reader_stride) == pixel) else {
+                    continue;
+                };
+                let at = (reader as f32 + 0.5) * params.full_to_low[0] - params.sample_offset[0];
+                assert!(
+                    (at - sample as f32).abs() < 1e-5,
+                    "reader stride {reader_stride}, stride {stride}, sample {sample}: {at}"
+                );
+                // And the sample's point is rebuilt on that pixel's ray.
+                let rebuilt = sample as f32 * params.sample_pixel[0] + params.sample_pixel[1];
+                assert_eq!(rebuilt, pixel as f32);
+            }
+        }
+    }
+
+    #[test]
+    fn pixel_centres_map_to_the_frames_normalised_device_coordinates() {
+        let params = upsample_params([960, 540], [1, 3], [1.5, 0.02]);
+        let ndc = |pixel: [f32; 2]| {
+            [
+                pixel[0] * params.pixel_to_ndc[0] + params.pixel_to_ndc[2],
+                pixel[1] * params.pixel_to_ndc[1] + params.pixel_to_ndc[3],
+            ]
+        };
+        // The first pixel's centre lies half a pixel inside the top-left corner (−1, 1),
+        // the last one's half a pixel inside the bottom-right corner (1, −1).
+        let first = ndc([0.0, 0.0]);
+        let last = ndc([959.0, 539.0]);
+        assert!((first[0] - (-1.0 + 1.0 / 960.0)).abs() < 1e-6 && (first[1] - (1.0 - 1.0 / 540.0)).abs() < 1e-6);
+        assert!((last[0] - (1.0 - 1.0 / 960.0)).abs() < 1e-6 && (last[1] - (-1.0 + 1.0 / 540.0)).abs() < 1e-6);
+        assert_eq!(&params.sample_pixel[2..], &[959.0, 539.0]);
     }
 }

@@ -1,5 +1,5 @@
 //! The log-SH scene pipelines, one per stage of a frame (depth, shading, per-vertex
-//! shading, surface channels, the low-resolution surface buffer, the upsampling), built
+//! shading, surface channels, the surface buffer, the upsampling), built
 //! from one module with the shading paths compiled in: what `logsh` and
 //! `low_resolution` share.
 
@@ -44,7 +44,7 @@ pub(super) enum Stage<'a> {
     ShadePerVertex(usize),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
-    /// The reduced-resolution surfaces (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
+    /// The surface buffer of deferred reduced shading (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
     SurfaceBuffer,
     /// Full-resolution pixels from the reduced-resolution samples (fs_upsample), which
     /// reads them through bind group 3 of this layout.
