@@ -77,6 +77,37 @@ fn editor_looks_as_reviewed() {
     assert_looks_as_reviewed(&image, "editor_sample");
 }
 
+/// The viewport shows the renderer's frame pixel for pixel: its image is drawn texel for
+/// texel (src/ui/viewport_image.rs), not filtered and dithered as egui draws images. Only
+/// the light markers drawn over the frame may differ.
+#[test]
+fn the_viewport_shows_the_rendered_frame_pixel_for_pixel() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    harness.run();
+    let window = harness.render().expect("the editor renders");
+    let frame = harness
+        .state()
+        .viewport_image()
+        .expect("a viewport")
+        .expect("its frame reads back");
+    let pixels_per_point = harness.ctx.pixels_per_point();
+    let rect = harness.state().viewport_rect();
+    let left = (rect.min.x * pixels_per_point).round() as u32;
+    let top = (rect.min.y * pixels_per_point).round() as u32;
+    let (mut exact, mut total) = (0usize, 0usize);
+    for (x, y, texel) in frame.enumerate_pixels() {
+        let shown = window.get_pixel(left + x, top + y);
+        let off = (0..3).map(|c| texel[c].abs_diff(shown[c])).max().unwrap_or(0);
+        exact += usize::from(off <= 1);
+        total += 1;
+    }
+    let share = exact as f64 / total as f64;
+    eprintln!("{:.3} % of the frame's pixels shown within 1/255", 100.0 * share);
+    assert!(share > 0.99, "{:.3} %", 100.0 * share);
+}
+
 /// The tolerance of the comparison (tests/common/snapshot.rs) lets through what llvmpipe
 /// on another CPU was measured to change — isolated pixels — and nothing an artist would
 /// see: a one-pixel-wide line, a region moved by one pixel.

@@ -27,6 +27,11 @@ fn edge_filter_module_validates() {
 }
 
 #[test]
+fn viewport_image_module_validates() {
+    validate("viewport image", wgsl::VIEWPORT_IMAGE);
+}
+
+#[test]
 fn heat_map_module_validates() {
     validate("heat map", &wgsl::heat_map_source());
 }

@@ -6,6 +6,7 @@
 //! quarter of the pixels) and per vertex, so orbiting stays fluid on a software GPU; the
 //! full frame follows as soon as the camera rests.
 
+use super::viewport_image::ViewportImage;
 use crate::blockers::Sphere;
 use crate::render::renderer::same_but_terrain;
 use crate::render::{AntiAliasing, Compilation, FrameQuality, SceneRenderer};
@@ -23,7 +24,8 @@ struct Shown {
 
 pub struct Viewport {
     renderer: SceneRenderer,
-    texture_id: Option<egui::TextureId>,
+    /// The rendered frame as egui draws it (None before the first frame).
+    image: Option<ViewportImage>,
     pub orbit: OrbitCamera,
     rendered: Option<Shown>,
     /// Milliseconds the last scene render took on the CPU side (submission included).
@@ -66,7 +68,7 @@ impl Viewport {
         );
         Viewport {
             renderer,
-            texture_id: None,
+            image: None,
             orbit: orbit.unwrap_or_else(|| scene.initial_orbit()),
             rendered: None,
             last_render_ms: 0.0,
@@ -228,9 +230,8 @@ impl Viewport {
             // Come back for the full-resolution frame once the camera rests.
             ui.ctx().request_repaint();
         }
-        if let Some(id) = self.texture_id {
-            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+        if let Some(image) = &self.image {
+            image.paint(ui.painter(), rect);
         }
         if let Some(compiling) = self.renderer.compiling() {
             let text = format!("compiling shaders for order {} ({:?})…", compiling.order, compiling.exp);
@@ -295,23 +296,14 @@ impl Viewport {
             per_vertex_preview: moving && settings.shadows.shading_downsample <= 1,
         };
         let resized = self.renderer.render(&self.orbit.camera(), size, settings, quality);
-        if (resized || self.texture_id.is_none())
+        if (resized || self.image.is_none())
             && let Some(target) = self.renderer.target()
         {
-            let device = &render_state.device;
-            let mut renderer = render_state.renderer.write();
-            match self.texture_id {
-                Some(id) => renderer.update_egui_texture_from_wgpu_texture(
-                    device,
-                    &target.display_view,
-                    wgpu::FilterMode::Linear,
-                    id,
-                ),
-                None => {
-                    self.texture_id =
-                        Some(renderer.register_native_texture(device, &target.display_view, wgpu::FilterMode::Linear))
-                }
-            }
+            self.image = Some(ViewportImage::new(
+                render_state,
+                &target.display_view,
+                [target.width, target.height],
+            ));
         }
         self.last_render_ms = started.elapsed().as_secs_f32() * 1000.0;
     }

@@ -26,6 +26,8 @@ pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
 pub const SHADOW_LOOKUP: &str = include_str!("../../../shaders/shadow_lookup.wgsl");
 /// Standalone: it reads a finished frame, not the scene.
 pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
+/// Standalone: the editor's viewport image drawn into egui's frame.
+pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.wgsl");
 
 /// The shared prelude, then `body`.
 pub fn with_common(body: &str) -> String {

@@ -242,6 +242,11 @@ impl EditorApp {
         self.viewport.as_ref().map_or(egui::Rect::NOTHING, |v| v.rect)
     }
 
+    /// The viewport's last frame as the renderer drew it, read back (None without one).
+    pub fn viewport_image(&self) -> Option<Result<image::RgbaImage, crate::render::RenderError>> {
+        self.viewport.as_ref()?.read_image()
+    }
+
     /// Where the viewport's camera looks from (None without a viewport).
     pub fn orbit(&self) -> Option<crate::scene::OrbitCamera> {
         self.viewport.as_ref().map(|v| v.orbit)
@@ -277,6 +282,17 @@ impl EditorApp {
 }
 
 impl eframe::App for EditorApp {
+    /// The theme's panel colour: the editor's window draws its panels without a fill
+    /// (`run_editor`), so the clear colour is their background.
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        let theme = if visuals.dark_mode {
+            egui::Visuals::dark()
+        } else {
+            egui::Visuals::light()
+        };
+        theme.panel_fill.to_normalized_gamma_f32()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.track_frame_time();
         let render_state = frame.wgpu_render_state().cloned();
