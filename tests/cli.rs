@@ -162,7 +162,8 @@ fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
 /// interpolated from the vertices, under the default automatic light paths) and
 /// `--shadow-map-size 0` (the lights of no size on the SH path instead of the real
 /// triangles' shadow maps) each give another image than the project's defaults, and
-/// `--blockers 0` fits no sphere.
+/// `--blockers 0` fits no sphere; the summary says how many blockers a surface point
+/// sees on average.
 #[test]
 fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     if common::no_gpu_wanted() {
@@ -194,7 +195,19 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     let render = |name: &str, extra: &[&str]| render_with_summary(name, extra).0;
     let differing =
         |a: &image::RgbImage, b: &image::RgbImage| a.pixels().zip(b.pixels()).filter(|(x, y)| x != y).count();
-    let defaults = render("defaults.png", &[]);
+    let (defaults, summary) = render_with_summary("defaults.png", &[]);
+    // The summary says what the SH path's blocker walk visits and finds per surface point:
+    // some blockers shadow the sample's surfaces, and no more than are visited.
+    let counts: Vec<f64> = summary
+        .split("blockers: ")
+        .nth(1)
+        .and_then(|rest| rest.split(" per surface point").next())
+        .map(|words| words.split(' ').filter_map(|w| w.parse().ok()).collect())
+        .unwrap_or_default();
+    assert!(
+        matches!(counts[..], [visited, shadowing] if shadowing > 0.0 && shadowing <= visited),
+        "{summary}"
+    );
     let pixels = (160 * 90) as usize;
     for (name, flags) in [
         ("per-vertex.png", &["--per-vertex"][..]),

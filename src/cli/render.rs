@@ -7,6 +7,7 @@ use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{
     AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
 };
+use lightpaint::shading::blocker_reach::mean_blockers_in_reach;
 use lightpaint::shading::{BakedIndirect, ShadowSettings};
 
 use super::CliError;
@@ -122,7 +123,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_cpu_image(&gpu, &frame)?,
             format!(
                 "CPU f64 reference, {}{}",
-                describe(&shadows, blockers.len(), &document.scene),
+                describe(&shadows, &blockers, (&document.scene, &document.hidden_objects)),
                 describe_indirect(&indirect)
             ),
         )
@@ -131,7 +132,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_logsh_image(&gpu, &frame, args.aa)?,
             format!(
                 "log-SH, {}{}",
-                describe(&shadows, blockers.len(), &document.scene),
+                describe(&shadows, &blockers, (&document.scene, &document.hidden_objects)),
                 describe_indirect(&indirect)
             ),
         )
@@ -267,7 +268,23 @@ fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
     }
 }
 
-fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::scene::Scene) -> String {
+/// Receivers the summary's mean blocker counts are taken over (vertices, strided).
+const SUMMARY_RECEIVERS: usize = 2000;
+
+fn describe(
+    shadows: &ShadowSettings,
+    blockers: &[lightpaint::blockers::Sphere],
+    (scene, hidden): (&lightpaint::scene::Scene, &std::collections::BTreeSet<usize>),
+) -> String {
+    let blocker_count = blockers.len();
+    // What the SH path's blocker walk costs and finds per surface point.
+    let reach = if blocker_count == 0 {
+        String::new()
+    } else {
+        mean_blockers_in_reach(shadows, blockers, scene, hidden, SUMMARY_RECEIVERS)
+            .map(|mean| format!(": {}", mean.in_words()))
+            .unwrap_or_default()
+    };
     let terrain = if scene.terrain.is_some() {
         format!(
             ", terrain W {} × {} levels",
@@ -289,7 +306,7 @@ fn describe(shadows: &ShadowSettings, blocker_count: usize, scene: &lightpaint::
         size => format!(", shadow maps {size}²"),
     };
     format!(
-        "order {}, {:?}, eps {}, {blocker_count} blockers{resolution}{terrain}, {:?} light paths{maps}, {} BRDF",
+        "order {}, {:?}, eps {}, {blocker_count} blockers{reach}{resolution}{terrain}, {:?} light paths{maps}, {} BRDF",
         shadows.order,
         shadows.exp,
         shadows.epsilon,

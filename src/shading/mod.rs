@@ -8,6 +8,7 @@
 
 mod baked_indirect;
 pub mod blocker_groups;
+pub mod blocker_reach;
 mod color;
 pub mod cpu;
 pub mod gpu_types;

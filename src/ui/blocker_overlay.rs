@@ -1,7 +1,8 @@
 //! The blocker overlay: every shadow sphere drawn over the viewport as the outline of its
 //! silhouette (a disc blocker as its rim), so an artist can see what casts the soft shadows and how well the sphere
 //! fit follows each mesh; and, at each shown mesh that has no spheres, a label saying so
-//! and why (its shadows then come from the shadow maps alone).
+//! and why (its shadows then come from the shadow maps alone); and how many blockers a
+//! surface point sees on average.
 
 use super::viewport::screen_point;
 use crate::blockers::Sphere;
@@ -48,6 +49,69 @@ pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, sph
         };
         painter.circle_stroke(center, radius, stroke);
     }
+}
+
+/// Receivers the overlay's mean blocker counts are taken over: fewer with more blockers,
+/// so working them out takes at most about this many receiver–blocker tests.
+const OVERLAY_TESTS: usize = 200_000;
+
+/// Says at the viewport's top-left how many blockers are shown and what the SH path's walk
+/// of them costs and finds per surface point (`shading::blocker_reach`), averaged over the
+/// shown meshes' vertices.
+pub fn draw_blocker_summary(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    spheres: &[Sphere],
+    (scene, hidden): (&crate::scene::Scene, &std::collections::BTreeSet<usize>),
+    shadows: &crate::shading::ShadowSettings,
+) {
+    // Worked out again only when the blockers, the hidden objects, the reach threshold or
+    // the meshes' vertex counts change, not every frame.
+    type Key = (u64, u32, Vec<usize>, Vec<usize>);
+    thread_local! {
+        static LAST: std::cell::RefCell<Option<(Key, String)>> = const { std::cell::RefCell::new(None) };
+    }
+    let key: Key = (
+        spheres_hash(spheres),
+        shadows.min_cap_ratio.to_bits(),
+        hidden.iter().copied().collect(),
+        scene.objects.iter().map(|o| o.positions.len()).collect(),
+    );
+    let text = LAST.with(|last| {
+        let mut last = last.borrow_mut();
+        if let Some((_, text)) = last.as_ref().filter(|(seen, _)| *seen == key) {
+            return text.clone();
+        }
+        let receivers = (OVERLAY_TESTS / spheres.len().max(1)).clamp(16, 2000);
+        let reach = crate::shading::blocker_reach::mean_blockers_in_reach(shadows, spheres, scene, hidden, receivers);
+        let text = match reach {
+            Some(mean) if !spheres.is_empty() => format!("{} blockers: {}", spheres.len(), mean.in_words()),
+            _ => format!("{} blockers", spheres.len()),
+        };
+        *last = Some((key, text.clone()));
+        text
+    });
+    let colour = egui::Color32::from_rgba_unmultiplied(90, 220, 255, 220);
+    let at = rect.left_top() + egui::vec2(8.0, 8.0);
+    painter.text(
+        at,
+        egui::Align2::LEFT_TOP,
+        text,
+        egui::FontId::proportional(12.0),
+        colour,
+    );
+}
+
+/// A hash of the spheres' every coordinate (FNV-1a over their bits).
+fn spheres_hash(spheres: &[Sphere]) -> u64 {
+    let mut hash = 0xcbf2_9ce4_8422_2325u64;
+    for sphere in spheres {
+        let values = [sphere.center.to_array(), sphere.disc_normal.to_array()];
+        for bits in values.iter().flatten().chain([&sphere.radius_m]).map(|v| v.to_bits()) {
+            hash = (hash ^ u64::from(bits)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
 }
 
 /// Labels each shown object of `scene` that `blockers` gave no spheres with the reason,

@@ -36,7 +36,10 @@ pub use surface::{
     Incidence, SurfacePoint, direct_lobes, direct_radiance, environment_irradiance_at, environment_radiance, incidence,
     mirrored_view,
 };
-pub use visibility::{exact_visibility, log_visibility, scene_log_visibility, visibility_cosine, visibility_toward};
+pub use visibility::{
+    BlockersInReach, blockers_in_reach, exact_visibility, log_visibility, scene_log_visibility, visibility_cosine,
+    visibility_toward,
+};
 
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;

@@ -21,7 +21,6 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
     let order = settings.order;
     let ln_epsilon = (settings.epsilon as f64).ln();
     let mass_scales = settings.cap_mass_table();
-    let min_cap_ratio = settings.min_cap_ratio as f64;
     let mut f = vec![0.0; order * order];
     let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
         let mass_scale = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
@@ -41,11 +40,32 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
             });
         });
     };
+    for_each_cap(blockers, settings.min_cap_ratio, p, n, |direction, ratio, horizon| {
+        add_cap(direction, ratio, horizon)
+    });
+    f
+}
+
+/// Calls `add_cap(direction, ratio, horizon weight)` for each blocker cap that shadows `p`
+/// with normal `n` as logsh.wgsl's walk takes them: the blockers of the groups in reach of
+/// p one by one, weighed 1 − their group's stand-in share, each group's stand-in sphere
+/// weighed by that share (`shading::blocker_groups`), and the discs. Returns how many
+/// blockers the walk visits (every sphere of a group in reach, every stand-in it weighs,
+/// every disc): the per-pixel work.
+fn for_each_cap(
+    blockers: &[Sphere],
+    min_cap_ratio: f32,
+    p: DVec3,
+    n: DVec3,
+    mut add_cap: impl FnMut(DVec3, f64, f64),
+) -> usize {
     let smoothstep = |edge0: f64, edge1: f64, x: f64| {
         let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
         t * t * (3.0 - 2.0 * t)
     };
-    with_groups(blockers, settings.min_cap_ratio, |ordered, groups, discs| {
+    let min_ratio = min_cap_ratio as f64;
+    with_groups(blockers, min_cap_ratio, |ordered, groups, discs| {
+        let mut walked = discs.len();
         for group in groups {
             let offset = group.center.as_dvec3() - p;
             let (extent, influence) = (group.extent_m as f64, group.influence_m as f64);
@@ -58,25 +78,43 @@ pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, 
             };
             let in_reach = distance * distance <= influence * influence && offset.dot(n) + extent > 0.0;
             if in_reach && share < 1.0 {
+                walked += group.count;
                 for cap in ordered[group.first..group.first + group.count]
                     .iter()
-                    .filter_map(|b| b.cap_from(p, n, min_cap_ratio))
+                    .filter_map(|b| b.cap_from(p, n, min_ratio))
                 {
                     add_cap(cap.direction, cap.ratio, cap.horizon * (1.0 - share));
                 }
             }
             let ratio = group.stand_in_radius_m as f64 / distance.max(1e-300);
             let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / extent.max(1e-30));
-            if share > 0.0 && ratio >= min_cap_ratio && horizon > 0.0 {
+            if share > 0.0 && ratio >= min_ratio && horizon > 0.0 {
+                walked += 1;
                 add_cap(offset / distance, ratio, horizon * share);
             }
         }
         // The discs, at every receiver (`add_discs`).
-        for cap in discs.iter().filter_map(|b| b.cap_from(p, n, min_cap_ratio)) {
+        for cap in discs.iter().filter_map(|b| b.cap_from(p, n, min_ratio)) {
             add_cap(cap.direction, cap.ratio, cap.horizon);
         }
-    });
-    f
+        walked
+    })
+}
+
+/// What the SH walk of `blockers` costs a receiver at `p` with normal `n`, and what it
+/// finds there: the blockers (spheres, group stand-ins, discs) it visits, and how many of
+/// those shadow p (a cap above its horizon, as large in its sky as
+/// `ShadowSettings::min_cap_ratio`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BlockersInReach {
+    pub walked: usize,
+    pub shadowing: usize,
+}
+
+pub fn blockers_in_reach(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> BlockersInReach {
+    let mut shadowing = 0;
+    let walked = for_each_cap(blockers, settings.min_cap_ratio, p, n, |_, _, _| shadowing += 1);
+    BlockersInReach { walked, shadowing }
 }
 
 /// Calls `f` with the spheres of `blockers` grouped as the GPU groups them

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
-use super::blocker_overlay::{draw_blockers, draw_meshes_without_spheres};
+use super::blocker_overlay::{draw_blocker_summary, draw_blockers, draw_meshes_without_spheres};
 use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::tool_bar;
 use super::history::{History, Step};
@@ -337,6 +337,13 @@ impl eframe::App for EditorApp {
                         let painter = ui.painter_at(response.rect);
                         let shown = self.blockers.shown_spheres(&document.hidden_objects);
                         draw_blockers(&painter, response.rect, &viewport.view(), &shown);
+                        draw_blocker_summary(
+                            &painter,
+                            response.rect,
+                            &shown,
+                            (&document.scene, &document.hidden_objects),
+                            &document.settings.shadows,
+                        );
                         draw_meshes_without_spheres(
                             &painter,
                             response.rect,
