@@ -96,3 +96,30 @@ pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
         source: wgpu::ShaderSource::Wgsl(source.into()),
     })
 }
+
+/// A bind group layout of a filterable 2-D image (binding 0) and its filtering sampler
+/// (binding 1), read by a fragment stage: what a pass that draws a finished frame from an
+/// image binds (the edge filter, the editor's viewport image).
+pub fn image_and_sampler_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}

@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use crate::render::descriptors::create_module;
+use crate::render::descriptors::{create_module, image_and_sampler_layout};
 use crate::shading::wgsl;
 
 /// The pipelines, kept in egui's callback resources (one per render state).
@@ -22,27 +22,7 @@ struct ViewportImagePipelines {
 
 impl ViewportImagePipelines {
     fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> ViewportImagePipelines {
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("viewport image"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
+        let layout = image_and_sampler_layout(device, "viewport image");
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("viewport image"),
             bind_group_layouts: &[Some(&layout)],

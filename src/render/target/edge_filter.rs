@@ -10,7 +10,7 @@
 
 use crate::render::descriptors::{
     COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, create_module, depth_attachment, depth_test, frame_texture,
-    numbered_entries,
+    image_and_sampler_layout, numbered_entries,
 };
 use crate::shading::wgsl;
 
@@ -32,27 +32,7 @@ impl EdgeFilter {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("edge filter"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
+        let layout = image_and_sampler_layout(device, "edge filter");
         let module = create_module(device, "edge filter", wgsl::EDGE_FILTER);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("edge filter"),
