@@ -66,20 +66,21 @@ pub fn draw_blocker_summary(
     shadows: &crate::shading::ShadowSettings,
 ) {
     // Worked out again only when the blockers, the hidden objects, the reach threshold or
-    // the meshes' vertex counts change, not every frame.
-    type Key = (u64, u32, Vec<usize>, Vec<usize>);
+    // the meshes' vertex counts change, not every frame: the last inputs are kept and
+    // compared, as the CPU twin keeps its blocker groups (`shading::cpu`'s with_groups).
+    type Inputs = (Vec<Sphere>, u32, Vec<usize>, Vec<usize>);
     thread_local! {
-        static LAST: std::cell::RefCell<Option<(Key, String)>> = const { std::cell::RefCell::new(None) };
+        static LAST: std::cell::RefCell<Option<(Inputs, String)>> = const { std::cell::RefCell::new(None) };
     }
-    let key: Key = (
-        spheres_hash(spheres),
-        shadows.min_cap_ratio.to_bits(),
-        hidden.iter().copied().collect(),
-        scene.objects.iter().map(|o| o.positions.len()).collect(),
-    );
+    let threshold = shadows.min_cap_ratio.to_bits();
+    let hidden_list: Vec<usize> = hidden.iter().copied().collect();
+    let vertex_counts: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
     let text = LAST.with(|last| {
         let mut last = last.borrow_mut();
-        if let Some((_, text)) = last.as_ref().filter(|(seen, _)| *seen == key) {
+        if let Some(((seen, seen_threshold, seen_hidden, seen_counts), text)) = last.as_ref()
+            && seen.as_slice() == spheres
+            && (*seen_threshold, seen_hidden, seen_counts) == (threshold, &hidden_list, &vertex_counts)
+        {
             return text.clone();
         }
         let receivers = (OVERLAY_TESTS / spheres.len().max(1)).clamp(16, 2000);
@@ -88,7 +89,7 @@ pub fn draw_blocker_summary(
             Some(mean) if !spheres.is_empty() => format!("{} blockers: {}", spheres.len(), mean.in_words()),
             _ => format!("{} blockers", spheres.len()),
         };
-        *last = Some((key, text.clone()));
+        *last = Some(((spheres.to_vec(), threshold, hidden_list, vertex_counts), text.clone()));
         text
     });
     let colour = egui::Color32::from_rgba_unmultiplied(90, 220, 255, 220);
@@ -100,18 +101,6 @@ pub fn draw_blocker_summary(
         egui::FontId::proportional(12.0),
         colour,
     );
-}
-
-/// A hash of the spheres' every coordinate (FNV-1a over their bits).
-fn spheres_hash(spheres: &[Sphere]) -> u64 {
-    let mut hash = 0xcbf2_9ce4_8422_2325u64;
-    for sphere in spheres {
-        let values = [sphere.center.to_array(), sphere.disc_normal.to_array()];
-        for bits in values.iter().flatten().chain([&sphere.radius_m]).map(|v| v.to_bits()) {
-            hash = (hash ^ u64::from(bits)).wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    hash
 }
 
 /// Labels each shown object of `scene` that `blockers` gave no spheres with the reason,

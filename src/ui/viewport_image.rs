@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use crate::render::descriptors::{create_module, image_and_sampler_layout};
+use crate::render::descriptors::{create_module, image_and_sampler_layout, numbered_entries};
 use crate::shading::wgsl;
 
 /// The pipelines, kept in egui's callback resources (one per render state).
@@ -87,26 +87,17 @@ impl ViewportImage {
     pub fn new(render_state: &egui_wgpu::RenderState, view: &wgpu::TextureView, size_px: [u32; 2]) -> ViewportImage {
         let device = &render_state.device;
         let mut renderer = render_state.renderer.write();
-        let resources = &mut renderer.callback_resources;
-        if resources.get::<ViewportImagePipelines>().is_none() {
-            resources.insert(ViewportImagePipelines::new(device, render_state.target_format));
-        }
-        let Some(pipelines) = resources.get::<ViewportImagePipelines>() else {
-            unreachable!("inserted above");
-        };
+        let pipelines = renderer
+            .callback_resources
+            .entry::<ViewportImagePipelines>()
+            .or_insert_with(|| ViewportImagePipelines::new(device, render_state.target_format));
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("viewport image"),
             layout: &pipelines.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&pipelines.sampler),
-                },
-            ],
+            entries: &numbered_entries([
+                wgpu::BindingResource::TextureView(view),
+                wgpu::BindingResource::Sampler(&pipelines.sampler),
+            ]),
         });
         ViewportImage {
             bind_group: Arc::new(bind_group),
