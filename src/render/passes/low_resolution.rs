@@ -3,7 +3,8 @@
 //! full-screen passes that shade samples of it at low resolution — in one level, or in
 //! two, the light of soft shadows at twice the spacing and the sharp lights added at
 //! every sample — and on single-sampled targets the full-resolution frame likewise: the
-//! upsampling and the full shading of the pixels it leaves.
+//! upsampling and the shading of the pixels it leaves (from the soft layer where there
+//! is one, in full where it does not serve).
 
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, surface_buffer_layout,
@@ -52,10 +53,13 @@ pub(super) struct SoftLayerPipelines {
     shade_sharp: wgpu::RenderPipeline,
 }
 
-/// The full-resolution frame from the surface buffer: the upsampling (fs_upsample_deferred_marking), then the pixels
-/// it left shaded in full (fs_logsh_deferred), both full-screen.
+/// The full-resolution frame from the surface buffer, full-screen: the upsampling
+/// (fs_upsample_deferred_marking); with two-level shading, the soft layer upsampled to
+/// the pixels it left plus the sharp lights (fs_shade_sharp_deferred_marking); then the
+/// pixels left shaded in full (fs_logsh_deferred).
 pub(super) struct FullResolutionPipelines {
     upsample: wgpu::RenderPipeline,
+    shade_sharp: Option<wgpu::RenderPipeline>,
     shade: wgpu::RenderPipeline,
 }
 
@@ -133,6 +137,14 @@ impl ReducedShadingPipelines {
                         Some(&low_resolution_layout),
                         FullScreenDepth::Marking,
                     ),
+                    shade_sharp: two_level(paths).then(|| {
+                        full_screen(
+                            "fs_shade_sharp_deferred_marking",
+                            (Some(COLOR_FORMAT), 1),
+                            Some(&low_resolution_layout),
+                            FullScreenDepth::Marking,
+                        )
+                    }),
                     shade: full_screen(
                         "fs_logsh_deferred",
                         (Some(COLOR_FORMAT), 1),
@@ -204,8 +216,7 @@ pub(super) fn shade_low_resolution(
         frame,
         "low-resolution depth",
         (&[], Some(low.low_depth_attachment(true))),
-        None,
-        &[&pipelines.mark_surface_samples],
+        &[(&pipelines.mark_surface_samples, None)],
     );
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
@@ -214,8 +225,7 @@ pub(super) fn shade_low_resolution(
                 frame,
                 "soft layer shading",
                 (&soft.color_attachments(), None),
-                None,
-                &[&soft_pipelines.shade_soft],
+                &[(&soft_pipelines.shade_soft, None)],
             );
             // The sharp pass marks what it shaded (depth 1), so the full shading after it
             // shades only the samples it discarded.
@@ -223,16 +233,17 @@ pub(super) fn shade_low_resolution(
                 frame,
                 "low-resolution shading",
                 (&samples, Some(low.low_depth_attachment(false))),
-                Some(&soft.bind_group),
-                &[&soft_pipelines.shade_sharp, &pipelines.shade_low],
+                &[
+                    (&soft_pipelines.shade_sharp, Some(&soft.bind_group)),
+                    (&pipelines.shade_low, None),
+                ],
             );
         }
         _ => bound.full_screen(
             frame,
             "low-resolution shading",
             (&samples, Some(low.low_depth_attachment(false))),
-            None,
-            &[&pipelines.shade_low],
+            &[(&pipelines.shade_low, None)],
         ),
     }
 }
@@ -278,8 +289,13 @@ pub(super) fn draw_full_resolution(
     let FullResolution::Deferred(full) = &pipelines.full_resolution else {
         return false;
     };
-    // The upsampling marks what it drew (depth 1), so the full shading after it shades
-    // only the pixels it discarded.
+    // The upsampling marks what it drew (depth 1), and so does the sharp lights' pass, so
+    // each pass after them shades only the pixels they discarded.
+    let mut passes = vec![(&full.upsample, Some(low.bind_group()))];
+    if let (Some(shade_sharp), Some(soft)) = (&full.shade_sharp, &low.soft_at_full_resolution) {
+        passes.push((shade_sharp, Some(soft)));
+    }
+    passes.push((&full.shade, None));
     Bound {
         scene,
         blockers,
@@ -292,8 +308,7 @@ pub(super) fn draw_full_resolution(
             &[Some(target.color_attachment(background_linear))],
             Some(target.depth_attachment_for(false, false)),
         ),
-        Some(low.bind_group()),
-        &[&full.upsample, &full.shade],
+        &passes,
     );
     true
 }
@@ -307,7 +322,8 @@ struct Bound<'a> {
 
 impl Bound<'_> {
     /// One render pass named `label` into `targets` (colour, depth) drawing the full-screen
-    /// triangle with each of `shading` in turn, the `coarser` samples bound as group 3.
+    /// triangle with each of `shading` in turn, each with the coarser samples it reads
+    /// bound as group 3.
     fn full_screen(
         &self,
         frame: &mut TimedEncoder,
@@ -316,8 +332,7 @@ impl Bound<'_> {
             &[Option<wgpu::RenderPassColorAttachment<'_>>],
             Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
         ),
-        coarser: Option<&wgpu::BindGroup>,
-        shading: &[&wgpu::RenderPipeline],
+        shading: &[(&wgpu::RenderPipeline, Option<&wgpu::BindGroup>)],
     ) {
         let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
@@ -330,10 +345,10 @@ impl Bound<'_> {
         pass.set_bind_group(0, &self.scene.frame_bind_group, &[]);
         pass.set_bind_group(1, &self.surface.bind_group, &[]);
         pass.set_bind_group(2, &self.blockers.bind_group, &[]);
-        if let Some(coarser) = coarser {
-            pass.set_bind_group(3, coarser, &[]);
-        }
-        for pipeline in shading {
+        for &(pipeline, coarser) in shading {
+            if let Some(coarser) = coarser {
+                pass.set_bind_group(3, coarser, &[]);
+            }
             pass.set_pipeline(pipeline);
             pass.draw(0..3, 0..1);
         }

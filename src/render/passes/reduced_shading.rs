@@ -14,8 +14,9 @@
 //! spacing; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
 //! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the
 //! sharp lights, and in full where the soft layer does not match or disagrees); then in
-//! the frame's [`crate::render::RenderTarget`] the upsampling and the full shading of the
-//! pixels it left, full-screen as well. Multisampled targets draw the full-resolution
+//! the frame's [`crate::render::RenderTarget`] the upsampling and, full-screen as well,
+//! the pixels it left (two levels: the soft layer upsampled plus the sharp lights, and in
+//! full where the soft layer does not match or disagrees; one level: in full). Multisampled targets draw the full-resolution
 //! frame rasterised instead: a depth pre-pass, fs_upsample and nothing shaded in full.
 //!
 //! Why deferred: rasterised at a third of the resolution, a figure's triangles are
@@ -153,6 +154,10 @@ pub struct LowResolutionTargets {
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
+    /// The soft layer read at full resolution (its parameters for a reader of stride 1):
+    /// present with a soft layer when the full-resolution frame is deferred, where
+    /// fs_shade_sharp_deferred_marking shades the pixels the upsampling leaves from it.
+    pub(crate) soft_at_full_resolution: Option<wgpu::BindGroup>,
 }
 
 fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
@@ -287,6 +292,26 @@ pub(crate) struct SampleImage {
     pub bind_group: wgpu::BindGroup,
 }
 
+/// A bind group through which a reader finds `view`'s samples by `params`.
+fn sample_reader(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    view: &wgpu::TextureView,
+    params: GpuUpsampleParams,
+) -> wgpu::BindGroup {
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("upsample parameters"),
+        contents: bytemuck::bytes_of(&params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &numbered_entries([params.as_entire_binding(), wgpu::BindingResource::TextureView(view)]),
+    })
+}
+
 impl SampleImage {
     /// An image of `size` samples with `params` ([`upsample_params`]).
     fn new(
@@ -306,16 +331,7 @@ impl SampleImage {
             &[],
         )
         .create_view(&Default::default());
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("upsample parameters"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(label),
-            layout,
-            entries: &numbered_entries([params.as_entire_binding(), wgpu::BindingResource::TextureView(&view)]),
-        });
+        let bind_group = sample_reader(device, layout, label, &view, params);
         SampleImage { view, bind_group }
     }
 
@@ -360,10 +376,24 @@ impl LowResolutionTargets {
                 ),
             )
         });
+        let soft_at_full_resolution = soft.as_ref().filter(|_| deferred_frame).map(|soft| {
+            sample_reader(
+                device,
+                layout,
+                "soft layer samples at full resolution",
+                &soft.view,
+                upsample_params(
+                    full_size,
+                    [1, 2 * downsample],
+                    [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
+                ),
+            )
+        });
         LowResolutionTargets {
             full_size,
             downsample,
             size,
+            soft_at_full_resolution,
             surface: SurfaceBuffer::new(device, surface_layout, full_size, !deferred_frame),
             low_depth: depth_view(device, "low-resolution depth", size),
             samples,
