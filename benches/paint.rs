@@ -50,6 +50,7 @@ fn stroke(scene: &Scene) -> StrokeRecord {
         settings: PaintSettings::default(),
         seed: 1,
         hidden_objects: Vec::new(),
+        locked_lights: Vec::new(),
     }
 }
 

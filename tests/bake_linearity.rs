@@ -47,6 +47,7 @@ fn scene() -> Scene {
         position,
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     };
     Scene {
         objects: vec![floor, wall, block],

@@ -563,6 +563,46 @@ fn paint_applies_scripted_strokes_and_saves_them_in_the_project_log() {
     );
 }
 
+/// A script's `locked_lights` lock the lights it names: the strokes leave the key as it
+/// is while raising another light, the saved project keeps the key locked and its strokes
+/// record the lock; a name no light has is refused, naming it, and nothing is written.
+#[test]
+fn paint_leaves_the_lights_a_script_locks_as_they_are() {
+    let studio = common::repo_path("projects/studio/studio.lightpaint");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let script = r#"{"seed": 3, "locked_lights": ["Key"], "strokes": [
+            {"brush": {"kind": "positive", "radius_px": 60}, "world": [[0.0, 1.0, 0.3]]}
+        ]}"#;
+    let (stdout, output) = run_paint_ok(&studio, script, dir.path(), &["--bounces", "0"]);
+    assert!(stdout.contains("stroke 0: Changed"), "{stdout}");
+    let before = lightpaint::project::Document::open(&studio).expect("studio opens");
+    let after = lightpaint::project::Document::open(&output).expect("the painted project opens");
+    let key = before
+        .scene
+        .lights
+        .iter()
+        .position(|l| l.name == "Key")
+        .expect("a key light");
+    assert_eq!(after.scene.lights[key].intensity, before.scene.lights[key].intensity);
+    assert_eq!(after.scene.locked_lights(), vec![key as u32]);
+    assert_eq!(after.painting.strokes[0].locked_lights, vec![key as u32]);
+    assert!(
+        (before.scene.lights.iter().zip(&after.scene.lights)).any(|(b, a)| a.intensity > b.intensity),
+        "another light is raised instead"
+    );
+    let unknown = r#"{"locked_lights": ["Nobody"], "strokes": []}"#;
+    let elsewhere = dir.path().join("unknown");
+    std::fs::create_dir(&elsewhere).expect("dir");
+    let (out, output) = run_paint(&studio, unknown, &elsewhere, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("locked_lights[0]") && stderr.contains("\"Nobody\""),
+        "{stderr}"
+    );
+    assert!(!output.exists(), "nothing is written");
+}
+
 #[test]
 fn paint_rejects_a_bad_script_naming_the_file_and_the_field() {
     let studio = common::repo_path("projects/studio/studio.lightpaint");

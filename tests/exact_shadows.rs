@@ -127,6 +127,7 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
         position,
         direction: Vec3::new(0.2, -1.0, 0.1).normalize(),
         range: None,
+        locked: false,
     };
     let spot = LightKind::Spot {
         inner_cone_rad: 0.4,
@@ -218,6 +219,7 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
             position: light_position.as_vec3(),
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         }],
     );
     let ball = Sphere {

@@ -175,6 +175,7 @@ fn sphere_and_disk_lights_match_their_closed_forms() {
         position: glam::Vec3::new(0.0, height as f32, 0.0),
         direction: glam::Vec3::NEG_Y,
         range: None,
+        locked: false,
     };
     let cases = [
         (
@@ -293,6 +294,7 @@ fn area_lights_give_their_exact_light_near_the_floor() {
         position: Vec3::new(0.1, height as f32, -0.1),
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     };
     // Facing down, the width runs along x (Light::area_axes).
     assert!((rect.area_axes().0.abs() - Vec3::X).length() < 1e-6);
@@ -355,6 +357,7 @@ fn area_lights_give_their_exact_light_near_the_floor() {
         position: Vec3::new(0.0, disk_height as f32, 0.0),
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     }];
     let image = render_logsh_image(
         &gpu,

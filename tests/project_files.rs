@@ -343,7 +343,7 @@ fn a_format_7_project_opens_with_the_brdf_outside_the_sh() {
 }
 
 /// Format 8 had no turn of rect lights: its rects open unturned, lying as they did (width
-/// along world up × direction), and a turned rect is saved as format 9 and reopens turned,
+/// along world up × direction), and a turned rect is saved as the current format and reopens turned,
 /// its width along the former height axis after a quarter turn.
 #[test]
 fn a_format_8_project_opens_and_rect_lights_turn_about_their_normal() {
@@ -405,7 +405,7 @@ fn a_format_8_project_opens_and_rect_lights_turn_about_their_normal() {
     *document.scene.lights.last_mut().expect("the rect") = turned.clone();
     let saved = dir.path().join("turned.lightpaint");
     document.save(&saved).expect("save");
-    assert_eq!(read_project_file(&saved).expect("reads").format_version, 9);
+    assert_eq!(read_project_file(&saved).expect("reads").format_version, FORMAT_VERSION);
     let reopened = lightpaint::project::Document::open(&saved).expect("reopen");
     let light = reopened.scene.lights.last().expect("the rect");
     assert_eq!(light, &turned);
@@ -414,6 +414,41 @@ fn a_format_8_project_opens_and_rect_lights_turn_about_their_normal() {
         "a quarter turn lays the width along the former height axis"
     );
     assert!(light.area_width_axis().dot(direction).abs() < 1e-6);
+}
+
+/// A format-9 project (before locks) opens with every light unlocked; a locked light and
+/// a stroke's locked lights are saved and reopen as they were, and an unlocked light
+/// writes no lock.
+#[test]
+fn locked_lights_are_saved_and_reopened() {
+    use lightpaint::paint::{Brush, BrushKind, PaintSettings, StrokeRecord, View, ViewRecord};
+    let mut document = open_old_fixture(9);
+    assert!(document.scene.lights.iter().all(|l| !l.locked));
+    document.scene.lights[1].locked = true;
+    let view = ViewRecord::of(&View {
+        camera: document.view().camera(),
+        width_px: 320,
+        height_px: 240,
+    });
+    let stroke = StrokeRecord {
+        view,
+        dabs_px: vec![glam::Vec2::new(160.0, 120.0)],
+        brush: Brush::new(BrushKind::Positive),
+        settings: PaintSettings::default(),
+        seed: 4,
+        hidden_objects: Vec::new(),
+        locked_lights: document.scene.locked_lights(),
+    };
+    document.painting.strokes.push(stroke.clone());
+    let dir = tempfile::tempdir().expect("temp dir");
+    let saved = dir.path().join("locked.lightpaint");
+    document.save(&saved).expect("save");
+    let text = std::fs::read_to_string(&saved).expect("read");
+    assert_eq!(text.matches("\"locked\": true").count(), 1, "one locked light: {text}");
+    assert!(!text.contains("\"locked\": false"), "an unlocked light writes no lock");
+    let reopened = Document::open(&saved).expect("reopen");
+    assert_eq!(reopened.scene.locked_lights(), vec![1]);
+    assert_eq!(reopened.painting.strokes.last(), Some(&stroke));
 }
 
 /// The BRDF variant is saved and reopened.
@@ -524,7 +559,7 @@ fn a_minimal_hand_written_project_opens_and_every_missing_field_is_named() {
     std::fs::write(
         &minimal,
         r#"{
-  "format_version": 9,
+  "format_version": 10,
   "scene": { "gltf": "sample.glb" },
   "lights": [ { "name": "bulb", "kind": { "type": "point" }, "intensity": 20.0, "position": [0.0, 3.0, 0.0] } ]
 }"#,
@@ -542,7 +577,7 @@ fn a_minimal_hand_written_project_opens_and_every_missing_field_is_named() {
     std::fs::write(
         &broken,
         r#"{
-  "format_version": 9,
+  "format_version": 10,
   "scene": {},
   "lights": [ { "kind": { "type": "disk" } }, { "name": "sun", "kind": { "type": "directional" }, "intensity": 3.0 } ]
 }"#,

@@ -246,6 +246,7 @@ fn hard_shadow_edges_stay_where_shading_every_pixel_puts_them() {
             position: Vec3::new(0.0, 5.0, 0.0),
             direction: Vec3::new(0.8, -0.6, 0.1).normalize(),
             range: None,
+            locked: false,
         }],
         ..Scene::default()
     };

@@ -24,6 +24,7 @@ fn light(name: &str, kind: LightKind, position: Vec3, direction: Vec3, intensity
         position,
         direction,
         range: None,
+        locked: false,
     }
 }
 

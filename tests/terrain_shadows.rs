@@ -125,6 +125,7 @@ fn cliff_scene() -> Scene {
         position: Vec3::ZERO,
         direction: Vec3::new(-1.0, -0.5, 0.2).normalize(),
         range: None,
+        locked: false,
     });
     scene
 }

@@ -57,6 +57,7 @@ fn striped_floor() -> (Scene, Camera) {
         position: Vec3::ZERO,
         direction: -Vec3::Y,
         range: None,
+        locked: false,
     });
     let position = Vec3::new(0.1, 1.6, 12.0);
     let forward = (Vec3::new(0.1, 0.0, 0.0) - position).normalize();

@@ -681,3 +681,65 @@ fn rendered_by_cli(project: &std::path::Path, out: &std::path::Path, (width, hei
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     image::open(out).expect("render wrote a PNG").to_rgba8()
 }
+
+/// A light locked in its inspector ("painting: locked") shows a lock in the outliner, is
+/// left as it is by a brighten stroke that raises another light, stays locked in the saved
+/// project, and Ctrl+Z unlocks it again (the lock is a light edit like any other).
+#[test]
+fn a_locked_light_is_left_as_it_is_by_strokes_and_stays_locked() {
+    let Some((_dir, project, mut harness)) = editor_on_copy(Sample::Studio) else {
+        return;
+    };
+    let key = light_index(&harness, "Key");
+    harness.get_by_label("Key — spot").click();
+    harness.run();
+    harness
+        .get_by_role_and_label(egui::accesskit::Role::CheckBox, "painting")
+        .click();
+    harness.run();
+    assert!(harness.state().document().expect("open").scene.lights[key].locked);
+    harness.get_by_label("Key — spot (locked)");
+    harness.state_mut().select(None);
+    harness.run();
+    park_pointer(&mut harness);
+
+    let before = harness.state().light_intensities();
+    harness.key_press(egui::Key::B);
+    harness.run();
+    let path: Vec<egui::Pos2> = [[-0.6f32, 1.2], [-0.2, 1.3], [0.2, 1.3], [0.6, 1.2]]
+        .iter()
+        .map(|&[x, z]| {
+            harness
+                .state()
+                .screen_position(glam::Vec3::new(x, 0.0, z))
+                .expect("the floor in front of the figure is in view")
+        })
+        .collect();
+    drag_through(&mut harness, &path, 6);
+    park_pointer(&mut harness);
+    let after = harness.state().light_intensities();
+    assert_eq!(after[key], before[key], "the locked key is left as it is");
+    assert!(
+        after.iter().zip(&before).any(|(a, b)| a > b),
+        "another light rose: {before:?} → {after:?}"
+    );
+    let document = harness.state().document().expect("open");
+    assert_eq!(
+        document.painting.strokes.last().map(|s| s.locked_lights.clone()),
+        Some(vec![key as u32])
+    );
+
+    harness.key_press(egui::Key::Escape);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    harness.run();
+    let reopened = Document::open(&project).expect("reopens");
+    assert_eq!(reopened.scene.locked_lights(), vec![key as u32]);
+
+    // Undo the stroke, then the lock.
+    for _ in 0..2 {
+        harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+        harness.run();
+    }
+    assert!(!harness.state().document().expect("open").scene.lights[key].locked);
+    assert_eq!(harness.state().light_intensities(), before);
+}

@@ -21,6 +21,7 @@ fn point_light(position: Vec3) -> Light {
         position,
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     }
 }
 

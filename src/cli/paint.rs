@@ -24,7 +24,14 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
         width_px: 1280,
         height_px: 720,
     });
-    let records = script.records(strokes, fallback)?;
+    script.lock_lights(strokes, &mut document.scene.lights)?;
+    let mut records = script.records(strokes, fallback)?;
+    // As the editor's strokes: the project's hidden objects neither take paint nor stop the
+    // brush, and its locked lights stay as they are.
+    for record in &mut records {
+        record.hidden_objects = document.hidden_objects.iter().map(|&o| o as u32).collect();
+        record.locked_lights = document.scene.locked_lights();
+    }
     let started = std::time::Instant::now();
     let scene = &document.scene;
     let maps = match bounces {

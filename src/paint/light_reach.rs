@@ -74,6 +74,7 @@ mod tests {
                 position: Vec3::Y,
                 direction: Vec3::NEG_Y,
                 range: None,
+                locked: false,
             })
             .collect();
         let reach = light_reach_per_vertex(&scene, &Known, 2, Vec3::ONE);

@@ -160,6 +160,10 @@ pub struct StrokeRecord {
     /// scene's objects): the brush neither paints them nor is stopped by them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hidden_objects: Vec<u32>,
+    /// Lights locked while the stroke was painted (indices into the scene's lights,
+    /// `Light::locked`): the stroke left them as they were.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub locked_lights: Vec<u32>,
 }
 
 impl StrokeRecord {

@@ -116,6 +116,10 @@ pub struct Script {
     /// Settings of strokes that name none.
     #[serde(default)]
     pub settings: PaintSettings,
+    /// Names of lights to lock before the strokes, as the editor's lock does: the strokes
+    /// leave them as they are, and the saved project keeps them locked.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub locked_lights: Vec<String>,
     pub strokes: Vec<ScriptStroke>,
 }
 
@@ -141,6 +145,26 @@ impl Script {
                 message: inner.to_string(),
             }
         })
+    }
+
+    /// Locks the lights `locked_lights` names among `lights` (every light of a name).
+    /// A name no light has is an error naming it and the lights there are; nothing is
+    /// locked then.
+    pub fn lock_lights(&self, path: &Path, lights: &mut [crate::scene::Light]) -> Result<(), ScriptError> {
+        for (k, name) in self.locked_lights.iter().enumerate() {
+            if !lights.iter().any(|light| &light.name == name) {
+                let names: Vec<&str> = lights.iter().map(|light| light.name.as_str()).collect();
+                return Err(ScriptError::Invalid {
+                    path: path.to_path_buf(),
+                    field: format!("locked_lights[{k}]"),
+                    message: format!("no light is called {name:?} (the lights: {})", names.join(", ")),
+                });
+            }
+        }
+        for light in lights.iter_mut() {
+            light.locked |= self.locked_lights.contains(&light.name);
+        }
+        Ok(())
     }
 
     /// The strokes as records, `fallback` the view of strokes (and a script) that name
@@ -176,6 +200,7 @@ impl Script {
                     settings: stroke.settings.unwrap_or(self.settings),
                     seed: self.seed.wrapping_add(k as u64),
                     hidden_objects: Vec::new(),
+                    locked_lights: Vec::new(),
                 };
                 let problems = record.problems();
                 if problems.is_empty() {

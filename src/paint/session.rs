@@ -245,7 +245,13 @@ impl Painter {
         record: StrokeRecord,
         hits: &Hits,
     ) -> StrokeReport {
-        let problems = record.problems();
+        let mut problems = record.problems();
+        if let Some(missing) = record.locked_lights.iter().find(|&&i| i as usize >= intensities.len()) {
+            problems.push(format!(
+                "locked light {missing} does not exist ({} lights)",
+                intensities.len()
+            ));
+        }
         if !problems.is_empty() || intensities.len() != transfer.light_count() {
             let message = if problems.is_empty() {
                 format!(
@@ -293,6 +299,19 @@ impl Painter {
                 "no light reaches the painted area",
             );
         }
+        let mut locked = vec![false; p.len()];
+        record.locked_lights.iter().for_each(|&i| locked[i as usize] = true);
+        let reaching_locked = (0..p.len()).filter(|&i| locked[i] && stroke.mean[i] > 0.0).count();
+        if reaching_locked > 0 && (0..p.len()).all(|i| locked[i] || stroke.mean[i] <= 0.0) {
+            return StrokeReport::without_change(
+                Outcome::Unchanged,
+                hits.len(),
+                mean_before,
+                format!(
+                    "every light that reaches the painted area is locked ({reaching_locked}): unlock one to paint here"
+                ),
+            );
+        }
         let settings = record.settings;
         let scale_of = |ranking: Ranking| -> Vec<f64> {
             match ranking {
@@ -314,9 +333,18 @@ impl Painter {
         }
         let scale = scale_of(ranking);
         let shares = penalty_shares(self.constrained(), vertices_per_object, &scale);
+        // A locked light is ranked out: no strategy selects a light of no importance.
         let importance: Vec<f64> = (0..p.len())
-            .map(|i| scale[i] * stroke.mean[i] / (1.0 + settings.constraint_penalty * shares[i]))
+            .map(|i| match locked[i] {
+                true => 0.0,
+                false => scale[i] * stroke.mean[i] / (1.0 + settings.constraint_penalty * shares[i]),
+            })
             .collect();
+        if reaching_locked > 0 {
+            note.push_str(&format!(
+                " ({reaching_locked} locked light(s) that reach it left as they are)"
+            ));
+        }
         let selected = select(settings.selection, &importance, record.seed);
         let proposed = modify::modify(&Step {
             kind: record.brush.kind,
@@ -327,6 +355,13 @@ impl Painter {
             transfer: &stroke.mean,
             selected: &selected,
         });
+        // Whatever the strategy, a locked light keeps its intensity.
+        let proposed: Vec<f64> = proposed
+            .iter()
+            .zip(&p)
+            .zip(&locked)
+            .map(|((&b, &a), &l)| if l { a } else { b })
+            .collect();
         let fraction = allowed_fraction(self.constrained(), &p, &proposed, settings.constraint_tolerance);
         let mut new: Vec<f64> = p
             .iter()
@@ -339,8 +374,14 @@ impl Painter {
             target: stroke.fixed + mean_luminance(&new, &stroke.mean),
         };
         if settings.solve == SolveMode::Global {
-            let (solved, held) = self.solve_globally(&p, &new, &equation);
-            new = solved;
+            let (solved, held) = self.solve_globally(&p, &new, &equation, &locked);
+            // Held at their intensity by the solve's bounds; exactly, not to a rounding.
+            new = solved
+                .iter()
+                .zip(&p)
+                .zip(&locked)
+                .map(|((&x, &a), &l)| if l { a } else { x })
+                .collect();
             if held > 0 {
                 note.push_str(&format!(
                     " (the global solve held {held} light(s) within {MAX_GLOBAL_CHANGE}× of their intensity)"
@@ -427,9 +468,16 @@ impl Painter {
     /// result, the point the solve stays near where the equations say nothing. Each light
     /// stays within [`MAX_GLOBAL_CHANGE`] times its intensity `before` the stroke either
     /// way (and within reach of the additive result): conflicting strokes then move many
-    /// lights a little rather than switch most off and one up twentyfold. Returns the
-    /// intensities and how many lights ended at such a bound.
-    fn solve_globally(&self, before: &[f64], additive: &[f64], newest: &Equation) -> (Vec<f64>, usize) {
+    /// lights a little rather than switch most off and one up twentyfold. A `locked` light
+    /// stays at its intensity `before`. Returns the intensities and how many lights ended
+    /// at such a bound.
+    fn solve_globally(
+        &self,
+        before: &[f64],
+        additive: &[f64],
+        newest: &Equation,
+        locked: &[bool],
+    ) -> (Vec<f64>, usize) {
         let n = additive.len();
         let mean = additive.iter().sum::<f64>() / n.max(1) as f64;
         let scale: Vec<f64> = additive.iter().map(|&p| p.max(mean).max(1e-9)).collect();
@@ -459,6 +507,9 @@ impl Painter {
         let bounds: Vec<(f64, f64)> = (0..n)
             .map(|i| {
                 let (p, a) = (before.get(i).copied().unwrap_or(0.0), additive[i]);
+                if locked.get(i).copied().unwrap_or(false) {
+                    return (p / scale[i], p / scale[i]);
+                }
                 let lo = (p / MAX_GLOBAL_CHANGE).min(a);
                 let hi = (p * MAX_GLOBAL_CHANGE).max(a);
                 (lo / scale[i], hi / scale[i])

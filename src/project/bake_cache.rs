@@ -372,6 +372,7 @@ mod tests {
             position: Vec3::new(x, 2.0, 0.0),
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         };
         Scene {
             objects: vec![shapes::plane(2.0, 3, 1.0).into_object("floor")],

@@ -50,6 +50,7 @@ pub fn default_rig() -> Vec<crate::scene::Light> {
         position: Vec3::ZERO,
         direction: direction.normalize(),
         range: None,
+        locked: false,
     };
     vec![
         sun("Key sun", Vec3::new(1.0, 0.95, 0.88), 2.5, Vec3::new(-0.4, -1.0, -0.6)),

@@ -27,6 +27,8 @@
 //!   7 had no limit, so the largest budget.
 //! - 9: rect lights' `turn_rad` (a turn about their normal); format 8 rects lay on the
 //!   default width axis, which is what an absent turn means.
+//! - 10: a light's `locked` (painting leaves it as it is) and a stroke's `locked_lights`;
+//!   format 9 had no locks, which is what their absence means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.
@@ -34,7 +36,7 @@
 use serde_json::Value;
 
 /// The format this build writes and the newest it reads: the one the migrations lead to.
-pub const FORMAT_VERSION: u64 = 9;
+pub const FORMAT_VERSION: u64 = 10;
 
 /// Brings `value`, a project of format `version` (1 ≤ version ≤ current), to the current
 /// format, one step at a time.
@@ -63,6 +65,9 @@ pub fn to_current(mut value: Value, version: u64) -> Value {
     }
     if version < 9 {
         set_format(&mut value, 9);
+    }
+    if version < 10 {
+        set_format(&mut value, 10);
     }
     value
 }

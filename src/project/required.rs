@@ -59,7 +59,7 @@ mod tests {
     #[test]
     fn every_missing_field_is_named() {
         let project = serde_json::json!({
-            "format_version": 9,
+            "format_version": 10,
             "scene": {},
             "lights": [
                 { "kind": { "type": "spot", "outer_cone_rad": 0.5 }, "intensity": 3.0 },
@@ -86,13 +86,13 @@ mod tests {
     #[test]
     fn the_smallest_project_needs_nothing_more() {
         let project = serde_json::json!({
-            "format_version": 9,
+            "format_version": 10,
             "scene": { "gltf": "a.glb" },
             "lights": [{ "name": "p", "kind": { "type": "point" }, "intensity": 1.0 }]
         });
         assert!(missing_fields(&project).is_empty());
         assert_eq!(
-            missing_fields(&serde_json::json!({ "format_version": 9 })),
+            missing_fields(&serde_json::json!({ "format_version": 10 })),
             ["scene", "lights"]
         );
     }

@@ -113,6 +113,7 @@ mod tests {
             position,
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         }
     }
 

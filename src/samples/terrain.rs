@@ -89,5 +89,6 @@ pub fn sun() -> Light {
         position: 200.0 * direction_to_sun,
         direction: -direction_to_sun,
         range: None,
+        locked: false,
     }
 }

@@ -526,6 +526,7 @@ impl Importer<'_> {
             position: world.transform_point3(Vec3::ZERO),
             direction,
             range: light.range(),
+            locked: false,
         };
         if let Some((field, message)) = imported.problems().into_iter().next() {
             return Err(self.invalid(format!("light '{}': {field} {message}", imported.name)));

@@ -25,6 +25,11 @@ pub struct Light {
     /// Distance beyond which a point or spot light has no effect (glTF `range`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range: Option<f32>,
+    /// Locked by the artist: painting leaves its intensity as it is (strokes rank it out,
+    /// the global solve holds it). The project's, not glTF's (a scene's lights open
+    /// unlocked); absent in a project file: unlocked.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub locked: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -100,6 +100,7 @@ mod tests {
             position: Vec3::new(0.0, 3.0, 0.0),
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         }
     }
 

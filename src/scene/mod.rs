@@ -108,6 +108,14 @@ impl Scene {
         self.lights.iter().map(|l| l.intensity).collect()
     }
 
+    /// The indices of the lights the artist locked (`Light::locked`), which painting
+    /// leaves as they are: what a stroke records (`StrokeRecord::locked_lights`).
+    pub fn locked_lights(&self) -> Vec<u32> {
+        (0..self.lights.len() as u32)
+            .filter(|&i| self.lights[i as usize].locked)
+            .collect()
+    }
+
     /// Sets the lights' intensities from `intensities` (in light order).
     pub fn set_light_intensities(&mut self, intensities: &[f32]) {
         for (light, &p) in self.lights.iter_mut().zip(intensities) {
@@ -134,6 +142,7 @@ impl Scene {
                 position,
                 direction: glam::Vec3::NEG_Y,
                 range: None,
+                locked: false,
             }],
             ..Default::default()
         }

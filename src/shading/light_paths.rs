@@ -277,6 +277,7 @@ mod tests {
             position: glam::Vec3::Y,
             direction: glam::Vec3::NEG_Y,
             range: None,
+            locked: false,
         }
     }
 

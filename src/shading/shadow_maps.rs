@@ -245,6 +245,7 @@ mod tests {
             position,
             direction,
             range: None,
+            locked: false,
         });
         light.shadow_path = super::super::gpu_types::SHADOW_PATH_MAP;
         light.first_shadow_view = 0;

@@ -117,6 +117,7 @@ pub(super) fn sphere_light(half_angle_deg: f64) -> Light {
         position: Vec3::new(0.2, HEIGHT_M, 0.1),
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     }
 }
 

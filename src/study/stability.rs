@@ -245,6 +245,7 @@ fn point_light(position: Vec3, intensity: f32) -> Light {
         position,
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     }
 }
 

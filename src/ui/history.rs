@@ -111,6 +111,7 @@ mod tests {
             position: Vec3::new(x, 2.0, 0.0),
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         }]
     }
 

@@ -119,7 +119,7 @@ impl EditorApp {
                 });
         }
         egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
-            egui::Grid::new("lights").striped(true).num_columns(3).show(ui, |ui| {
+            egui::Grid::new("lights").striped(true).num_columns(4).show(ui, |ui| {
                 for (index, light) in document.scene.lights.iter_mut().enumerate() {
                     let selected = self.selection == Some(Selection::Light(index));
                     let name = ui.selectable_label(selected, &light.name);
@@ -139,6 +139,11 @@ impl EditorApp {
                         light.color = glam::Vec3::from(color);
                         light_edit.changed = true;
                     }
+                    let lock = ui
+                        .toggle_value(&mut light.locked, "lock")
+                        .on_hover_text(super::light_inspector::LOCK_HINT)
+                        .labelled_by(name.id);
+                    light_edit.changed |= lock.changed();
                     ui.end_row();
                 }
             });

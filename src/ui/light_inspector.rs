@@ -1,5 +1,5 @@
 //! The inspector's section for the selected light: name, kind, colour and colour
-//! temperature, intensity in its unit, position, aim (azimuth and elevation), spot cone,
+//! temperature, intensity in its unit, the painting lock, position, aim (azimuth and elevation), spot cone,
 //! emitter size and range. Edits are made in place; the result says what changed, so the
 //! app re-uploads the lights and, when the light moved or changed shape, re-bakes only
 //! that light's importance maps.
@@ -24,6 +24,9 @@ impl std::ops::BitOrAssign for LightEdit {
     }
 }
 
+/// What locking a light does, for the lock's hover text here and in the lights' table.
+pub const LOCK_HINT: &str = "Locked: strokes leave this light as it is (they change the other lights that reach the painted area, or say that every one is locked)";
+
 /// Draws the editor of `light`. `reference_distance_m` is how far from the light the
 /// scene is, for keeping the brightness when the kind changes (lux ↔ candela).
 pub fn light_inspector(ui: &mut egui::Ui, light: &mut Light, reference_distance_m: f32) -> LightEdit {
@@ -47,6 +50,11 @@ pub fn light_inspector(ui: &mut egui::Ui, light: &mut Light, reference_distance_
         ui.end_row();
         let label = ui.label("colour");
         color_row(ui, light, label.id);
+        ui.end_row();
+        let label = ui.label("painting");
+        ui.checkbox(&mut light.locked, "locked")
+            .on_hover_text(LOCK_HINT)
+            .labelled_by(label.id);
         ui.end_row();
         if light.kind.has_position() {
             let label = ui.label("position (m)");

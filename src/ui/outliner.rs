@@ -97,7 +97,9 @@ pub fn outliner(ui: &mut egui::Ui, scene: &Scene, state: &OutlinerState) -> Opti
                         }
                         let selected = state.selection == Some(Selection::Light(index));
                         let dimmed = state.solo.is_some_and(|s| s != index);
-                        let label = format!("{} — {}", light.name, light.kind.label());
+                        // A lock says painting leaves the light as it is.
+                        let lock = if light.locked { " (locked)" } else { "" };
+                        let label = format!("{} — {}{lock}", light.name, light.kind.label());
                         let text = if dimmed {
                             egui::RichText::new(label).weak()
                         } else {

@@ -132,6 +132,7 @@ mod tests {
             position: Vec3::new(1.0, 3.0, -2.0),
             direction: direction.normalize(),
             range: None,
+            locked: false,
         }
     }
 

@@ -267,6 +267,7 @@ impl Painting {
             settings: self.settings,
             seed: self.next_seed,
             hidden_objects: hidden.iter().map(|&o| o as u32).collect(),
+            locked_lights: scene.locked_lights(),
         };
         self.next_seed += 1;
         let bvh = self.picking_bvh(scene);

@@ -94,5 +94,6 @@ pub fn white_light(kind: lightpaint::scene::LightKind, position: Vec3, intensity
         position,
         direction: Vec3::NEG_Y,
         range: None,
+        locked: false,
     }
 }

@@ -95,6 +95,7 @@ pub fn light(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -
         position,
         direction: direction.normalize(),
         range: None,
+        locked: false,
     }
 }
 

@@ -115,6 +115,7 @@ mod tests {
             position: Vec3::new(0.3, 2.0, -0.2),
             direction,
             range: None,
+            locked: false,
         })
     }
 

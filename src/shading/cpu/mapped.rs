@@ -89,6 +89,7 @@ mod tests {
             position: Vec3::new(0.0, 10.0, 0.0),
             direction: Vec3::NEG_Y,
             range: None,
+            locked: false,
         });
         let p = DVec3::ZERO;
         let inc = super::super::incidence(&light, p);

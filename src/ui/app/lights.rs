@@ -54,6 +54,7 @@ impl EditorApp {
             position: pivot + 2.0 * glam::Vec3::Y,
             direction: glam::Vec3::NEG_Y,
             range: None,
+            locked: false,
         });
         self.selection = Some(Selection::Light(document.scene.lights.len() - 1));
         self.history.settle(&document.scene.lights);
