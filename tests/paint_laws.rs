@@ -763,3 +763,59 @@ fn a_stroke_whose_lights_are_all_locked_says_so() {
     );
     assert_eq!(p, start);
 }
+
+/// A release stroke over a Keep area lets it go: a brighten stroke on it then moves it as
+/// far as it does with no Keep at all (beyond the Keep's tolerance), while undoing the
+/// release brings the Keep back and the same brighten stays within the tolerance. A
+/// release where nothing is kept changes nothing and says so.
+#[test]
+fn a_released_keep_area_no_longer_holds_and_undo_brings_it_back() {
+    let start = fixture().scene.light_intensities();
+    let at = Vec3::new(-1.0, 0.0, 0.5);
+    let keep = record(BrushKind::Constraint, at, PaintSettings::default(), 0);
+    let release = record(BrushKind::Release, at, PaintSettings::default(), 1);
+    let brighten = record(
+        BrushKind::Positive,
+        at,
+        PaintSettings {
+            selection: SelectionStrategy::Histogram { share: 1.0 },
+            modification: ModificationStrategy::Double { factor: 2.0 },
+            ..PaintSettings::default()
+        },
+        2,
+    );
+    let kept_before = painted_mean(&keep, &start);
+    let change = |p: &[f32]| painted_mean(&keep, p) / kept_before - 1.0;
+
+    let mut free = start.clone();
+    let report = paint(&mut Painter::new(), &mut free, release.clone());
+    assert_eq!(report.outcome, Outcome::Unchanged, "{report:?}");
+    assert!(report.message.contains("no Keep area"), "{}", report.message);
+    paint(&mut Painter::new(), &mut free, brighten.clone());
+    assert!(
+        change(&free) > 0.1,
+        "without a Keep the brighten moves the area: {}",
+        change(&free)
+    );
+
+    let mut p = start.clone();
+    let mut painter = Painter::new();
+    paint(&mut painter, &mut p, keep.clone());
+    let report = paint(&mut painter, &mut p, release);
+    assert_eq!(report.outcome, Outcome::Released, "{report:?}");
+    assert!(
+        painter.kept_vertices().is_empty(),
+        "every kept vertex was under the release"
+    );
+    paint(&mut painter, &mut p, brighten.clone());
+    assert_eq!(p, free, "released, the Keep no longer limits the brighten");
+
+    assert!(
+        painter.undo(&mut p) && painter.undo(&mut p),
+        "undo the brighten, then the release"
+    );
+    assert_eq!(p, start);
+    assert!(!painter.kept_vertices().is_empty(), "the Keep is back");
+    paint(&mut painter, &mut p, brighten);
+    assert!(change(&p).abs() <= 0.02 + 1e-9, "kept again: {}", change(&p));
+}

@@ -470,6 +470,39 @@ fn a_keep_area_from_before_saving_holds_after_reopening() {
     assert!(message.contains("1 Keep area(s) of earlier sessions hold"), "{message}");
 }
 
+/// The Release tool (U) painted over a Keep area lets it go — its points are no longer
+/// shown — and Ctrl+Z brings it back.
+#[test]
+fn a_keep_area_is_released_by_the_release_tool_and_undo_brings_it_back() {
+    let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
+        return;
+    };
+    let kept = |harness: &mut egui_kittest::Harness<'_, lightpaint::ui::EditorApp>| {
+        let scene = harness.state().document().expect("open").scene.clone();
+        harness
+            .state_mut()
+            .painting_mut()
+            .expect("painting")
+            .kept_points(&scene)
+            .len()
+    };
+    stroke_on_the_floor(&mut harness, egui::Key::C);
+    let held = kept(&mut harness);
+    assert!(held > 0, "the Keep stroke holds some points");
+    stroke_on_the_floor(&mut harness, egui::Key::U);
+    assert_eq!(
+        harness.state().tool(),
+        lightpaint::ui::Tool::Brush(lightpaint::paint::BrushKind::Release)
+    );
+    assert_eq!(kept(&mut harness), 0, "released");
+    let message = harness.state().status_message().to_string();
+    assert!(message.contains("released"), "{message}");
+    harness.key_press(egui::Key::Escape);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(kept(&mut harness), held, "undo brings the Keep back");
+}
+
 /// A corrupt project shows a readable error naming the file; the open document stays.
 #[test]
 fn opening_a_corrupt_file_shows_an_error_and_keeps_the_document() {

@@ -12,6 +12,9 @@ pub enum BrushKind {
     /// "Keep this as it is": marks the vertices; later strokes spare the lights that reach
     /// them and never move their luminance beyond the tolerance.
     Constraint,
+    /// Releases the Keep areas under the brush: the vertices it paints are no longer
+    /// kept for the strokes after it (earlier strokes stand; undo brings the Keep back).
+    Release,
 }
 
 /// How a dab's weight falls from its centre (1) to its rim.

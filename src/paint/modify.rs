@@ -85,7 +85,7 @@ pub fn modify(step: &Step) -> Vec<f64> {
     let sign = match step.kind {
         BrushKind::Positive => 1.0,
         BrushKind::Negative => -1.0,
-        BrushKind::Constraint => return step.intensities.to_vec(),
+        BrushKind::Constraint | BrushKind::Release => return step.intensities.to_vec(),
     };
     let full = match step.strategy {
         ModificationStrategy::Constant { amount } => map_selected(step, |p| p + sign * amount),

@@ -52,6 +52,8 @@ pub enum Outcome {
     Changed,
     /// A constraint stroke marked vertices; no intensity changed.
     Constrained,
+    /// A release stroke let kept vertices go; no intensity changed.
+    Released,
     /// The stroke touched no vertex the camera sees.
     NoVisibleVertex,
     /// No light reaches the painted vertices (directly or, with a bake, by bounces).

@@ -36,7 +36,29 @@ pub struct Edit {
     pub record: StrokeRecord,
     pub changes: Vec<LightChange>,
     constrained: Vec<ConstrainedVertex>,
+    /// The kept vertices a release stroke let go (sorted), kept no longer by the strokes
+    /// after it.
+    released: Vec<VertexRef>,
     equation: Option<Equation>,
+}
+
+impl Edit {
+    /// An edit that changed no light: a Keep's constrained vertices, a release's freed
+    /// ones, or an earlier session's stroke carried over with its equation.
+    fn unchanging(
+        record: StrokeRecord,
+        constrained: Vec<ConstrainedVertex>,
+        released: Vec<VertexRef>,
+        equation: Option<Equation>,
+    ) -> Edit {
+        Edit {
+            record,
+            changes: Vec::new(),
+            constrained,
+            released,
+            equation,
+        }
+    }
 }
 
 /// A painted vertex: brush weight, fixed luminance and (light, transfer) entries.
@@ -168,8 +190,17 @@ impl Painter {
         vertices
     }
 
+    /// The constrained vertices still kept: each Keep stroke's, less those a release
+    /// stroke after it let go (a vertex kept again after its release is kept).
     fn constrained(&self) -> impl Iterator<Item = &ConstrainedVertex> + Clone {
-        self.carried.iter().chain(&self.done).flat_map(|e| e.constrained.iter())
+        let mut kept: Vec<&ConstrainedVertex> = Vec::new();
+        for edit in self.carried.iter().chain(&self.done) {
+            if !edit.released.is_empty() {
+                kept.retain(|c| edit.released.binary_search(&c.vertex).is_err());
+            }
+            kept.extend(&edit.constrained);
+        }
+        kept.into_iter()
     }
 
     /// Takes up the strokes of earlier sessions (`earlier`, the saved log, oldest first)
@@ -196,6 +227,12 @@ impl Painter {
                 continue;
             }
             let stroke = stroke_transfer(transfer, &hits, record.view.eye);
+            if record.brush.kind == BrushKind::Release {
+                let released = self.released_by(&hits);
+                self.carried
+                    .push(Edit::unchanging(record.clone(), Vec::new(), released, None));
+                continue;
+            }
             let (constrained, equation) = if record.brush.kind == BrushKind::Constraint {
                 keeps += 1;
                 (kept_vertices(stroke, &p), None)
@@ -208,12 +245,8 @@ impl Painter {
                 };
                 (Vec::new(), Some(equation))
             };
-            self.carried.push(Edit {
-                record: record.clone(),
-                changes: Vec::new(),
-                constrained,
-                equation,
-            });
+            self.carried
+                .push(Edit::unchanging(record.clone(), constrained, Vec::new(), equation));
         }
         keeps
     }
@@ -275,15 +308,29 @@ impl Painter {
         let p: Vec<f64> = intensities.iter().map(|&v| sanitized(v as f64)).collect();
         let stroke = stroke_transfer(transfer, hits, record.view.eye);
         let mean_before = stroke.fixed + mean_luminance(&p, &stroke.mean);
+        if record.brush.kind == BrushKind::Release {
+            let released = self.released_by(hits);
+            let count = released.len();
+            if count == 0 {
+                return StrokeReport::without_change(
+                    Outcome::Unchanged,
+                    hits.len(),
+                    mean_before,
+                    "no Keep area under the brush",
+                );
+            }
+            self.push(Edit::unchanging(record, Vec::new(), released, None));
+            return StrokeReport::without_change(
+                Outcome::Released,
+                count,
+                mean_before,
+                format!("{count} kept vertices released: later strokes may change them again"),
+            );
+        }
         if record.brush.kind == BrushKind::Constraint {
             let constrained = kept_vertices(stroke, &p);
             let count = constrained.len();
-            self.push(Edit {
-                record,
-                changes: Vec::new(),
-                constrained,
-                equation: None,
-            });
+            self.push(Edit::unchanging(record, constrained, Vec::new(), None));
             return StrokeReport::without_change(
                 Outcome::Constrained,
                 count,
@@ -457,6 +504,7 @@ impl Painter {
             record,
             changes,
             constrained: Vec::new(),
+            released: Vec::new(),
             equation: Some(equation),
         });
         report
@@ -522,6 +570,19 @@ impl Painter {
             .filter(|(x, (lo, hi))| lo < hi && (**x <= *lo * (1.0 + 1e-9) && *lo > 0.0 || **x >= *hi * (1.0 - 1e-9)))
             .count();
         (solved.into_iter().zip(&scale).map(|(x, s)| x * s).collect(), held)
+    }
+
+    /// The vertices `hits` paints that are kept now (sorted): what a release stroke there
+    /// lets go.
+    fn released_by(&self, hits: &Hits) -> Vec<VertexRef> {
+        let mut released: Vec<VertexRef> = self
+            .constrained()
+            .map(|c| c.vertex)
+            .filter(|v| hits.weights.contains_key(v))
+            .collect();
+        released.sort_unstable();
+        released.dedup();
+        released
     }
 
     fn push(&mut self, edit: Edit) {

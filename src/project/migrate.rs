@@ -27,8 +27,8 @@
 //!   7 had no limit, so the largest budget.
 //! - 9: rect lights' `turn_rad` (a turn about their normal); format 8 rects lay on the
 //!   default width axis, which is what an absent turn means.
-//! - 10: a light's `locked` (painting leaves it as it is) and a stroke's `locked_lights`;
-//!   format 9 had no locks, which is what their absence means.
+//! - 10: a light's `locked` (painting leaves it as it is), a stroke's `locked_lights` and
+//!   the `release` brush; format 9 had neither, which is what their absence means.
 //!
 //! A new format adds a `vN_to_vN+1` step here, applied in sequence, and a test that a
 //! committed file of every older format opens.

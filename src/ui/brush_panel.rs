@@ -15,7 +15,7 @@ pub enum PaintAction {
     Redo,
 }
 
-/// The tool buttons (also B, N, C and Escape for navigate).
+/// The tool buttons (also B, N, C, U and Escape for navigate).
 pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
     ui.horizontal(|ui| {
         ui.selectable_value(tool, Tool::Navigate, "Navigate (Esc)")
@@ -26,6 +26,8 @@ pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
             .on_hover_text("Paint where the picture should be darker: the lights reaching it go down");
         ui.selectable_value(tool, Tool::Brush(BrushKind::Constraint), "Keep (C)")
             .on_hover_text("Paint what should stay as it is: later strokes avoid the lights that reach it");
+        ui.selectable_value(tool, Tool::Brush(BrushKind::Release), "Release (U)")
+            .on_hover_text("Paint over Keep areas (the teal dots) to let them go: later strokes may change them again");
     });
 }
 

@@ -150,6 +150,7 @@ impl EditorApp {
                     (egui::Key::B, Tool::Brush(BrushKind::Positive)),
                     (egui::Key::N, Tool::Brush(BrushKind::Negative)),
                     (egui::Key::C, Tool::Brush(BrushKind::Constraint)),
+                    (egui::Key::U, Tool::Brush(BrushKind::Release)),
                     (egui::Key::Escape, Tool::Navigate),
                 ]
                 .into_iter()

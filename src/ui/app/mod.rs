@@ -365,7 +365,8 @@ impl eframe::App for EditorApp {
                     if let Some(painting) = &self.painting {
                         let kept: Vec<glam::Vec3> = painting.kept_points(&document.scene);
                         let (view, rect) = (viewport.view(), response.rect);
-                        let keeping = painting.tool == Tool::Brush(BrushKind::Constraint);
+                        // Stronger while a tool that works on them is in hand.
+                        let keeping = matches!(painting.tool, Tool::Brush(BrushKind::Constraint | BrushKind::Release));
                         draw_kept_points(&ui.painter_at(rect), &kept, keeping, |p| {
                             super::viewport::screen_point(&view, rect, p)
                         });
