@@ -66,7 +66,8 @@ fn main() -> ExitCode {
             bounces,
             directions,
             threshold,
-            f16,
+            f32,
+            f16: _,
         }) => {
             let settings = lightpaint::bake::BakeSettings {
                 order: order as usize,
@@ -74,10 +75,10 @@ fn main() -> ExitCode {
                 bounces: bounces as usize,
                 indirect_directions: directions as usize,
                 relative_threshold: threshold,
-                precision: if f16 {
-                    lightpaint::bake::Precision::F16
-                } else {
+                precision: if f32 {
                     lightpaint::bake::Precision::F32
+                } else {
+                    lightpaint::bake::Precision::F16
                 },
                 ..Default::default()
             };

@@ -21,13 +21,16 @@ pub struct LightContribution {
     pub indirect_irradiance: f32,
 }
 
-/// How coefficients are stored.
+/// How coefficients are stored. Half precision is the default: the large sample's maps
+/// take 223.7 MiB in it against 408.5 MiB in f32 (docs/performance.md), within the 266 MB
+/// of Rozon's wavelet maps, and three significant digits are finer than the bake's own
+/// Monte Carlo noise at its default samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
-    #[default]
     F32,
     /// Half precision, scaled per (object, light): half the memory, 3 significant digits.
+    #[default]
     F16,
 }
 

@@ -54,7 +54,7 @@ impl Default for BakeSettings {
             bounces: 1,
             indirect_directions: 32,
             relative_threshold: 1e-4,
-            precision: Precision::F32,
+            precision: Precision::F16,
         }
     }
 }

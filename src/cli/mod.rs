@@ -105,8 +105,12 @@ pub enum Command {
         /// Drop a vertex's entry for a light under this share of the light's peak (0–1).
         #[arg(long, default_value_t = 1e-4, value_parser = parse_threshold)]
         threshold: f32,
-        /// Store the coefficients in half precision (half the memory, 3 digits).
-        #[arg(long)]
+        /// Store the coefficients in single precision (twice the memory of the default half
+        /// precision, scaled per object and light: 3 significant digits).
+        #[arg(long, conflicts_with = "f16")]
+        f32: bool,
+        /// Half precision, the default (kept for scripts that ask for it).
+        #[arg(long, hide = true)]
         f16: bool,
     },
     /// Apply scripted strokes (docs/strokes.md) to a project or scene and save the result,

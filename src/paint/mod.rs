@@ -6,6 +6,7 @@
 
 pub mod brush;
 pub mod constraint;
+mod global_solve;
 pub mod light_reach;
 pub mod modify;
 pub mod nnls;

@@ -152,13 +152,26 @@ mod tests {
     #[test]
     fn a_lambertian_floor_under_a_point_light_has_the_closed_form_transfer() {
         let scene = Scene::lambert_floor_under_point_light(4, Vec3::new(0.0, 2.0, 0.0), 1.0);
-        let settings = BakeSettings {
+        // Single precision: the bake's math to 1e-5; the default half precision to its
+        // three significant digits.
+        let single = BakeSettings {
             order: 4,
             bounces: 0,
+            precision: crate::bake::Precision::F32,
             ..BakeSettings::default()
         };
-        let maps = bake_maps(&scene, &settings);
-        let transfer = BakedTransfer::new(&scene, &maps);
+        let half = BakeSettings {
+            precision: crate::bake::Precision::F16,
+            ..single
+        };
+        for (settings, tolerance) in [(single, 1e-5), (half, 1e-3)] {
+            floor_transfer_matches(&scene, &settings, tolerance);
+        }
+    }
+
+    fn floor_transfer_matches(scene: &Scene, settings: &BakeSettings, tolerance: f64) {
+        let maps = bake_maps(scene, settings);
+        let transfer = BakedTransfer::new(scene, &maps);
         for v in 0..scene.objects[0].positions.len() {
             let p = scene.objects[0].positions[v].as_dvec3();
             let offset = DVec3::new(0.0, 2.0, 0.0) - p;
@@ -176,8 +189,9 @@ mod tests {
             let t = transfer.vertex_transfer(vertex, Vec3::new(0.0, 5.0, 5.0));
             assert_eq!(t.len(), 1);
             assert!(
-                (t[0].1 / expected - 1.0).abs() < 1e-5,
-                "vertex {v}: {} vs {expected}",
+                (t[0].1 / expected - 1.0).abs() < tolerance,
+                "{:?} vertex {v}: {} vs {expected}",
+                settings.precision,
                 t[0].1
             );
         }

@@ -141,7 +141,7 @@ pub fn painting_section(
             let mut half = painting.bake_settings.precision == crate::bake::Precision::F16;
             if ui
                 .checkbox(&mut half, "half-precision maps")
-                .on_hover_text("half the memory, three significant digits")
+                .on_hover_text("half the memory of single precision, three significant digits (the default; unticked: single precision)")
                 .changed()
             {
                 painting.bake_settings.precision = if half {
