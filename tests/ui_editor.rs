@@ -4,8 +4,8 @@
 mod common;
 
 use common::editor::{
-    drag_through, editor_on, editor_on_sample_copy, editor_on_written_sample, mean_luma_near, scroll_and_click,
-    viewport_pixels_differing,
+    drag_through, editor_on, editor_on_sample_copy, editor_on_written_sample, kept_point_count, mean_luma_near,
+    scroll_and_click, studio_floor_path, viewport_pixels_differing,
 };
 use common::snapshot::{ISOLATED_PIXEL_BUDGET, assert_looks_as_reviewed, compare, reviewed};
 use egui_kittest::Harness;
@@ -347,15 +347,7 @@ fn painting_the_floor_brightens_it_and_undo_restores_it_exactly() {
         harness.state().tool(),
         lightpaint::ui::Tool::Brush(lightpaint::paint::BrushKind::Positive)
     );
-    let path: Vec<egui::Pos2> = [[-0.6f32, 1.2], [-0.2, 1.3], [0.2, 1.3], [0.6, 1.2]]
-        .iter()
-        .map(|&[x, z]| {
-            harness
-                .state()
-                .screen_position(glam::Vec3::new(x, 0.0, z))
-                .expect("the floor in front of the figure is in view")
-        })
-        .collect();
+    let path = studio_floor_path(&harness);
     drag_through(&mut harness, &path, 6);
     let after_lights = harness.state().light_intensities();
     assert!(
@@ -441,15 +433,7 @@ fn a_keep_area_from_before_saving_holds_after_reopening() {
         return;
     };
     stroke_on_the_floor(&mut harness, egui::Key::C);
-    let kept = |harness: &mut egui_kittest::Harness<'_, lightpaint::ui::EditorApp>| {
-        let scene = harness.state().document().expect("open").scene.clone();
-        harness
-            .state_mut()
-            .painting_mut()
-            .expect("painting")
-            .kept_points(&scene)
-            .len()
-    };
+    let kept = kept_point_count;
     let before = kept(&mut harness);
     assert!(before > 0, "the Keep stroke holds some points");
     harness.key_press(egui::Key::Escape);
@@ -477,15 +461,7 @@ fn a_keep_area_is_released_by_the_release_tool_and_undo_brings_it_back() {
     let Some((_dir, _project, mut harness)) = editor_on_sample_copy() else {
         return;
     };
-    let kept = |harness: &mut egui_kittest::Harness<'_, lightpaint::ui::EditorApp>| {
-        let scene = harness.state().document().expect("open").scene.clone();
-        harness
-            .state_mut()
-            .painting_mut()
-            .expect("painting")
-            .kept_points(&scene)
-            .len()
-    };
+    let kept = kept_point_count;
     stroke_on_the_floor(&mut harness, egui::Key::C);
     let held = kept(&mut harness);
     assert!(held > 0, "the Keep stroke holds some points");

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::editor::{drag_through, editor_on, viewport_pixels_differing};
+use common::editor::{drag_through, editor_on, studio_floor_path, viewport_pixels_differing};
 use common::snapshot::assert_looks_as_reviewed;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -706,15 +706,7 @@ fn a_locked_light_is_left_as_it_is_by_strokes_and_stays_locked() {
     let before = harness.state().light_intensities();
     harness.key_press(egui::Key::B);
     harness.run();
-    let path: Vec<egui::Pos2> = [[-0.6f32, 1.2], [-0.2, 1.3], [0.2, 1.3], [0.6, 1.2]]
-        .iter()
-        .map(|&[x, z]| {
-            harness
-                .state()
-                .screen_position(glam::Vec3::new(x, 0.0, z))
-                .expect("the floor in front of the figure is in view")
-        })
-        .collect();
+    let path = studio_floor_path(&harness);
     drag_through(&mut harness, &path, 6);
     park_pointer(&mut harness);
     let after = harness.state().light_intensities();

@@ -18,6 +18,33 @@ pub fn editor_on(project: std::path::PathBuf) -> Harness<'static, EditorApp> {
         .build_eframe(|cc| EditorApp::new(cc, options))
 }
 
+/// Four points across the studio's floor in front of the figure, on screen: a stroke's
+/// path there.
+#[allow(dead_code)] // Not every test binary that shares this module paints.
+pub fn studio_floor_path(harness: &Harness<'static, EditorApp>) -> Vec<egui::Pos2> {
+    [[-0.6f32, 1.2], [-0.2, 1.3], [0.2, 1.3], [0.6, 1.2]]
+        .iter()
+        .map(|&[x, z]| {
+            harness
+                .state()
+                .screen_position(glam::Vec3::new(x, 0.0, z))
+                .expect("the floor in front of the figure is in view")
+        })
+        .collect()
+}
+
+/// How many points the open document's Keep areas hold now.
+#[allow(dead_code)]
+pub fn kept_point_count(harness: &mut Harness<'static, EditorApp>) -> usize {
+    let scene = harness.state().document().expect("open").scene.clone();
+    harness
+        .state_mut()
+        .painting_mut()
+        .expect("painting")
+        .kept_points(&scene)
+        .len()
+}
+
 /// Presses the left button at `path[0]`, moves along the polyline in `steps` moves per
 /// segment (a frame each) and releases at its end: a stroke as a hand paints it.
 pub fn drag_through(harness: &mut Harness<'static, EditorApp>, path: &[egui::Pos2], steps: usize) {
