@@ -7,6 +7,10 @@
 //!   8 and each GPU exponentiation method;
 //! - `frame/shading-downsample`: the studio with its fitted spheres, one shaded pixel
 //!   per d × d for d = 1 to 4;
+//! - `frame/sphere-count`: the blocker bench scene (`samples::blocker_bench`: thin casters
+//!   of about 45,000 triangles over a floor under one rect light) with 600, 5,000 and
+//!   20,000 spheres spread over the casters, at the shipped defaults (one pixel in 3 × 3
+//!   shaded) with the light on the SH path: how the frame grows with the sphere count;
 //! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
 //!
 //! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
@@ -150,6 +154,27 @@ fn frames(c: &mut Criterion) {
             &gpu,
             &frame,
         );
+    }
+    group.finish();
+
+    let set = Sample {
+        scene: lightpaint::samples::blocker_bench::thin_casters_scene(),
+        camera: lightpaint::samples::blocker_bench::thin_casters_camera(),
+        settings: RenderSettings::default(),
+    };
+    // The shipped defaults with the light through the SH path, whose blocker walk the
+    // sphere count weighs on (under Auto the rect light takes the shadow maps, which read
+    // no sphere).
+    let shipped = ShadowSettings {
+        light_paths: lightpaint::shading::LightPaths::Harmonics,
+        ..ShadowSettings::default()
+    };
+    let mut group = c.benchmark_group("frame/sphere-count");
+    group.sample_size(10).measurement_time(Duration::from_secs(10));
+    for count in [600, 5000, 20_000] {
+        let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&set.scene, count);
+        let frame = set.frame(&shipped, &spheres);
+        time_frame(&mut group, BenchmarkId::new("thin-casters", count), &gpu, &frame);
     }
     group.finish();
 

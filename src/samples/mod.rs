@@ -3,6 +3,7 @@
 //! test checks they are exactly what this code produces, the big ones are generated on
 //! demand (they would weigh tens of megabytes in git).
 
+pub mod blocker_bench;
 pub mod figure;
 mod interior;
 mod large;
