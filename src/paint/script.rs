@@ -184,6 +184,11 @@ impl Script {
                 let dabs_px = match (&stroke.screen_px, &stroke.world) {
                     (Some(points), None) => dabs_along(points, stroke.spacing_px),
                     (None, Some(points)) => {
+                        if let Some(k) = points.iter().position(|p| !p.is_finite()) {
+                            return Err(invalid(format!(
+                                "world[{k}] is not a finite point (a coordinate beyond ±3.4e38 m, as f32 holds them, or not a number)"
+                            )));
+                        }
                         let projected = view.view();
                         points
                             .iter()
@@ -253,5 +258,43 @@ mod tests {
         let script = Script::parse(both, Path::new("s.json")).unwrap();
         let error = script.records(Path::new("s.json"), fallback()).unwrap_err().to_string();
         assert!(error.contains("strokes[0]") && error.contains("exactly one"), "{error}");
+
+        // A point too far for f32 is named as such, not as behind the camera; one behind
+        // the camera is.
+        let far = r#"{"strokes": [{"brush": {"kind": "positive"}, "world": [[0, 0, 0], [1e39, 0, 0]]}]}"#;
+        let script = Script::parse(far, Path::new("s.json")).unwrap();
+        let error = script.records(Path::new("s.json"), fallback()).unwrap_err().to_string();
+        assert!(error.contains("world[1] is not a finite point"), "{error}");
+        let behind = r#"{"strokes": [{"brush": {"kind": "positive"}, "world": [[0, 10, 10]]}]}"#;
+        let script = Script::parse(behind, Path::new("s.json")).unwrap();
+        let error = script.records(Path::new("s.json"), fallback()).unwrap_err().to_string();
+        assert!(error.contains("behind the stroke's camera"), "{error}");
+    }
+
+    #[test]
+    fn locked_lights_are_named_or_refused() {
+        let light = |name: &str| crate::scene::Light {
+            name: name.into(),
+            kind: crate::scene::LightKind::Point,
+            color: Vec3::ONE,
+            intensity: 1.0,
+            position: Vec3::Y,
+            direction: Vec3::NEG_Y,
+            range: None,
+            locked: false,
+        };
+        let mut lights = vec![light("key"), light("fill"), light("key")];
+        let script = Script::parse(r#"{"locked_lights": ["key"], "strokes": []}"#, Path::new("s.json")).unwrap();
+        script.lock_lights(Path::new("s.json"), &mut lights).unwrap();
+        assert_eq!(lights.iter().map(|l| l.locked).collect::<Vec<_>>(), [true, false, true]);
+        let script = Script::parse(r#"{"locked_lights": ["rim"], "strokes": []}"#, Path::new("s.json")).unwrap();
+        let error = script
+            .lock_lights(Path::new("s.json"), &mut lights)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("locked_lights[0]") && error.contains("\"rim\"") && error.contains("key, fill"),
+            "{error}"
+        );
     }
 }
