@@ -93,19 +93,7 @@ fn double_helix() -> ShapeMesh {
             let angle = t * 4.0 * std::f32::consts::PI + strand as f32 * std::f32::consts::PI;
             Vec3::new(0.25 * angle.cos(), 0.2 + 1.2 * t, -0.6 + 0.25 * angle.sin())
         };
-        let segments = 30;
-        for k in 0..segments {
-            let (a, b) = (
-                point(k as f32 / segments as f32),
-                point((k + 1) as f32 / segments as f32),
-            );
-            let length = (b - a).length();
-            let tube = shapes::cylinder(0.015, length * 1.05, 6).transformed(Affine3A::from_rotation_translation(
-                Quat::from_rotation_arc(Vec3::Y, (b - a) / length),
-                a,
-            ));
-            mesh = mesh.merged(tube);
-        }
+        mesh = mesh.merged(shapes::tube_along(point, 30, 0.015, 6));
     }
     mesh
 }

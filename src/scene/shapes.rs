@@ -140,6 +140,23 @@ pub fn cuboid(half: Vec3) -> ShapeMesh {
     })
 }
 
+/// A tube of `radius` along the curve `point(t)`, t from 0 to 1: `segments` closed
+/// cylinders of `sides` sides from one point of the curve to the next, each 5 % longer
+/// than its chord so that neighbours overlap at the bends.
+pub fn tube_along(point: impl Fn(f32) -> Vec3, segments: u32, radius: f32, sides: u32) -> ShapeMesh {
+    (0..segments).fold(ShapeMesh::default(), |mesh, k| {
+        let (a, b) = (
+            point(k as f32 / segments as f32),
+            point((k + 1) as f32 / segments as f32),
+        );
+        let length = (b - a).length();
+        let turn = glam::Quat::from_rotation_arc(Vec3::Y, (b - a) / length.max(1e-12));
+        mesh.merged(
+            cylinder(radius, length * 1.05, sides).transformed(glam::Affine3A::from_rotation_translation(turn, a)),
+        )
+    })
+}
+
 /// A closed cylinder around the y axis, from y = 0 to y = `height`.
 pub fn cylinder(radius: f32, height: f32, segments: u32) -> ShapeMesh {
     let mut side = ShapeMesh::default();

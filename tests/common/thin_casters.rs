@@ -56,21 +56,7 @@ pub fn helix() -> ShapeMesh {
         let angle = t * 4.0 * std::f32::consts::PI;
         Vec3::new(0.35 * angle.cos(), 0.3 + 0.8 * t, 0.35 * angle.sin())
     };
-    let mut mesh = ShapeMesh::default();
-    let segments = 40;
-    for k in 0..segments {
-        let (a, b) = (
-            point(k as f32 / segments as f32),
-            point((k + 1) as f32 / segments as f32),
-        );
-        let length = (b - a).length();
-        let tube = shapes::cylinder(0.015, length * 1.05, 8).transformed(Affine3A::from_rotation_translation(
-            Quat::from_rotation_arc(Vec3::Y, (b - a) / length),
-            a,
-        ));
-        mesh = mesh.merged(tube);
-    }
-    mesh
+    shapes::tube_along(point, 40, 0.015, 8)
 }
 
 /// A closed box, 0.5 × 0.3 × 0.4 m, turned and floating 0.6 m up.
