@@ -97,6 +97,17 @@ pub fn create_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
     })
 }
 
+/// A bilinear sampler, clamped at the border: how a pass that draws a finished frame from
+/// an image reads it between texels (the edge filter, the editor's viewport image).
+pub fn bilinear_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    })
+}
+
 /// A bind group layout of a filterable 2-D image (binding 0) and its filtering sampler
 /// (binding 1), read by a fragment stage: what a pass that draws a finished frame from an
 /// image binds (the edge filter, the editor's viewport image).

@@ -55,43 +55,61 @@ pub fn draw_blockers(painter: &egui::Painter, rect: egui::Rect, view: &View, sph
 /// so working them out takes at most about this many receiver–blocker tests.
 const OVERLAY_TESTS: usize = 200_000;
 
-/// Says at the viewport's top-left how many blockers are shown and what the SH path's walk
-/// of them costs and finds per surface point (`shading::blocker_reach`), averaged over the
-/// shown meshes' vertices.
+/// What the summary was worked out from: the blockers, the reach threshold's bits, the
+/// hidden objects and the meshes' vertex counts.
+type SummaryInputs = (Vec<Sphere>, u32, Vec<usize>, Vec<usize>);
+
+/// The overlay's summary line — how many blockers are shown and what the SH path's walk of
+/// them costs and finds per surface point (`shading::blocker_reach`), averaged over the
+/// shown meshes' vertices — kept with what it was worked out from, so that it is worked out
+/// again only when one of those changes, not every frame.
+#[derive(Default)]
+pub struct BlockerSummary {
+    last: Option<(SummaryInputs, String)>,
+}
+
+impl BlockerSummary {
+    /// The line for `spheres` shown over `scene` less `hidden` under `shadows`.
+    fn text(
+        &mut self,
+        spheres: &[Sphere],
+        (scene, hidden): (&crate::scene::Scene, &std::collections::BTreeSet<usize>),
+        shadows: &crate::shading::ShadowSettings,
+    ) -> &str {
+        let threshold = shadows.min_cap_ratio.to_bits();
+        let hidden_list: Vec<usize> = hidden.iter().copied().collect();
+        let vertex_counts: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
+        let current = matches!(
+            &self.last,
+            Some(((seen, seen_threshold, seen_hidden, seen_counts), _))
+                if seen.as_slice() == spheres
+                    && (*seen_threshold, seen_hidden, seen_counts) == (threshold, &hidden_list, &vertex_counts)
+        );
+        if !current {
+            let receivers = (OVERLAY_TESTS / spheres.len().max(1)).clamp(16, 2000);
+            let reach =
+                crate::shading::blocker_reach::mean_blockers_in_reach(shadows, spheres, scene, hidden, receivers);
+            let text = match reach {
+                Some(mean) if !spheres.is_empty() => format!("{} blockers: {}", spheres.len(), mean.in_words()),
+                _ => format!("{} blockers", spheres.len()),
+            };
+            self.last = Some(((spheres.to_vec(), threshold, hidden_list, vertex_counts), text));
+        }
+        self.last.as_ref().map_or("", |(_, text)| text.as_str())
+    }
+}
+
+/// Says at the viewport's top-left the line of `summary` for `spheres` (see
+/// [`BlockerSummary`]).
 pub fn draw_blocker_summary(
     painter: &egui::Painter,
     rect: egui::Rect,
+    summary: &mut BlockerSummary,
     spheres: &[Sphere],
-    (scene, hidden): (&crate::scene::Scene, &std::collections::BTreeSet<usize>),
+    shown: (&crate::scene::Scene, &std::collections::BTreeSet<usize>),
     shadows: &crate::shading::ShadowSettings,
 ) {
-    // Worked out again only when the blockers, the hidden objects, the reach threshold or
-    // the meshes' vertex counts change, not every frame: the last inputs are kept and
-    // compared, as the CPU twin keeps its blocker groups (`shading::cpu`'s with_groups).
-    type Inputs = (Vec<Sphere>, u32, Vec<usize>, Vec<usize>);
-    thread_local! {
-        static LAST: std::cell::RefCell<Option<(Inputs, String)>> = const { std::cell::RefCell::new(None) };
-    }
-    let threshold = shadows.min_cap_ratio.to_bits();
-    let hidden_list: Vec<usize> = hidden.iter().copied().collect();
-    let vertex_counts: Vec<usize> = scene.objects.iter().map(|o| o.positions.len()).collect();
-    let text = LAST.with(|last| {
-        let mut last = last.borrow_mut();
-        if let Some(((seen, seen_threshold, seen_hidden, seen_counts), text)) = last.as_ref()
-            && seen.as_slice() == spheres
-            && (*seen_threshold, seen_hidden, seen_counts) == (threshold, &hidden_list, &vertex_counts)
-        {
-            return text.clone();
-        }
-        let receivers = (OVERLAY_TESTS / spheres.len().max(1)).clamp(16, 2000);
-        let reach = crate::shading::blocker_reach::mean_blockers_in_reach(shadows, spheres, scene, hidden, receivers);
-        let text = match reach {
-            Some(mean) if !spheres.is_empty() => format!("{} blockers: {}", spheres.len(), mean.in_words()),
-            _ => format!("{} blockers", spheres.len()),
-        };
-        *last = Some(((spheres.to_vec(), threshold, hidden_list, vertex_counts), text.clone()));
-        text
-    });
+    let text = summary.text(spheres, shown, shadows).to_string();
     let colour = egui::Color32::from_rgba_unmultiplied(90, 220, 255, 220);
     let at = rect.left_top() + egui::vec2(8.0, 8.0);
     painter.text(

@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use crate::render::descriptors::{create_module, image_and_sampler_layout, numbered_entries};
+use crate::render::descriptors::{bilinear_sampler, create_module, image_and_sampler_layout, numbered_entries};
 use crate::shading::wgsl;
 
 /// The pipelines, kept in egui's callback resources (one per render state).
@@ -61,12 +61,7 @@ impl ViewportImagePipelines {
             })
         };
         ViewportImagePipelines {
-            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some("viewport image"),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                ..Default::default()
-            }),
+            sampler: bilinear_sampler(device, "viewport image"),
             texel: pipeline("fs_texel"),
             filtered: pipeline("fs_filtered"),
             layout,

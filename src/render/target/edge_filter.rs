@@ -9,8 +9,8 @@
 //! upsampling must search wider for the pixels it cannot match.
 
 use crate::render::descriptors::{
-    COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, create_module, depth_attachment, depth_test, frame_texture,
-    image_and_sampler_layout, numbered_entries,
+    COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, bilinear_sampler, create_module, depth_attachment, depth_test,
+    frame_texture, image_and_sampler_layout, numbered_entries,
 };
 use crate::shading::wgsl;
 
@@ -26,12 +26,7 @@ pub struct EdgeFilter {
 
 impl EdgeFilter {
     pub fn new(device: &wgpu::Device) -> EdgeFilter {
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("edge filter"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
+        let sampler = bilinear_sampler(device, "edge filter");
         let layout = image_and_sampler_layout(device, "edge filter");
         let module = create_module(device, "edge filter", wgsl::EDGE_FILTER);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::Viewport;
-use super::blocker_overlay::{draw_blocker_summary, draw_blockers, draw_meshes_without_spheres};
+use super::blocker_overlay::{BlockerSummary, draw_blocker_summary, draw_blockers, draw_meshes_without_spheres};
 use super::brush_input::{BrushInput, FinishedStroke};
 use super::brush_panel::tool_bar;
 use super::history::{History, Step};
@@ -87,6 +87,8 @@ pub struct EditorApp {
     /// Sphere blockers fitted to the document's meshes, and the settings they were fitted with.
     pub(super) blockers: SceneBlockers,
     pub(super) fitted_with: BlockerSettings,
+    /// The blocker overlay's summary line, worked out again only when its inputs change.
+    blocker_summary: BlockerSummary,
     pub(super) adapter: String,
     /// The last thing worth telling the user, shown in the status bar.
     pub(super) message: String,
@@ -155,6 +157,7 @@ impl EditorApp {
             viewport: None,
             blockers: SceneBlockers::default(),
             fitted_with: BlockerSettings::default(),
+            blocker_summary: BlockerSummary::default(),
             adapter,
             message: String::new(),
             message_seen: SeenMessage {
@@ -340,6 +343,7 @@ impl eframe::App for EditorApp {
                         draw_blocker_summary(
                             &painter,
                             response.rect,
+                            &mut self.blocker_summary,
                             &shown,
                             (&document.scene, &document.hidden_objects),
                             &document.settings.shadows,
