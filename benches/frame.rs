@@ -22,7 +22,9 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, capture_surfaces, shade_surfaces};
+use lightpaint::render::{
+    AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces, shade_surfaces,
+};
 use lightpaint::scene::{Camera, Scene};
 use lightpaint::sh::ExpMethod;
 use lightpaint::shading::{RenderSettings, ShadowSettings};
@@ -95,11 +97,13 @@ fn time_frame(
     frame: &ShadowFrame,
 ) {
     let mut renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::default()).expect("renderer");
-    renderer.draw_and_wait().expect("warm-up frame");
+    renderer.draw_and_wait(Redraw::Everything).expect("warm-up frame");
     c.throughput(Throughput::Elements(
         (WIDTH * HEIGHT) as u64 * frame.blockers.len().max(1) as u64,
     ));
-    c.bench_function(id, |b| b.iter(|| renderer.draw_and_wait().expect("frame")));
+    c.bench_function(id, |b| {
+        b.iter(|| renderer.draw_and_wait(Redraw::Everything).expect("frame"))
+    });
 }
 
 fn frames(c: &mut Criterion) {

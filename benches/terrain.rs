@@ -11,7 +11,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use lightpaint::blockers::{BlockerSettings, fit_scene};
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer};
+use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::shading::{ShadowSettings, TerrainShading};
 use lightpaint::terrain::{HeightPyramid, TerrainShadow};
 
@@ -49,9 +49,9 @@ fn terrain(c: &mut Criterion) {
                 height: 270,
             };
             let mut renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::None).expect("renderer");
-            renderer.draw_and_wait().expect("warm-up frame");
+            renderer.draw_and_wait(Redraw::Everything).expect("warm-up frame");
             group.bench_function(BenchmarkId::new(format!("levels-{pyramid_levels}"), azimuths), |b| {
-                b.iter(|| renderer.draw_and_wait().expect("frame"))
+                b.iter(|| renderer.draw_and_wait(Redraw::Everything).expect("frame"))
             });
         }
     }

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # The editor's own frame rate at full quality: the studio sample in a window sized so the
-# viewport is about 960×540, under Xvfb, drawing its frame anew every frame
-# (LIGHTPAINT_MEASURE_FRAME_RATE=1: the camera rests, so each frame is the defaults' full
-# frame, not the cheaper one shown while the camera moves), egui's work included. Prints
-# the status bar's frame time every two seconds for SECONDS_TO_MEASURE seconds (default
-# 20) after the first frame. MEASURE=interface draws only the interface around the frame drawn before: what
-# the editor costs besides the renderer. For docs/performance.md; run it on an otherwise
-# idle machine. WINDOW_SIZE="W H" sizes the window otherwise (default "1513 618").
-# Usage: [MEASURE=interface] [WINDOW_SIZE="W H"] scripts/editor-frame-rate.sh [PROJECT]
+# viewport is about 960×540, under Xvfb, drawing a new frame every frame as while the
+# artist paints (LIGHTPAINT_MEASURE_FRAME_RATE=1: the lights are set again each frame and
+# the camera rests, so each frame is the defaults' full-quality frame after a light edit,
+# not the cheaper one shown while the camera moves), egui's work included. Prints the
+# status bar's frame time every two seconds for SECONDS_TO_MEASURE seconds (default 20)
+# after the first frame. MEASURE=new-view draws every frame from nothing instead (as the
+# first frame after the camera stops); MEASURE=interface only the interface around the
+# frame drawn before: what the editor costs besides the renderer. For
+# docs/performance.md; run it on an otherwise idle machine. WINDOW_SIZE="W H" sizes the
+# window otherwise (default "1513 618").
+# Usage: [MEASURE=new-view|interface] [WINDOW_SIZE="W H"] scripts/editor-frame-rate.sh [PROJECT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 project="$(realpath "${1:-projects/studio/studio.lightpaint}")"

@@ -30,7 +30,8 @@ pub fn editor(file: Option<PathBuf>) -> Result<(), CliError> {
         hide_frame_timings: std::env::var_os("LIGHTPAINT_HIDE_FRAME_TIMINGS").is_some_and(|v| v == "1"),
         // scripts/editor-frame-rate.sh: the editor's own frame rate.
         measure_frame_rate: match std::env::var("LIGHTPAINT_MEASURE_FRAME_RATE").as_deref() {
-            Ok("1") => lightpaint::ui::FrameRateMeasurement::WholeFrame,
+            Ok("1") => lightpaint::ui::FrameRateMeasurement::AfterLightEdit,
+            Ok("new-view") => lightpaint::ui::FrameRateMeasurement::NewView,
             Ok("interface") => lightpaint::ui::FrameRateMeasurement::InterfaceOnly,
             _ => lightpaint::ui::FrameRateMeasurement::Off,
         },

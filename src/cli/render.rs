@@ -5,7 +5,7 @@ use std::path::Path;
 
 use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{
-    AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
+    AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
 };
 use lightpaint::shading::blocker_reach::mean_blockers_in_reach;
 use lightpaint::shading::{BakedIndirect, ShadowSettings};
@@ -208,19 +208,14 @@ fn render_reference_png(
     Ok(())
 }
 
-/// Draws `count` frames after a warm-up and prints the mean and best time per frame.
+/// Draws `count` frames after a warm-up and prints the mean and best time per frame: each
+/// drawn anew (as for a new view), then each after the lights were set again (as after a
+/// stroke or an intensity edit, which keeps the surfaces the view rasterised).
 fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
     let mut renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
-    renderer.draw_and_wait()?;
+    renderer.draw_and_wait(Redraw::Everything)?;
     let timed_passes = renderer.time_passes();
-    let mut times_ms = Vec::with_capacity(count as usize);
-    for _ in 0..count {
-        let started = std::time::Instant::now();
-        renderer.draw_and_wait()?;
-        times_ms.push(started.elapsed().as_secs_f64() * 1000.0);
-    }
-    let mean = times_ms.iter().sum::<f64>() / times_ms.len() as f64;
-    let best = times_ms.iter().copied().fold(f64::INFINITY, f64::min);
+    let (mean, best) = mean_and_best_ms(count, || renderer.draw_and_wait(Redraw::Everything))?;
     say!(
         "{count} frames: mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
         1000.0 / mean
@@ -233,7 +228,28 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
             .collect();
         say!("GPU time per pass: {}", passes.join(", "));
     }
+    let (mean, best) = mean_and_best_ms(count, || renderer.draw_and_wait(Redraw::AfterLightEdit))?;
+    say!(
+        "{count} frames after a light edit (same view): mean {mean:.1} ms ({:.1} fps), best {best:.1} ms",
+        1000.0 / mean
+    );
     Ok(())
+}
+
+/// Mean and best wall-clock milliseconds of `count` calls of `draw`.
+fn mean_and_best_ms(
+    count: u32,
+    mut draw: impl FnMut() -> Result<(), lightpaint::render::RenderError>,
+) -> Result<(f64, f64), CliError> {
+    let mut times_ms = Vec::with_capacity(count as usize);
+    for _ in 0..count {
+        let started = std::time::Instant::now();
+        draw()?;
+        times_ms.push(started.elapsed().as_secs_f64() * 1000.0);
+    }
+    let mean = times_ms.iter().sum::<f64>() / times_ms.len().max(1) as f64;
+    let best = times_ms.iter().copied().fold(f64::INFINITY, f64::min);
+    Ok((mean, best))
 }
 
 /// The baked indirect light of a project from its bake cache, if it has a usable one

@@ -20,8 +20,8 @@ pub mod target;
 pub use context::{GpuContext, describe_adapter};
 pub use descriptors::{COLOR_FORMAT, SAMPLE_COUNT};
 pub use offscreen::{
-    RasterRenderer, ShadowFrame, ShadowRenderer, capture_surfaces, filter_edges, render_cpu_image, render_image,
-    render_logsh_image, shade_surfaces,
+    RasterRenderer, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces, filter_edges, render_cpu_image,
+    render_image, render_logsh_image, shade_surfaces,
 };
 pub use passes::raster::ScenePipeline;
 pub use readback::read_target_image;

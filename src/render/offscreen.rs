@@ -148,9 +148,21 @@ pub fn render_logsh_image(
 pub struct ShadowRenderer<'a> {
     gpu: &'a GpuContext,
     renderer: SceneRenderer,
+    /// The scene's lights, set again before a frame drawn as after a light edit.
+    lights: Vec<crate::scene::Light>,
     camera: Camera,
     size: [u32; 2],
     settings: RenderSettings,
+}
+
+/// How much of a frame [`ShadowRenderer`] draws anew.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Redraw {
+    /// Everything, as for a new view.
+    Everything,
+    /// What an edit of the lights changes (a stroke, an intensity): the lights are set
+    /// again and the surfaces the last frame rasterised are kept.
+    AfterLightEdit,
 }
 
 impl<'a> ShadowRenderer<'a> {
@@ -177,28 +189,35 @@ impl<'a> ShadowRenderer<'a> {
         Ok(ShadowRenderer {
             gpu,
             renderer,
+            lights: frame.scene.lights.clone(),
             camera: frame.camera.clone(),
             size: [frame.width, frame.height],
             settings,
         })
     }
 
-    fn draw(&mut self) {
+    /// Draws a frame: anew (`Redraw::Everything`) or after an edit of the lights alone.
+    fn draw(&mut self, redraw: Redraw) {
+        match redraw {
+            Redraw::Everything => self.renderer.forget_surfaces(),
+            Redraw::AfterLightEdit => self.renderer.set_lights(&self.lights),
+        }
         self.renderer
             .render(&self.camera, self.size, &self.settings, FrameQuality::default());
     }
 
     /// Draws one frame and reads it back.
     pub fn read_image(&mut self) -> Result<image::RgbaImage, RenderError> {
-        self.draw();
+        self.draw(Redraw::Everything);
         self.renderer
             .read_image()
             .unwrap_or_else(|| Err(RenderError::Readback("no frame was drawn".into())))
     }
 
-    /// Draws one frame and waits until the GPU has finished it.
-    pub fn draw_and_wait(&mut self) -> Result<(), RenderError> {
-        self.draw();
+    /// Draws one frame, anew or after the lights were set again, and waits until the GPU
+    /// has finished it.
+    pub fn draw_and_wait(&mut self, redraw: Redraw) -> Result<(), RenderError> {
+        self.draw(redraw);
         self.gpu
             .device
             .poll(wgpu::PollType::wait_indefinitely())
@@ -231,7 +250,7 @@ pub fn capture_surfaces(
 ) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
     check_size(gpu, width, height)?;
     let layouts = SceneLayouts::new(&gpu.device);
-    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
+    let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
     gpu_scene.write_frame(&gpu.queue, camera, [width, height], 0.0);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.

@@ -29,7 +29,7 @@ use crate::blockers::{BlockerSettings, SphereBudget, fit_scene};
 use crate::project::{Document, ProjectError};
 use crate::reference::{ProgressiveRender, ReferenceImage, SurfaceHit};
 use crate::render::{
-    AntiAliasing, GpuContext, RasterRenderer, RenderError, ShadowFrame, ShadowRenderer, capture_surfaces,
+    AntiAliasing, GpuContext, RasterRenderer, Redraw, RenderError, ShadowFrame, ShadowRenderer, capture_surfaces,
     shade_surfaces,
 };
 use crate::samples::Sample;
@@ -534,7 +534,7 @@ impl SceneStudy<'_> {
         }
         let mut renderer = ShadowRenderer::new(self.gpu, &frame, AntiAliasing::None)?;
         let image = renderer.read_image()?;
-        let ms = mean_frame_ms(self.frames, || renderer.draw_and_wait())?;
+        let ms = mean_frame_ms(self.frames, || renderer.draw_and_wait(Redraw::Everything))?;
         Ok((image, ms, blockers.len()))
     }
 }

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use super::StudyError;
 use crate::blockers::Sphere;
 use crate::reference::{ProgressiveRender, SurfaceHit};
-use crate::render::{AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, capture_surfaces};
+use crate::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces};
 use crate::scene::{Camera, Environment, Light, LightKind, Material, Scene, luminance, shapes};
 use crate::shading::cpu::{self, ShadingInputs, SurfacePoint};
 use crate::shading::gpu_types::environment_irradiance;
@@ -539,6 +539,6 @@ fn frame_ms(
         height: size,
     };
     let mut renderer = ShadowRenderer::new(gpu, &frame, AntiAliasing::None)?;
-    renderer.draw_and_wait()?;
-    super::mean_frame_ms(frames, || renderer.draw_and_wait())
+    renderer.draw_and_wait(Redraw::Everything)?;
+    super::mean_frame_ms(frames, || renderer.draw_and_wait(Redraw::Everything))
 }

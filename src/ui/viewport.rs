@@ -118,13 +118,15 @@ impl Viewport {
         self.rendered = None;
     }
 
-    /// Whether shaders for new shadow settings are being compiled (the viewport shows
-    /// the previous settings until they are ready).
-    /// Draw the frame anew next time even if nothing changed (frame-rate measurements).
-    pub fn draw_again(&mut self) {
+    /// Draws the next frame from nothing even if nothing changed, as after a move of the
+    /// camera (frame-rate measurements).
+    pub fn draw_anew(&mut self) {
+        self.renderer.forget_surfaces();
         self.rendered = None;
     }
 
+    /// Whether shaders for new shadow settings are being compiled (the viewport shows
+    /// the previous settings until they are ready).
     pub fn is_compiling_shaders(&self) -> bool {
         self.renderer.compiling().is_some()
     }

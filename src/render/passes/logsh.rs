@@ -183,7 +183,7 @@ impl LogShPipeline {
             frame.mark("per-vertex visibility");
         }
         if let Some((low, pipelines)) = reduced {
-            shade_low_resolution(frame, pipelines, low, target, (scene, blockers));
+            shade_low_resolution(frame, pipelines, low, (scene, blockers));
             let drawn = (target, background_linear);
             if draw_full_resolution(frame, pipelines, low, drawn, scene, blockers) {
                 finish(frame, target);

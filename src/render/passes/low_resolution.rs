@@ -190,22 +190,20 @@ fn two_level(paths: CompiledPaths) -> bool {
 }
 
 /// The reduced-resolution samples: the surface buffer rasterised at full resolution
-/// (into `target`'s depth when the frame is deferred too, else into the buffer's own),
-/// the samples on a surface marked in the low depth, then (two-level) the soft layer and
+/// (unless it already shows this frame's surfaces:
+/// [`LowResolutionTargets::expect_surfaces`]), the samples on a surface marked in the low depth, then (two-level) the soft layer and
 /// the samples shaded from it, else the samples shaded in full, by full-screen passes
 /// reading the buffer.
 pub(super) fn shade_low_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
     low: &LowResolutionTargets,
-    target: &RenderTarget,
     (scene, blockers): (&GpuScene, &GpuBlockers),
 ) {
-    let depth = low
-        .surface
-        .own_depth_attachment()
-        .unwrap_or_else(|| target.depth_attachment_for(true, true));
-    draw_surfaces(frame, (&low.surface, depth), &pipelines.surface_buffer, scene, blockers);
+    // A frame after an edit of the lights alone sees the surfaces the last one drew.
+    if !low.surfaces_current() {
+        draw_surfaces(frame, &low.surface, &pipelines.surface_buffer, scene, blockers);
+    }
 
     let bound = Bound {
         scene,
@@ -248,11 +246,11 @@ pub(super) fn shade_low_resolution(
     }
 }
 
-/// Rasterises the visible surfaces into `surface` (with `depth`, cleared) by
+/// Rasterises the visible surfaces into `surface` (its images and depth, cleared) by
 /// fs_surface_buffer.
 fn draw_surfaces(
     frame: &mut TimedEncoder,
-    (surface, depth): (&SurfaceBuffer, wgpu::RenderPassDepthStencilAttachment<'_>),
+    surface: &SurfaceBuffer,
     pipelines: &ByTexture,
     scene: &GpuScene,
     blockers: &GpuBlockers,
@@ -262,7 +260,7 @@ fn draw_surfaces(
     let mut pass = frame.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(LABEL),
         color_attachments: &surfaces,
-        depth_stencil_attachment: Some(depth),
+        depth_stencil_attachment: Some(surface.depth_attachment()),
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,
@@ -275,7 +273,7 @@ fn draw_surfaces(
 }
 
 /// The full-resolution frame deferred: from the surface buffer `shade_low_resolution`
-/// drew with `target`'s depth, the upsampling and the full shading of what it left into
+/// drew (its depth copied into `target`'s), the upsampling and the full shading of what it left into
 /// `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
 /// `pipelines` have no deferred full-resolution frame.
 pub(super) fn draw_full_resolution(
@@ -296,6 +294,8 @@ pub(super) fn draw_full_resolution(
         passes.push((shade_sharp, Some(soft)));
     }
     passes.push((&full.shade, None));
+    // The passes mark pixels in the frame's depth; the buffer's stays as drawn.
+    target.copy_depth_from(frame.encoder, &low.surface.depth);
     Bound {
         scene,
         blockers,

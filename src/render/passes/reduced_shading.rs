@@ -165,6 +165,12 @@ pub struct LowResolutionTargets {
     /// present with a soft layer when the full-resolution frame is deferred, where
     /// fs_shade_sharp_deferred_marking shades the pixels the upsampling leaves from it.
     pub(crate) soft_at_full_resolution: Option<wgpu::BindGroup>,
+    /// The full-resolution frame is deferred (drawn by full-screen passes from the buffer).
+    deferred_frame: bool,
+    /// What the surface buffer shows, if known ([`Self::expect_surfaces`]).
+    surfaces_of: Option<SurfacesKey>,
+    /// The next frame's surfaces are those the buffer shows.
+    surfaces_current: bool,
 }
 
 fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
@@ -178,30 +184,34 @@ fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
 const SAMPLED_TARGET: wgpu::TextureUsages =
     wgpu::TextureUsages::RENDER_ATTACHMENT.union(wgpu::TextureUsages::TEXTURE_BINDING);
 
-fn depth_view(device: &wgpu::Device, label: &str, size: [u32; 2]) -> wgpu::TextureView {
+fn depth_texture(device: &wgpu::Device, label: &str, size: [u32; 2], usage: wgpu::TextureUsages) -> wgpu::Texture {
     frame_texture(
         device,
         label,
         image_extent(size),
         DEPTH_FORMAT,
         1,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
         &[],
     )
-    .create_view(&Default::default())
 }
 
-/// The full-resolution surfaces: two images, their own depth where the frame's depth
-/// cannot serve (a multisampled frame), and the bind group through which the
-/// full-screen passes read them.
+fn depth_view(device: &wgpu::Device, label: &str, size: [u32; 2]) -> wgpu::TextureView {
+    depth_texture(device, label, size, wgpu::TextureUsages::empty()).create_view(&Default::default())
+}
+
+/// The full-resolution surfaces: two images, their depth (copied into the frame's depth
+/// where the full-resolution frame is deferred, whose passes mark pixels in it), and the
+/// bind group through which the full-screen passes read them.
 pub(crate) struct SurfaceBuffer {
     views: [wgpu::TextureView; 2],
-    own_depth: Option<wgpu::TextureView>,
+    pub(crate) depth: wgpu::Texture,
+    depth_view: wgpu::TextureView,
     pub bind_group: wgpu::BindGroup,
 }
 
 impl SurfaceBuffer {
-    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2], own_depth: bool) -> SurfaceBuffer {
+    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2]) -> SurfaceBuffer {
         let views = SURFACE_BUFFER_FORMATS.map(|format| {
             frame_texture(
                 device,
@@ -228,9 +238,11 @@ impl SurfaceBuffer {
                 },
             ],
         });
+        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
         SurfaceBuffer {
             views,
-            own_depth: own_depth.then(|| depth_view(device, "surface buffer depth", size)),
+            depth_view: depth.create_view(&Default::default()),
+            depth,
             bind_group,
         }
     }
@@ -240,12 +252,21 @@ impl SurfaceBuffer {
         self.views.iter().map(cleared).collect()
     }
 
-    /// Its own depth attachment, cleared, if it has one (else the frame's serves).
-    pub(crate) fn own_depth_attachment(&self) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
-        self.own_depth
-            .as_ref()
-            .map(|view| depth_attachment(view, Some(1.0), false))
+    /// Its depth attachment, cleared and kept (later frames may reuse it).
+    pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        depth_attachment(&self.depth_view, Some(1.0), true)
     }
+}
+
+/// What a surface buffer shows: the scene as uploaded at `scene_generation`
+/// ([`crate::render::resources::scene::GpuScene::surfaces_generation`]) seen by `camera`.
+/// Two frames with equal keys rasterise the same buffer, so the second keeps the first's:
+/// a frame after an edit of the lights alone (a stroke, an intensity) skips the surfaces
+/// pass. (A new pipeline comes with new targets, which show nothing yet.)
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfacesKey {
+    pub camera: crate::scene::Camera,
+    pub scene_generation: u64,
 }
 
 /// An attachment cleared to zero.
@@ -353,8 +374,7 @@ impl LowResolutionTargets {
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
     /// surfaces through `surface_layout` ([`surface_buffer_layout`]); `soft_layer`: with
     /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: the
-    /// full-resolution frame is deferred too, its surfaces drawn with the frame's depth
-    /// (else the surface buffer has its own).
+    /// full-resolution frame is deferred too (its passes start from the buffer's depth).
     pub fn new(
         device: &wgpu::Device,
         [layout, surface_layout]: [&wgpu::BindGroupLayout; 2],
@@ -401,7 +421,10 @@ impl LowResolutionTargets {
             downsample,
             size,
             soft_at_full_resolution,
-            surface: SurfaceBuffer::new(device, surface_layout, full_size, !deferred_frame),
+            surface: SurfaceBuffer::new(device, surface_layout, full_size),
+            deferred_frame,
+            surfaces_of: None,
+            surfaces_current: false,
             low_depth: depth_view(device, "low-resolution depth", size),
             samples,
             soft,
@@ -414,7 +437,19 @@ impl LowResolutionTargets {
         self.full_size == full_size
             && self.downsample == downsample
             && self.soft.is_some() == soft_layer
-            && self.surface.own_depth.is_none() == deferred_frame
+            && self.deferred_frame == deferred_frame
+    }
+
+    /// Says what the next frame's surfaces are (None: unknown, draw them anew); the
+    /// frame keeps the buffer's surfaces when they are the same as the last frame's.
+    pub fn expect_surfaces(&mut self, key: Option<SurfacesKey>) {
+        self.surfaces_current = key.is_some() && key == self.surfaces_of;
+        self.surfaces_of = key;
+    }
+
+    /// Whether the surface buffer already shows the next frame's surfaces.
+    pub(crate) fn surfaces_current(&self) -> bool {
+        self.surfaces_current
     }
 
     /// The bind group through which the full-resolution pass reads the samples.

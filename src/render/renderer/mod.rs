@@ -20,7 +20,7 @@ use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
-use super::passes::reduced_shading::LowResolutionTargets;
+use super::passes::reduced_shading::{LowResolutionTargets, SurfacesKey};
 use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
@@ -98,6 +98,9 @@ pub struct SceneRenderer {
     target: Option<RenderTarget>,
     /// The GPU time of each pass, when asked for ([`Self::time_passes`]).
     pass_timer: Option<PassTimer>,
+    /// The next frame draws its surfaces anew even if the view and scene are unchanged
+    /// ([`Self::forget_surfaces`]).
+    surfaces_forgotten: bool,
 }
 
 impl SceneRenderer {
@@ -171,6 +174,7 @@ impl SceneRenderer {
             bounds: scene.bounds(),
             target: None,
             pass_timer: None,
+            surfaces_forgotten: false,
         };
         renderer.write_lights();
         renderer
@@ -447,6 +451,12 @@ impl SceneRenderer {
                     shadows
                         .pipeline
                         .low_resolution_targets(&self.device, size, shadows.low_resolution.take());
+                if let Some(low) = &mut shadows.low_resolution {
+                    low.expect_surfaces((!std::mem::take(&mut self.surfaces_forgotten)).then(|| SurfacesKey {
+                        camera: camera.clone(),
+                        scene_generation: self.gpu_scene.surfaces_generation(),
+                    }));
+                }
             }
             shadows.pipeline.draw(
                 &mut TimedEncoder {
@@ -465,6 +475,12 @@ impl SceneRenderer {
         }
         self.queue.submit([encoder.finish()]);
         resized
+    }
+
+    /// Has the next frame draw everything anew, as after a move of the camera, though
+    /// only the lights changed (timings of whole frames).
+    pub fn forget_surfaces(&mut self) {
+        self.surfaces_forgotten = true;
     }
 
     /// From now on, times each pass of every frame on the GPU, if the device has

@@ -43,6 +43,15 @@ pub struct GpuScene {
     /// uploaded.
     first_light_on: [usize; 2],
     environment_irradiance: [[f32; 4]; 9],
+    /// Changes whenever what the surfaces pass draws may change (a new upload, objects
+    /// hidden or shown, new baked indirect light); unique among every scene uploaded.
+    surfaces_generation: u64,
+}
+
+/// A number no earlier call returned: the generations of every [`GpuScene`] differ.
+fn next_surfaces_generation() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl GpuScene {
@@ -153,6 +162,7 @@ impl GpuScene {
             light_count: 0,
             first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
+            surfaces_generation: next_surfaces_generation(),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
         gpu_scene.update_lights(device, queue, layouts, &lights);
@@ -181,6 +191,13 @@ impl GpuScene {
         for object in &mut self.objects {
             object.hidden = hidden.contains(&object.source);
         }
+        self.surfaces_generation = next_surfaces_generation();
+    }
+
+    /// What the surfaces pass draws, as a number: equal numbers from one scene mean the
+    /// same objects, materials and per-vertex emission (the camera aside).
+    pub fn surfaces_generation(&self) -> u64 {
+        self.surfaces_generation
     }
 
     /// Rewrites the light buffer, growing it when there are more lights than it holds;
@@ -219,7 +236,8 @@ impl GpuScene {
 
     /// Replaces the baked indirect light (None: none): per object of the [`Scene`] it was
     /// uploaded from, the irradiance of each vertex.
-    pub fn set_baked_indirect(&self, queue: &wgpu::Queue, indirect: Option<&BakedIndirect>) {
+    pub fn set_baked_indirect(&mut self, queue: &wgpu::Queue, indirect: Option<&BakedIndirect>) {
+        self.surfaces_generation = next_surfaces_generation();
         let vertex_count: u32 = self.objects.iter().map(|o| o.vertex_count).sum();
         let mut values = vec![0.0f32; 3 * vertex_count as usize];
         if let Some(indirect) = indirect {

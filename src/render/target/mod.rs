@@ -60,6 +60,7 @@ pub struct RenderTarget {
     pub display_view: wgpu::TextureView,
     msaa_view: Option<wgpu::TextureView>,
     edge_filter: Option<EdgeFilterPass>,
+    depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
 }
 
@@ -115,7 +116,13 @@ impl RenderTarget {
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
         let edge_filter = edge_filter.map(|filter| EdgeFilterPass::new(device, size, filter));
-        let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
+        // A single-sampled frame's depth may start as a copy of a surface buffer's.
+        let depth_usage = if samples == 1 {
+            attachment | wgpu::TextureUsages::COPY_DST
+        } else {
+            attachment
+        };
+        let depth = texture("depth", DEPTH_FORMAT, samples, depth_usage, &[]);
         RenderTarget {
             width: size.width,
             height: size.height,
@@ -128,6 +135,7 @@ impl RenderTarget {
             msaa_view,
             edge_filter,
             depth_view: view(&depth),
+            depth,
             color,
         }
     }
@@ -155,6 +163,12 @@ impl RenderTarget {
     /// left it, and kept for a later pass if `keep`.
     pub fn depth_attachment_for(&self, clear: bool, keep: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         depth_attachment(&self.depth_view, clear.then_some(1.0), keep)
+    }
+
+    /// Records a copy of `source` (a depth texture of the frame's size, single-sampled as
+    /// this target must be) into the frame's depth.
+    pub(crate) fn copy_depth_from(&self, encoder: &mut wgpu::CommandEncoder, source: &wgpu::Texture) {
+        encoder.copy_texture_to_texture(source.as_image_copy(), self.depth.as_image_copy(), self.depth.size());
     }
 
     /// The depth attachment, cleared to the far plane, for one pass.

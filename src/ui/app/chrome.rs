@@ -204,19 +204,25 @@ impl EditorApp {
     }
 
     /// Measurement runs: the editor draws every frame — with the viewport's frame drawn
-    /// anew (as if the scene changed, at full quality: the camera is not moving) or only
-    /// the interface around the frame drawn before — and every two seconds the status
-    /// bar's frame time goes to stderr with the viewport's size in pixels.
+    /// at full quality after a light edit, or from nothing, or only the interface around
+    /// the frame drawn before ([`FrameRateMeasurement`]) — and every two seconds the
+    /// status bar's frame time goes to stderr with the viewport's size in pixels.
     pub(super) fn measure_frame_rate(&mut self, ctx: &egui::Context) {
         if self.options.measure_frame_rate == FrameRateMeasurement::Off {
             return;
         }
+        match self.options.measure_frame_rate {
+            FrameRateMeasurement::AfterLightEdit => self.upload_lights(),
+            FrameRateMeasurement::NewView => {
+                if let Some(viewport) = &mut self.viewport {
+                    viewport.draw_anew();
+                }
+            }
+            FrameRateMeasurement::Off | FrameRateMeasurement::InterfaceOnly => {}
+        }
         let Some(viewport) = &mut self.viewport else {
             return;
         };
-        if self.options.measure_frame_rate == FrameRateMeasurement::WholeFrame {
-            viewport.draw_again();
-        }
         ctx.request_repaint();
         let now = Instant::now();
         if self

@@ -49,8 +49,12 @@ pub enum FrameRateMeasurement {
     /// Nothing: frames follow input, as usual.
     #[default]
     Off,
-    /// The viewport's frame anew, at full quality, and the interface.
-    WholeFrame,
+    /// The viewport's frame at full quality after the lights were set again (as during a
+    /// stroke: the view rests, the lights change), and the interface.
+    AfterLightEdit,
+    /// The viewport's frame drawn from nothing at full quality (as the first frame after
+    /// the camera stops), and the interface.
+    NewView,
     /// The interface around the frame drawn before: what the editor costs besides the
     /// renderer.
     InterfaceOnly,
