@@ -1,8 +1,9 @@
-//! A frame after an edit of the lights keeps the surfaces the last frame rasterised
-//! (`render::passes::reduced_shading::SurfacesKey`, on lavapipe in CI). Whatever it keeps,
-//! the frame must be the one a renderer drawing everything anew gives for the same
-//! lights, view and visible objects: these tests compare the two byte for byte on the
-//! studio sample, after light edits, a camera move and hiding an object.
+//! A frame after an edit of the lights keeps the surfaces the last frame rasterised, and
+//! the soft layer when the edit leaves the SH path's light alone
+//! (`render::passes::reduced_shading::FrameInputs`, on lavapipe in CI). Whatever it
+//! keeps, the frame must be the one a renderer drawing everything anew gives for the same
+//! lights, view, visible objects, environment, blockers and exposure: these tests compare
+//! the two byte for byte on the studio sample after each kind of change.
 
 mod common;
 
@@ -65,6 +66,26 @@ fn drawn_anew(
     let mut fresh = renderer(gpu, studio, &scene);
     fresh.set_hidden(hidden);
     draw(&mut fresh, camera, &studio.document.settings)
+}
+
+/// The frame a new renderer draws of `scene` with `settings` and `blockers`.
+fn scene_drawn_anew(
+    gpu: &GpuContext,
+    scene: &Scene,
+    blockers: &[lightpaint::blockers::Sphere],
+    settings: &RenderSettings,
+    camera: &Camera,
+) -> image::RgbaImage {
+    let mut fresh = SceneRenderer::new(
+        &gpu.device,
+        &gpu.queue,
+        scene,
+        blockers,
+        &settings.shadows,
+        AntiAliasing::default(),
+        Compilation::Blocking,
+    );
+    draw(&mut fresh, camera, settings)
 }
 
 /// Pixels whose bytes differ.
@@ -142,4 +163,79 @@ fn a_camera_move_or_a_hidden_object_draws_the_surfaces_again() {
         0,
         "the frame after hiding an object differs from the frame drawn anew"
     );
+}
+
+#[test]
+fn a_change_the_soft_layer_reads_draws_it_again() {
+    let Some(gpu) = common::gpu() else { return };
+    let studio = studio();
+    let camera = &studio.camera;
+    let mut scene = studio.document.scene.clone();
+    assert!(scene.environment.is_some(), "the studio has an environment to change");
+    // A sphere light too large for maps or the exact path (56° seen from the centre):
+    // the SH carries it with the environment, in the soft layer, while the maps carry
+    // the studio's own lights.
+    let centre = scene.bounds().center();
+    scene.lights.push(Light {
+        name: "dome".into(),
+        kind: lightpaint::scene::LightKind::Sphere { radius_m: 2.5 },
+        position: centre + glam::Vec3::new(0.0, 3.0, 0.0),
+        ..scene.lights[0].clone()
+    });
+    let settings = &mut studio.document.settings.clone();
+    let mut blockers = studio.blockers.clone();
+    let mut kept = SceneRenderer::new(
+        &gpu.device,
+        &gpu.queue,
+        &scene,
+        &blockers,
+        &settings.shadows,
+        AntiAliasing::default(),
+        Compilation::Blocking,
+    );
+    let paths = kept.light_paths_at(&scene.lights, centre, &settings.shadows);
+    assert_eq!(
+        paths.last().map(|p| p.0),
+        Some(lightpaint::shading::ShadowPath::Harmonics)
+    );
+    assert_eq!(paths[0].0, lightpaint::shading::ShadowPath::Map);
+    let mut last = draw(&mut kept, camera, settings);
+    let mut check = |what: &str,
+                     kept: &mut SceneRenderer,
+                     scene: &Scene,
+                     blockers: &[lightpaint::blockers::Sphere],
+                     settings: &RenderSettings| {
+        let after = draw(kept, camera, settings);
+        let anew = scene_drawn_anew(&gpu, scene, blockers, settings, camera);
+        assert!(differing_pixels(&last, &anew) > 0, "{what} must change the frame");
+        assert_eq!(
+            differing_pixels(&after, &anew),
+            0,
+            "the frame after {what} differs from the frame drawn anew"
+        );
+        last = after;
+    };
+
+    scene.lights = edited(&scene.lights);
+    kept.set_lights(&scene.lights);
+    check(
+        "an edit of lights on the SH path",
+        &mut kept,
+        &scene,
+        &blockers,
+        settings,
+    );
+
+    if let Some(environment) = &mut scene.environment {
+        environment.intensity *= 4.0;
+    }
+    kept.set_environment(scene.environment.as_ref());
+    check("a brighter environment", &mut kept, &scene, &blockers, settings);
+
+    blockers.truncate(blockers.len() / 2);
+    kept.set_blockers(&blockers);
+    check("fewer blockers", &mut kept, &scene, &blockers, settings);
+
+    settings.exposure_ev += 1.0;
+    check("a brighter exposure", &mut kept, &scene, &blockers, settings);
 }

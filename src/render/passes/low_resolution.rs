@@ -219,12 +219,15 @@ pub(super) fn shade_low_resolution(
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
         (Some(soft_pipelines), Some(soft)) => {
-            bound.full_screen(
-                frame,
-                "soft layer shading",
-                (&soft.color_attachments(), None),
-                &[(&soft_pipelines.shade_soft, None)],
-            );
+            // A frame after an edit of lights off the SH path sees the last soft layer.
+            if !low.soft_layer_current() {
+                bound.full_screen(
+                    frame,
+                    "soft layer shading",
+                    (&soft.color_attachments(), None),
+                    &[(&soft_pipelines.shade_soft, None)],
+                );
+            }
             // The sharp pass marks what it shaded (depth 1), so the full shading after it
             // shades only the samples it discarded.
             bound.full_screen(

@@ -167,10 +167,13 @@ pub struct LowResolutionTargets {
     pub(crate) soft_at_full_resolution: Option<wgpu::BindGroup>,
     /// The full-resolution frame is deferred (drawn by full-screen passes from the buffer).
     deferred_frame: bool,
-    /// What the surface buffer shows, if known ([`Self::expect_surfaces`]).
-    surfaces_of: Option<SurfacesKey>,
+    /// What the surface buffer and the soft layer show, if known
+    /// ([`Self::expect_inputs`]).
+    drawn_from: Option<FrameInputs>,
     /// The next frame's surfaces are those the buffer shows.
     surfaces_current: bool,
+    /// The next frame's soft layer is the one drawn (its surfaces too).
+    soft_layer_current: bool,
 }
 
 fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
@@ -267,6 +270,26 @@ impl SurfaceBuffer {
 pub struct SurfacesKey {
     pub camera: crate::scene::Camera,
     pub scene_generation: u64,
+}
+
+/// What the soft layer (two-level shading) shows besides the surfaces: the light of the
+/// SH path and the environment through the blockers (`blockers_generation`) with
+/// `settings`, at `exposure_ev`. A frame whose surfaces and soft inputs equal the last
+/// one's keeps its soft layer: with every light on the shadow-map path, an edit of any
+/// light's intensity does.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SoftLayerKey {
+    pub lighting: crate::render::resources::HarmonicLighting,
+    pub settings: crate::shading::ShadowSettings,
+    pub exposure_ev: f32,
+    pub blockers_generation: u64,
+}
+
+/// What a frame's reduced shading reads that a later frame may find unchanged.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameInputs {
+    pub surfaces: SurfacesKey,
+    pub soft_layer: SoftLayerKey,
 }
 
 /// An attachment cleared to zero.
@@ -423,8 +446,9 @@ impl LowResolutionTargets {
             soft_at_full_resolution,
             surface: SurfaceBuffer::new(device, surface_layout, full_size),
             deferred_frame,
-            surfaces_of: None,
+            drawn_from: None,
             surfaces_current: false,
+            soft_layer_current: false,
             low_depth: depth_view(device, "low-resolution depth", size),
             samples,
             soft,
@@ -440,16 +464,24 @@ impl LowResolutionTargets {
             && self.deferred_frame == deferred_frame
     }
 
-    /// Says what the next frame's surfaces are (None: unknown, draw them anew); the
-    /// frame keeps the buffer's surfaces when they are the same as the last frame's.
-    pub fn expect_surfaces(&mut self, key: Option<SurfacesKey>) {
-        self.surfaces_current = key.is_some() && key == self.surfaces_of;
-        self.surfaces_of = key;
+    /// Says what the next frame reads (None: unknown, draw everything anew); the frame
+    /// keeps the surface buffer, and the soft layer, where they come from the same as the
+    /// last frame's.
+    pub fn expect_inputs(&mut self, inputs: Option<FrameInputs>) {
+        let last = self.drawn_from.take();
+        self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
+        self.soft_layer_current = matches!((&inputs, &last), (Some(i), Some(l)) if i == l);
+        self.drawn_from = inputs;
     }
 
     /// Whether the surface buffer already shows the next frame's surfaces.
     pub(crate) fn surfaces_current(&self) -> bool {
         self.surfaces_current
+    }
+
+    /// Whether the soft layer already holds the next frame's soft light.
+    pub(crate) fn soft_layer_current(&self) -> bool {
+        self.soft_layer_current
     }
 
     /// The bind group through which the full-resolution pass reads the samples.

@@ -20,7 +20,7 @@ use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
-use super::passes::reduced_shading::{LowResolutionTargets, SurfacesKey};
+use super::passes::reduced_shading::{FrameInputs, LowResolutionTargets, SoftLayerKey, SurfacesKey};
 use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
@@ -101,6 +101,8 @@ pub struct SceneRenderer {
     /// The next frame draws its surfaces anew even if the view and scene are unchanged
     /// ([`Self::forget_surfaces`]).
     surfaces_forgotten: bool,
+    /// Changes with every [`Self::set_blockers`] (what the soft layer shows depends on it).
+    blockers_generation: u64,
 }
 
 impl SceneRenderer {
@@ -175,6 +177,7 @@ impl SceneRenderer {
             target: None,
             pass_timer: None,
             surfaces_forgotten: false,
+            blockers_generation: 0,
         };
         renderer.write_lights();
         renderer
@@ -322,6 +325,7 @@ impl SceneRenderer {
 
     /// Replaces the blockers.
     pub fn set_blockers(&mut self, blockers: &[Sphere]) {
+        self.blockers_generation += 1;
         self.shadows
             .blockers
             .update(&self.device, &self.queue, blockers, &self.shadows.settings);
@@ -452,9 +456,17 @@ impl SceneRenderer {
                         .pipeline
                         .low_resolution_targets(&self.device, size, shadows.low_resolution.take());
                 if let Some(low) = &mut shadows.low_resolution {
-                    low.expect_surfaces((!std::mem::take(&mut self.surfaces_forgotten)).then(|| SurfacesKey {
-                        camera: camera.clone(),
-                        scene_generation: self.gpu_scene.surfaces_generation(),
+                    low.expect_inputs((!std::mem::take(&mut self.surfaces_forgotten)).then(|| FrameInputs {
+                        surfaces: SurfacesKey {
+                            camera: camera.clone(),
+                            scene_generation: self.gpu_scene.surfaces_generation(),
+                        },
+                        soft_layer: SoftLayerKey {
+                            lighting: self.gpu_scene.harmonic_lighting(),
+                            settings: shadows.settings,
+                            exposure_ev: settings.exposure_ev,
+                            blockers_generation: self.blockers_generation,
+                        },
                     }));
                 }
             }

@@ -43,9 +43,19 @@ pub struct GpuScene {
     /// uploaded.
     first_light_on: [usize; 2],
     environment_irradiance: [[f32; 4]; 9],
+    /// The lights on the SH path as uploaded (the first of the ordered lights), which the
+    /// soft layer of reduced shading reads.
+    harmonic_lights: Vec<GpuLight>,
     /// Changes whenever what the surfaces pass draws may change (a new upload, objects
     /// hidden or shown, new baked indirect light); unique among every scene uploaded.
     surfaces_generation: u64,
+}
+
+/// The lighting of the SH path: see [`GpuScene::harmonic_lighting`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct HarmonicLighting {
+    pub lights: Vec<GpuLight>,
+    pub environment_irradiance: [[f32; 4]; 9],
 }
 
 /// A number no earlier call returned: the generations of every [`GpuScene`] differ.
@@ -163,6 +173,7 @@ impl GpuScene {
             first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
             surfaces_generation: next_surfaces_generation(),
+            harmonic_lights: Vec::new(),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
         gpu_scene.update_lights(device, queue, layouts, &lights);
@@ -219,6 +230,16 @@ impl GpuScene {
         self.lights.write(queue, &ordered);
         self.light_count = ordered.len();
         self.first_light_on = first_light_on;
+        self.harmonic_lights = ordered[..first_light_on[0].min(ordered.len())].to_vec();
+    }
+
+    /// What the light of soft shadows reads of the lighting besides the blockers and the
+    /// settings: the lights on the SH path and the environment's irradiance.
+    pub fn harmonic_lighting(&self) -> HarmonicLighting {
+        HarmonicLighting {
+            lights: self.harmonic_lights.clone(),
+            environment_irradiance: self.environment_irradiance,
+        }
     }
 
     /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
