@@ -299,6 +299,7 @@ pub(super) fn draw_full_resolution(
     passes.push((&full.shade, None));
     // The passes mark pixels in the frame's depth; the buffer's stays as drawn.
     target.copy_depth_from(frame.encoder, &low.surface.depth);
+    frame.mark("depth copy");
     Bound {
         scene,
         blockers,
