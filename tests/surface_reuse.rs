@@ -37,12 +37,22 @@ fn studio() -> Studio {
 }
 
 fn renderer(gpu: &GpuContext, studio: &Studio, scene: &Scene) -> SceneRenderer {
+    renderer_of(gpu, scene, &studio.blockers, &studio.document.settings)
+}
+
+/// A renderer of `scene` with `blockers` and `settings`' shadows, antialiased as shipped.
+fn renderer_of(
+    gpu: &GpuContext,
+    scene: &Scene,
+    blockers: &[lightpaint::blockers::Sphere],
+    settings: &RenderSettings,
+) -> SceneRenderer {
     SceneRenderer::new(
         &gpu.device,
         &gpu.queue,
         scene,
-        &studio.blockers,
-        &studio.document.settings.shadows,
+        blockers,
+        &settings.shadows,
         AntiAliasing::default(),
         Compilation::Blocking,
     )
@@ -76,16 +86,16 @@ fn scene_drawn_anew(
     settings: &RenderSettings,
     camera: &Camera,
 ) -> image::RgbaImage {
-    let mut fresh = SceneRenderer::new(
-        &gpu.device,
-        &gpu.queue,
-        scene,
-        blockers,
-        &settings.shadows,
-        AntiAliasing::default(),
-        Compilation::Blocking,
+    draw(&mut renderer_of(gpu, scene, blockers, settings), camera, settings)
+}
+
+/// Fails unless the frame drawn `after` a change is byte for byte the one drawn anew.
+fn assert_same(after: &image::RgbaImage, anew: &image::RgbaImage, what: &str) {
+    let differing = differing_pixels(after, anew);
+    assert_eq!(
+        differing, 0,
+        "the frame after {what} differs from the frame drawn anew at {differing} pixels"
     );
-    draw(&mut fresh, camera, settings)
 }
 
 /// Pixels whose bytes differ.
@@ -121,11 +131,7 @@ fn a_frame_after_a_light_edit_is_the_frame_drawn_anew() {
         changed > (SIZE[0] * SIZE[1] / 4) as usize,
         "the edit must change the frame to test anything ({changed} pixels changed)"
     );
-    assert_eq!(
-        differing_pixels(&after, &anew),
-        0,
-        "the frame after the edit differs from the frame drawn anew"
-    );
+    assert_same(&after, &anew, "the edit");
 }
 
 #[test]
@@ -143,10 +149,10 @@ fn a_camera_move_or_a_hidden_object_draws_the_surfaces_again() {
     moved.position += side;
     let after_move = draw(&mut kept, &moved, settings);
     let none = BTreeSet::new();
-    assert_eq!(
-        differing_pixels(&after_move, &drawn_anew(&gpu, &studio, &lights, &none, &moved)),
-        0,
-        "the frame after the camera moved differs from the frame drawn anew"
+    assert_same(
+        &after_move,
+        &drawn_anew(&gpu, &studio, &lights, &none, &moved),
+        "the camera moved",
     );
 
     // The largest object hidden, the view as before.
@@ -158,11 +164,7 @@ fn a_camera_move_or_a_hidden_object_draws_the_surfaces_again() {
     let after_hiding = draw(&mut kept, &moved, settings);
     let anew = drawn_anew(&gpu, &studio, &lights, &hidden, &moved);
     assert!(differing_pixels(&after_move, &anew) > 0, "hiding must change the frame");
-    assert_eq!(
-        differing_pixels(&after_hiding, &anew),
-        0,
-        "the frame after hiding an object differs from the frame drawn anew"
-    );
+    assert_same(&after_hiding, &anew, "hiding an object");
 }
 
 #[test]
@@ -184,15 +186,7 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
     });
     let settings = &mut studio.document.settings.clone();
     let mut blockers = studio.blockers.clone();
-    let mut kept = SceneRenderer::new(
-        &gpu.device,
-        &gpu.queue,
-        &scene,
-        &blockers,
-        &settings.shadows,
-        AntiAliasing::default(),
-        Compilation::Blocking,
-    );
+    let mut kept = renderer_of(&gpu, &scene, &blockers, settings);
     let paths = kept.light_paths_at(&scene.lights, centre, &settings.shadows);
     assert_eq!(
         paths.last().map(|p| p.0),
@@ -208,11 +202,7 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
         let after = draw(kept, camera, settings);
         let anew = scene_drawn_anew(&gpu, scene, blockers, settings, camera);
         assert!(differing_pixels(&last, &anew) > 0, "{what} must change the frame");
-        assert_eq!(
-            differing_pixels(&after, &anew),
-            0,
-            "the frame after {what} differs from the frame drawn anew"
-        );
+        assert_same(&after, &anew, what);
         last = after;
     };
 
