@@ -1,4 +1,5 @@
-//! A frame after an edit of the lights keeps the surfaces the last frame rasterised, and
+//! A frame after an edit of the lights keeps the surfaces the last frame rasterised (and
+//! the shadow maps of the lights that did not move), and
 //! the soft layer when the edit leaves the SH path's light alone
 //! (`render::passes::reduced_shading::FrameInputs`, on lavapipe in CI). Whatever it
 //! keeps, the frame must be the one a renderer drawing everything anew gives for the same
@@ -228,4 +229,26 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
 
     settings.exposure_ev += 1.0;
     check("a brighter exposure", &mut kept, &scene, &blockers, settings);
+}
+
+#[test]
+fn a_frame_after_a_light_moved_is_the_frame_drawn_anew() {
+    let Some(gpu) = common::gpu() else { return };
+    let studio = studio();
+    let settings = &studio.document.settings;
+    let none = BTreeSet::new();
+    let mut kept = renderer(&gpu, &studio, &studio.document.scene);
+    let before = draw(&mut kept, &studio.camera, settings);
+
+    // The key spot (a shadow map of its own) moved 30 cm and turned; the others' maps
+    // are kept.
+    let mut lights = studio.document.scene.lights.clone();
+    let key = lights.iter().position(|l| l.name == "Key").expect("the key light");
+    lights[key].position += glam::Vec3::new(0.3, 0.0, -0.2);
+    lights[key].direction = (lights[key].direction + glam::Vec3::new(0.1, 0.0, 0.0)).normalize();
+    kept.set_lights(&lights);
+    let after = draw(&mut kept, &studio.camera, settings);
+    let anew = drawn_anew(&gpu, &studio, &lights, &none, &studio.camera);
+    assert!(differing_pixels(&before, &anew) > 0, "the move must change the frame");
+    assert_same(&after, &anew, "the key light moved");
 }

@@ -150,6 +150,8 @@ pub struct ShadowRenderer<'a> {
     renderer: SceneRenderer,
     /// The scene's lights, set again before a frame drawn as after a light edit.
     lights: Vec<crate::scene::Light>,
+    /// Frames drawn after moving the first light ([`Redraw::AfterLightMove`]).
+    moves: u32,
     camera: Camera,
     size: [u32; 2],
     settings: RenderSettings,
@@ -163,6 +165,9 @@ pub enum Redraw {
     /// What an edit of the lights changes (a stroke, an intensity): the lights are set
     /// again and the surfaces the last frame rasterised are kept.
     AfterLightEdit,
+    /// What a drag of the scene's first light changes: it moves by a centimetre (back
+    /// and forth), so its shadow maps are drawn again.
+    AfterLightMove,
 }
 
 impl<'a> ShadowRenderer<'a> {
@@ -190,6 +195,7 @@ impl<'a> ShadowRenderer<'a> {
             gpu,
             renderer,
             lights: frame.scene.lights.clone(),
+            moves: 0,
             camera: frame.camera.clone(),
             size: [frame.width, frame.height],
             settings,
@@ -201,6 +207,13 @@ impl<'a> ShadowRenderer<'a> {
         match redraw {
             Redraw::Everything => self.renderer.forget_surfaces(),
             Redraw::AfterLightEdit => self.renderer.set_lights(&self.lights),
+            Redraw::AfterLightMove => {
+                if let Some(first) = self.lights.first_mut() {
+                    self.moves += 1;
+                    first.position.x += if self.moves % 2 == 1 { 0.01 } else { -0.01 };
+                }
+                self.renderer.set_lights(&self.lights);
+            }
         }
         self.renderer
             .render(&self.camera, self.size, &self.settings, FrameQuality::default());

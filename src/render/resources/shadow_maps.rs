@@ -4,7 +4,8 @@
 //! them through: the layers as one array, a comparison sampler and the views' uniform
 //! (bindings 7–9 of the shadow group). The maps are drawn only when asked
 //! ([`ShadowMaps::draw`]): the scene holds still while the artist paints, so the
-//! renderer redraws them when a light, an object's visibility or the map size changes.
+//! renderer redraws them when a light, an object's visibility or the map size changes —
+//! of a moved light, only its own views.
 
 use wgpu::util::DeviceExt;
 
@@ -35,6 +36,11 @@ pub struct ShadowMaps {
     draw_group: wgpu::BindGroup,
     draw_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
+    /// The views each layer holds, and the scene's surfaces generation they were drawn
+    /// from: a later draw redraws only the layers whose view changed (a light that moved),
+    /// or all of them when the scene did (objects hidden or shown).
+    drawn: Vec<GpuShadowView>,
+    drawn_from: Option<u64>,
 }
 
 impl ShadowMaps {
@@ -84,6 +90,8 @@ impl ShadowMaps {
             draw_group,
             draw_layout,
             pipeline,
+            drawn: Vec::new(),
+            drawn_from: None,
         }
     }
 
@@ -92,8 +100,10 @@ impl ShadowMaps {
     }
 
     /// Draws `views` (in layer order) of `scene` into maps `size` texels on a side,
-    /// submitting the work; true when the layers were allocated anew (the bind groups that
-    /// read them must be made again from [`Self::binding`]).
+    /// submitting the work — only the layers whose view differs from the one drawn there
+    /// last, unless the layers or the scene's visible objects are new; true when the
+    /// layers were allocated anew (the bind groups that read them must be made again from
+    /// [`Self::binding`]).
     pub fn draw(
         &mut self,
         device: &wgpu::Device,
@@ -120,8 +130,10 @@ impl ShadowMaps {
         }
         queue.write_buffer(&self.draw_views, 0, &padded);
         queue.write_buffer(&self.binding.views, 0, bytemuck::cast_slice(views));
+        let everything = reallocated || self.drawn_from != Some(scene.surfaces_generation());
+        let stale = |layer: usize| everything || views.get(layer) != self.drawn.get(layer);
         let mut encoder = device.create_command_encoder(&Default::default());
-        for layer in 0..self.layers {
+        for layer in (0..self.layers).filter(|&layer| stale(layer as usize)) {
             let target = layer_view(&self.texture, layer);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
@@ -143,6 +155,8 @@ impl ShadowMaps {
             }
         }
         queue.submit([encoder.finish()]);
+        self.drawn = views.to_vec();
+        self.drawn_from = Some(scene.surfaces_generation());
         reallocated
     }
 }
