@@ -202,7 +202,7 @@ impl<'a> ShadowRenderer<'a> {
         })
     }
 
-    /// Draws a frame: anew (`Redraw::Everything`) or after an edit of the lights alone.
+    /// Draws a frame, as much of it anew as `redraw` says.
     fn draw(&mut self, redraw: Redraw) {
         match redraw {
             Redraw::Everything => self.renderer.forget_surfaces(),
@@ -227,8 +227,8 @@ impl<'a> ShadowRenderer<'a> {
             .unwrap_or_else(|| Err(RenderError::Readback("no frame was drawn".into())))
     }
 
-    /// Draws one frame, anew or after the lights were set again, and waits until the GPU
-    /// has finished it.
+    /// Draws one frame, as much of it anew as `redraw` says, and waits until the GPU has
+    /// finished it.
     pub fn draw_and_wait(&mut self, redraw: Redraw) -> Result<(), RenderError> {
         self.draw(redraw);
         self.gpu

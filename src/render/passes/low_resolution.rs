@@ -190,10 +190,10 @@ fn two_level(paths: CompiledPaths) -> bool {
 }
 
 /// The reduced-resolution samples: the surface buffer rasterised at full resolution
-/// (unless it already shows this frame's surfaces:
-/// [`LowResolutionTargets::expect_surfaces`]), the samples on a surface marked in the low depth, then (two-level) the soft layer and
-/// the samples shaded from it, else the samples shaded in full, by full-screen passes
-/// reading the buffer.
+/// (unless it already shows this frame's surfaces: [`LowResolutionTargets::expect_inputs`]),
+/// the samples on a surface marked in the low depth, then (two-level) the soft layer
+/// (unless it already holds this frame's soft light) and the samples shaded from it, else
+/// the samples shaded in full, by full-screen passes reading the buffer.
 pub(super) fn shade_low_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
@@ -276,8 +276,8 @@ fn draw_surfaces(
 }
 
 /// The full-resolution frame deferred: from the surface buffer `shade_low_resolution`
-/// drew (its depth copied into `target`'s), the upsampling and the full shading of what it left into
-/// `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
+/// drew (its depth copied into `target`'s), the upsampling and the full shading of what
+/// it left into `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
 /// `pipelines` have no deferred full-resolution frame.
 pub(super) fn draw_full_resolution(
     frame: &mut TimedEncoder,

@@ -262,7 +262,7 @@ impl SurfaceBuffer {
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
-/// ([`crate::render::resources::scene::GpuScene::surfaces_generation`]) seen by `camera`.
+/// ([`crate::render::resources::GpuScene::surfaces_generation`]) seen by `camera`.
 /// Two frames with equal keys rasterise the same buffer, so the second keeps the first's:
 /// a frame after an edit of the lights alone (a stroke, an intensity) skips the surfaces
 /// pass. (A new pipeline comes with new targets, which show nothing yet.)

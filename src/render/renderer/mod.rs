@@ -489,8 +489,8 @@ impl SceneRenderer {
         resized
     }
 
-    /// Has the next frame draw everything anew, as after a move of the camera, though
-    /// only the lights changed (timings of whole frames).
+    /// Has the next frame draw its surfaces and soft layer anew, as after a move of the
+    /// camera, though nothing they show changed (timings of whole frames).
     pub fn forget_surfaces(&mut self) {
         self.surfaces_forgotten = true;
     }
