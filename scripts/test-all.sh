@@ -14,6 +14,8 @@ lightpaint_runtime_dir
 cargo fmt --check
 cargo clippy --locked --all-targets -- -D warnings
 cargo test --locked --doc
+# The API docs build without broken or private links.
+RUSTDOCFLAGS="-D warnings" cargo doc --locked --no-deps --lib
 if cargo nextest --version >/dev/null 2>&1; then
     cargo nextest run --locked --no-fail-fast
 else

@@ -4,7 +4,7 @@
 //!
 //! The surface is sampled by area ([`SurfaceSamples`]) and clustered by k-means. A cluster
 //! whose triangles face one way (the dominant eigenvalue of Σ a·n nᵀ holds
-//! [`PLANAR_SHARE`] of the area) becomes a disc in its mean plane, of the radius of a
+//! `PLANAR_SHARE` of the area) becomes a disc in its mean plane, of the radius of a
 //! uniform disc with the same in-plane second moment (r² = 2(λ₁ + λ₂) of the points'
 //! covariance), so a quad's disc covers about the quad and both faces of a thin shelf
 //! count once. Any other cluster (a piece of a tube, of a lattice) becomes a sphere of its

@@ -99,7 +99,7 @@ impl Document {
     }
 
     /// A new, unsaved document on a glTF scene, with default settings; a scene without
-    /// lights gets [`default_rig`] (and a note saying so), so it opens lit rather than
+    /// lights gets `default_rig` (and a note saying so), so it opens lit rather than
     /// black.
     pub fn from_gltf(path: &Path) -> Result<Document, ProjectError> {
         let mut scene = Scene::load(path)?;

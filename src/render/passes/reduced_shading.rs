@@ -6,10 +6,11 @@
 //! best sample nearby on multisampled ones (see `scene_pipeline::shades_unmatched_exactly`).
 //!
 //! A frame's passes (`low_resolution` draws them): the surfaces rasterised at full
-//! resolution into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with the frame's depth
-//! (multisampled frames: the buffer's own); the low-resolution samples on a surface
-//! marked in a low-resolution depth, each sample the surface of the middle pixel of its
-//! d × d block ([`upsample_params`]); with two-level shading, the soft layer — the light
+//! resolution into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with a depth of its own
+//! (kept, with the soft layer, for the next frame when only lights off the SH path change:
+//! [`FrameInputs`]); the low-resolution samples on a surface marked in a low-resolution
+//! depth, each sample the surface of the middle pixel of its d × d block
+//! (`upsample_params`); with two-level shading, the soft layer — the light
 //! of soft shadows (the environment's and the SH path's lights) at twice the samples'
 //! spacing; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
 //! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the

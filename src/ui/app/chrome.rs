@@ -9,7 +9,7 @@ impl EditorApp {
         &self.message
     }
 
-    /// Whether the status bar shows its message faded: shown more than [`FRESH_MESSAGE`]
+    /// Whether the status bar shows its message faded: shown more than `FRESH_MESSAGE`
     /// ago, or the undo history changed since (a new message is fresh until the status
     /// bar has shown it).
     pub fn status_message_is_stale(&self) -> bool {
