@@ -24,17 +24,8 @@ fn stroke(scene: &Scene) -> StrokeRecord {
     // The sphere of object 6-6 (radius 0.8 m, 3456 vertices): the dab covers most of what
     // the camera sees of it.
     let target = Vec3::new(1.5, 0.8, 1.5);
-    let forward = (target - eye).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
     let view = ViewRecord::of(&View {
-        camera: Camera {
-            position: eye,
-            forward,
-            up: right.cross(forward),
-            yfov_rad: 50f32.to_radians(),
-            znear: 0.01,
-            zfar: None,
-        },
+        camera: Camera::looking_at(eye, target, 50f32.to_radians(), 0.01),
         width_px: 1280,
         height_px: 720,
     });

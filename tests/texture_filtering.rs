@@ -59,17 +59,7 @@ fn striped_floor() -> (Scene, Camera) {
         range: None,
         locked: false,
     });
-    let position = Vec3::new(0.1, 1.6, 12.0);
-    let forward = (Vec3::new(0.1, 0.0, 0.0) - position).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    let camera = Camera {
-        position,
-        forward,
-        up: right.cross(forward),
-        yfov_rad: 0.7,
-        znear: 0.05,
-        zfar: None,
-    };
+    let camera = Camera::looking_at(Vec3::new(0.1, 1.6, 12.0), Vec3::new(0.1, 0.0, 0.0), 0.7, 0.05);
     (scene, camera)
 }
 

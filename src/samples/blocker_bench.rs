@@ -51,17 +51,12 @@ pub fn thin_casters_scene() -> Scene {
 
 /// The camera the bench frames the set with.
 pub fn thin_casters_camera() -> Camera {
-    let position = Vec3::new(0.0, 2.6, 4.2);
-    let forward = (Vec3::new(0.0, 0.6, 0.0) - position).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    Camera {
-        position,
-        forward,
-        up: right.cross(forward),
-        yfov_rad: 45f32.to_radians(),
-        znear: 0.05,
-        zfar: None,
-    }
+    Camera::looking_at(
+        Vec3::new(0.0, 2.6, 4.2),
+        Vec3::new(0.0, 0.6, 0.0),
+        45f32.to_radians(),
+        0.05,
+    )
 }
 
 /// A ball 1.2 m across of six great circles through its poles and five parallels, each

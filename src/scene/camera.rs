@@ -27,6 +27,21 @@ impl Camera {
         OrbitCamera::framing(bounds).camera()
     }
 
+    /// A camera at `position` looking at `target` (not straight up or down), its up
+    /// vector in the plane of the view direction and world +y; no far plane.
+    pub fn looking_at(position: Vec3, target: Vec3, yfov_rad: f32, znear: f32) -> Camera {
+        let forward = (target - position).normalize();
+        let right = forward.cross(Vec3::Y).normalize();
+        Camera {
+            position,
+            forward,
+            up: right.cross(forward),
+            yfov_rad,
+            znear,
+            zfar: None,
+        }
+    }
+
     pub fn view(&self) -> Mat4 {
         glam::camera::rh::view::look_to_mat4(self.position, self.forward, self.up)
     }

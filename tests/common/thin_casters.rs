@@ -87,17 +87,7 @@ pub fn light(kind: LightKind, position: Vec3, direction: Vec3, intensity: f32) -
 
 /// Looking down at the floor's middle from the front, so every shadow is in view.
 pub fn camera() -> Camera {
-    let position = Vec3::new(0.0, 3.2, 3.2);
-    let forward = (Vec3::new(0.0, 0.2, 0.0) - position).normalize();
-    let right = forward.cross(Vec3::Y).normalize();
-    Camera {
-        position,
-        forward,
-        up: right.cross(forward),
-        yfov_rad: 0.9,
-        znear: 0.05,
-        zfar: None,
-    }
+    Camera::looking_at(Vec3::new(0.0, 3.2, 3.2), Vec3::new(0.0, 0.2, 0.0), 0.9, 0.05)
 }
 
 /// Each pixel's luma in linear radiance × 2^EV: the sRGB encoding and the tone curve
