@@ -85,7 +85,7 @@ struct Light {
     area_half_width_z: f32,
 };
 
-// One layer of the shadow-map array, seen from a light (src/shading/shadow_maps.rs).
+// One view of a light's shadow maps: a layer of the array or a quadrant of one (src/shading/shadow_maps.rs).
 struct ShadowView {
     // World to clip space, depth reversed (1 near, 0 far: shading::shadow_maps).
     view_proj: mat4x4<f32>,
@@ -97,6 +97,9 @@ struct ShadowView {
     // x: near plane, y: far plane (perspective), z: the map's size in texels, w: the
     // distance to the scene's bounding sphere (perspective).
     depth_range: vec4<f32>,
+    // Where the view lies in the map array: xy its square's corner in texture coordinates
+    // of its layer, z the square's side (1 or ½), w the layer.
+    atlas: vec4<f32>,
 };
 
 // Parameters of the log-SH shadow pass (logsh.wgsl).

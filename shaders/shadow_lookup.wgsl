@@ -60,13 +60,11 @@ fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
     if SOFT_SHADOW_MAPS && inc.cap_ratio > 0.0 && view.texel.z > 0.5 {
         return soft_shadow_map_visibility(light, p, s.normal, inc.cap_ratio);
     }
-    let clip = view.view_proj * vec4<f32>(p, 1.0);
-    let ndc = clip.xyz / clip.w;
-    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    if clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0 {
+    let tap = view_tap(view_index, p);
+    if tap.off {
         return 1.0;
     }
-    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, uv, i32(view_index), min(ndc.z, 1.0));
+    return textureSampleCompareLevel(shadow_maps, shadow_map_sampler, tap.uv, tap.layer, tap.depth);
 }
 
 // The layer of `light`'s maps that sees the point p.
@@ -92,8 +90,10 @@ fn cube_face(offset: vec3<f32>) -> u32 {
     return select(4u, 5u, offset.z < 0.0);
 }
 
-// Where a map tap lands: its layer, texture coordinates and depth; off: outside its view.
+// Where a map tap lands: its view, its layer, texture coordinates in the layer and
+// depth; off: outside its view.
 struct ShadowTap {
+    view: u32,
     layer: i32,
     uv: vec2<f32>,
     depth: f32,
@@ -102,12 +102,22 @@ struct ShadowTap {
 
 // The tap at world point q of `light`'s maps.
 fn shadow_tap(light: Light, q: vec3<f32>) -> ShadowTap {
-    let index = shadow_view_index(light, q);
-    let clip = shadow_views[index].view_proj * vec4<f32>(q, 1.0);
+    return view_tap(shadow_view_index(light, q), q);
+}
+
+// The tap at world point q of view `index`: its coordinates within the view mapped into
+// the view's square of the array (shading::shadow_atlas), kept half a texel inside the
+// square so that a filtered read never blends in a neighbouring quadrant's texels (on a
+// whole layer the same as the sampler's clamp to its edge).
+fn view_tap(index: u32, q: vec3<f32>) -> ShadowTap {
+    let view = shadow_views[index];
+    let clip = view.view_proj * vec4<f32>(q, 1.0);
     let ndc = clip.xyz / clip.w;
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
     let off = clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0;
-    return ShadowTap(i32(index), uv, min(ndc.z, 1.0), off);
+    let half_texel = 0.5 / view.depth_range.z;
+    let inside = clamp(uv, vec2<f32>(half_texel), vec2<f32>(1.0 - half_texel));
+    return ShadowTap(index, i32(view.atlas.w), view.atlas.xy + inside * view.atlas.z, min(ndc.z, 1.0), off);
 }
 
 // The point of the receiver's tangent plane (through p, normal n) seen from the light's
@@ -177,10 +187,10 @@ fn soft_shadow_map_visibility(light: Light, p: vec3<f32>, n: vec3<f32>, cap_rati
         if tap.off {
             continue;
         }
-        let size = shadow_views[tap.layer].depth_range.z;
-        let texel = clamp(vec2<i32>(tap.uv * size), vec2<i32>(0), vec2<i32>(i32(size) - 1));
+        let size = vec2<f32>(textureDimensions(shadow_maps));
+        let texel = min(vec2<i32>(tap.uv * size), vec2<i32>(size) - 1);
         let stored = textureLoad(shadow_maps, texel, tap.layer, 0);
-        let distance = view_distance(shadow_views[tap.layer], stored);
+        let distance = view_distance(shadow_views[tap.view], stored);
         // In front of the receiver's plane and inside the cone to the light's disc, give or
         // take a texel (a penumbra narrower than a texel is the hard edge's).
         if stored > tap.depth && (radius - view.texel.x) * distance < tan_light * (receiver_distance - distance) {

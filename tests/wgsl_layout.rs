@@ -96,6 +96,7 @@ fn shadow_view_matches_wgsl() {
             ("texel", offset_of!(GpuShadowView, texel)),
             ("eye", offset_of!(GpuShadowView, eye)),
             ("depth_range", offset_of!(GpuShadowView, depth_range)),
+            ("atlas", offset_of!(GpuShadowView, atlas)),
         ],
     );
 }

@@ -53,9 +53,10 @@ pub struct RenderArgs {
     /// project's, or 4.
     #[arg(long)]
     pub exact_lights: Option<u32>,
-    /// Under --light-paths auto, the texels along a side of the shadow maps of point, spot
-    /// and directional lights and small sphere and area lights (64-4096, e.g. 1024; larger:
-    /// truer shadow edges), or 0 for none (those lights then take the exact path or the
+    /// Under --light-paths auto, the texels along a side of a cube face of the shadow maps
+    /// of point, spot and directional lights and small sphere and area lights (64-4096,
+    /// e.g. 1024; single views — spots, the sun — twice as many while the maps take at most
+    /// 256 MiB; larger: truer shadow edges), or 0 for none (those lights then take the exact path or the
     /// SH); default: the project's, or 1024.
     #[arg(long)]
     pub shadow_map_size: Option<u32>,

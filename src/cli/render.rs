@@ -7,8 +7,8 @@ use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{
     AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
 };
+use lightpaint::shading::BakedIndirect;
 use lightpaint::shading::blocker_reach::mean_blockers_in_reach;
-use lightpaint::shading::{BakedIndirect, ShadowSettings};
 
 use super::CliError;
 use super::args::RenderArgs;
@@ -123,7 +123,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_cpu_image(&gpu, &frame)?,
             format!(
                 "CPU f64 reference, {}{}",
-                describe(&shadows, &blockers, (&document.scene, &document.hidden_objects)),
+                describe(&frame, &document.hidden_objects),
                 describe_indirect(&indirect)
             ),
         )
@@ -132,7 +132,7 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             render_logsh_image(&gpu, &frame, args.aa)?,
             format!(
                 "log-SH, {}{}",
-                describe(&shadows, &blockers, (&document.scene, &document.hidden_objects)),
+                describe(&frame, &document.hidden_objects),
                 describe_indirect(&indirect)
             ),
         )
@@ -293,11 +293,8 @@ fn describe_indirect(indirect: &Option<BakedIndirect>) -> &'static str {
 /// Receivers the summary's mean blocker counts are taken over (vertices, strided).
 const SUMMARY_RECEIVERS: usize = 2000;
 
-fn describe(
-    shadows: &ShadowSettings,
-    blockers: &[lightpaint::blockers::Sphere],
-    (scene, hidden): (&lightpaint::scene::Scene, &std::collections::BTreeSet<usize>),
-) -> String {
+fn describe(frame: &ShadowFrame, hidden: &std::collections::BTreeSet<usize>) -> String {
+    let (shadows, blockers, scene) = (frame.shadows, frame.blockers, frame.scene);
     let blocker_count = blockers.len();
     // What the SH path's blocker walk costs and finds per surface point.
     let reach = if blocker_count == 0 {
@@ -325,7 +322,11 @@ fn describe(
     };
     let maps = match shadows.shadow_map_size {
         0 => String::new(),
-        size => format!(", shadow maps {size}²"),
+        size => {
+            let lights = frame.shading_lights();
+            let views = lightpaint::shading::shadow_maps::shadow_views(&lights, &frame.scene.bounds(), size);
+            format!(", shadow maps: {}", views.atlas.in_words())
+        }
     };
     format!(
         "order {}, {:?}, eps {}, {blocker_count} blockers{reach}{resolution}{terrain}, {:?} light paths{maps}, {} BRDF",

@@ -251,6 +251,10 @@ pub struct GpuShadowView {
     /// in texels, w: the distance from the light to the scene's bounding sphere (0 inside
     /// it; perspective views), within which nothing casts a shadow.
     pub depth_range: [f32; 4],
+    /// Where the view lies in the map array (`shading::shadow_maps`, the atlas): xy the
+    /// corner of its square in texture coordinates of its layer, z the square's side as a
+    /// share of the layer's (1: the whole layer; ½: a quadrant), w the layer's index.
+    pub atlas: [f32; 4],
 }
 
 /// WGSL `Material`.

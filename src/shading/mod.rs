@@ -16,6 +16,7 @@ mod light_path_context;
 mod light_paths;
 pub mod paint_estimate;
 mod settings;
+pub mod shadow_atlas;
 pub mod shadow_maps;
 mod shadow_path;
 pub mod sphere_casters;

@@ -46,9 +46,11 @@ pub struct ShadowSettings {
     /// the scene's centre (project format 8).
     #[serde(default = "default_exact_light_budget")]
     pub exact_light_budget: u32,
-    /// Texels along each side of a shadow map (the real geometry's shadows of point, spot
-    /// and directional lights under [`LightPaths::Auto`]): larger maps draw sharper,
-    /// truer shadow edges; 0 draws no maps (those lights take the SH path). Written only
+    /// Texels along each side of a cube face of a shadow map (the real geometry's shadows
+    /// of point, spot and directional lights under [`LightPaths::Auto`]); a single view (a
+    /// spot, the sun, a light aimed at the scene) takes twice as many per side while the
+    /// maps stay within a memory budget (`shading::shadow_atlas`): larger maps draw
+    /// sharper, truer shadow edges; 0 draws no maps (those lights take the SH path). Written only
     /// when not the default, so projects that keep it open in older builds.
     #[serde(
         default = "default_shadow_map_size",

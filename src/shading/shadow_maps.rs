@@ -33,6 +33,7 @@
 use glam::Vec3;
 
 use super::gpu_types::{GpuLight, GpuShadowView, LIGHT_DIRECTIONAL, LIGHT_SPOT};
+use super::shadow_atlas::ShadowAtlas;
 use crate::scene::Aabb;
 
 /// A spot whose cos(outer cone) is at least this (a cone of at most 60°) is drawn in one
@@ -108,18 +109,33 @@ fn single_view_spot(light: &GpuLight) -> bool {
     light.spot_cone[0] >= SINGLE_VIEW_SPOT_MIN_COS
 }
 
+/// The views of the lights' shadow maps and where they lie in the map array.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ShadowViews {
+    /// In view order (`GpuLight::first_shadow_view`); a slot no light uses is zeroed (its
+    /// atlas square has side 0 and is not drawn).
+    pub views: Vec<GpuShadowView>,
+    pub atlas: ShadowAtlas,
+}
+
 /// The views of every light with a shadow map (`first_shadow_view` and
 /// `shadow_view_count` set by `shading_lights`), in view order, for a scene within
-/// `bounds`, maps `size` texels on a side. Views of lights without a map are left out;
-/// the result is as long as the largest view index used plus one.
-pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuShadowView> {
+/// `bounds`, cube faces `size` texels on a side and single views as the atlas allows
+/// ([`super::shadow_atlas`]). Views of lights without a map are left out; the list is as
+/// long as the largest view index used plus one.
+pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> ShadowViews {
+    let mapped = || {
+        lights
+            .iter()
+            .filter(|light| light.shadow_path == super::gpu_types::SHADOW_PATH_MAP && light.shadow_view_count > 0)
+    };
+    let cube_faces = mapped().filter(|light| light.shadow_view_count == 6).count() * 6;
+    let single_views = mapped().filter(|light| light.shadow_view_count != 6).count();
+    let mut atlas = ShadowAtlas::new(single_views, cube_faces, size);
     let mut views: Vec<GpuShadowView> = Vec::new();
     let (centre, radius) = bounding_sphere(bounds);
-    for light in lights {
+    for light in mapped() {
         let (count, first) = (light.shadow_view_count as usize, light.first_shadow_view as usize);
-        if light.shadow_path != super::gpu_types::SHADOW_PATH_MAP || count == 0 {
-            continue;
-        }
         let needed = first + count;
         if views.len() < needed {
             views.resize(needed, bytemuck::Zeroable::zeroed());
@@ -127,8 +143,9 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
         let position = Vec3::from_slice(&light.position[..3]);
         let direction = Vec3::from_slice(&light.direction_range[..3]).normalize_or(Vec3::NEG_Y);
         let up_for = |forward: Vec3| if forward.y.abs() > 0.9 { Vec3::X } else { Vec3::Y };
+        let single = atlas.view_size(false);
         match (light.kind, count) {
-            (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, size),
+            (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, single),
             (LIGHT_SPOT, 1) if single_view_spot(light) => {
                 let half_angle = light.spot_cone[0].clamp(-1.0, 1.0).acos();
                 views[first] = perspective_view(
@@ -138,7 +155,7 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
                     half_angle.tan(),
                     centre,
                     radius,
-                    size,
+                    single,
                 );
             }
             (_, 1) => {
@@ -146,16 +163,20 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> Vec<GpuSha
                 // to a 45° view, which the lookup leaves unshadowed outside.
                 let (forward, tan_half) =
                     fitted_view(light, centre, radius).unwrap_or(((centre - position).normalize_or(Vec3::NEG_Y), 1.0));
-                views[first] = perspective_view(position, forward, up_for(forward), tan_half, centre, radius, size);
+                views[first] = perspective_view(position, forward, up_for(forward), tan_half, centre, radius, single);
             }
             _ => {
+                let face_size = atlas.view_size(true);
                 for (k, (forward, up)) in CUBE_FACES.iter().enumerate() {
-                    views[first + k] = perspective_view(position, *forward, *up, 1.0, centre, radius, size);
+                    views[first + k] = perspective_view(position, *forward, *up, 1.0, centre, radius, face_size);
                 }
             }
         }
+        for view in &mut views[first..needed] {
+            view.atlas = atlas.place(count == 6);
+        }
     }
-    views
+    ShadowViews { views, atlas }
 }
 
 /// The sphere the maps' views cover: the centre of `bounds` and half their diagonal
@@ -197,6 +218,7 @@ fn perspective_view(
         texel: [2.0 * tan_wide / size, 0.0, 1.0, 0.0],
         eye: eye.extend(1.0).to_array(),
         depth_range: [near, far, size, nearest],
+        atlas: [0.0; 4],
     }
 }
 
@@ -213,6 +235,7 @@ fn orthographic_view(direction: Vec3, centre: Vec3, radius: f32, size: u32) -> G
         texel: [0.0, 2.0 * radius / size.max(1) as f32, 0.0, 0.0],
         eye: direction.extend(0.0).to_array(),
         depth_range: [0.0, depth, size.max(1) as f32, 0.0],
+        atlas: [0.0; 4],
     }
 }
 
@@ -262,7 +285,7 @@ mod tests {
     fn a_point_lights_faces_see_each_direction_in_the_face_cube_face_picks() {
         let light = mapped(crate::scene::LightKind::Point, Vec3::new(0.5, 1.0, -0.25), Vec3::NEG_Y);
         let bounds = Aabb::from_points(&[Vec3::splat(-3.0), Vec3::splat(3.0)]);
-        let views = shadow_views(&[light], &bounds, 256);
+        let views = shadow_views(&[light], &bounds, 256).views;
         assert_eq!(views.len(), 6);
         let eye = Vec3::new(0.5, 1.0, -0.25);
         // Directions spread over the sphere, edges and corners included.
@@ -285,7 +308,7 @@ mod tests {
     fn depth_falls_with_distance_along_a_view() {
         let light = mapped(crate::scene::LightKind::Point, Vec3::ZERO, Vec3::NEG_Y);
         let bounds = Aabb::from_points(&[Vec3::splat(-2.0), Vec3::splat(2.0)]);
-        let views = shadow_views(&[light], &bounds, 512);
+        let views = shadow_views(&[light], &bounds, 512).views;
         let near = clip(&views[0], Vec3::new(0.5, 0.0, 0.0)).z;
         let far = clip(&views[0], Vec3::new(2.5, 0.0, 0.0)).z;
         assert!(1.0 > near && near > far && far > 0.0, "{near} {far}");
@@ -305,7 +328,7 @@ mod tests {
         // the distance for a 90° face) at any distance in the scene.
         let light = mapped(crate::scene::LightKind::Point, Vec3::ZERO, Vec3::NEG_Y);
         let bounds = Aabb::from_points(&[Vec3::splat(-10.0), Vec3::splat(10.0)]);
-        let view = shadow_views(&[light], &bounds, 4096)[0];
+        let view = shadow_views(&[light], &bounds, 4096).views[0];
         for distance in [0.05_f32, 0.5, 2.0, 5.0, 12.0, 17.0] {
             let z = clip(&view, Vec3::new(distance, 0.0, 0.0)).z;
             let round_trip = view_distance(&view, z);
@@ -337,7 +360,7 @@ mod tests {
             Vec3::new(0.3, -1.0, 0.2).normalize(),
         );
         let bounds = Aabb::from_points(&[Vec3::new(-4.0, 0.0, -2.0), Vec3::new(4.0, 3.0, 2.0)]);
-        let view = shadow_views(&[light], &bounds, 1024)[0];
+        let view = shadow_views(&[light], &bounds, 1024).views[0];
         assert_sees_every_corner(&view, &bounds);
         // Depth is reversed: nearer the sun is deeper.
         assert!(clip(&view, Vec3::new(0.0, 3.0, 0.0)).z > clip(&view, Vec3::ZERO).z);
@@ -354,7 +377,7 @@ mod tests {
         };
         let far = sun_like(Vec3::new(30.0, 60.0, -20.0));
         assert_eq!(far.shadow_view_count, 1);
-        let view = shadow_views(&[far], &bounds, 1024)[0];
+        let view = shadow_views(&[far], &bounds, 1024).views[0];
         assert_sees_every_corner(&view, &bounds);
         // A spot wider than 60° that far out: one view aimed at the scene, not its cone.
         let mut wide_spot = mapped(
@@ -367,7 +390,7 @@ mod tests {
         );
         wide_spot.shadow_view_count = view_count(&wide_spot, centre, radius).unwrap_or(0) as u32;
         assert_eq!(wide_spot.shadow_view_count, 1);
-        let spot_view = shadow_views(&[wide_spot], &bounds, 1024)[0];
+        let spot_view = shadow_views(&[wide_spot], &bounds, 1024).views[0];
         assert_sees_every_corner(&spot_view, &bounds);
         assert!(
             spot_view.texel[0] < view.texel[0] * 1.01,

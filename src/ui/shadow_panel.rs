@@ -172,8 +172,10 @@ fn shadow_map_control(ui: &mut egui::Ui, size: &mut u32) {
         .response
         .on_hover_text(
             "Point, spot and sun shadows from the real triangles (walls, cards, thin bars \
-             included), drawn into maps of this many texels: larger maps give sharper, truer \
-             edges. Off: those lights take the soft SH shadows of the sphere blockers.",
+             included), drawn into maps of this many texels per cube face of a point light \
+             (spots and the sun twice as many per side while memory allows): larger maps give \
+             sharper, truer edges. Off: those lights take the soft SH shadows of the sphere \
+             blockers.",
         );
 }
 

@@ -26,8 +26,8 @@ use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
 use crate::blockers::Sphere;
 use crate::scene::{Aabb, Camera, Environment, Light, Scene};
-use crate::shading::gpu_types::{GpuLight, GpuShadowView, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
-use crate::shading::shadow_maps::shadow_views;
+use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
+use crate::shading::shadow_maps::{ShadowViews, shadow_views};
 use crate::shading::{
     BakedIndirect, CompiledPaths, LightPathContext, RenderSettings, SceneLighting, ShadowSettings, compiled_paths,
 };
@@ -91,7 +91,7 @@ pub struct SceneRenderer {
     /// they must be drawn again before the next frame (a light, an object's visibility or
     /// the map size changed).
     shadow_maps: ShadowMaps,
-    map_views: Vec<GpuShadowView>,
+    map_views: ShadowViews,
     maps_stale: bool,
     /// The scene's bounds, which the maps' views cover.
     bounds: Aabb,
@@ -171,7 +171,7 @@ impl SceneRenderer {
             path_choice: RefCell::new(None),
             lighting,
             shadow_maps,
-            map_views: Vec::new(),
+            map_views: ShadowViews::default(),
             maps_stale: false,
             bounds: scene.bounds(),
             target: None,
@@ -249,13 +249,12 @@ impl SceneRenderer {
 
     /// Draws the shadow maps again if something they show changed.
     fn refresh_shadow_maps(&mut self) {
-        if !self.maps_stale || self.map_views.is_empty() {
+        if !self.maps_stale || self.map_views.views.is_empty() {
             return;
         }
-        let size = self.shadows.settings.shadow_map_size;
         if self
             .shadow_maps
-            .draw(&self.device, &self.queue, &self.gpu_scene, &self.map_views, size)
+            .draw(&self.device, &self.queue, &self.gpu_scene, &self.map_views)
         {
             self.shadows
                 .blockers

@@ -1,5 +1,6 @@
-//! The shadow maps on the GPU: one `Depth32Float` layer per view of the lights on the
-//! shadow-map path (`shading::shadow_maps` places the views), drawn from the scene's
+//! The shadow maps on the GPU: a `Depth32Float` array whose layers and quadrants hold the
+//! views of the lights on the shadow-map path (`shading::shadow_maps` places the views,
+//! `shading::shadow_atlas` their squares in the array), drawn from the scene's
 //! triangles by a depth-only pass (shaders/shadow_map.wgsl), and what logsh.wgsl reads
 //! them through: the layers as one array, a comparison sampler and the views' uniform
 //! (bindings 7–9 of the shadow group). The maps are drawn only when asked
@@ -13,6 +14,7 @@ use super::layouts::vertex_layout;
 use super::scene::GpuScene;
 use crate::render::descriptors::{DEPTH_FORMAT, create_module, depth_attachment};
 use crate::shading::gpu_types::{GpuShadowView, MAX_SHADOW_VIEWS};
+use crate::shading::shadow_maps::ShadowViews;
 use crate::shading::wgsl;
 
 /// Byte stride of one view in the draw pass's uniform (wgpu's dynamic offset alignment).
@@ -33,6 +35,8 @@ pub struct ShadowMaps {
     texture: wgpu::Texture,
     binding: ShadowMapBinding,
     draw_views: wgpu::Buffer,
+    /// Views the draw uniform holds.
+    draw_capacity: usize,
     draw_group: wgpu::BindGroup,
     draw_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
@@ -87,6 +91,7 @@ impl ShadowMaps {
             texture,
             binding,
             draw_views,
+            draw_capacity: 1,
             draw_group,
             draw_layout,
             pipeline,
@@ -99,31 +104,29 @@ impl ShadowMaps {
         &self.binding
     }
 
-    /// Draws `views` (in layer order) of `scene` into maps `size` texels on a side,
-    /// submitting the work — only the layers whose view differs from the one drawn there
-    /// last, unless the layers or the scene's visible objects are new; true when the
-    /// layers were allocated anew (the bind groups that read them must be made again from
+    /// Draws `views` of `scene` into the array their atlas describes, submitting the
+    /// work — only the layers holding a view that differs from the one drawn there last
+    /// (a layer's clear wipes its other quadrants, so they are drawn again with it), unless
+    /// the layers or the scene's visible objects are new; true when the layers were
+    /// allocated anew (the bind groups that read them must be made again from
     /// [`Self::binding`]).
-    pub fn draw(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        scene: &GpuScene,
-        views: &[GpuShadowView],
-        size: u32,
-    ) -> bool {
-        let views = &views[..views.len().min(MAX_SHADOW_VIEWS)];
-        let layers = (views.len() as u32).max(1);
+    pub fn draw(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &GpuScene, views: &ShadowViews) -> bool {
+        let (atlas, views) = (&views.atlas, &views.views[..views.views.len().min(MAX_SHADOW_VIEWS)]);
+        let size = atlas.layer_size.max(1);
+        let layers = atlas.layers.max(1);
         let reallocated = size != self.size || layers > self.layers;
         if reallocated {
             self.texture = layers_texture(device, size, layers);
             self.binding.layers = array_view(&self.texture);
             self.size = size;
             self.layers = layers;
-            self.draw_views = draw_buffer(device, layers as u64);
+        }
+        if reallocated || views.len() > self.draw_capacity {
+            self.draw_capacity = views.len().max(1);
+            self.draw_views = draw_buffer(device, self.draw_capacity as u64);
             self.draw_group = draw_group(device, &self.draw_layout, &self.draw_views);
         }
-        let mut padded = vec![0u8; (DRAW_STRIDE * layers as u64) as usize];
+        let mut padded = vec![0u8; DRAW_STRIDE as usize * views.len().max(1)];
         for (k, view) in views.iter().enumerate() {
             let at = k * DRAW_STRIDE as usize;
             padded[at..at + std::mem::size_of::<GpuShadowView>()].copy_from_slice(bytemuck::bytes_of(view));
@@ -131,9 +134,19 @@ impl ShadowMaps {
         queue.write_buffer(&self.draw_views, 0, &padded);
         queue.write_buffer(&self.binding.views, 0, bytemuck::cast_slice(views));
         let everything = reallocated || self.drawn_from != Some(scene.surfaces_generation());
-        let stale = |layer: usize| everything || views.get(layer) != self.drawn.get(layer);
+        let mut stale = vec![everything; self.layers as usize];
+        for k in 0..views.len().max(self.drawn.len()) {
+            let (now, before) = (views.get(k), self.drawn.get(k));
+            if now != before {
+                for view in [now, before].into_iter().flatten().filter(|view| placed(view)) {
+                    if let Some(layer) = stale.get_mut(view.atlas[3] as usize) {
+                        *layer = true;
+                    }
+                }
+            }
+        }
         let mut encoder = device.create_command_encoder(&Default::default());
-        for layer in (0..self.layers).filter(|&layer| stale(layer as usize)) {
+        for layer in (0..self.layers).filter(|&layer| stale[layer as usize]) {
             let target = layer_view(&self.texture, layer);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
@@ -144,9 +157,16 @@ impl ShadowMaps {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            if (layer as usize) < views.len() {
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &self.draw_group, &[(layer as u64 * DRAW_STRIDE) as u32]);
+            pass.set_pipeline(&self.pipeline);
+            for (k, view) in views.iter().enumerate() {
+                if !placed(view) || view.atlas[3] as u32 != layer {
+                    continue;
+                }
+                let [u, v, side, _] = view.atlas;
+                let (x, y, width) = (u * size as f32, v * size as f32, side * size as f32);
+                pass.set_viewport(x, y, width, width, 0.0, 1.0);
+                pass.set_scissor_rect(x as u32, y as u32, width as u32, width as u32);
+                pass.set_bind_group(0, &self.draw_group, &[(k as u64 * DRAW_STRIDE) as u32]);
                 for object in scene.objects.iter().filter(|o| !o.hidden) {
                     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
                     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
@@ -159,6 +179,11 @@ impl ShadowMaps {
         self.drawn_from = Some(scene.surfaces_generation());
         reallocated
     }
+}
+
+/// Whether `view` has a square in the atlas (a slot no light uses has none).
+fn placed(view: &GpuShadowView) -> bool {
+    view.atlas[2] > 0.0
 }
 
 fn layers_texture(device: &wgpu::Device, size: u32, layers: u32) -> wgpu::Texture {
