@@ -250,3 +250,39 @@ fn a_frame_after_a_light_moved_is_the_frame_drawn_anew() {
         lights[key].direction = (lights[key].direction + glam::Vec3::new(0.1, 0.0, 0.0)).normalize();
     });
 }
+
+#[test]
+fn a_dragged_lights_drafted_map_is_drawn_in_full_once_the_drag_ends() {
+    // While the key spot is dragged its map is drawn at half resolution (a draft); the
+    // first frame drawn without drafting must be the frame drawn anew, and the drafted
+    // frame must differ from it (else the draft was never drawn and nothing is tested).
+    let Some(gpu) = common::gpu() else { return };
+    let studio = studio();
+    let settings = &studio.document.settings;
+    let mut kept = renderer(&gpu, &studio, &studio.document.scene);
+    draw(&mut kept, &studio.camera, settings);
+    let mut lights = studio.document.scene.lights.clone();
+    let key = lights.iter().position(|l| l.name == "Key").expect("the key light");
+    let dragging = FrameQuality {
+        draft_moved_maps: true,
+        ..FrameQuality::default()
+    };
+    for step in 1..=3 {
+        lights[key].position += glam::Vec3::new(0.1, 0.0, -0.05);
+        kept.set_lights(&lights);
+        kept.render(&studio.camera, SIZE, settings, dragging);
+        assert!(
+            kept.maps_drafted(),
+            "step {step} of the drag drew the moved map as a draft"
+        );
+    }
+    let drafted = kept.read_image().expect("a frame was drawn").expect("readback");
+    let anew = drawn_anew(&gpu, &studio, &lights, &BTreeSet::new(), &studio.camera);
+    assert!(
+        differing_pixels(&drafted, &anew) > 0,
+        "a half-resolution map must change some shadow edge"
+    );
+    let released = draw(&mut kept, &studio.camera, settings);
+    assert!(!kept.maps_drafted());
+    assert_same(&released, &anew, "the key light's drag ended");
+}

@@ -168,6 +168,9 @@ pub enum Redraw {
     /// What a drag of the scene's first light changes: it moves by a centimetre (back
     /// and forth), so its shadow maps are drawn again.
     AfterLightMove,
+    /// The same, as the editor draws it while the light is dragged: a single view's map
+    /// at half its resolution (`FrameQuality::draft_moved_maps`).
+    AfterLightMoveDrafted,
 }
 
 impl<'a> ShadowRenderer<'a> {
@@ -207,7 +210,7 @@ impl<'a> ShadowRenderer<'a> {
         match redraw {
             Redraw::Everything => self.renderer.forget_surfaces(),
             Redraw::AfterLightEdit => self.renderer.set_lights(&self.lights),
-            Redraw::AfterLightMove => {
+            Redraw::AfterLightMove | Redraw::AfterLightMoveDrafted => {
                 if let Some(first) = self.lights.first_mut() {
                     self.moves += 1;
                     first.position.x += if self.moves % 2 == 1 { 0.01 } else { -0.01 };
@@ -215,8 +218,11 @@ impl<'a> ShadowRenderer<'a> {
                 self.renderer.set_lights(&self.lights);
             }
         }
-        self.renderer
-            .render(&self.camera, self.size, &self.settings, FrameQuality::default());
+        let quality = FrameQuality {
+            draft_moved_maps: redraw == Redraw::AfterLightMoveDrafted,
+            ..FrameQuality::default()
+        };
+        self.renderer.render(&self.camera, self.size, &self.settings, quality);
     }
 
     /// Draws one frame and reads it back.

@@ -118,6 +118,50 @@ pub struct ShadowViews {
     pub atlas: ShadowAtlas,
 }
 
+impl ShadowViews {
+    /// These views, with each single view whose light moved since `drawn` was drawn (its
+    /// view differs) as its [`drafted`] form, and each one `drawn` already holds as a
+    /// draft kept so: what the editor draws while a light is dragged, since a whole
+    /// doubled layer takes four times a face's raster work (`render --time-frames`, the
+    /// frame after a light moved; docs/performance.md), and what it redraws in full once
+    /// the drag ends.
+    pub fn drafted_where_moved(&self, drawn: &[GpuShadowView]) -> ShadowViews {
+        let views = self
+            .views
+            .iter()
+            .enumerate()
+            .map(|(k, view)| {
+                let draft = drafted(view);
+                match drawn.get(k) {
+                    _ if draft == *view => *view,
+                    Some(before) if *before == draft => draft,
+                    Some(before) if before.view_proj != view.view_proj => draft,
+                    _ => *view,
+                }
+            })
+            .collect();
+        ShadowViews {
+            views,
+            atlas: self.atlas.clone(),
+        }
+    }
+}
+
+/// A single view (one taking a whole layer) drawn at half its resolution into the top-left
+/// quadrant of its layer: the same projection, texels twice as wide. Views in a quadrant
+/// already are returned unchanged.
+pub fn drafted(view: &GpuShadowView) -> GpuShadowView {
+    if view.atlas[2] != 1.0 {
+        return *view;
+    }
+    let mut draft = *view;
+    draft.texel[0] *= 2.0;
+    draft.texel[1] *= 2.0;
+    draft.depth_range[2] = (view.depth_range[2] / 2.0).max(1.0);
+    draft.atlas[2] = 0.5;
+    draft
+}
+
 /// The views of every light with a shadow map (`first_shadow_view` and
 /// `shadow_view_count` set by `shading_lights`), in view order, for a scene within
 /// `bounds`, cube faces `size` texels on a side and single views as the atlas allows
@@ -405,5 +449,40 @@ mod tests {
             Vec3::NEG_Y,
         );
         assert_eq!(view_count(&wide, centre, radius), None);
+    }
+
+    #[test]
+    fn a_moved_single_view_is_drafted_until_drawn_at_rest_and_faces_never_are() {
+        let bounds = Aabb::from_points(&[Vec3::new(-4.0, 0.0, -2.0), Vec3::new(4.0, 3.0, 2.0)]);
+        let spot = |x: f32| {
+            let mut light = mapped(
+                crate::scene::LightKind::Spot {
+                    inner_cone_rad: 0.3,
+                    outer_cone_rad: 0.4,
+                },
+                Vec3::new(x, 2.5, 1.0),
+                Vec3::NEG_Y,
+            );
+            light.first_shadow_view = 0;
+            light
+        };
+        let mut point = mapped(crate::scene::LightKind::Point, Vec3::new(1.0, 2.0, 0.0), Vec3::NEG_Y);
+        point.first_shadow_view = 1;
+        let at_rest = shadow_views(&[spot(0.0), point], &bounds, 512);
+        let moved = shadow_views(&[spot(0.1), point], &bounds, 512);
+        let dragged = moved.drafted_where_moved(&at_rest.views);
+        let draft = dragged.views[0];
+        assert_eq!(draft.atlas, [0.0, 0.0, 0.5, moved.views[0].atlas[3]]);
+        assert_eq!(draft.depth_range[2], moved.views[0].depth_range[2] / 2.0);
+        assert_eq!(draft.texel[0], 2.0 * moved.views[0].texel[0]);
+        assert_eq!(
+            &dragged.views[1..],
+            &moved.views[1..],
+            "the point light's faces did not move"
+        );
+        // Held still while dragging: the draft is kept, not drawn again in full.
+        assert_eq!(moved.drafted_where_moved(&dragged.views), dragged);
+        // An unmoved light is drawn in full.
+        assert_eq!(at_rest.drafted_where_moved(&at_rest.views), at_rest);
     }
 }

@@ -224,8 +224,12 @@ impl Viewport {
             size,
             full_resolution: !moving,
         };
+        if !dragging && self.renderer.maps_drafted() {
+            // A light's drag ended: its maps drawn in full.
+            self.rendered = None;
+        }
         if self.rendered != Some(wanted) {
-            self.render(render_state, settings, size, moving);
+            self.render(render_state, settings, size, moving, dragging);
             self.rendered = Some(wanted);
         }
         if moving {
@@ -280,13 +284,14 @@ impl Viewport {
 
     /// Renders into the texture; while `moving`, frames shaded at every pixel are shaded
     /// per vertex instead where the order allows (cheaper, and hard to tell apart in
-    /// motion).
+    /// motion); while `dragging`, moved lights' maps are drafts.
     fn render(
         &mut self,
         render_state: &egui_wgpu::RenderState,
         settings: &RenderSettings,
         size: [u32; 2],
         moving: bool,
+        dragging: bool,
     ) {
         let started = std::time::Instant::now();
         // While the camera moves: half resolution, and per-vertex shadows only where the
@@ -296,6 +301,9 @@ impl Viewport {
         // camera stops (docs/performance.md).
         let quality = FrameQuality {
             per_vertex_preview: moving && settings.shadows.shading_downsample <= 1,
+            // A light dragged (gizmo or inspector): its single view's map at half
+            // resolution, a quarter of the raster work, until the pointer is let go.
+            draft_moved_maps: dragging,
         };
         let resized = self.renderer.render(&self.orbit.camera(), size, settings, quality);
         if (resized || self.image.is_none())

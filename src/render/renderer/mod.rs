@@ -61,6 +61,10 @@ pub struct FrameQuality {
     /// Shade per vertex where the order allows, whatever the settings say (the editor's
     /// preview while the camera moves).
     pub per_vertex_preview: bool,
+    /// Draw the maps of lights that moved since the last frame at half their resolution
+    /// where that is cheaper (the editor's frames while a light is dragged); a later frame
+    /// without it draws them in full ([`SceneRenderer::maps_drafted`]).
+    pub draft_moved_maps: bool,
 }
 
 pub struct SceneRenderer {
@@ -93,6 +97,9 @@ pub struct SceneRenderer {
     shadow_maps: ShadowMaps,
     map_views: ShadowViews,
     maps_stale: bool,
+    /// Some views were drawn as drafts (`FrameQuality::draft_moved_maps`) and want
+    /// drawing in full.
+    maps_drafted: bool,
     /// The scene's bounds, which the maps' views cover.
     bounds: Aabb,
     target: Option<RenderTarget>,
@@ -173,6 +180,7 @@ impl SceneRenderer {
             shadow_maps,
             map_views: ShadowViews::default(),
             maps_stale: false,
+            maps_drafted: false,
             bounds: scene.bounds(),
             target: None,
             pass_timer: None,
@@ -247,20 +255,35 @@ impl SceneRenderer {
             .update_lights(&self.device, &self.queue, &self.raster.layouts, &lights);
     }
 
-    /// Draws the shadow maps again if something they show changed.
-    fn refresh_shadow_maps(&mut self) {
-        if !self.maps_stale || self.map_views.views.is_empty() {
+    /// Draws the shadow maps again if something they show changed, the single views of
+    /// moved lights as drafts when `draft_moved` (`ShadowViews::drafted_where_moved`), or
+    /// in full if they were drafts and `draft_moved` is off.
+    fn refresh_shadow_maps(&mut self, draft_moved: bool) {
+        let refine = self.maps_drafted && !draft_moved;
+        if !(self.maps_stale || refine) || self.map_views.views.is_empty() {
             return;
         }
+        let views = if draft_moved {
+            self.map_views.drafted_where_moved(self.shadow_maps.drawn())
+        } else {
+            self.map_views.clone()
+        };
+        self.maps_drafted = views != self.map_views;
         if self
             .shadow_maps
-            .draw(&self.device, &self.queue, &self.gpu_scene, &self.map_views)
+            .draw(&self.device, &self.queue, &self.gpu_scene, &views)
         {
             self.shadows
                 .blockers
                 .set_shadow_maps(&self.device, self.shadow_maps.binding());
         }
         self.maps_stale = false;
+    }
+
+    /// Whether some shadow maps were last drawn as drafts: the next frame drawn without
+    /// `FrameQuality::draft_moved_maps` draws them in full.
+    pub fn maps_drafted(&self) -> bool {
+        self.maps_drafted
     }
 
     /// Replaces the lights; a light that needs a path the pipeline lacks, or no longer
@@ -430,7 +453,7 @@ impl SceneRenderer {
                 other => RenderTarget::with_anti_aliasing(&self.device, size[0], size[1], other),
             });
         }
-        self.refresh_shadow_maps();
+        self.refresh_shadow_maps(quality.draft_moved_maps);
         let Some(target) = &self.target else { return resized };
         self.gpu_scene
             .write_frame(&self.queue, camera, size, settings.exposure_ev);

@@ -100,6 +100,11 @@ impl ShadowMaps {
         }
     }
 
+    /// The views the layers hold, as last drawn.
+    pub fn drawn(&self) -> &[GpuShadowView] {
+        &self.drawn
+    }
+
     pub fn binding(&self) -> &ShadowMapBinding {
         &self.binding
     }
