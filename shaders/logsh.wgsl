@@ -382,12 +382,17 @@ fn lobes_through(s: Surface, g: Sh) -> LobeVisibility {
 }
 
 fn shadowed_radiance(s: Surface) -> vec3<f32> {
+    return soft_shadowed_radiance(s) + mapped_lights_radiance(s);
+}
+
+// shadowed_radiance without the lights on the shadow-map path.
+fn soft_shadowed_radiance(s: Surface) -> vec3<f32> {
     if !SH_VISIBILITY {
         // Read only by a light the viewport draws before its pipeline with the SH path is
         // compiled: it shows unshadowed meanwhile.
-        return radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+        return soft_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
     }
-    return radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+    return soft_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
 }
 
 // A light's shadowed radiance at s through the lobes' SH.

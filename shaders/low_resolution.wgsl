@@ -21,6 +21,48 @@
 @group(1) @binding(8) var surface_buffer_a: texture_2d<u32>;
 @group(1) @binding(9) var surface_buffer_b: texture_2d<u32>;
 
+// The visibility of each light on the shadow-map path at each low-resolution sample,
+// written by fs_mark_surface_samples_keeping_visibility when the surfaces, those lights'
+// geometry or their maps changed since the last frame (reduced_shading::
+// MappedVisibilityKey), and read by the shading passes: a frame after an edit of the
+// lights' intensities alone (a stroke) reads no map at the samples. Entry k·n + j holds
+// the visibility of light frame.first_mapped_light + k at sample j (row-major, n samples).
+// Shorter than the frame's lights need (past its memory budget): the passes read the
+// maps themselves.
+@group(1) @binding(10) var<storage, read> kept_mapped_visibility: array<f32>;
+@group(3) @binding(4) var<storage, read_write> mapped_visibility_out: array<f32>;
+
+// The number of low-resolution samples and the index of sample `texel`, samples spaced
+// LEVEL_STRIDE_PX pixels apart (reduced_shading::low_resolution_size).
+fn sample_count_and_index(texel: vec2<i32>) -> vec2<u32> {
+    let size = (textureDimensions(surface_buffer_a) + vec2<u32>(LEVEL_STRIDE_PX - 1u)) / LEVEL_STRIDE_PX;
+    return vec2<u32>(size.x * size.y, u32(texel.y) * size.x + u32(texel.x));
+}
+
+// Whether a buffer of `length` entries holds every mapped light at `samples` samples.
+fn holds_mapped_lights(length: u32, samples: u32) -> bool {
+    return (frame.first_exact_light - frame.first_mapped_light) * samples <= length;
+}
+
+// mapped_lights_radiance at low-resolution sample `texel` (surface s), each light's
+// visibility read from kept_mapped_visibility.
+fn kept_mapped_lights_radiance(s: Surface, texel: vec2<i32>) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
+    if SHADOW_MAPS {
+        let at = sample_count_and_index(texel);
+        if !holds_mapped_lights(arrayLength(&kept_mapped_visibility), at.x) {
+            return mapped_lights_radiance(s);
+        }
+        var entry = at.y;
+        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
+            let inc = incidence(light_at(i), s.position);
+            radiance += direct_radiance(s, inc) * kept_mapped_visibility[entry];
+            entry += at.x;
+        }
+    }
+    return radiance;
+}
+
 struct SurfaceTexels {
     @location(0) a: vec4<u32>,
     @location(1) b: vec4<u32>,
@@ -148,11 +190,34 @@ fn fs_mark_surface_samples(in: FullScreen) -> @builtin(frag_depth) f32 {
     return 0.0;
 }
 
+// fs_mark_surface_samples, and each marked sample's visibility of the mapped lights
+// written to mapped_visibility_out (the lights' shadow_map_visibility at the surface of
+// the sample's pixel, which sample_surface gives the shading passes).
+@fragment
+fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_depth) f32 {
+    let texel = vec2<i32>(in.clip.xy);
+    let buffered = buffered_surface(level_pixel(texel, LEVEL_STRIDE_PX));
+    if !buffered.drawn {
+        discard;
+    }
+    let at = sample_count_and_index(texel);
+    if SHADOW_MAPS && holds_mapped_lights(arrayLength(&mapped_visibility_out), at.x) {
+        var entry = at.y;
+        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
+            let light = light_at(i);
+            mapped_visibility_out[entry] = shadow_map_visibility(light, incidence(light, buffered.s.position), buffered.s);
+            entry += at.x;
+        }
+    }
+    return 0.0;
+}
+
 // A low-resolution sample shaded in full.
 @fragment
 fn fs_shade_low(in: FullScreen) -> @location(0) vec4<u32> {
     let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
-    return low_sample_texel(s, frame.exposure * (shadowed_radiance(s) - s.emissive) / reflectance(s));
+    let radiance = soft_shadowed_radiance(s) + kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy));
+    return low_sample_texel(s, frame.exposure * (radiance - s.emissive) / reflectance(s));
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the
@@ -180,7 +245,7 @@ fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
     if !soft.matches {
         discard;
     }
-    let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
+    let sharp = kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy)) + exact_path_radiance(s);
     return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
 }
 

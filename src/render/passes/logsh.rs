@@ -142,7 +142,11 @@ impl LogShPipeline {
             Some(targets) if targets.fits(full_size, reduced.downsample, reduced.levels()) => Some(targets),
             _ => Some(LowResolutionTargets::new(
                 device,
-                [&reduced.low_resolution_layout, &reduced.surface_buffer_layout],
+                [
+                    &reduced.low_resolution_layout,
+                    &reduced.surface_buffer_layout,
+                    &reduced.mapped_visibility_writer_layout,
+                ],
                 full_size,
                 reduced.downsample,
                 reduced.levels(),

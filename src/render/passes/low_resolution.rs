@@ -7,7 +7,8 @@
 //! is one, in full where it does not serve).
 
 use super::reduced_shading::{
-    LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, surface_buffer_layout,
+    LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout,
+    mapped_visibility_writer_layout, surface_buffer_layout,
 };
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
 use crate::render::descriptors::{COLOR_FORMAT, depth_test};
@@ -21,12 +22,17 @@ pub(super) struct ReducedShadingPipelines {
     pub downsample: u32,
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
+    pub mapped_visibility_writer_layout: wgpu::BindGroupLayout,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
     surface_buffer: ByTexture,
     /// The low-resolution samples on a surface marked in the low depth
     /// (fs_mark_surface_samples).
     mark_surface_samples: wgpu::RenderPipeline,
+    /// With lights on the shadow-map path: the same marks, and each sample's visibility of
+    /// those lights written for the shading passes to read, this frame and later ones
+    /// (fs_mark_surface_samples_keeping_visibility).
+    mark_keeping_visibility: Option<wgpu::RenderPipeline>,
     /// The low-resolution samples shaded in full (fs_shade_low), full-screen.
     shade_low: wgpu::RenderPipeline,
     /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
@@ -77,6 +83,7 @@ impl ReducedShadingPipelines {
         let paths = variant.paths;
         let low_resolution_layout = low_resolution_layout(device);
         let surface_buffer_layout = surface_buffer_layout(device);
+        let mapped_visibility_writer_layout = mapped_visibility_writer_layout(device);
         let surface_variant = Variant { samples: 1, ..variant };
         let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
             full_screen_pipeline(
@@ -109,6 +116,14 @@ impl ReducedShadingPipelines {
                 None,
                 FullScreenDepth::MarkSurfaces,
             ),
+            mark_keeping_visibility: paths.maps.then(|| {
+                full_screen(
+                    "fs_mark_surface_samples_keeping_visibility",
+                    (None, downsample),
+                    Some(&mapped_visibility_writer_layout),
+                    FullScreenDepth::MarkSurfaces,
+                )
+            }),
             shade_low: full_screen(
                 "fs_shade_low",
                 (low_samples, downsample),
@@ -166,6 +181,7 @@ impl ReducedShadingPipelines {
             },
             low_resolution_layout,
             surface_buffer_layout,
+            mapped_visibility_writer_layout,
         }
     }
 }
@@ -208,13 +224,27 @@ pub(super) fn shade_low_resolution(
     let bound = Bound {
         scene,
         blockers,
-        surface: &low.surface,
+        surface: &low.surface.bind_group,
     };
-    bound.full_screen(
+    // The samples' visibility of the mapped lights the last frames wrote holds while the
+    // surfaces, those lights' geometry and their maps do; else the marking pass writes it.
+    let (mark, writing) = match &pipelines.mark_keeping_visibility {
+        Some(keeping) if !low.mapped_visibility_current() => (
+            (keeping, Some(&low.surface.mapped_visibility_writer)),
+            // The buffer is written in this pass, so the surface group reads none.
+            &low.surface.bind_group_without_visibility,
+        ),
+        _ => ((&pipelines.mark_surface_samples, None), &low.surface.bind_group),
+    };
+    Bound {
+        surface: writing,
+        ..bound
+    }
+    .full_screen(
         frame,
         "low-resolution depth",
         (&[], Some(low.low_depth_attachment(true))),
-        &[(&pipelines.mark_surface_samples, None)],
+        &[mark],
     );
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
@@ -303,7 +333,7 @@ pub(super) fn draw_full_resolution(
     Bound {
         scene,
         blockers,
-        surface: &low.surface,
+        surface: &low.surface.bind_group,
     }
     .full_screen(
         frame,
@@ -318,10 +348,12 @@ pub(super) fn draw_full_resolution(
 }
 
 /// What every full-screen pass binds: the frame, a surface buffer, the blockers.
+#[derive(Clone, Copy)]
 struct Bound<'a> {
     scene: &'a GpuScene,
     blockers: &'a GpuBlockers,
-    surface: &'a SurfaceBuffer,
+    /// The surface buffer's group (1).
+    surface: &'a wgpu::BindGroup,
 }
 
 impl Bound<'_> {
@@ -347,7 +379,7 @@ impl Bound<'_> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.scene.frame_bind_group, &[]);
-        pass.set_bind_group(1, &self.surface.bind_group, &[]);
+        pass.set_bind_group(1, self.surface, &[]);
         pass.set_bind_group(2, &self.blockers.bind_group, &[]);
         for &(pipeline, coarser) in shading {
             if let Some(coarser) = coarser {

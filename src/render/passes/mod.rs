@@ -9,3 +9,4 @@ pub mod per_vertex;
 pub mod raster;
 pub mod reduced_shading;
 mod scene_pipeline;
+mod surface_buffer;

@@ -7,8 +7,9 @@
 //!
 //! A frame's passes (`low_resolution` draws them): the surfaces rasterised at full
 //! resolution into a surface buffer ([`SURFACE_BUFFER_FORMATS`]) with a depth of its own
-//! (kept, with the soft layer, for the next frame when only lights off the SH path change:
-//! [`FrameInputs`]); the low-resolution samples on a surface marked in a low-resolution
+//! (kept, with the soft layer and the samples' visibility of the shadow-map path's
+//! lights, for the next frame when only lights' intensities change: [`FrameInputs`],
+//! `surface_buffer`); the low-resolution samples on a surface marked in a low-resolution
 //! depth, each sample the surface of the middle pixel of its d × d block
 //! (`upsample_params`); with two-level shading, the soft layer — the light
 //! of soft shadows (the environment's and the SH path's lights) at twice the samples'
@@ -33,7 +34,13 @@
 
 use wgpu::util::DeviceExt;
 
-use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture, numbered_entries};
+pub(crate) use super::surface_buffer::SurfaceBuffer;
+pub use super::surface_buffer::{
+    MAPPED_VISIBILITY_BUDGET_BYTES, MappedVisibilityKey, SURFACE_BUFFER_FORMATS, mapped_visibility_writer_layout,
+    surface_buffer_layout,
+};
+use super::surface_buffer::{SAMPLED_TARGET, cleared, depth_texture, image_extent};
+use crate::render::descriptors::{depth_attachment, frame_texture, numbered_entries};
 use crate::shading::gpu_types::GpuUpsampleParams;
 
 /// Formats of fs_shade_low's targets: one, holding view depth, lighting and the packed
@@ -121,28 +128,6 @@ pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// Formats of the surface buffer fs_surface_buffer writes (see low_resolution.wgsl).
-pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureFormat::Rgba32Uint; 2];
-
-/// The bind group layout (group 1 of the full-screen passes, in place of the material)
-/// through which the low-resolution shading reads the surface buffer.
-pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let texture = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Uint,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    };
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("surface buffer"),
-        entries: &[texture(8), texture(9)],
-    })
-}
-
 /// The images of reduced-resolution shading for one frame size: the surface buffer at
 /// full resolution, the low-resolution depth that marks which samples lie on a surface,
 /// the samples fs_shade_low writes and the upsampling reads, and, with two-level shading,
@@ -175,91 +160,12 @@ pub struct LowResolutionTargets {
     surfaces_current: bool,
     /// The next frame's soft layer is the one drawn (its surfaces too).
     soft_layer_current: bool,
-}
-
-fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
-    wgpu::Extent3d {
-        width: size[0],
-        height: size[1],
-        depth_or_array_layers: 1,
-    }
-}
-
-const SAMPLED_TARGET: wgpu::TextureUsages =
-    wgpu::TextureUsages::RENDER_ATTACHMENT.union(wgpu::TextureUsages::TEXTURE_BINDING);
-
-fn depth_texture(device: &wgpu::Device, label: &str, size: [u32; 2], usage: wgpu::TextureUsages) -> wgpu::Texture {
-    frame_texture(
-        device,
-        label,
-        image_extent(size),
-        DEPTH_FORMAT,
-        1,
-        wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
-        &[],
-    )
+    /// The kept visibility of the mapped lights is the next frame's.
+    mapped_visibility_current: bool,
 }
 
 fn depth_view(device: &wgpu::Device, label: &str, size: [u32; 2]) -> wgpu::TextureView {
     depth_texture(device, label, size, wgpu::TextureUsages::empty()).create_view(&Default::default())
-}
-
-/// The full-resolution surfaces: two images, their depth (copied into the frame's depth
-/// where the full-resolution frame is deferred, whose passes mark pixels in it), and the
-/// bind group through which the full-screen passes read them.
-pub(crate) struct SurfaceBuffer {
-    views: [wgpu::TextureView; 2],
-    pub(crate) depth: wgpu::Texture,
-    depth_view: wgpu::TextureView,
-    pub bind_group: wgpu::BindGroup,
-}
-
-impl SurfaceBuffer {
-    fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, size: [u32; 2]) -> SurfaceBuffer {
-        let views = SURFACE_BUFFER_FORMATS.map(|format| {
-            frame_texture(
-                device,
-                "surface buffer",
-                image_extent(size),
-                format,
-                1,
-                SAMPLED_TARGET,
-                &[],
-            )
-            .create_view(&Default::default())
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("surface buffer"),
-            layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 8,
-                    resource: wgpu::BindingResource::TextureView(&views[0]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 9,
-                    resource: wgpu::BindingResource::TextureView(&views[1]),
-                },
-            ],
-        });
-        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
-        SurfaceBuffer {
-            views,
-            depth_view: depth.create_view(&Default::default()),
-            depth,
-            bind_group,
-        }
-    }
-
-    /// The surface images, cleared (view depth 0 marks "no surface").
-    pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
-        self.views.iter().map(cleared).collect()
-    }
-
-    /// Its depth attachment, cleared and kept (later frames may reuse it).
-    pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        depth_attachment(&self.depth_view, Some(1.0), true)
-    }
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
@@ -291,19 +197,7 @@ pub struct SoftLayerKey {
 pub struct FrameInputs {
     pub surfaces: SurfacesKey,
     pub soft_layer: SoftLayerKey,
-}
-
-/// An attachment cleared to zero.
-fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-            store: wgpu::StoreOp::Store,
-        },
-    })
+    pub mapped_visibility: MappedVisibilityKey,
 }
 
 /// Where the samples of one image sit and how a finer image's pixels find them (see
@@ -401,7 +295,7 @@ impl LowResolutionTargets {
     /// full-resolution frame is deferred too (its passes start from the buffer's depth).
     pub fn new(
         device: &wgpu::Device,
-        [layout, surface_layout]: [&wgpu::BindGroupLayout; 2],
+        [layout, surface_layout, writer_layout]: [&wgpu::BindGroupLayout; 3],
         full_size: [u32; 2],
         downsample: u32,
         [soft_layer, deferred_frame]: [bool; 2],
@@ -445,11 +339,12 @@ impl LowResolutionTargets {
             downsample,
             size,
             soft_at_full_resolution,
-            surface: SurfaceBuffer::new(device, surface_layout, full_size),
+            surface: SurfaceBuffer::new(device, [surface_layout, writer_layout], full_size, size),
             deferred_frame,
             drawn_from: None,
             surfaces_current: false,
             soft_layer_current: false,
+            mapped_visibility_current: false,
             low_depth: depth_view(device, "low-resolution depth", size),
             samples,
             soft,
@@ -468,11 +363,22 @@ impl LowResolutionTargets {
     /// Says what the next frame reads (None: unknown, draw everything anew); the frame
     /// keeps the surface buffer, and the soft layer, where they come from the same as the
     /// last frame's.
-    pub fn expect_inputs(&mut self, inputs: Option<FrameInputs>) {
+    pub fn expect_inputs(&mut self, device: &wgpu::Device, inputs: Option<FrameInputs>) {
         let last = self.drawn_from.take();
         self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
-        self.soft_layer_current = matches!((&inputs, &last), (Some(i), Some(l)) if i == l);
+        self.soft_layer_current =
+            matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces && i.soft_layer == l.soft_layer);
+        let lights = inputs.as_ref().map_or(0, |i| i.mapped_visibility.lights.len());
+        let reallocated = self.surface.reserve_mapped_visibility(device, lights);
+        self.mapped_visibility_current = !reallocated
+            && matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces && i.mapped_visibility == l.mapped_visibility);
         self.drawn_from = inputs;
+    }
+
+    /// Whether the kept visibility of the mapped lights holds this frame's (else the
+    /// pass marking the samples on a surface writes it).
+    pub(crate) fn mapped_visibility_current(&self) -> bool {
+        self.mapped_visibility_current
     }
 
     /// Whether the surface buffer already shows the next frame's surfaces.

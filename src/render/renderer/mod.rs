@@ -20,7 +20,9 @@ use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
-use super::passes::reduced_shading::{FrameInputs, LowResolutionTargets, SoftLayerKey, SurfacesKey};
+use super::passes::reduced_shading::{
+    FrameInputs, LowResolutionTargets, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
+};
 use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
@@ -478,7 +480,7 @@ impl SceneRenderer {
                         .pipeline
                         .low_resolution_targets(&self.device, size, shadows.low_resolution.take());
                 if let Some(low) = &mut shadows.low_resolution {
-                    low.expect_inputs((!std::mem::take(&mut self.surfaces_forgotten)).then(|| FrameInputs {
+                    let inputs = (!std::mem::take(&mut self.surfaces_forgotten)).then(|| FrameInputs {
                         surfaces: SurfacesKey {
                             camera: camera.clone(),
                             scene_generation: self.gpu_scene.surfaces_generation(),
@@ -489,7 +491,13 @@ impl SceneRenderer {
                             exposure_ev: settings.exposure_ev,
                             blockers_generation: self.blockers_generation,
                         },
-                    }));
+                        mapped_visibility: MappedVisibilityKey {
+                            lights: self.gpu_scene.mapped_light_geometry().to_vec(),
+                            maps_generation: self.shadow_maps.generation(),
+                            settings: shadows.settings,
+                        },
+                    });
+                    low.expect_inputs(&self.device, inputs);
                 }
             }
             shadows.pipeline.draw(

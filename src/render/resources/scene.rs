@@ -46,6 +46,9 @@ pub struct GpuScene {
     /// The lights on the SH path as uploaded (the first of the ordered lights), which the
     /// soft layer of reduced shading reads.
     harmonic_lights: Vec<GpuLight>,
+    /// The lights on the shadow-map path as uploaded, with their intensities zeroed: what
+    /// their visibility depends on (`mapped_light_geometry`).
+    mapped_light_geometry: Vec<GpuLight>,
     /// Changes whenever what the surfaces pass draws may change (a new upload, objects
     /// hidden or shown, new baked indirect light); unique among every scene uploaded.
     surfaces_generation: u64,
@@ -174,6 +177,7 @@ impl GpuScene {
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
             surfaces_generation: next_surfaces_generation(),
             harmonic_lights: Vec::new(),
+            mapped_light_geometry: Vec::new(),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
         gpu_scene.update_lights(device, queue, layouts, &lights);
@@ -231,6 +235,21 @@ impl GpuScene {
         self.light_count = ordered.len();
         self.first_light_on = first_light_on;
         self.harmonic_lights = ordered[..first_light_on[0].min(ordered.len())].to_vec();
+        let mapped = first_light_on[0].min(ordered.len())..first_light_on[1].min(ordered.len());
+        self.mapped_light_geometry = ordered[mapped]
+            .iter()
+            .map(|light| GpuLight {
+                intensity_rgb: [0.0; 4],
+                ..*light
+            })
+            .collect();
+    }
+
+    /// The lights on the shadow-map path as uploaded, in order, without their intensity
+    /// and colour: two frames with equal geometry (and equal maps and surfaces) see the
+    /// same visibility of those lights at every pixel, whatever their intensities.
+    pub fn mapped_light_geometry(&self) -> &[GpuLight] {
+        &self.mapped_light_geometry
     }
 
     /// What the light of soft shadows reads of the lighting besides the blockers and the

@@ -1,0 +1,252 @@
+//! The full-resolution surface buffer of deferred reduced shading (`reduced_shading`):
+//! the two images fs_surface_buffer writes and their depth, the bind group (group 1 of
+//! the full-screen passes) that reads them, and the kept visibility of the shadow-map
+//! path's lights at the low-resolution samples (written by
+//! fs_mark_surface_samples_keeping_visibility, read by the samples' shading; see
+//! low_resolution.wgsl), with the key that says when it still holds.
+
+use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture};
+
+/// Formats of the surface buffer fs_surface_buffer writes (see low_resolution.wgsl).
+pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureFormat::Rgba32Uint; 2];
+
+/// The bind group layout (group 1 of the full-screen passes, in place of the material)
+/// through which the low-resolution shading reads the surface buffer.
+pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let texture = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Uint,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let mapped_visibility = wgpu::BindGroupLayoutEntry {
+        binding: 10,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(4),
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("surface buffer"),
+        entries: &[texture(8), texture(9), mapped_visibility],
+    })
+}
+
+/// The bind group layout (group 3 of fs_mark_surface_samples_keeping_visibility) through
+/// which the samples' visibility of the mapped lights is written.
+pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("kept visibility of the mapped lights, written"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 4,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(4),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// The most memory the kept visibility of the shadow-map path's lights may take (the
+/// low-resolution samples × the mapped lights × 4 bytes; wgpu's default limit on a
+/// storage buffer's binding): past it the shading passes read the maps every frame. The
+/// studio at 960 × 540 (320 × 180 samples) with its nine mapped lights takes 2.1 MB.
+pub const MAPPED_VISIBILITY_BUDGET_BYTES: u64 = 128 << 20;
+
+/// The full-resolution surfaces: two images, their depth (copied into the frame's depth
+/// where the full-resolution frame is deferred, whose passes mark pixels in it), and the
+/// bind group through which the full-screen passes read them.
+pub(crate) struct SurfaceBuffer {
+    views: [wgpu::TextureView; 2],
+    pub(crate) depth: wgpu::Texture,
+    depth_view: wgpu::TextureView,
+    pub bind_group: wgpu::BindGroup,
+    layouts: [wgpu::BindGroupLayout; 2],
+    /// Entries per light of the kept visibility: the low-resolution samples.
+    samples: u64,
+    /// The visibility of each light on the shadow-map path at each low-resolution sample
+    /// (low_resolution.wgsl, `kept_mapped_visibility`), written by the pass marking the
+    /// samples on a surface when the surfaces, those lights or their maps changed, and
+    /// read by the shading passes: a stroke's frame reads no map at the samples. At least
+    /// 4 bytes; too short for the frame's lights, the passes read the maps instead.
+    mapped_visibility: wgpu::Buffer,
+    /// Group 3 of the marking pass that writes it.
+    pub(crate) mapped_visibility_writer: wgpu::BindGroup,
+    /// The surface group with a 4-byte buffer in its place, for that pass (a buffer
+    /// written in a pass may not be bound for reading in it too).
+    pub(crate) bind_group_without_visibility: wgpu::BindGroup,
+}
+
+impl SurfaceBuffer {
+    pub(super) fn new(
+        device: &wgpu::Device,
+        [layout, writer_layout]: [&wgpu::BindGroupLayout; 2],
+        size: [u32; 2],
+        samples: [u32; 2],
+    ) -> SurfaceBuffer {
+        let views = SURFACE_BUFFER_FORMATS.map(|format| {
+            frame_texture(
+                device,
+                "surface buffer",
+                image_extent(size),
+                format,
+                1,
+                SAMPLED_TARGET,
+                &[],
+            )
+            .create_view(&Default::default())
+        });
+        let mapped_visibility = mapped_visibility_buffer(device, 4);
+        let bind_group = surface_bind_group(device, layout, &views, &mapped_visibility);
+        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
+        SurfaceBuffer {
+            depth_view: depth.create_view(&Default::default()),
+            depth,
+            bind_group,
+            layouts: [layout.clone(), writer_layout.clone()],
+            samples: u64::from(samples[0]) * u64::from(samples[1]),
+            mapped_visibility_writer: writer_group(device, writer_layout, &mapped_visibility),
+            bind_group_without_visibility: surface_bind_group(
+                device,
+                layout,
+                &views,
+                &mapped_visibility_buffer(device, 4),
+            ),
+            mapped_visibility,
+            views,
+        }
+    }
+
+    /// Makes the kept visibility hold `lights` mapped lights at every sample where that
+    /// fits [`MAPPED_VISIBILITY_BUDGET_BYTES`]; true when the buffer is new (it holds
+    /// nothing yet).
+    pub(super) fn reserve_mapped_visibility(&mut self, device: &wgpu::Device, lights: usize) -> bool {
+        let bytes = self.samples * lights as u64 * 4;
+        if bytes <= self.mapped_visibility.size() || bytes > MAPPED_VISIBILITY_BUDGET_BYTES {
+            return false;
+        }
+        self.mapped_visibility = mapped_visibility_buffer(device, bytes);
+        self.bind_group = surface_bind_group(device, &self.layouts[0], &self.views, &self.mapped_visibility);
+        self.mapped_visibility_writer = writer_group(device, &self.layouts[1], &self.mapped_visibility);
+        true
+    }
+
+    /// The surface images, cleared (view depth 0 marks "no surface").
+    pub(crate) fn color_attachments(&self) -> Vec<Option<wgpu::RenderPassColorAttachment<'_>>> {
+        self.views.iter().map(cleared).collect()
+    }
+
+    /// Its depth attachment, cleared and kept (later frames may reuse it).
+    pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        depth_attachment(&self.depth_view, Some(1.0), true)
+    }
+}
+
+fn mapped_visibility_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("kept visibility of the mapped lights"),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    })
+}
+
+fn writer_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("kept visibility of the mapped lights, written"),
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 4,
+            resource: buffer.as_entire_binding(),
+        }],
+    })
+}
+
+fn surface_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    views: &[wgpu::TextureView; 2],
+    mapped_visibility: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("surface buffer"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 8,
+                resource: wgpu::BindingResource::TextureView(&views[0]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 9,
+                resource: wgpu::BindingResource::TextureView(&views[1]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 10,
+                resource: mapped_visibility.as_entire_binding(),
+            },
+        ],
+    })
+}
+
+/// What the kept visibility of the shadow-map path's lights was computed from besides the
+/// surfaces: the lights' geometry (`GpuScene::mapped_light_geometry`), the maps
+/// (`ShadowMaps::generation`) and the settings the pipeline was made for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MappedVisibilityKey {
+    pub lights: Vec<crate::shading::gpu_types::GpuLight>,
+    pub maps_generation: u64,
+    pub settings: crate::shading::ShadowSettings,
+}
+
+// Texture helpers the deferred shading's targets share (here and in reduced_shading).
+
+pub(super) fn image_extent(size: [u32; 2]) -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width: size[0],
+        height: size[1],
+        depth_or_array_layers: 1,
+    }
+}
+
+pub(super) const SAMPLED_TARGET: wgpu::TextureUsages =
+    wgpu::TextureUsages::RENDER_ATTACHMENT.union(wgpu::TextureUsages::TEXTURE_BINDING);
+
+pub(super) fn depth_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: [u32; 2],
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    frame_texture(
+        device,
+        label,
+        image_extent(size),
+        DEPTH_FORMAT,
+        1,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
+        &[],
+    )
+}
+
+/// An attachment cleared to zero.
+pub(super) fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}
