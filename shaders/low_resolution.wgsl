@@ -31,6 +31,9 @@
 // maps themselves.
 @group(1) @binding(10) var<storage, read> kept_mapped_visibility: array<f32>;
 @group(3) @binding(4) var<storage, read_write> mapped_visibility_out: array<f32>;
+// 1 for each mapped light whose visibility fs_mark_surface_samples_keeping_visibility
+// writes (its geometry or maps changed), 0 for each whose entries hold.
+@group(3) @binding(5) var<storage, read> stale_lights: array<u32>;
 
 // The number of low-resolution samples and the index of sample `texel`, samples spaced
 // LEVEL_STRIDE_PX pixels apart (reduced_shading::low_resolution_size).
@@ -190,8 +193,8 @@ fn fs_mark_surface_samples(in: FullScreen) -> @builtin(frag_depth) f32 {
     return 0.0;
 }
 
-// fs_mark_surface_samples, and each marked sample's visibility of the mapped lights
-// written to mapped_visibility_out (the lights' shadow_map_visibility at the surface of
+// fs_mark_surface_samples, and each marked sample's visibility of the mapped lights that
+// stale_lights marks written to mapped_visibility_out (the lights' shadow_map_visibility at the surface of
 // the sample's pixel, which sample_surface gives the shading passes).
 @fragment
 fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_depth) f32 {
@@ -204,8 +207,11 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
     if SHADOW_MAPS && holds_mapped_lights(arrayLength(&mapped_visibility_out), at.x) {
         var entry = at.y;
         for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
-            let light = light_at(i);
-            mapped_visibility_out[entry] = shadow_map_visibility(light, incidence(light, buffered.s.position), buffered.s);
+            let k = i - frame.first_mapped_light;
+            if k >= arrayLength(&stale_lights) || stale_lights[k] != 0u {
+                let light = light_at(i);
+                mapped_visibility_out[entry] = shadow_map_visibility(light, incidence(light, buffered.s.position), buffered.s);
+            }
             entry += at.x;
         }
     }

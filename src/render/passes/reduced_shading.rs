@@ -36,8 +36,8 @@ use wgpu::util::DeviceExt;
 
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
-    MAPPED_VISIBILITY_BUDGET_BYTES, MappedVisibilityKey, SURFACE_BUFFER_FORMATS, mapped_visibility_writer_layout,
-    surface_buffer_layout,
+    MAPPED_VISIBILITY_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
+    mapped_visibility_writer_layout, surface_buffer_layout,
 };
 use super::surface_buffer::{SAMPLED_TARGET, cleared, depth_texture, image_extent};
 use crate::render::descriptors::{depth_attachment, frame_texture, numbered_entries};
@@ -360,18 +360,35 @@ impl LowResolutionTargets {
             && self.deferred_frame == deferred_frame
     }
 
-    /// Says what the next frame reads (None: unknown, draw everything anew); the frame
-    /// keeps the surface buffer, and the soft layer, where they come from the same as the
-    /// last frame's.
-    pub fn expect_inputs(&mut self, device: &wgpu::Device, inputs: Option<FrameInputs>) {
+    /// Says what the next frame reads (None: unknown, draw everything anew) and how many
+    /// lights it shades through shadow maps; the frame keeps the surface buffer, the soft
+    /// layer and the samples' visibility of those lights where they come from the same as
+    /// the last frame's.
+    pub fn expect_inputs(
+        &mut self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        inputs: Option<FrameInputs>,
+        mapped_lights: usize,
+    ) {
         let last = self.drawn_from.take();
         self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
         self.soft_layer_current =
             matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces && i.soft_layer == l.soft_layer);
-        let lights = inputs.as_ref().map_or(0, |i| i.mapped_visibility.lights.len());
-        let reallocated = self.surface.reserve_mapped_visibility(device, lights);
-        self.mapped_visibility_current = !reallocated
-            && matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces && i.mapped_visibility == l.mapped_visibility);
+        let reallocated = self.surface.reserve_mapped_visibility(device, mapped_lights);
+        // Every light anew where the buffer or the surfaces are new; else those whose
+        // geometry or maps changed.
+        let kept_from = match (&inputs, &last) {
+            (Some(i), Some(l)) if i.surfaces == l.surfaces && !reallocated => Some(&l.mapped_visibility),
+            _ => None,
+        };
+        let stale = match &inputs {
+            Some(i) => i.mapped_visibility.stale_lights(kept_from),
+            None => vec![1; mapped_lights],
+        };
+        self.mapped_visibility_current = stale.iter().all(|&flag| flag == 0);
+        if !self.mapped_visibility_current {
+            self.surface.write_stale_lights(device, queue, &stale);
+        }
         self.drawn_from = inputs;
     }
 

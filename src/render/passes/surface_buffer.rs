@@ -42,18 +42,19 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// The bind group layout (group 3 of fs_mark_surface_samples_keeping_visibility) through
 /// which the samples' visibility of the mapped lights is written.
 pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(4),
+        },
+        count: None,
+    };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("kept visibility of the mapped lights, written"),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 4,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(4),
-            },
-            count: None,
-        }],
+        entries: &[storage(4, false), storage(5, true)],
     })
 }
 
@@ -80,6 +81,9 @@ pub(crate) struct SurfaceBuffer {
     /// read by the shading passes: a stroke's frame reads no map at the samples. At least
     /// 4 bytes; too short for the frame's lights, the passes read the maps instead.
     mapped_visibility: wgpu::Buffer,
+    /// 1 for each mapped light whose visibility the writing pass computes anew, 0 for
+    /// those it keeps (`MappedVisibilityKey::stale_lights`).
+    stale_lights: wgpu::Buffer,
     /// Group 3 of the marking pass that writes it.
     pub(crate) mapped_visibility_writer: wgpu::BindGroup,
     /// The surface group with a 4-byte buffer in its place, for that pass (a buffer
@@ -107,6 +111,7 @@ impl SurfaceBuffer {
             .create_view(&Default::default())
         });
         let mapped_visibility = mapped_visibility_buffer(device, 4);
+        let stale_lights = stale_lights_buffer(device, 1);
         let bind_group = surface_bind_group(device, layout, &views, &mapped_visibility);
         let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
         SurfaceBuffer {
@@ -115,7 +120,8 @@ impl SurfaceBuffer {
             bind_group,
             layouts: [layout.clone(), writer_layout.clone()],
             samples: u64::from(samples[0]) * u64::from(samples[1]),
-            mapped_visibility_writer: writer_group(device, writer_layout, &mapped_visibility),
+            mapped_visibility_writer: writer_group(device, writer_layout, [&mapped_visibility, &stale_lights]),
+            stale_lights,
             bind_group_without_visibility: surface_bind_group(
                 device,
                 layout,
@@ -137,8 +143,23 @@ impl SurfaceBuffer {
         }
         self.mapped_visibility = mapped_visibility_buffer(device, bytes);
         self.bind_group = surface_bind_group(device, &self.layouts[0], &self.views, &self.mapped_visibility);
-        self.mapped_visibility_writer = writer_group(device, &self.layouts[1], &self.mapped_visibility);
+        self.mapped_visibility_writer =
+            writer_group(device, &self.layouts[1], [&self.mapped_visibility, &self.stale_lights]);
         true
+    }
+
+    /// Has the writing pass compute the visibility of the lights `stale` marks (1) and
+    /// keep the others'.
+    pub(super) fn write_stale_lights(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, stale: &[u32]) {
+        let bytes = (stale.len().max(1) * 4) as u64;
+        if bytes > self.stale_lights.size() {
+            self.stale_lights = stale_lights_buffer(device, stale.len());
+            self.mapped_visibility_writer =
+                writer_group(device, &self.layouts[1], [&self.mapped_visibility, &self.stale_lights]);
+        }
+        if !stale.is_empty() {
+            queue.write_buffer(&self.stale_lights, 0, bytemuck::cast_slice(stale));
+        }
     }
 
     /// The surface images, cleared (view depth 0 marks "no surface").
@@ -161,14 +182,33 @@ fn mapped_visibility_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {
     })
 }
 
-fn writer_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+fn stale_lights_buffer(device: &wgpu::Device, lights: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("mapped lights whose visibility is written"),
+        size: (lights.max(1) * 4) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn writer_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    [visibility, stale_lights]: [&wgpu::Buffer; 2],
+) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("kept visibility of the mapped lights, written"),
         layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 4,
-            resource: buffer.as_entire_binding(),
-        }],
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: visibility.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: stale_lights.as_entire_binding(),
+            },
+        ],
     })
 }
 
@@ -199,13 +239,35 @@ fn surface_bind_group(
 }
 
 /// What the kept visibility of the shadow-map path's lights was computed from besides the
-/// surfaces: the lights' geometry (`GpuScene::mapped_light_geometry`), the maps
-/// (`ShadowMaps::generation`) and the settings the pipeline was made for.
+/// surfaces: each light's geometry (`GpuScene::mapped_light_geometry`) and its maps' views
+/// as drawn (`ShadowMaps::drawn`), and the settings the pipeline was made for. A light
+/// whose own entry is unchanged keeps its visibility when another moves.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MappedVisibilityKey {
-    pub lights: Vec<crate::shading::gpu_types::GpuLight>,
-    pub maps_generation: u64,
+    pub lights: Vec<MappedLightKey>,
     pub settings: crate::shading::ShadowSettings,
+}
+
+/// One mapped light's part of [`MappedVisibilityKey`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MappedLightKey {
+    pub geometry: crate::shading::gpu_types::GpuLight,
+    pub views: Vec<crate::shading::gpu_types::GpuShadowView>,
+}
+
+impl MappedVisibilityKey {
+    /// 1 for each light whose visibility must be computed anew after frames drawn from
+    /// `last` (None: unknown, all of them), 0 for each that holds.
+    pub fn stale_lights(&self, last: Option<&MappedVisibilityKey>) -> Vec<u32> {
+        self.lights
+            .iter()
+            .enumerate()
+            .map(|(k, light)| {
+                let holds = last.is_some_and(|l| l.settings == self.settings && l.lights.get(k) == Some(light));
+                u32::from(!holds)
+            })
+            .collect()
+    }
 }
 
 // Texture helpers the deferred shading's targets share (here and in reduced_shading).
@@ -249,4 +311,49 @@ pub(super) fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorA
             store: wgpu::StoreOp::Store,
         },
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shading::gpu_types::{GpuLight, GpuShadowView};
+
+    fn key(positions: &[f32], view_texel: f32) -> MappedVisibilityKey {
+        let lights = positions
+            .iter()
+            .map(|&x| {
+                let mut geometry: GpuLight = bytemuck::Zeroable::zeroed();
+                geometry.position = [x, 1.0, 0.0, 1.0];
+                let mut view: GpuShadowView = bytemuck::Zeroable::zeroed();
+                view.texel[0] = view_texel;
+                MappedLightKey {
+                    geometry,
+                    views: vec![view],
+                }
+            })
+            .collect();
+        MappedVisibilityKey {
+            lights,
+            settings: Default::default(),
+        }
+    }
+
+    #[test]
+    fn only_the_lights_that_moved_or_whose_maps_changed_are_written_again() {
+        let before = key(&[0.0, 1.0, 2.0], 0.01);
+        assert_eq!(before.stale_lights(None), vec![1, 1, 1], "nothing known: every light");
+        assert_eq!(before.stale_lights(Some(&before)), vec![0, 0, 0]);
+        assert_eq!(key(&[0.0, 1.5, 2.0], 0.01).stale_lights(Some(&before)), vec![0, 1, 0]);
+        // The same lights drawn into finer maps (a draft refined): every light anew.
+        assert_eq!(key(&[0.0, 1.0, 2.0], 0.005).stale_lights(Some(&before)), vec![1, 1, 1]);
+        // A light added: it alone.
+        assert_eq!(
+            key(&[0.0, 1.0, 2.0, 3.0], 0.01).stale_lights(Some(&before)),
+            vec![0, 0, 0, 1]
+        );
+        // New settings: every light.
+        let mut resettled = before.clone();
+        resettled.settings.order += 1;
+        assert_eq!(resettled.stale_lights(Some(&before)), vec![1, 1, 1]);
+    }
 }

@@ -21,7 +21,7 @@ use super::passes::logsh::{LogShPipeline, Shading};
 use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
 use super::passes::reduced_shading::{
-    FrameInputs, LowResolutionTargets, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
+    FrameInputs, LowResolutionTargets, MappedLightKey, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
 };
 use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
@@ -492,12 +492,12 @@ impl SceneRenderer {
                             blockers_generation: self.blockers_generation,
                         },
                         mapped_visibility: MappedVisibilityKey {
-                            lights: self.gpu_scene.mapped_light_geometry().to_vec(),
-                            maps_generation: self.shadow_maps.generation(),
+                            lights: mapped_light_keys(self.gpu_scene.mapped_light_geometry(), self.shadow_maps.drawn()),
                             settings: shadows.settings,
                         },
                     });
-                    low.expect_inputs(&self.device, inputs);
+                    let mapped_lights = self.gpu_scene.mapped_light_geometry().len();
+                    low.expect_inputs((&self.device, &self.queue), inputs, mapped_lights);
                 }
             }
             shadows.pipeline.draw(
@@ -567,4 +567,21 @@ pub fn same_but_terrain(a: &ShadowSettings, b: &ShadowSettings) -> bool {
         terrain: b.terrain,
         ..*a
     } == *b
+}
+
+/// Each mapped light's geometry with the views its maps were drawn from.
+fn mapped_light_keys(geometry: &[GpuLight], drawn: &[crate::shading::gpu_types::GpuShadowView]) -> Vec<MappedLightKey> {
+    geometry
+        .iter()
+        .map(|light| {
+            let first = light.first_shadow_view as usize;
+            let views = drawn
+                .get(first..first.saturating_add(light.shadow_view_count as usize))
+                .unwrap_or_default();
+            MappedLightKey {
+                geometry: *light,
+                views: views.to_vec(),
+            }
+        })
+        .collect()
 }

@@ -45,8 +45,6 @@ pub struct ShadowMaps {
     /// or all of them when the scene did (objects hidden or shown).
     drawn: Vec<GpuShadowView>,
     drawn_from: Option<u64>,
-    /// Counts the draws: equal numbers, the same maps.
-    generation: u64,
 }
 
 impl ShadowMaps {
@@ -99,13 +97,7 @@ impl ShadowMaps {
             pipeline,
             drawn: Vec::new(),
             drawn_from: None,
-            generation: 0,
         }
-    }
-
-    /// A number each [`Self::draw`] changes: equal numbers, the same maps and views.
-    pub fn generation(&self) -> u64 {
-        self.generation
     }
 
     /// The views the layers hold, as last drawn.
@@ -190,7 +182,6 @@ impl ShadowMaps {
         queue.submit([encoder.finish()]);
         self.drawn = views.to_vec();
         self.drawn_from = Some(scene.surfaces_generation());
-        self.generation += 1;
         reallocated
     }
 }
