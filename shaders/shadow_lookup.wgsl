@@ -2,7 +2,7 @@
 // a light's maps into the share of it a surface point sees. Appended after scene.wgsl
 // (Light, Incidence, Surface) in the log-SH module.
 
-// The shadow maps of the lights on the shadow-map path: one depth layer per view (depth
+// The shadow maps of the lights on the shadow-map path: each view a depth layer or a quadrant of one (shading::shadow_atlas; depth
 // reversed: 1 nearest the light), read with a comparison sampler (linear: each read filters the 2 × 2 texels around) or, for
 // the blocker search, texel by texel; and the views' matrices.
 @group(2) @binding(7) var shadow_maps: texture_depth_2d_array;

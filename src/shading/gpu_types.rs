@@ -23,7 +23,7 @@ pub const SHADOW_PATH_MAP: u32 = 2;
 /// `GpuLight::first_shadow_view` of a light without a shadow map.
 pub const NO_SHADOW_VIEW: u32 = u32::MAX;
 
-/// How many shadow-map views (layers of the map array, WGSL `MAX_SHADOW_VIEWS`) a frame
+/// How many shadow-map views (layers or quadrants of the map array, WGSL `MAX_SHADOW_VIEWS`) a frame
 /// has at most: a point light takes six (a cube), a spot or the sun one. 96: a room lit by
 /// a dozen ceiling lights, a few spots and the sun (the interior sample, 77 views) maps
 /// every light, rather than leave some to the SH path, where the room's own walls and
@@ -234,7 +234,7 @@ impl GpuLight {
     }
 }
 
-/// WGSL `ShadowView`: one layer of the shadow-map array, seen from a light.
+/// WGSL `ShadowView`: one view of a light's shadow maps, a layer of the map array or a quadrant of one.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuShadowView {
