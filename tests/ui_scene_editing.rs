@@ -66,6 +66,9 @@ fn lights_and_objects_are_selected_in_the_outliner_and_the_viewport() {
     let key = light_index(&harness, "Key");
     assert_eq!(harness.state().selection(), Some(Selection::Light(key)));
     harness.get_by_label("Light: Key");
+    // The Shadows section says what the maps take: the studio's five spots and sun at
+    // 2048², its three point lights' 18 faces at 1024² (shading::shadow_atlas).
+    harness.get_by_label("shadow maps: 6 view(s) at 2048², 18 cube faces at 1024², 176 MiB");
     for row in ["position (m)", "aim", "cone", "colour"] {
         assert!(
             harness.query_all_by_label(row).count() >= 1,

@@ -161,6 +161,9 @@ impl EditorApp {
             .default_open(true)
             .show(ui, |ui| {
                 shadow_section(ui, &mut document.settings, &self.blockers, &document.scene);
+                if let Some(maps) = self.viewport.as_ref().and_then(|v| v.shadow_maps_in_words()) {
+                    ui.weak(format!("shadow maps: {maps}"));
+                }
                 ui.checkbox(&mut self.preferences.show_blockers, "show blocker spheres")
                     .on_hover_text("Outlines the spheres that stand in for the meshes as shadow casters");
             });

@@ -125,6 +125,11 @@ impl Viewport {
         self.rendered = None;
     }
 
+    /// The shadow maps' views and memory in words, None when no light takes a map.
+    pub fn shadow_maps_in_words(&self) -> Option<String> {
+        self.renderer.shadow_maps_in_words()
+    }
+
     /// Whether shaders for new shadow settings are being compiled (the viewport shows
     /// the previous settings until they are ready).
     pub fn is_compiling_shaders(&self) -> bool {

@@ -282,6 +282,12 @@ impl SceneRenderer {
         self.maps_stale = false;
     }
 
+    /// The shadow maps' views and memory in words (`ShadowAtlas::in_words`), None when no
+    /// light takes a map.
+    pub fn shadow_maps_in_words(&self) -> Option<String> {
+        (!self.map_views.views.is_empty()).then(|| self.map_views.atlas.in_words())
+    }
+
     /// Whether some shadow maps were last drawn as drafts: the next frame drawn without
     /// `FrameQuality::draft_moved_maps` draws them in full.
     pub fn maps_drafted(&self) -> bool {
