@@ -76,6 +76,21 @@ pub fn frame_texture(
     })
 }
 
+/// A bind group layout entry for a storage buffer at `binding`, seen by `stages`, read
+/// only or read and written.
+pub fn storage_buffer_entry(binding: u32, stages: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: stages,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// Bind group entries binding each of `resources` at its position (0, 1, …), the order
 /// in which the shaders and the layout declare them.
 pub fn numbered_entries<'a, const N: usize>(

@@ -2,7 +2,7 @@
 //! writes each vertex's visibility SH into a buffer per object, which the shading pass
 //! binds as a second vertex buffer.
 
-use crate::render::descriptors::numbered_entries;
+use crate::render::descriptors::{numbered_entries, storage_buffer_entry};
 use crate::render::resources::GpuScene;
 use crate::shading::wgsl::sh as wgsl_sh;
 
@@ -23,16 +23,7 @@ impl PerVertexCompute {
         order: usize,
         constants: &[(&str, f64)],
     ) -> PerVertexCompute {
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let storage = |binding, read_only| storage_buffer_entry(binding, wgpu::ShaderStages::COMPUTE, read_only);
         let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("per-vertex object"),
             entries: &[storage(0, true), storage(1, false)],

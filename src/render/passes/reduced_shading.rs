@@ -373,14 +373,14 @@ impl LowResolutionTargets {
         let last = self.drawn_from.take();
         self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
         self.soft_layer_current =
-            matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces && i.soft_layer == l.soft_layer);
+            self.surfaces_current && matches!((&inputs, &last), (Some(i), Some(l)) if i.soft_layer == l.soft_layer);
         let reallocated = self.surface.reserve_mapped_visibility(device, mapped_lights);
         // Every light anew where the buffer or the surfaces are new; else those whose
         // geometry or maps changed.
-        let kept_from = match (&inputs, &last) {
-            (Some(i), Some(l)) if i.surfaces == l.surfaces && !reallocated => Some(&l.mapped_visibility),
-            _ => None,
-        };
+        let kept_from = last
+            .as_ref()
+            .filter(|_| self.surfaces_current && !reallocated)
+            .map(|l| &l.mapped_visibility);
         let stale = match &inputs {
             Some(i) => i.mapped_visibility.stale_lights(kept_from),
             None => vec![1; mapped_lights],

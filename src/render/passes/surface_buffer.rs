@@ -5,7 +5,7 @@
 //! fs_mark_surface_samples_keeping_visibility, read by the samples' shading; see
 //! low_resolution.wgsl), with the key that says when it still holds.
 
-use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture};
+use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture, storage_buffer_entry};
 
 /// Formats of the surface buffer fs_surface_buffer writes (see low_resolution.wgsl).
 pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureFormat::Rgba32Uint; 2];
@@ -23,35 +23,20 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         },
         count: None,
     };
-    let mapped_visibility = wgpu::BindGroupLayoutEntry {
-        binding: 10,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(4),
-        },
-        count: None,
-    };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("surface buffer"),
-        entries: &[texture(8), texture(9), mapped_visibility],
+        entries: &[
+            texture(8),
+            texture(9),
+            storage_buffer_entry(10, wgpu::ShaderStages::FRAGMENT, true),
+        ],
     })
 }
 
 /// The bind group layout (group 3 of fs_mark_surface_samples_keeping_visibility) through
 /// which the samples' visibility of the mapped lights is written.
 pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(4),
-        },
-        count: None,
-    };
+    let storage = |binding, read_only| storage_buffer_entry(binding, wgpu::ShaderStages::FRAGMENT, read_only);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("kept visibility of the mapped lights, written"),
         entries: &[storage(4, false), storage(5, true)],
