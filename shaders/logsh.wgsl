@@ -387,12 +387,17 @@ fn shadowed_radiance(s: Surface) -> vec3<f32> {
 
 // shadowed_radiance without the lights on the shadow-map path.
 fn soft_shadowed_radiance(s: Surface) -> vec3<f32> {
+    return soft_radiance_through(s, soft_lobes(s));
+}
+
+// The lobes' visibility at s through the blockers and the terrain (log_visibility).
+fn soft_lobes(s: Surface) -> LobeVisibility {
     if !SH_VISIBILITY {
         // Read only by a light the viewport draws before its pipeline with the SH path is
         // compiled: it shows unshadowed meanwhile.
-        return soft_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
+        return LobeVisibility(sh_one(), sh_one(), false);
     }
-    return soft_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+    return lobes_from_log_visibility(s, log_visibility(s.position, s.normal));
 }
 
 // A light's shadowed radiance at s through the lobes' SH.
@@ -464,10 +469,7 @@ fn harmonic_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 // harmonic_radiance_through with the blockers' and the terrain's visibility at s: the
 // light of soft shadows, which reduced_shading.wgsl may shade more coarsely than the rest.
 fn harmonic_radiance(s: Surface) -> vec3<f32> {
-    if !SH_VISIBILITY {
-        return harmonic_radiance_through(s, LobeVisibility(sh_one(), sh_one(), false));
-    }
-    return harmonic_radiance_through(s, lobes_from_log_visibility(s, log_visibility(s.position, s.normal)));
+    return harmonic_radiance_through(s, soft_lobes(s));
 }
 
 // The lights from frame.first_exact_light on, eight at a time: their exact visibility
