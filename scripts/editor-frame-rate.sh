@@ -10,12 +10,20 @@
 # frame drawn before: what the editor costs besides the renderer. For
 # docs/performance.md; run it on an otherwise idle machine. WINDOW_SIZE="W H" sizes the
 # window otherwise (default "1513 618").
-# Usage: [MEASURE=new-view|interface] [WINDOW_SIZE="W H"] scripts/editor-frame-rate.sh [PROJECT]
+# BIN_TO_MEASURE=path measures that lightpaint binary instead of building the checkout's
+# (an older commit's, for interleaved comparisons).
+# Usage: [MEASURE=new-view|interface] [WINDOW_SIZE="W H"] [BIN_TO_MEASURE=bin] scripts/editor-frame-rate.sh [PROJECT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 project="$(realpath "${1:-projects/studio/studio.lightpaint}")"
 source scripts/system-packages.sh
-lightpaint_build_to_run
+if [[ -n "${BIN_TO_MEASURE:-}" ]]; then
+    lightpaint_install_system_packages
+    lightpaint_runtime_dir
+    LIGHTPAINT_BIN="$(realpath "$BIN_TO_MEASURE")"
+else
+    lightpaint_build_to_run
+fi
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 export XDG_DATA_HOME="$scratch/data" LIGHTPAINT_MEASURE_FRAME_RATE="${MEASURE:-1}"
