@@ -1,15 +1,15 @@
 // The exact path for small lights (src/penumbra/mod.rs is the f64 twin): a light's
-// visibility from p is Π over blockers of (1 − fade · share of the light's disc the
-// blocker's cap hides), skipping what log_visibility skips and blockers wholly beyond the
-// light. Included after logsh.wgsl's bindings.
+// visibility from p is 1 − the share of its disc hidden by the union of the blockers'
+// caps (each share faded below the horizon; src/penumbra/union.rs), skipping what
+// log_visibility skips and blockers wholly beyond the light; the discs' shares multiply
+// in after. Included after logsh.wgsl's bindings.
 //
 // Shaped for lavapipe, which runs every statement of a branch at every pixel whether
 // taken or not, and every loop at least once: lights go eight at a time (a vec4 lane
 // each, in two halves), so each blocker is loaded and measured once per eight lights;
 // cheap tests of every blocker only list the few that may cut a disc, and the lens (three
-// arctangents per light) runs in a second loop over that list alone. Visibilities multiply
-// directly (the f64 twin sums logarithms): a product of factors in [0, 1] underflows only
-// for a light all but hidden, whose visibility is then 0 either way.
+// arctangents per light) runs in a second loop over that list alone, with the overlaps of
+// each listed blocker with the listed ones before it.
 
 // Four exact-path lights seen from one receiver, one per lane (half of an eight-light
 // batch); unused lanes have distance 0, so that every blocker counts as beyond them.
@@ -97,6 +97,53 @@ fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
     let hidden = cap.horizon * hidden_fractions(sin_a, cap, v_g);
     let beyond = vec4<f32>(cap.distance - radius) >= batch.distance;
     return select(hidden, vec4<f32>(0.0), beyond | vec4<bool>(!cap.counts));
+}
+
+// The solid angle where two caps meet (versines v_a, of cap b's, v_g of their
+// separation): hidden_fractions' lens for one pair of caps, before its division by the
+// first cap's area.
+fn lens_solid_angle(v_a: f32, cap: BlockerCap, v_g: f32) -> f32 {
+    let v_b = cap.ratio * cap.ratio / (1.0 + cap.cos_b);
+    let det2 = v_a * (2.0 * (v_b + v_g) - v_a - 2.0 * v_b * v_g) - (v_b - v_g) * (v_b - v_g);
+    let det = sqrt(max(det2, 0.0));
+    let theta_a = atan2(det, v_a + v_g - v_a * v_g - v_b);
+    let theta_b = atan2(det, v_b + v_g - v_b * v_g - v_a);
+    let excess = 2.0 * atan2(det, 4.0 - v_a - v_b - v_g);
+    let crossing = max(2.0 * theta_a * v_a + 2.0 * theta_b * v_b - 2.0 * excess, 0.0);
+    let nested = v_g < v_a + v_b - v_a * v_b;
+    return select(crossing, select(0.0, 2.0 * PI * min(v_a, v_b), nested), det2 <= 0.0);
+}
+
+// The share of each light's disc hidden by both blockers m and k (hidden_m, hidden_k
+// their own shares; src/penumbra/union.rs's pair_overlap): the share hidden by one cap
+// of the solid angle of the lens where their caps meet, centred midway across the lens
+// on the arc from m's centre to k's, kept within both shares. The disc is the wider of
+// the two blockers' (disc_sines at the nearer).
+fn pair_overlap(m: BlockerCap, k: BlockerCap, hidden_m: vec4<f32>, hidden_k: vec4<f32>, batch: ExactBatch, half_footprint: f32) -> vec4<f32> {
+    let chord = k.direction - m.direction;
+    let v_mk = 0.5 * dot(chord, chord);
+    let v_m = m.ratio * m.ratio / (1.0 + m.cos_b);
+    let lens = lens_solid_angle(v_m, k, v_mk);
+    // Along the arc from m's centre toward k's, the lens spans from the nearer of k's far
+    // edge and m's back edge to the nearer of m's front edge and k's.
+    let radius_m = asin(min(m.ratio, 1.0));
+    let radius_k = asin(min(k.ratio, 1.0));
+    let separation = 2.0 * asin(min(0.5 * sqrt(2.0 * v_mk), 1.0));
+    let middle = 0.5 * (max(separation - radius_k, -radius_m) + min(radius_m, separation + radius_k));
+    let across = k.direction - m.direction * dot(m.direction, k.direction);
+    let across_length = length(across);
+    let sideways = select(vec3<f32>(0.0), across / across_length, across_length > 0.0);
+    let lens_direction = m.direction * cos(middle) + sideways * sin(middle);
+    // The cap of the lens's solid angle, 2π·v = Ω, built from its versine v.
+    let v = min(lens / (2.0 * PI), 2.0);
+    let lens_cap = BlockerCap(lens_direction, 0.0, sqrt(max(v * (2.0 - v), 0.0)), 1.0 - v, 1.0, true);
+    let sin_a = disc_sines(batch, half_footprint, min(m.distance, k.distance));
+    let to_x = lens_direction.x - batch.to_light_x;
+    let to_y = lens_direction.y - batch.to_light_y;
+    let to_z = lens_direction.z - batch.to_light_z;
+    let v_g = 0.5 * (to_x * to_x + to_y * to_y + to_z * to_z);
+    let overlap = min(m.horizon, k.horizon) * hidden_fractions(sin_a, lens_cap, v_g);
+    return select(min(overlap, min(hidden_m, hidden_k)), vec4<f32>(0.0), lens <= 0.0);
 }
 
 // false: the frame has at most four exact-path lights, and the second half of each
@@ -251,9 +298,13 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
             }
         }
     }
-    // One loop over every entry, as lavapipe runs the body of even an empty loop once.
-    var visible_lo = vec4<f32>(1.0);
-    var visible_hi = vec4<f32>(1.0);
+    // One loop over every entry, as lavapipe runs the body of even an empty loop once:
+    // each adds the share it hides that the listed entries of its half before it do not
+    // (src/penumbra/union.rs). An entry past the list's eight is compared with those eight.
+    var union_lo = vec4<f32>(0.0);
+    var union_hi = vec4<f32>(0.0);
+    var largest_lo = vec4<f32>(0.0);
+    var largest_hi = vec4<f32>(0.0);
     for (var k = 0u; k < cut_entries(list); k++) {
         let entry = cut_entry(list, k);
         let upper = EXACT_WIDE && (entry & 1u) == 1u;
@@ -265,10 +316,27 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
             select(lo.distance, hi.distance, upper),
         );
         let b = blocker_at(entry / batch_halves());
-        let visible = vec4<f32>(1.0) - hidden_by(blocker_cap(b, p, n), b.center_radius.w, batch, half_footprint);
-        visible_lo *= select(visible, vec4<f32>(1.0), upper);
-        visible_hi *= select(vec4<f32>(1.0), visible, upper);
+        let cap = blocker_cap(b, p, n);
+        let hidden = hidden_by(cap, b.center_radius.w, batch, half_footprint);
+        var left_open = vec4<f32>(1.0);
+        let earlier = select(0u, min(k, list.count), any(hidden > vec4<f32>(0.0)));
+        for (var m = 0u; m < earlier; m++) {
+            let entry_m = cut_entry(list, m);
+            let b_m = blocker_at(entry_m / batch_halves());
+            let cap_m = blocker_cap(b_m, p, n);
+            let hidden_m = hidden_by(cap_m, b_m.center_radius.w, batch, half_footprint);
+            let overlap = pair_overlap(cap_m, cap, hidden_m, hidden, batch, half_footprint);
+            let same_half = (entry_m & 1u) == (entry & 1u) || !EXACT_WIDE;
+            left_open *= select(vec4<f32>(1.0), vec4<f32>(1.0) - overlap / max(hidden, vec4<f32>(1e-30)), same_half);
+        }
+        let added = hidden * clamp(left_open, vec4<f32>(0.0), vec4<f32>(1.0));
+        union_lo += select(added, vec4<f32>(0.0), upper);
+        union_hi += select(vec4<f32>(0.0), added, upper);
+        largest_lo = max(largest_lo, select(hidden, vec4<f32>(0.0), upper));
+        largest_hi = max(largest_hi, select(vec4<f32>(0.0), hidden, upper));
     }
+    var visible_lo = vec4<f32>(1.0) - clamp(union_lo, largest_lo, vec4<f32>(1.0));
+    var visible_hi = vec4<f32>(1.0) - clamp(union_hi, largest_hi, vec4<f32>(1.0));
     // The discs, at every receiver (their own list; logsh.wgsl's add_discs).
     for (var d = 0u; d < shadow.disc_count; d++) {
         let disc = shadow.discs[d];

@@ -201,13 +201,21 @@ fn many_lights_over_a_crowd_of_blockers_match_the_cpu_reference() {
     assert!(cutting > 8, "{cutting} balls cut the disc");
 }
 
-/// A white Lambertian floor, a 0.5 m sphere light 3 m above the origin (40 cd) and a ball
-/// of 0.3 m at 1 m: along the floor the radiance is E/π·V with E = I·cos θ/d² (the
-/// renderer's unshadowed sphere light) and V the share of the light's disc whose rays miss
-/// the ball, integrated here over the disc.
-#[test]
-fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
-    let Some(gpu) = common::gpu() else { return };
+/// One pixel of a frame row over the floor: the GPU's 8-bit value, and what a light of
+/// irradiance `irradiance` (unshadowed) and visible share `visible` would give.
+struct RowPixel {
+    x_m: f64,
+    got: f64,
+    irradiance: f64,
+    visible: f64,
+}
+
+/// A white Lambertian floor under a 0.5 m sphere light 3 m above the origin (40 cd) and
+/// `balls`, drawn from above on the exact path; along the frame's middle row (x ≥ 0 when
+/// `right_half_only`) each floor pixel with the unshadowed irradiance I·cos θ/d² (the
+/// renderer's unshadowed sphere light) and the share of the light's disc whose rays miss
+/// every ball, integrated over the disc.
+fn floor_row_under_a_sphere_light(gpu: &GpuContext, balls: &[Sphere], right_half_only: bool) -> Vec<RowPixel> {
     let light_position = DVec3::new(0.0, 3.0, 0.0);
     let scene = white_floor(
         6.0,
@@ -222,11 +230,6 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
             locked: false,
         }],
     );
-    let ball = Sphere {
-        center: Vec3::new(0.0, 1.0, 0.0),
-        radius_m: 0.3,
-        disc_normal: glam::Vec3::ZERO,
-    };
     let camera = Camera {
         position: Vec3::new(0.0, 6.0, 0.0),
         forward: Vec3::NEG_Y,
@@ -244,44 +247,106 @@ fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
         shadow_map_size: 0,
         ..ShadowSettings::default().every_pixel()
     };
-    let blockers = [ball];
     let (width, height) = (160, 160);
     let frame = ShadowFrame {
         scene: &scene,
         camera: &camera,
         settings: &settings,
         shadows: &shadows,
-        blockers: &blockers,
+        blockers: balls,
         baked_indirect: None,
         width,
         height,
     };
-    let image = render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("GPU frame");
-    let surfaces = capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
+    let image = render_logsh_image(gpu, &frame, AntiAliasing::None).expect("GPU frame");
+    let surfaces = capture_surfaces(gpu, &scene, &camera, None, width, height).expect("surfaces");
     let row = height / 2;
-    let mut checked = 0;
-    let mut penumbra = 0;
-    for x in width / 2..width {
-        let Some(point) = &surfaces[(row * width + x) as usize] else {
-            continue;
-        };
-        let p = point.position;
-        let offset = light_position - p;
-        let irradiance = 40.0 * offset.normalize().y / offset.length_squared();
-        let visible = 1.0 - hidden_share(p, light_position, 0.5, ball.center.as_dvec3(), 0.3);
-        let expected = common::expected_8bit(irradiance / PI * visible, -2.0);
-        let got = image.get_pixel(x, row)[0] as f64;
+    let balls: Vec<(DVec3, f64)> = balls.iter().map(|b| (b.center.as_dvec3(), b.radius_m as f64)).collect();
+    let first = if right_half_only { width / 2 } else { 0 };
+    (first..width)
+        .filter_map(|x| {
+            let p = surfaces[(row * width + x) as usize].as_ref()?.position;
+            let offset = light_position - p;
+            Some(RowPixel {
+                x_m: p.x,
+                got: image.get_pixel(x, row)[0] as f64,
+                irradiance: 40.0 * offset.normalize().y / offset.length_squared(),
+                visible: 1.0 - hidden_share(p, light_position, 0.5, &balls),
+            })
+        })
+        .collect()
+}
+
+/// A ball of 0.3 m at 1 m over the floor under the sphere light: pixel by pixel its
+/// penumbra is the share of the light it leaves visible.
+#[test]
+fn a_ball_under_a_sphere_light_casts_the_exact_penumbra_on_the_gpu() {
+    let Some(gpu) = common::gpu() else { return };
+    let ball = Sphere::ball(Vec3::new(0.0, 1.0, 0.0), 0.3);
+    let row = floor_row_under_a_sphere_light(&gpu, &[ball], true);
+    for pixel in &row {
+        let expected = common::expected_8bit(pixel.irradiance / PI * pixel.visible, -2.0);
         assert!(
-            (got - expected).abs() <= 1.5,
-            "x = {:.3} m: pixel {got}, expected {expected:.2} (visible share {visible:.4})",
-            p.x
+            (pixel.got - expected).abs() <= 1.5,
+            "x = {:.3} m: pixel {}, expected {expected:.2} (visible share {:.4})",
+            pixel.x_m,
+            pixel.got,
+            pixel.visible
         );
-        checked += 1;
-        penumbra += usize::from(visible > 0.02 && visible < 0.98);
     }
+    let penumbra = row.iter().filter(|p| p.visible > 0.02 && p.visible < 0.98).count();
     assert!(
-        checked > 60 && penumbra > 5,
-        "{checked} pixels, {penumbra} in the penumbra"
+        row.len() > 60 && penumbra > 5,
+        "{} pixels, {penumbra} in the penumbra",
+        row.len()
+    );
+}
+
+/// Balls whose caps share the light: two side by side that touch (under them each hides
+/// one side of the light, together all of it), and one above the left that hides much of
+/// what it hides. Pixel by pixel the frame shows the share of the light their union
+/// leaves, within 0.03 of it; taking the balls' shares as independent, Π(1 − fᵢ), is off
+/// by more than 0.1 somewhere on the row (so the test tells the two apart).
+#[test]
+fn overlapping_and_adjacent_balls_hide_the_union_of_their_shares_on_the_gpu() {
+    let Some(gpu) = common::gpu() else { return };
+    let balls = [
+        Sphere::ball(Vec3::new(-0.25, 1.0, 0.0), 0.25),
+        Sphere::ball(Vec3::new(0.25, 1.0, 0.0), 0.25),
+        Sphere::ball(Vec3::new(-0.3, 1.6, 0.0), 0.2),
+    ];
+    let row = floor_row_under_a_sphere_light(&gpu, &balls, false);
+    let mut independent_worst: f64 = 0.0;
+    for pixel in &row {
+        let level = |visible: f64| common::expected_8bit(pixel.irradiance / PI * visible, -2.0);
+        let (low, high) = (
+            level((pixel.visible - 0.03).max(0.0)),
+            level((pixel.visible + 0.03).min(1.0)),
+        );
+        assert!(
+            (low - 1.0..=high + 1.0).contains(&pixel.got),
+            "x = {:.3} m: pixel {}, expected {low:.1}–{high:.1} (visible share {:.4})",
+            pixel.x_m,
+            pixel.got,
+            pixel.visible
+        );
+        let p = DVec3::new(pixel.x_m, 0.0, 0.0);
+        let light = DVec3::new(0.0, 3.0, 0.0);
+        let independent: f64 = balls
+            .iter()
+            .map(|b| 1.0 - hidden_share(p, light, 0.5, &[(b.center.as_dvec3(), b.radius_m as f64)]))
+            .product();
+        independent_worst = independent_worst.max((independent - pixel.visible).abs());
+    }
+    let penumbra = row.iter().filter(|p| p.visible > 0.02 && p.visible < 0.98).count();
+    assert!(
+        row.len() > 120 && penumbra > 20,
+        "{} pixels, {penumbra} in the penumbra",
+        row.len()
+    );
+    assert!(
+        independent_worst > 0.1,
+        "independent shares are off by at most {independent_worst}"
     );
 }
 
@@ -306,8 +371,8 @@ fn the_f64_path_draws_the_exact_penumbra_of_a_ball() {
             distance_m: d,
             cap_ratio: 0.5 / d,
         };
-        let v = light_visibility(p, DVec3::Y, &disc, &ball, 0.0, 0.0);
-        let expected = 1.0 - hidden_share(p, light, 0.5, DVec3::new(0.0, 1.0, 0.0), 0.3);
+        let v = light_visibility(p, DVec3::Y, &disc, &ball, &[], 0.0, 0.0);
+        let expected = 1.0 - hidden_share(p, light, 0.5, &[(DVec3::new(0.0, 1.0, 0.0), 0.3)]);
         assert!((v - expected).abs() < 3e-3, "x = {:.2}: {v} vs {expected}", p.x);
         assert!(v >= last - 1e-9, "visibility rises away from the ball");
         last = v;
@@ -339,7 +404,7 @@ fn a_point_lights_shadow_edge_ramps_over_about_one_pixel() {
             distance_m: offset.length(),
             cap_ratio: 0.0,
         };
-        light_visibility(p, DVec3::Y, &disc, &ball, 0.0, footprint)
+        light_visibility(p, DVec3::Y, &disc, &ball, &[], 0.0, footprint)
     };
     // Without a footprint the edge is a step.
     assert_eq!(visibility(edge - 1e-4, 0.0), 0.0);
@@ -366,7 +431,7 @@ fn a_point_lights_shadow_edge_ramps_over_about_one_pixel() {
 
 /// Share of the light's cap, seen from p, whose rays meet the ball (a fine polar grid of
 /// equal solid-angle cells over the cap).
-fn hidden_share(p: DVec3, light: DVec3, light_radius: f64, centre: DVec3, radius: f64) -> f64 {
+fn hidden_share(p: DVec3, light: DVec3, light_radius: f64, balls: &[(DVec3, f64)]) -> f64 {
     let axis = (light - p).normalize();
     let half_angle = (light_radius / (light - p).length()).asin();
     let (t, b) = axis.any_orthonormal_pair();
@@ -378,10 +443,13 @@ fn hidden_share(p: DVec3, light: DVec3, light_radius: f64, centre: DVec3, radius
         for j in 0..sectors {
             let phi = (j as f64 + 0.5) / sectors as f64 * std::f64::consts::TAU;
             let d = axis * cos_t + (t * phi.cos() + b * phi.sin()) * sin_t;
-            let oc = p - centre;
-            let half_b = oc.dot(d);
-            let c = oc.length_squared() - radius * radius;
-            hidden += usize::from(half_b < 0.0 && half_b * half_b >= c);
+            let hits = balls.iter().any(|&(centre, radius)| {
+                let oc = p - centre;
+                let half_b = oc.dot(d);
+                let c = oc.length_squared() - radius * radius;
+                half_b < 0.0 && half_b * half_b >= c
+            });
+            hidden += usize::from(hits);
         }
     }
     hidden as f64 / (rings * sectors) as f64

@@ -1,8 +1,9 @@
 //! Shadows beyond the SH band limit (shading-model.md §4b): for a light that subtends a small
 //! angle, its visibility from a receiver is computed per light, exactly for each sphere
 //! blocker — the share of the light's disc the blocker's cap hides ([`hidden_fraction`]) —
-//! and combined over blockers in log space, ln V = Σ_b ln(1 − f_b) (blockers are taken as
-//! independent: where two hide the same part of the light, the product over-darkens).
+//! and combined over blockers as the share their union hides ([`union`]: blockers taken as
+//! independent, Π_b(1 − f_b), would darken twice where two hide the same part of the
+//! light, and too little where two hide its two halves).
 //! The SH path cannot resolve such lights at any real-time order (§4b: 30–39 % penumbra
 //! error for a 5° light at order 4); this path is exact for sphere blockers, at a cost per
 //! light and blocker instead of per blocker.
@@ -15,8 +16,10 @@
 //! worth of angle) are anti-aliased by widening the light's disc to it, per blocker.
 
 pub mod cap_overlap;
+pub mod union;
 
 pub use cap_overlap::hidden_fraction;
+use union::{HidingCap, union_of_hidden};
 
 use glam::DVec3;
 
@@ -33,43 +36,75 @@ pub struct LightDisc {
     pub cap_ratio: f64,
 }
 
-/// Visibility (0–1) from `p` (unit normal `n`) of `light` through `blockers`.
+/// Visibility (0–1) from `p` (unit normal `n`) of `light` through `spheres` and `discs`.
+///
+/// The spheres' shares of the light's disc combine as their union ([`union`], in the
+/// order given: the GPU's, `blocker_groups`); the discs' multiply in after, as
+/// independent (the shader takes them in a loop of their own).
 ///
 /// `pixel_footprint_m`, the width of one pixel at `p` (0: none), anti-aliases hard edges:
 /// against a blocker at distance d the disc's sine is taken at least footprint/(2d),
 /// about the angle over which one pixel's step across the receiver turns the blocker's
 /// direction, so a point light's shadow edge ramps over about one pixel instead of
-/// stepping.
+/// stepping. Two spheres' overlap is measured on the wider of their two discs.
 pub fn light_visibility(
     p: DVec3,
     n: DVec3,
     light: &LightDisc,
-    blockers: &[Sphere],
+    spheres: &[Sphere],
+    discs: &[Sphere],
     min_cap_ratio: f64,
     pixel_footprint_m: f64,
 ) -> f64 {
     let sin_light = light.cap_ratio.clamp(0.0, 1.0);
-    let mut log_visibility = 0.0;
-    for b in blockers {
+    let disc_sine_at = |distance_m: f64| sin_light.max(0.5 * pixel_footprint_m / distance_m).min(1.0);
+    // Each blocker that hides part of the disc, with its distance; None: one hides it all.
+    let hiding = |b: &Sphere| -> Option<Option<(HidingCap, f64)>> {
         let Some(cap) = b.cap_from(p, n, min_cap_ratio) else {
-            continue;
+            return Some(None);
         };
         if cap.distance_m - b.radius_m as f64 >= light.distance_m {
-            continue; // wholly beyond the light
+            return Some(None); // wholly beyond the light
         }
-        let separation = cap
-            .direction
-            .cross(light.to_light)
-            .length()
-            .atan2(cap.direction.dot(light.to_light));
-        let sin_disc = sin_light.max(0.5 * pixel_footprint_m / cap.distance_m).min(1.0);
-        let hidden = cap.horizon * hidden_fraction(sin_disc.asin(), cap.ratio.asin(), separation);
+        let radius_rad = cap.ratio.asin();
+        let separation = union::angle_between(cap.direction, light.to_light);
+        let disc_rad = disc_sine_at(cap.distance_m).asin();
+        let hidden = cap.horizon * hidden_fraction(disc_rad, radius_rad, separation);
         if hidden >= 1.0 {
-            return 0.0;
+            return None;
         }
-        log_visibility += (1.0 - hidden).ln();
+        let hiding_cap = HidingCap {
+            direction: cap.direction,
+            radius_rad,
+            horizon: cap.horizon,
+            hidden,
+        };
+        Some((hidden > 0.0).then_some((hiding_cap, cap.distance_m)))
+    };
+    let mut caps = Vec::new();
+    let mut distances = Vec::new();
+    for b in spheres {
+        match hiding(b) {
+            None => return 0.0,
+            Some(Some((cap, distance_m))) => {
+                caps.push(cap);
+                distances.push(distance_m);
+            }
+            Some(None) => {}
+        }
     }
-    log_visibility.exp()
+    let hidden_by_spheres = union_of_hidden(light.to_light, &caps, |m, k| {
+        disc_sine_at(distances[m].min(distances[k])).asin()
+    });
+    let mut visibility = 1.0 - hidden_by_spheres;
+    for b in discs {
+        match hiding(b) {
+            None => return 0.0,
+            Some(Some((cap, _))) => visibility *= 1.0 - cap.hidden,
+            Some(None) => {}
+        }
+    }
+    visibility
 }
 
 #[cfg(test)]
@@ -95,7 +130,7 @@ mod tests {
         }];
         // The light at 3 m, the ball beyond it at 5 m.
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &ball, 0.0, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &ball, &[], 0.0, 0.0),
             1.0
         );
         // A ball under the floor.
@@ -105,7 +140,7 @@ mod tests {
             disc_normal: glam::Vec3::ZERO,
         }];
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &under, 0.0, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.1), &under, &[], 0.0, 0.0),
             1.0
         );
         // A ball between covering the whole light: nothing arrives, no light leaks.
@@ -115,7 +150,7 @@ mod tests {
             disc_normal: glam::Vec3::ZERO,
         }];
         assert_eq!(
-            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.05), &cover, 0.0, 0.0),
+            light_visibility(DVec3::ZERO, DVec3::Y, &overhead(0.05), &cover, &[], 0.0, 0.0),
             0.0
         );
     }

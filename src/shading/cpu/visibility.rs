@@ -230,15 +230,19 @@ pub fn exact_visibility(
             cap_ratio: inc.cap_ratio,
         };
         let min_cap_ratio = settings.min_cap_ratio as f64;
-        above_terrain
-            * crate::penumbra::light_visibility(
-                s.position,
-                s.normal,
-                &light,
-                blockers,
-                min_cap_ratio,
-                pixel_footprint_m,
-            )
+        // The spheres in the GPU's order: their union is taken in order (penumbra::union).
+        with_groups(blockers, settings.min_cap_ratio, |spheres, _, discs| {
+            above_terrain
+                * crate::penumbra::light_visibility(
+                    s.position,
+                    s.normal,
+                    &light,
+                    spheres,
+                    discs,
+                    min_cap_ratio,
+                    pixel_footprint_m,
+                )
+        })
     })
 }
 
