@@ -568,14 +568,20 @@ fn a_stroke_names_the_light_it_changed_and_why() {
     assert_eq!(report.outcome, Outcome::Changed, "{report:?}");
     assert_eq!(report.changes.len(), 1, "{report:?}");
     let changed = report.changes[0].light as usize;
-    // Each light's light on the painted vertices, weighted as the stroke weighs them.
+    // Each light's light on the painted points (the pixels under the brush), weighted
+    // as the stroke weighs them: at each point its triangle's corners' transfer in the
+    // proportions of its barycentrics (the fixture is untextured).
     let f = fixture();
     let transfer = BakedTransfer::new(&f.scene, &f.maps);
     let hits = picked(&stroke);
+    assert!(!hits.points.is_empty());
     let mut received = vec![0.0f64; before.len()];
-    for (&vertex, &w) in &hits.weights {
-        for (i, t) in transfer.vertex_transfer(vertex, stroke.view.eye) {
-            received[i as usize] += w as f64 * before[i as usize] as f64 * t;
+    for point in &hits.points {
+        assert!(point.texture_rgb.is_none());
+        for (vertex, share) in point.weighted_corners() {
+            for (i, t) in transfer.vertex_transfer(vertex, stroke.view.eye) {
+                received[i as usize] += point.weight as f64 * share * before[i as usize] as f64 * t;
+            }
         }
     }
     let strongest = (0..received.len())

@@ -21,7 +21,7 @@ mod transfer_ranking;
 
 pub use brush::{Brush, BrushKind, Falloff};
 pub use modify::ModificationStrategy;
-pub use pick::{Hits, VertexRef, View, pick_dab};
+pub use pick::{Hits, PaintedPoint, VertexRef, View, pick_dab};
 pub use record::{PaintSettings, Ranking, SolveMode, StrokeRecord, ViewRecord, dabs_along};
 pub use select::SelectionStrategy;
 pub use session::{Edit, LightChange, Outcome, Painter, StrokeReport, changes_in_words};

@@ -4,10 +4,11 @@
 //! meshes and misses sparse ones; projecting every vertex does neither and gives each hit
 //! its falloff weight.
 //!
-//! And the surface under the brush, whatever its tessellation: eye rays through a grid of
-//! points of the disc ([`SURFACE_SAMPLES_ACROSS`] across) hit the visible triangles, and
-//! each hit paints its triangle's three vertices with its falloff weight times their
-//! barycentric weights. A stroke on a wall of two triangles paints its corners in the
+//! And the surface under the brush, whatever its tessellation: eye rays through the pixel
+//! centres of the disc (at most [`MAX_SURFACE_SAMPLES_ACROSS`] across) hit the visible
+//! triangles; each hit is a painted point, where a stroke reads the light as the frame
+//! shows it at that pixel (`Transfer::point_shading`), and paints its triangle's three
+//! vertices with its falloff weight times their barycentric weights. A stroke on a wall of two triangles paints its corners in the
 //! proportions the painted point lies between them: what a stroke reads per vertex (the
 //! transfer) is interpolated linearly across a triangle, so the corners weighted by one
 //! point's barycentrics give that point's value. Each vertex keeps the largest weight any
@@ -87,11 +88,47 @@ impl View {
     }
 }
 
+/// A point of the surface under the brush, where an eye ray through the dab's disc met a
+/// visible front face: what the frame shows at that pixel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaintedPoint {
+    pub object: u32,
+    /// The triangle's corners (vertex indices within the object).
+    pub corners: [u32; 3],
+    /// The point's barycentric coordinates on the triangle (sum 1).
+    pub barycentric: Vec3,
+    /// The brush's falloff weight there.
+    pub weight: f32,
+    /// The base-colour texture's linear colour at the point (None: untextured).
+    pub texture_rgb: Option<glam::DVec3>,
+}
+
+impl PaintedPoint {
+    /// The corners as vertices, with their barycentric weights.
+    pub fn weighted_corners(&self) -> [(VertexRef, f64); 3] {
+        let share = self.barycentric.to_array();
+        std::array::from_fn(|k| {
+            (
+                VertexRef {
+                    object: self.object,
+                    vertex: self.corners[k],
+                },
+                share[k] as f64,
+            )
+        })
+    }
+}
+
 /// The vertices a stroke painted, each with its largest dab weight, in vertex order, and
-/// what the base-colour texture shows around each.
+/// what the base-colour texture shows around each; and the points of the surface under
+/// the brush, which stand for the pixels a stroke's mean luminance is read over.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Hits {
     pub weights: BTreeMap<VertexRef, f32>,
+    /// The surface points under the dabs (eye rays through the pixels of each dab's disc).
+    pub points: Vec<PaintedPoint>,
+    /// The pixels sampled so far (on the brush's lattice) and their points' indices.
+    sampled: BTreeMap<(i64, i64), usize>,
     /// Per vertex on a textured material: (Σ w·τ, Σ w) over the points of the surface that
     /// painted it, τ the luminance of the base-colour texture there (linear).
     texture: BTreeMap<VertexRef, (f64, f64)>,
@@ -104,6 +141,18 @@ impl Hits {
 
     pub fn len(&self) -> usize {
         self.weights.len()
+    }
+
+    /// Paints a point's corners with its weight times their barycentric shares.
+    fn paint_corners(&mut self, point: &PaintedPoint) {
+        let texture = point.texture_rgb.map(crate::scene::luminance);
+        for (vertex, share) in point.weighted_corners() {
+            if share > 0.0 {
+                let weight = point.weight * share as f32;
+                self.add(vertex, weight);
+                self.add_texture(vertex, weight, texture);
+            }
+        }
     }
 
     fn add(&mut self, vertex: VertexRef, weight: f32) {
@@ -137,16 +186,27 @@ impl Hits {
     }
 }
 
-/// The luminance of `object`'s base-colour texture at `uv` (linear), if it has one.
-fn texture_luminance(scene: &Scene, object: usize, uv: Vec2) -> Option<f64> {
+/// The linear colour of `object`'s base-colour texture at `uv`, if it has one.
+fn texture_colour(scene: &Scene, object: usize, uv: Vec2) -> Option<glam::DVec3> {
     let material = scene.materials.get(scene.objects.get(object)?.material)?;
     let texture = scene.textures.get(material.base_color_texture?)?;
-    Some(crate::scene::luminance(texture.sample_bilinear(uv)))
+    Some(texture.sample_bilinear(uv))
 }
 
-/// Points of the dab's disc sampled along its diameter (a square grid, those inside the
-/// disc kept: 21 of 25 at 5).
-pub const SURFACE_SAMPLES_ACROSS: usize = 5;
+/// The luminance of `object`'s base-colour texture at `uv` (linear), if it has one.
+fn texture_luminance(scene: &Scene, object: usize, uv: Vec2) -> Option<f64> {
+    texture_colour(scene, object, uv).map(crate::scene::luminance)
+}
+
+/// Most pixels sampled across a dab's diameter: a brush up to this wide reads every pixel
+/// centre of its disc, as the frame shows them; a wider one every k-th pixel on a lattice
+/// fixed to the frame, so that overlapping dabs meet the same pixels.
+pub const MAX_SURFACE_SAMPLES_ACROSS: f32 = 16.0;
+
+/// The lattice step (pixels) of a brush's surface samples.
+fn sample_stride_px(radius_px: f32) -> i32 {
+    (2.0 * radius_px / MAX_SURFACE_SAMPLES_ACROSS).ceil().clamp(1.0, 1e6) as i32
+}
 
 /// Adds to `hits` the vertices one dab at `center_px` paints; the objects `hidden` lists
 /// are neither painted nor in the way.
@@ -198,8 +258,11 @@ pub fn pick_dab(
     pick_surface(scene, bvh, view, center_px, brush, hidden, hits);
 }
 
-/// The surface under the dab (see the module's comment): eye rays through the disc's
-/// grid points, each visible front-facing hit painting its triangle's corners.
+/// The surface under the dab (see the module's comment): eye rays through the pixel
+/// centres of the disc (on the lattice of [`sample_stride_px`]; the centre itself when
+/// the disc holds none), each visible front-facing hit a painted point that paints its
+/// triangle's corners. A pixel an earlier dab of the stroke sampled keeps its point, with
+/// the larger weight.
 fn pick_surface(
     scene: &Scene,
     bvh: &SceneBvh,
@@ -210,44 +273,65 @@ fn pick_surface(
     hits: &mut Hits,
 ) {
     let radius = brush.radius_px.max(0.5);
-    let step = 2.0 * radius / (SURFACE_SAMPLES_ACROSS - 1) as f32;
-    for i in 0..SURFACE_SAMPLES_ACROSS {
-        for j in 0..SURFACE_SAMPLES_ACROSS {
-            let offset = Vec2::new(i as f32, j as f32) * step - Vec2::splat(radius);
-            let Some(weight) = brush.weight(offset.length()) else {
-                continue;
-            };
-            let Some((origin, direction)) = view.ray_through(center_px + offset) else {
-                continue;
-            };
-            let Some(hit) = bvh.closest_hit_ignoring(origin, direction, f32::INFINITY, hidden) else {
-                continue;
-            };
-            let Some(corners) = scene
-                .objects
-                .get(hit.object)
-                .and_then(|o| o.indices.get(3 * hit.triangle..3 * hit.triangle + 3))
-            else {
-                continue;
-            };
-            if !hit.front_facing {
-                continue;
-            }
-            let texture = scene.objects.get(hit.object).and_then(|object| {
-                texture_luminance(scene, hit.object, object.interpolated_uv(hit.triangle, hit.barycentric))
-            });
-            for (&vertex, share) in corners.iter().zip(hit.barycentric.to_array()) {
-                if share > 0.0 {
-                    let at = VertexRef {
-                        object: hit.object as u32,
-                        vertex,
-                    };
-                    hits.add(at, weight * share);
-                    hits.add_texture(at, weight * share, texture);
-                }
+    let stride = sample_stride_px(radius);
+    let lattice = |x: f32| ((x / stride as f32).floor() as i64).clamp(-(1 << 40), 1 << 40);
+    let centre_of = |ix: i64, iy: i64| Vec2::new((ix * stride as i64) as f32 + 0.5, (iy * stride as i64) as f32 + 0.5);
+    let mut samples: Vec<((i64, i64), Vec2, f32)> = Vec::new();
+    for iy in lattice(center_px.y - radius)..=lattice(center_px.y + radius) {
+        for ix in lattice(center_px.x - radius)..=lattice(center_px.x + radius) {
+            let pixel = centre_of(ix, iy);
+            if let Some(weight) = brush.weight(pixel.distance(center_px)) {
+                samples.push(((ix * stride as i64, iy * stride as i64), pixel, weight));
             }
         }
     }
+    if samples.is_empty() {
+        let at = (center_px.x.floor() as i64, center_px.y.floor() as i64);
+        samples.push((at, center_px, 1.0));
+    }
+    for (key, pixel, weight) in samples {
+        if let Some(&index) = hits.sampled.get(&key) {
+            let point: &mut PaintedPoint = &mut hits.points[index];
+            if weight > point.weight {
+                point.weight = weight;
+                let point = *point;
+                hits.paint_corners(&point);
+            }
+            continue;
+        }
+        let Some(point) = surface_point(scene, bvh, view, pixel, weight, hidden) else {
+            continue;
+        };
+        hits.sampled.insert(key, hits.points.len());
+        hits.points.push(point);
+        hits.paint_corners(&point);
+    }
+}
+
+/// The visible front-facing surface point an eye ray through `pixel` meets, if any.
+fn surface_point(
+    scene: &Scene,
+    bvh: &SceneBvh,
+    view: &View,
+    pixel: Vec2,
+    weight: f32,
+    hidden: &[u32],
+) -> Option<PaintedPoint> {
+    let (origin, direction) = view.ray_through(pixel)?;
+    let hit = bvh.closest_hit_ignoring(origin, direction, f32::INFINITY, hidden)?;
+    if !hit.front_facing {
+        return None;
+    }
+    let object = scene.objects.get(hit.object)?;
+    let corners = object.indices.get(3 * hit.triangle..3 * hit.triangle + 3)?;
+    let texture_rgb = texture_colour(scene, hit.object, object.interpolated_uv(hit.triangle, hit.barycentric));
+    Some(PaintedPoint {
+        object: hit.object as u32,
+        corners: [corners[0], corners[1], corners[2]],
+        barycentric: hit.barycentric,
+        weight,
+        texture_rgb,
+    })
 }
 
 #[cfg(test)]

@@ -61,16 +61,24 @@ struct PaintedVertex {
     transfer: Vec<(u32, f64)>,
 }
 
-/// The stroke's painted vertices with their transfer, reduced to means.
+/// The stroke's transfer reduced to means, and its painted vertices' own (a Keep's).
 struct StrokeTransfer {
     vertices: Vec<PaintedVertex>,
-    /// Σ_v w_v t_{i,v} / Σ_v w_v for every light.
+    /// Σ w·t_i / Σ w for every light, over the painted points (or vertices).
     mean: Vec<f64>,
     fixed: f64,
 }
 
-fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> StrokeTransfer {
-    let listed: Vec<(VertexRef, f32)> = hits.weights.iter().map(|(v, w)| (*v, *w)).collect();
+/// The stroke's transfer: its means over the painted points (over the painted vertices
+/// when it met no surface point), and each painted vertex's own when `is_keep` (a Keep
+/// holds its vertices; no other stroke reads them, and they are most of a dab's cost).
+fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3, is_keep: bool) -> StrokeTransfer {
+    let per_vertex = is_keep || hits.points.is_empty();
+    let listed: Vec<(VertexRef, f32)> = if per_vertex {
+        hits.weights.iter().map(|(v, w)| (*v, *w)).collect()
+    } else {
+        Vec::new()
+    };
     let vertices: Vec<PaintedVertex> = listed
         .par_iter()
         .map(|&(vertex, w)| {
@@ -88,15 +96,45 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
             }
         })
         .collect();
-    let mut mean = vec![0.0; transfer.light_count()];
+    // The stroke's mean is the frame's over the pixels under the brush: read at the
+    // surface points there when the dabs met the surface, else at the painted vertices.
+    let (mean, fixed) = if hits.points.is_empty() {
+        weighted_means(
+            transfer.light_count(),
+            vertices.iter().map(|v| (v.weight, v.fixed, v.transfer.as_slice())),
+        )
+    } else {
+        let shaded: Vec<(f64, Vec<(u32, f64)>)> = hits
+            .points
+            .par_iter()
+            .map(|point| transfer.point_shading(point, eye))
+            .collect();
+        weighted_means(
+            transfer.light_count(),
+            hits.points
+                .iter()
+                .zip(&shaded)
+                .map(|(point, (fixed, entries))| (point.weight as f64, *fixed, entries.as_slice())),
+        )
+    };
+    StrokeTransfer { vertices, mean, fixed }
+}
+
+/// The weighted means of each light's transfer and of the fixed luminance over
+/// (weight, fixed, transfer) samples.
+fn weighted_means<'t>(
+    light_count: usize,
+    samples: impl Iterator<Item = (f64, f64, &'t [(u32, f64)])>,
+) -> (Vec<f64>, f64) {
+    let mut mean = vec![0.0; light_count];
     let mut fixed = 0.0;
     let mut weight_sum = 0.0;
-    for v in &vertices {
-        weight_sum += v.weight;
-        fixed += v.weight * v.fixed;
-        for &(i, t) in &v.transfer {
+    for (weight, sample_fixed, entries) in samples {
+        weight_sum += weight;
+        fixed += weight * sample_fixed;
+        for &(i, t) in entries {
             if let Some(m) = mean.get_mut(i as usize) {
-                *m += v.weight * t;
+                *m += weight * t;
             }
         }
     }
@@ -104,7 +142,7 @@ fn stroke_transfer(transfer: &dyn Transfer, hits: &Hits, eye: glam::Vec3) -> Str
         mean.iter_mut().for_each(|m| *m /= weight_sum);
         fixed /= weight_sum;
     }
-    StrokeTransfer { vertices, mean, fixed }
+    (mean, fixed)
 }
 
 /// What `record`'s dabs paint on `scene` seen from its view.
@@ -214,7 +252,8 @@ impl Painter {
             if hits.is_empty() {
                 continue;
             }
-            let stroke = stroke_transfer(transfer, &hits, record.view.eye);
+            let is_keep = record.brush.kind == BrushKind::Constraint;
+            let stroke = stroke_transfer(transfer, &hits, record.view.eye, is_keep);
             if record.brush.kind == BrushKind::Release {
                 let released = self.released_by(&hits);
                 self.carried
@@ -294,7 +333,8 @@ impl Painter {
             );
         }
         let p: Vec<f64> = intensities.iter().map(|&v| sanitized(v as f64)).collect();
-        let stroke = stroke_transfer(transfer, hits, record.view.eye);
+        let is_keep = record.brush.kind == BrushKind::Constraint;
+        let stroke = stroke_transfer(transfer, hits, record.view.eye, is_keep);
         let mean_before = stroke.fixed + mean_luminance(&p, &stroke.mean);
         if record.brush.kind == BrushKind::Release {
             let released = self.released_by(hits);

@@ -9,7 +9,7 @@
 
 use glam::Vec3;
 
-use super::pick::VertexRef;
+use super::pick::{PaintedPoint, VertexRef};
 use crate::bake::ImportanceMaps;
 use crate::scene::{Material, Scene, luminance};
 use crate::sh;
@@ -29,6 +29,31 @@ pub trait Transfer: Sync {
     /// sources that share work between them.
     fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
         (self.fixed_luminance(vertex, eye), self.vertex_transfer(vertex, eye))
+    }
+
+    /// Fixed luminance and per-light transfer at a point of the surface under the brush,
+    /// as the frame shows it there (through the base-colour texture). By default the
+    /// corners' shading interpolated by the point's barycentrics (the transfer varies
+    /// linearly across a triangle), times the texture's luminance; a source that can
+    /// shade the point itself does so.
+    fn point_shading(&self, point: &PaintedPoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        let texture = point.texture_rgb.map_or(1.0, luminance);
+        let mut fixed = 0.0;
+        let mut transfer: Vec<(u32, f64)> = Vec::new();
+        for (vertex, share) in point.weighted_corners() {
+            if share <= 0.0 {
+                continue;
+            }
+            let (corner_fixed, entries) = self.vertex_shading(vertex, eye);
+            fixed += share * corner_fixed;
+            for (light, t) in entries {
+                match transfer.iter_mut().find(|(l, _)| *l == light) {
+                    Some(entry) => entry.1 += share * t * texture,
+                    None => transfer.push((light, share * t * texture)),
+                }
+            }
+        }
+        (fixed, transfer)
     }
 }
 

@@ -14,7 +14,7 @@ use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
-use crate::paint::{Transfer, VertexRef};
+use crate::paint::{PaintedPoint, Transfer, VertexRef};
 use crate::scene::{Light, Material, Scene, luminance};
 use crate::sh;
 use crate::terrain::TerrainShadow;
@@ -73,6 +73,34 @@ impl<'a> DirectEstimate<'a> {
         Some(SurfacePoint {
             position: object.positions.get(v)?.as_dvec3(),
             normal: object.normals.get(v)?.as_dvec3(),
+            k_d: material.diffuse_albedo().as_dvec3(),
+            k_s: material.specular_color().as_dvec3(),
+            phong_exponent: material.phong_exponent() as f64,
+            emissive: material.emissive.as_dvec3(),
+        })
+    }
+
+    /// The surface at a point under the brush: position and shading normal interpolated
+    /// from the triangle's corners (as the rasteriser interpolates them), the material's
+    /// colour times the base-colour texture there (as the frame's shading takes it).
+    fn surface_at_point(&self, point: &PaintedPoint) -> Option<SurfacePoint> {
+        let object = self.scene.objects.get(point.object as usize)?;
+        let mut position = DVec3::ZERO;
+        let mut normal = DVec3::ZERO;
+        for (vertex, share) in point.weighted_corners() {
+            let v = vertex.vertex as usize;
+            position += share * object.positions.get(v)?.as_dvec3();
+            normal += share * object.normals.get(v)?.as_dvec3();
+        }
+        let normal = normal.try_normalize()?;
+        let mut material = self.scene.materials.get(object.material).cloned().unwrap_or_default();
+        if let Some(rgb) = point.texture_rgb {
+            let colour = material.base_color.truncate() * rgb.as_vec3();
+            material.base_color = colour.extend(material.base_color.w);
+        }
+        (position.is_finite() && normal.is_finite()).then(|| SurfacePoint {
+            position,
+            normal,
             k_d: material.diffuse_albedo().as_dvec3(),
             k_s: material.specular_color().as_dvec3(),
             phong_exponent: material.phong_exponent() as f64,
@@ -183,9 +211,24 @@ impl Transfer for DirectEstimate<'_> {
         let Some(s) = self.surface(vertex) else {
             return (0.0, Vec::new());
         };
+        self.shading_at(&s, eye)
+    }
+
+    /// The frame's shading at the point itself, not its corners': a highlight or a shadow
+    /// edge between vertices shows in the stroke's reading as in the frame.
+    fn point_shading(&self, point: &PaintedPoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        let Some(s) = self.surface_at_point(point) else {
+            return (0.0, Vec::new());
+        };
+        self.shading_at(&s, eye)
+    }
+}
+
+impl DirectEstimate<'_> {
+    fn shading_at(&self, s: &SurfacePoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
         let mut g = self.lazy();
-        let transfer = self.transfer_at(&s, eye, &mut g);
-        (self.fixed_at(&s, &mut g), transfer)
+        let transfer = self.transfer_at(s, eye, &mut g);
+        (self.fixed_at(s, &mut g), transfer)
     }
 }
 
