@@ -272,7 +272,9 @@ fn pick_surface(
     hidden: &[u32],
     hits: &mut Hits,
 ) {
-    let radius = brush.radius_px.max(0.5);
+    // A disc far wider than the view samples as one that covers it (bounded work).
+    let view_span_px = 4.0 * (view.width_px as f32 + view.height_px as f32) + 1.0;
+    let radius = brush.radius_px.max(0.5).min(view_span_px);
     let stride = sample_stride_px(radius);
     let lattice = |x: f32| ((x / stride as f32).floor() as i64).clamp(-(1 << 40), 1 << 40);
     let centre_of = |ix: i64, iy: i64| Vec2::new((ix * stride as i64) as f32 + 0.5, (iy * stride as i64) as f32 + 0.5);
@@ -459,5 +461,70 @@ mod tests {
         let mut none = Hits::default();
         pick_dab(&scene, &bvh, &below, Vec2::new(100.0, 100.0), &brush, &[], &mut none);
         assert!(none.is_empty());
+    }
+
+    /// The painted points are the pixels the frame shows under the brush: one per pixel
+    /// centre within the disc for a brush up to 16 px across (a 6 px disc at a pixel
+    /// centre holds the 113 centres of a 13 × 13 square within 6 px), each on the surface
+    /// its eye ray meets; a second dab over the same pixels adds none; a disc of 0.5 px
+    /// between pixel centres still reads the surface there; a disc far wider than the
+    /// view takes bounded work.
+    #[test]
+    fn the_painted_points_are_the_pixels_under_the_brush() {
+        let scene = Scene {
+            objects: vec![shapes::plane(10.0, 1, 1.0).into_object("wall")],
+            ..Default::default()
+        };
+        let bvh = SceneBvh::build(&scene);
+        let view = view_down_from(5.0);
+        let brush = |radius_px: f32| Brush {
+            radius_px,
+            ..Brush::new(BrushKind::Positive)
+        };
+        let centre = Vec2::new(100.5, 100.5);
+        let expected = (-6i32..=6)
+            .flat_map(|y| (-6i32..=6).map(move |x| (x, y)))
+            .filter(|&(x, y)| x * x + y * y <= 36)
+            .count();
+        let mut hits = Hits::default();
+        pick_dab(&scene, &bvh, &view, centre, &brush(6.0), &[], &mut hits);
+        assert_eq!(hits.points.len(), expected);
+        for point in &hits.points {
+            let b = point.barycentric;
+            assert!((b.x + b.y + b.z - 1.0).abs() < 1e-4 && b.min_element() >= -1e-6, "{b}");
+        }
+        pick_dab(
+            &scene,
+            &bvh,
+            &view,
+            centre + Vec2::new(0.3, -0.2),
+            &brush(6.0),
+            &[],
+            &mut hits,
+        );
+        let moved = (-7i32..=7)
+            .flat_map(|y| (-7i32..=7).map(move |x| (x, y)))
+            .filter(|&(x, y)| (Vec2::new(x as f32, y as f32) - Vec2::new(0.3, -0.2)).length() <= 6.0)
+            .filter(|&(x, y)| x * x + y * y > 36)
+            .count();
+        assert_eq!(hits.points.len(), expected + moved, "only the new pixels are added");
+        let mut tiny = Hits::default();
+        pick_dab(
+            &scene,
+            &bvh,
+            &view,
+            Vec2::new(100.0, 100.0),
+            &brush(0.5),
+            &[],
+            &mut tiny,
+        );
+        assert_eq!(tiny.points.len(), 1);
+        let mut huge = Hits::default();
+        pick_dab(&scene, &bvh, &view, centre, &brush(1e30), &[], &mut huge);
+        assert!(
+            !huge.points.is_empty() && huge.points.len() <= 17 * 17,
+            "{}",
+            huge.points.len()
+        );
     }
 }
