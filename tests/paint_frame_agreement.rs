@@ -108,7 +108,7 @@ impl Studio {
     ) -> (StrokeReport, Vec<f32>) {
         let scene = &self.document.scene;
         let stroke = StrokeRecord {
-            view: self.view.clone(),
+            view: self.view,
             dabs_px: vec![dab],
             brush,
             settings,
