@@ -22,6 +22,7 @@ use lightpaint::paint::{
 };
 use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_logsh_image};
+use lightpaint::shading::BakedIndirect;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 240;
@@ -34,6 +35,8 @@ struct Studio {
     blockers: Vec<lightpaint::blockers::Sphere>,
     bvh: SceneBvh,
     view: ViewRecord,
+    /// Baked maps: strokes read them, and the frame adds their indirect light.
+    maps: Option<lightpaint::bake::ImportanceMaps>,
 }
 
 impl Studio {
@@ -54,7 +57,16 @@ impl Studio {
             blockers,
             bvh,
             view,
+            maps: None,
         }
+    }
+
+    /// The studio with maps baked at the default settings.
+    fn baked() -> Studio {
+        let mut studio = Studio::open();
+        let settings = lightpaint::bake::BakeSettings::default();
+        studio.maps = Some(lightpaint::bake::bake_maps(&studio.document.scene, &settings));
+        studio
     }
 
     fn object(&self, name: &str) -> usize {
@@ -117,7 +129,8 @@ impl Studio {
             locked_lights,
         };
         let shadows = self.document.settings.shadows;
-        let transfer = lightpaint::shading::paint_estimate::transfer_for(None, scene, &self.blockers, &shadows);
+        let transfer =
+            lightpaint::shading::paint_estimate::transfer_for(self.maps.as_ref(), scene, &self.blockers, &shadows);
         let mut after = scene.light_intensities();
         let report = Painter::new().paint(scene, &self.bvh, transfer.as_ref(), &mut after, stroke);
         (report, after)
@@ -135,12 +148,13 @@ impl Studio {
     ) -> f64 {
         let mut settings = self.document.settings;
         settings.exposure_ev = -2.0;
-        settings.baked_indirect = false;
+        settings.baked_indirect = self.maps.is_some();
         let mut lit = self.document.scene.clone();
         lit.set_light_intensities(intensities);
+        let indirect = self.maps.as_ref().map(|maps| BakedIndirect::from_maps(&lit, maps));
         let camera = self.document.view().camera();
         let frame = ShadowFrame {
-            baked_indirect: None,
+            baked_indirect: indirect.as_ref(),
             scene: &lit,
             camera: &camera,
             settings: &settings,
@@ -276,5 +290,24 @@ fn a_target_on_the_textured_floor_is_reached_in_the_frame() {
             "target {target}: the frame shows {shown} ({})",
             report.message
         );
+    }
+}
+
+/// With maps baked at the default settings, the same "× 2" strokes on the torso: the
+/// frame (with the maps' indirect light) against the maps' prediction. A measurement for
+/// docs/strokes.md (the maps' order-3 SH of the direct light is the painting issue's item
+/// on map accuracy): `cargo nextest run --test paint_frame_agreement --run-ignored only
+/// --no-capture`.
+#[test]
+#[ignore = "a measurement (docs/strokes.md): the baked maps' direct light is order-3 SH"]
+fn measure_the_baked_maps_prediction_against_the_frame() {
+    let Some(gpu) = common::gpu() else { return };
+    let studio = Studio::baked();
+    let figure = studio.object("Figure");
+    let chest = studio.projected(figure, glam::Vec3::new(0.5, 0.66, 0.5));
+    let torso = studio.dab_wholly_on(figure, chest);
+    for name in ["Key", "Kicker", "Top", "Sky"] {
+        let ratio = frame_over_prediction(&studio, &gpu, name, torso, AntiAliasing::default());
+        eprintln!("{name}, baked maps: the frame's change is {ratio:.3} times the predicted one on the torso");
     }
 }
