@@ -8,12 +8,13 @@
 //! centres of the disc (at most [`MAX_SURFACE_SAMPLES_ACROSS`] across) hit the visible
 //! triangles; each hit is a painted point, where a stroke reads the light as the frame
 //! shows it at that pixel (`Transfer::point_shading`), and paints its triangle's three
-//! vertices with its falloff weight times their barycentric weights. A stroke on a wall of two triangles paints its corners in the
-//! proportions the painted point lies between them: what a stroke reads per vertex (the
-//! transfer) is interpolated linearly across a triangle, so the corners weighted by one
-//! point's barycentrics give that point's value. Each vertex keeps the largest weight any
-//! dab or sample gave it, which keeps the corners' weighted mean within the dab's
-//! footprint (tests below) rather than exactly at its centre.
+//! vertices with its falloff weight times their barycentric weights. A stroke on a wall
+//! of two triangles paints its corners in the proportions the painted point lies between
+//! them: what a stroke reads per vertex (the transfer) is interpolated linearly across a
+//! triangle, so the corners weighted by one point's barycentrics give that point's value.
+//! Each vertex keeps the largest weight any dab or sample gave it, which keeps the
+//! corners' weighted mean within the dab's footprint (tests below) rather than exactly at
+//! its centre.
 
 use std::collections::BTreeMap;
 

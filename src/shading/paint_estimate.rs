@@ -180,6 +180,13 @@ impl<'a> DirectEstimate<'a> {
             .collect()
     }
 
+    /// Fixed luminance and per-light transfer at `s` toward `eye`.
+    fn shading_at(&self, s: &SurfacePoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+        let mut g = self.lazy();
+        let transfer = self.transfer_at(s, eye, &mut g);
+        (self.fixed_at(s, &mut g), transfer)
+    }
+
     /// Luminance at `s` that no light changes: emission and the shadowed environment.
     fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
         let mut radiance = s.emissive;
@@ -224,14 +231,6 @@ impl Transfer for DirectEstimate<'_> {
     }
 }
 
-impl DirectEstimate<'_> {
-    fn shading_at(&self, s: &SurfacePoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
-        let mut g = self.lazy();
-        let transfer = self.transfer_at(s, eye, &mut g);
-        (self.fixed_at(s, &mut g), transfer)
-    }
-}
-
 /// The transfer strokes read: the baked maps when there are maps for this scene, else the
 /// direct estimate through `blockers` (the view's visibility). One choice for the editor
 /// and `lightpaint paint` alike.
@@ -271,5 +270,43 @@ mod tests {
             assert_eq!(t.len(), 1);
             assert!((t[0].1 / expected - 1.0).abs() < 1e-6, "{} vs {expected}", t[0].1);
         }
+    }
+
+    /// At a point inside a triangle the estimate is the closed form at that point, not
+    /// the corners' values interpolated (which differ: cos θ/d² is not linear).
+    #[test]
+    fn a_painted_point_reads_the_light_at_the_point_itself() {
+        let light = Vec3::new(0.3, 1.0, 0.2);
+        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
+        let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
+        let object = &scene.objects[0];
+        let corners = [object.indices[0], object.indices[1], object.indices[2]];
+        let barycentric = glam::Vec3::new(0.2, 0.5, 0.3);
+        let point = PaintedPoint {
+            object: 0,
+            corners,
+            barycentric,
+            weight: 1.0,
+            texture_rgb: None,
+        };
+        let at: DVec3 = corners
+            .iter()
+            .zip(barycentric.to_array())
+            .map(|(&v, b)| object.positions[v as usize].as_dvec3() * b as f64)
+            .sum();
+        let offset = light.as_dvec3() - at;
+        let expected = offset.normalize().y / offset.length_squared() / PI;
+        let (_, t) = estimate.point_shading(&point, Vec3::new(0.0, 3.0, 3.0));
+        assert_eq!(t.len(), 1);
+        assert!((t[0].1 / expected - 1.0).abs() < 1e-5, "{} vs {expected}", t[0].1);
+        let interpolated: f64 = point
+            .weighted_corners()
+            .iter()
+            .map(|&(v, b)| b * estimate.vertex_transfer(v, Vec3::new(0.0, 3.0, 3.0))[0].1)
+            .sum();
+        assert!(
+            (interpolated / expected - 1.0).abs() > 1e-2,
+            "the corners alone would not tell"
+        );
     }
 }
