@@ -286,3 +286,41 @@ fn a_dragged_lights_drafted_map_is_drawn_in_full_once_the_drag_ends() {
     assert!(!kept.maps_drafted());
     assert_same(&released, &anew, "the key light's drag ended");
 }
+
+/// A device whose storage bindings are too small for the samples' kept visibility of the
+/// mapped lights (the studio's nine at 960 × 540: 320 × 180 samples × 9 × 4 bytes, 2.1 MB;
+/// the limit here 1 MiB, which every other buffer of the frame fits) shades them from
+/// their maps every frame instead: its frames, drawn anew and after a light edit, are
+/// byte for byte those of a device that keeps them (and the light edit changes the
+/// frame, so the comparison means something).
+#[test]
+fn without_room_for_the_kept_visibility_the_frames_read_the_maps_alike() {
+    let Some(gpu) = common::gpu() else { return };
+    let small = GpuContext::headless_with_limits(|limits| wgpu::Limits {
+        max_storage_buffer_binding_size: 1 << 20,
+        ..limits
+    })
+    .expect("a device with a lower storage binding limit");
+    let studio = studio();
+    let settings = &studio.document.settings;
+    let lights = edited(&studio.document.scene.lights);
+    let size = [960, 540];
+    let frames = |gpu: &GpuContext| {
+        let mut renderer = renderer(gpu, &studio, &studio.document.scene);
+        let draw = |renderer: &mut SceneRenderer| {
+            renderer.render(&studio.camera, size, settings, FrameQuality::default());
+            renderer.read_image().expect("a frame was drawn").expect("readback")
+        };
+        let anew = draw(&mut renderer);
+        renderer.set_lights(&lights);
+        (anew, draw(&mut renderer))
+    };
+    let (kept_anew, kept_after) = frames(&gpu);
+    let (read_anew, read_after) = frames(&small);
+    assert!(
+        differing_pixels(&kept_anew, &kept_after) > 1000,
+        "the edit changes the frame"
+    );
+    assert_same(&read_anew, &kept_anew, "drawing anew without the kept visibility");
+    assert_same(&read_after, &kept_after, "a light edit without the kept visibility");
+}

@@ -13,6 +13,12 @@ impl GpuContext {
     /// environment variables are honoured. On a machine without a GPU this is Mesa's
     /// lavapipe (software Vulkan).
     pub fn headless() -> Result<GpuContext, RenderError> {
+        GpuContext::headless_with_limits(|limits| limits)
+    }
+
+    /// [`Self::headless`] with the device's limits changed by `limits` from those
+    /// lightpaint asks for (tests of what a device with lower limits does).
+    pub fn headless_with_limits(limits: impl FnOnce(wgpu::Limits) -> wgpu::Limits) -> Result<GpuContext, RenderError> {
         let adapter = match request_adapter(primary_backends_unless_env()) {
             Ok(adapter) => adapter,
             // No Vulkan/Metal/DX12 adapter: any backend wgpu has (e.g. GL) will do.
@@ -21,7 +27,7 @@ impl GpuContext {
         let adapter_info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("lightpaint"),
-            required_limits: wgpu::Limits::default().using_resolution(adapter.limits()),
+            required_limits: limits(wgpu::Limits::default().using_resolution(adapter.limits())),
             // For `render --time-frames`' time per pass (render::pass_timer), where the
             // adapter has them.
             required_features: adapter.features()

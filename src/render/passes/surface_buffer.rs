@@ -119,11 +119,15 @@ impl SurfaceBuffer {
     }
 
     /// Makes the kept visibility hold `lights` mapped lights at every sample where that
-    /// fits [`MAPPED_VISIBILITY_BUDGET_BYTES`]; true when the buffer is new (it holds
-    /// nothing yet).
+    /// fits [`MAPPED_VISIBILITY_BUDGET_BYTES`] and the device's limits on a storage
+    /// binding and a buffer; true when the buffer is new (it holds nothing yet).
     pub(super) fn reserve_mapped_visibility(&mut self, device: &wgpu::Device, lights: usize) -> bool {
         let bytes = self.samples * lights as u64 * 4;
-        if bytes <= self.mapped_visibility.size() || bytes > MAPPED_VISIBILITY_BUDGET_BYTES {
+        let limits = device.limits();
+        let budget = MAPPED_VISIBILITY_BUDGET_BYTES
+            .min(limits.max_storage_buffer_binding_size)
+            .min(limits.max_buffer_size);
+        if bytes <= self.mapped_visibility.size() || bytes > budget {
             return false;
         }
         self.mapped_visibility = mapped_visibility_buffer(device, bytes);
