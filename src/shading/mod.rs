@@ -11,6 +11,7 @@ pub mod blocker_groups;
 pub mod blocker_reach;
 mod color;
 pub mod cpu;
+pub mod frame_transfer;
 pub mod gpu_types;
 mod light_path_context;
 mod light_paths;

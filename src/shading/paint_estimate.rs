@@ -65,7 +65,7 @@ impl<'a> DirectEstimate<'a> {
         }
     }
 
-    fn surface(&self, vertex: VertexRef) -> Option<SurfacePoint> {
+    pub(crate) fn surface(&self, vertex: VertexRef) -> Option<SurfacePoint> {
         let object = self.scene.objects.get(vertex.object as usize)?;
         let v = vertex.vertex as usize;
         let default = Material::default();
@@ -83,7 +83,7 @@ impl<'a> DirectEstimate<'a> {
     /// The surface at a point under the brush: position and shading normal interpolated
     /// from the triangle's corners (as the rasteriser interpolates them), the material's
     /// colour times the base-colour texture there (as the frame's shading takes it).
-    fn surface_at_point(&self, point: &PaintedPoint) -> Option<SurfacePoint> {
+    pub(crate) fn surface_at_point(&self, point: &PaintedPoint) -> Option<SurfacePoint> {
         let object = self.scene.objects.get(point.object as usize)?;
         let mut position = DVec3::ZERO;
         let mut normal = DVec3::ZERO;
@@ -231,18 +231,20 @@ impl Transfer for DirectEstimate<'_> {
     }
 }
 
-/// The transfer strokes read: the baked maps when there are maps for this scene, else the
-/// direct estimate through `blockers` (the view's visibility). One choice for the editor
-/// and `lightpaint paint` alike.
+/// The transfer strokes read: the light the frame shows — the direct estimate through
+/// `blockers` (the view's visibility), plus, when there are maps for this scene, their
+/// bounced light as the frame adds it (`frame_transfer`). One choice for the editor and
+/// `lightpaint paint` alike.
 pub fn transfer_for<'a>(
     maps: Option<&'a crate::bake::ImportanceMaps>,
     scene: &'a Scene,
     blockers: &[Sphere],
     shadows: &ShadowSettings,
 ) -> Box<dyn Transfer + 'a> {
+    let direct = DirectEstimate::new(scene, blockers.to_vec(), *shadows);
     match maps {
-        Some(maps) => Box::new(crate::paint::BakedTransfer::new(scene, maps)),
-        None => Box::new(DirectEstimate::new(scene, blockers.to_vec(), *shadows)),
+        Some(maps) => Box::new(super::frame_transfer::FrameTransfer::new(direct, scene, maps)),
+        None => Box::new(direct),
     }
 }
 
