@@ -1,8 +1,9 @@
 //! Latency of one dab on the large sample (over 500k vertices, 24 lights): pick (project
 //! every vertex, depth-test the ones in the disc), transfer, importance, selection and
 //! modification, as one `Painter::paint` of a one-dab stroke. `cargo bench --bench paint`.
-//! The transfer comes from a direct-only bake (exact visibility) and from the log-SH
-//! direct estimate the editor uses before a bake.
+//! The transfer comes from the log-SH direct estimate the editor uses before a bake, from
+//! a direct-only bake's maps (exact visibility, order-3 SH), and from what the editor
+//! reads after a bake (the estimate plus the maps' bounced light).
 
 use std::hint::black_box;
 use std::path::Path;
@@ -17,6 +18,7 @@ use lightpaint::paint::{
 };
 use lightpaint::scene::{Camera, Scene, parse_gltf};
 use lightpaint::shading::ShadowSettings;
+use lightpaint::shading::frame_transfer::FrameTransfer;
 use lightpaint::shading::paint_estimate::DirectEstimate;
 
 fn stroke(scene: &Scene) -> StrokeRecord {
@@ -71,7 +73,7 @@ fn dab(c: &mut Criterion) {
         });
     };
     let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
-    let estimate = DirectEstimate::new(&scene, blockers, ShadowSettings::default());
+    let estimate = DirectEstimate::new(&scene, blockers.clone(), ShadowSettings::default());
     run("dab/large/log-SH direct estimate", &estimate);
     let settings = BakeSettings {
         bounces: 0,
@@ -80,6 +82,12 @@ fn dab(c: &mut Criterion) {
     };
     let maps = bake_maps(&scene, &settings);
     run("dab/large/baked maps", &BakedTransfer::new(&scene, &maps));
+    // What the editor and `paint` read after a bake: the estimate plus the maps' bounces.
+    let after_bake = DirectEstimate::new(&scene, blockers, ShadowSettings::default());
+    run(
+        "dab/large/after a bake (frame transfer)",
+        &FrameTransfer::new(after_bake, &scene, &maps),
+    );
 }
 
 criterion_group! {
