@@ -3,9 +3,12 @@
 //! Light transport is linear in the intensities P_i, so a vertex's luminance is
 //! y_v = fixed_v + Σ_i P_i t_{i,v} (fixed: what no light changes, e.g. emission).
 //!
-//! Two sources implement [`Transfer`]: [`BakedTransfer`] from the baked importance maps
-//! (direct and indirect light, exact visibility), and the renderer's direct-only estimate
-//! from the real-time log-SH visibility (`shading::paint_estimate`), used before a bake.
+//! Three sources implement [`Transfer`]: the renderer's direct-only estimate with the
+//! view's visibility (`shading::paint_estimate`), which strokes read before a bake; after
+//! a bake, that estimate plus the maps' bounced light as the frame adds it
+//! (`shading::frame_transfer`); and [`BakedTransfer`], Rozon's reading of the baked
+//! importance maps' SH alone (direct and indirect light, exact visibility, order-limited),
+//! kept for the bake's own tests and measurements.
 
 use glam::Vec3;
 
