@@ -132,7 +132,7 @@ impl Studio {
         };
         let shadows = self.document.settings.shadows;
         let transfer =
-            lightpaint::shading::paint_estimate::transfer_for(self.maps.as_ref(), scene, &self.blockers, &shadows);
+            lightpaint::shading::frame_transfer::transfer_for(self.maps.as_ref(), scene, &self.blockers, &shadows);
         let mut after = scene.light_intensities();
         let report = Painter::new().paint(scene, &self.bvh, transfer.as_ref(), &mut after, stroke);
         (report, after)

@@ -700,7 +700,7 @@ fn a_target_is_reached_on_a_textured_surface() {
         view,
     };
     let shadows = lightpaint::shading::ShadowSettings::default();
-    let transfer = lightpaint::shading::paint_estimate::transfer_for(None, &scene, &[], &shadows);
+    let transfer = lightpaint::shading::frame_transfer::transfer_for(None, &scene, &[], &shadows);
     let mut p = scene.light_intensities();
     let report = Painter::new().paint(&scene, &bvh, transfer.as_ref(), &mut p, stroke);
     assert_eq!(report.outcome, Outcome::Changed, "{}", report.message);

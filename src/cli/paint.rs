@@ -46,7 +46,7 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
             .shown_spheres(&document.hidden_objects),
     };
     let transfer: Box<dyn Transfer> =
-        lightpaint::shading::paint_estimate::transfer_for(maps.as_ref(), scene, &blockers, &document.settings.shadows);
+        lightpaint::shading::frame_transfer::transfer_for(maps.as_ref(), scene, &blockers, &document.settings.shadows);
     let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(scene);
     say!(
         "{} the transfer of {} lights in {:.0} ms",

@@ -12,9 +12,11 @@
 
 use glam::Vec3;
 
+use super::ShadowSettings;
 use super::cpu::SurfacePoint;
 use super::paint_estimate::DirectEstimate;
 use crate::bake::ImportanceMaps;
+use crate::blockers::Sphere;
 use crate::paint::{PaintedPoint, Transfer, VertexRef};
 use crate::scene::{Scene, luminance};
 
@@ -90,6 +92,23 @@ impl Transfer for FrameTransfer<'_> {
     }
 }
 
+/// The transfer strokes read: the light the frame shows — the direct estimate through
+/// `blockers` (the view's visibility), plus, when there are maps for this scene, their
+/// bounced light as the frame adds it ([`FrameTransfer`]). One choice for the editor and
+/// `lightpaint paint` alike.
+pub fn transfer_for<'a>(
+    maps: Option<&'a crate::bake::ImportanceMaps>,
+    scene: &'a Scene,
+    blockers: &[Sphere],
+    shadows: &ShadowSettings,
+) -> Box<dyn Transfer + 'a> {
+    let direct = DirectEstimate::new(scene, blockers.to_vec(), *shadows);
+    match maps {
+        Some(maps) => Box::new(FrameTransfer::new(direct, scene, maps)),
+        None => Box::new(direct),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::f64::consts::PI;
@@ -98,7 +117,6 @@ mod tests {
 
     use super::*;
     use crate::bake::{LightContribution, ObjectMaps, Precision};
-    use crate::shading::ShadowSettings;
 
     /// A white Lambertian floor under a unit point light whose maps give every vertex an
     /// indirect irradiance that grows along x: at a point inside a triangle a stroke reads

@@ -231,23 +231,6 @@ impl Transfer for DirectEstimate<'_> {
     }
 }
 
-/// The transfer strokes read: the light the frame shows — the direct estimate through
-/// `blockers` (the view's visibility), plus, when there are maps for this scene, their
-/// bounced light as the frame adds it (`frame_transfer`). One choice for the editor and
-/// `lightpaint paint` alike.
-pub fn transfer_for<'a>(
-    maps: Option<&'a crate::bake::ImportanceMaps>,
-    scene: &'a Scene,
-    blockers: &[Sphere],
-    shadows: &ShadowSettings,
-) -> Box<dyn Transfer + 'a> {
-    let direct = DirectEstimate::new(scene, blockers.to_vec(), *shadows);
-    match maps {
-        Some(maps) => Box::new(super::frame_transfer::FrameTransfer::new(direct, scene, maps)),
-        None => Box::new(direct),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use std::f64::consts::PI;

@@ -280,7 +280,7 @@ impl Painting {
             // `maps_for` borrows all of `self`; the field alone leaves the painter free.
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
-            let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, blockers, shadows);
+            let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, blockers, shadows);
             let mut report = self
                 .painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
@@ -312,7 +312,7 @@ impl Painting {
         let bvh = self.picking_bvh(scene);
         let fresh = self.maps_for(scene).is_some();
         let maps = self.maps.as_ref().filter(|_| fresh);
-        let transfer = crate::shading::paint_estimate::transfer_for(maps, scene, &blockers(), shadows);
+        let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, &blockers(), shadows);
         let keeps = self
             .painter
             .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier);
@@ -344,7 +344,7 @@ impl Painting {
         blockers: &[Sphere],
         shadows: &ShadowSettings,
     ) -> Box<dyn Transfer + 'a> {
-        crate::shading::paint_estimate::transfer_for(self.maps_for(scene), scene, blockers, shadows)
+        crate::shading::frame_transfer::transfer_for(self.maps_for(scene), scene, blockers, shadows)
     }
 
     /// Whether strokes read baked maps (fresh for `scene`) rather than the estimate.
