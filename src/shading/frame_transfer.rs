@@ -146,24 +146,11 @@ mod tests {
         };
         let direct = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
         let transfer = FrameTransfer::new(direct, &scene, &maps);
-        let corners = [object.indices[0], object.indices[1], object.indices[2]];
-        let barycentric = Vec3::new(0.2, 0.5, 0.3);
-        let point = PaintedPoint {
-            object: 0,
-            corners,
-            barycentric,
-            weight: 1.0,
-            texture_rgb: None,
-        };
-        let at: Vec3 = corners
-            .iter()
-            .zip(barycentric.to_array())
-            .map(|(&v, b)| object.positions[v as usize] * b)
-            .sum();
-        let offset = (light - at).as_dvec3();
+        let (point, at) = crate::shading::paint_estimate::tests::point_inside_the_first_triangle(&scene);
+        let offset = light.as_dvec3() - at;
         let direct = offset.normalize().y / offset.length_squared() / PI;
         // The indirect irradiance is linear in x, so interpolating it is exact.
-        let bounced = indirect_at(at) as f64 / PI;
+        let bounced = indirect_at(at.as_vec3()) as f64 / PI;
         let (_, t) = transfer.point_shading(&point, Vec3::new(0.0, 3.0, 3.0));
         assert_eq!(t.len(), 1);
         let expected = direct + bounced;

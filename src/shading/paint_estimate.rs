@@ -232,7 +232,7 @@ impl Transfer for DirectEstimate<'_> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use std::f64::consts::PI;
 
     use super::*;
@@ -257,16 +257,17 @@ mod tests {
         }
     }
 
-    /// At a point inside a triangle the estimate is the closed form at that point, not
-    /// the corners' values interpolated (which differ: cos θ/d² is not linear).
-    #[test]
-    fn a_painted_point_reads_the_light_at_the_point_itself() {
-        let light = Vec3::new(0.3, 1.0, 0.2);
-        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
-        let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
+    /// A painted point inside the first triangle of the scene's first object, off its
+    /// centre (barycentrics 0.2, 0.5, 0.3), and where it lies.
+    pub(crate) fn point_inside_the_first_triangle(scene: &Scene) -> (PaintedPoint, DVec3) {
         let object = &scene.objects[0];
         let corners = [object.indices[0], object.indices[1], object.indices[2]];
         let barycentric = glam::Vec3::new(0.2, 0.5, 0.3);
+        let at = corners
+            .iter()
+            .zip(barycentric.to_array())
+            .map(|(&v, b)| object.positions[v as usize].as_dvec3() * b as f64)
+            .sum();
         let point = PaintedPoint {
             object: 0,
             corners,
@@ -274,11 +275,17 @@ mod tests {
             weight: 1.0,
             texture_rgb: None,
         };
-        let at: DVec3 = corners
-            .iter()
-            .zip(barycentric.to_array())
-            .map(|(&v, b)| object.positions[v as usize].as_dvec3() * b as f64)
-            .sum();
+        (point, at)
+    }
+
+    /// At a point inside a triangle the estimate is the closed form at that point, not
+    /// the corners' values interpolated (which differ: cos θ/d² is not linear).
+    #[test]
+    fn a_painted_point_reads_the_light_at_the_point_itself() {
+        let light = Vec3::new(0.3, 1.0, 0.2);
+        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
+        let estimate = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
+        let (point, at) = point_inside_the_first_triangle(&scene);
         let offset = light.as_dvec3() - at;
         let expected = offset.normalize().y / offset.length_squared() / PI;
         let (_, t) = estimate.point_shading(&point, Vec3::new(0.0, 3.0, 3.0));
