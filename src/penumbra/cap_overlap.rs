@@ -54,7 +54,7 @@ fn one_minus_cos(x: f64) -> f64 {
 }
 
 /// Solid angle of a cap of angular radius `x`.
-fn cap_area(x: f64) -> f64 {
+pub(super) fn cap_area(x: f64) -> f64 {
     2.0 * PI * one_minus_cos(x)
 }
 

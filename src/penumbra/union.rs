@@ -26,7 +26,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::cap_overlap::hidden_fraction;
+use super::cap_overlap::{cap_area, hidden_fraction};
 
 /// A blocker's cap as one receiver sees it, with the share of a light's disc it hides.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,12 +90,6 @@ pub fn union_of_hidden(disc_direction: DVec3, caps: &[HidingCap], disc_rad_for: 
 /// The angle between two unit vectors, accurate when tiny.
 pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
     a.cross(b).length().atan2(a.dot(b))
-}
-
-/// Solid angle of a cap of angular radius `x`.
-fn cap_area(x: f64) -> f64 {
-    let h = (0.5 * x).sin();
-    4.0 * PI * h * h
 }
 
 #[cfg(test)]
