@@ -58,53 +58,58 @@ pub fn light_visibility(
 ) -> f64 {
     let sin_light = light.cap_ratio.clamp(0.0, 1.0);
     let disc_sine_at = |distance_m: f64| sin_light.max(0.5 * pixel_footprint_m / distance_m).min(1.0);
-    // Each blocker that hides part of the disc, with its distance; None: one hides it all.
-    let hiding = |b: &Sphere| -> Option<Option<(HidingCap, f64)>> {
+    let hides = |b: &Sphere| -> Hides {
         let Some(cap) = b.cap_from(p, n, min_cap_ratio) else {
-            return Some(None);
+            return Hides::Nothing;
         };
         if cap.distance_m - b.radius_m as f64 >= light.distance_m {
-            return Some(None); // wholly beyond the light
+            return Hides::Nothing; // wholly beyond the light
         }
         let radius_rad = cap.ratio.asin();
         let separation = union::angle_between(cap.direction, light.to_light);
         let disc_rad = disc_sine_at(cap.distance_m).asin();
         let hidden = cap.horizon * hidden_fraction(disc_rad, radius_rad, separation);
         if hidden >= 1.0 {
-            return None;
+            Hides::All
+        } else if hidden > 0.0 {
+            Hides::Part(HidingCap {
+                direction: cap.direction,
+                radius_rad,
+                horizon: cap.horizon,
+                distance_m: cap.distance_m,
+                hidden,
+            })
+        } else {
+            Hides::Nothing
         }
-        let hiding_cap = HidingCap {
-            direction: cap.direction,
-            radius_rad,
-            horizon: cap.horizon,
-            hidden,
-        };
-        Some((hidden > 0.0).then_some((hiding_cap, cap.distance_m)))
     };
     let mut caps = Vec::new();
-    let mut distances = Vec::new();
     for b in spheres {
-        match hiding(b) {
-            None => return 0.0,
-            Some(Some((cap, distance_m))) => {
-                caps.push(cap);
-                distances.push(distance_m);
-            }
-            Some(None) => {}
+        match hides(b) {
+            Hides::All => return 0.0,
+            Hides::Part(cap) => caps.push(cap),
+            Hides::Nothing => {}
         }
     }
-    let hidden_by_spheres = union_of_hidden(light.to_light, &caps, |m, k| {
-        disc_sine_at(distances[m].min(distances[k])).asin()
+    let hidden_by_spheres = union_of_hidden(light.to_light, &caps, |a, b| {
+        disc_sine_at(a.distance_m.min(b.distance_m)).asin()
     });
     let mut visibility = 1.0 - hidden_by_spheres;
     for b in discs {
-        match hiding(b) {
-            None => return 0.0,
-            Some(Some((cap, _))) => visibility *= 1.0 - cap.hidden,
-            Some(None) => {}
+        match hides(b) {
+            Hides::All => return 0.0,
+            Hides::Part(cap) => visibility *= 1.0 - cap.hidden,
+            Hides::Nothing => {}
         }
     }
     visibility
+}
+
+/// What one blocker does to the light's disc as the receiver sees it.
+enum Hides {
+    Nothing,
+    Part(HidingCap),
+    All,
 }
 
 #[cfg(test)]

@@ -37,6 +37,8 @@ pub struct HidingCap {
     pub radius_rad: f64,
     /// Fade below the receiver's tangent plane (1 above it; `BlockerCap::horizon`).
     pub horizon: f64,
+    /// Distance from the receiver to the blocker's centre.
+    pub distance_m: f64,
     /// Share (0–1) of the light's disc the cap hides, fade included.
     pub hidden: f64,
 }
@@ -74,12 +76,18 @@ pub fn pair_overlap(disc_direction: DVec3, disc_rad: f64, a: &HidingCap, b: &Hid
 /// The share of the disc hidden by the union of `caps`, taken in order (module doc).
 /// `disc_rad_for(m, k)` is the disc's angular radius to compare caps m and k with (the
 /// exact path widens a disc by the pixel's footprint at each blocker's distance).
-pub fn union_of_hidden(disc_direction: DVec3, caps: &[HidingCap], disc_rad_for: impl Fn(usize, usize) -> f64) -> f64 {
+pub fn union_of_hidden(
+    disc_direction: DVec3,
+    caps: &[HidingCap],
+    disc_rad_for: impl Fn(&HidingCap, &HidingCap) -> f64,
+) -> f64 {
     let mut union = 0.0;
     let mut largest: f64 = 0.0;
     for (k, cap) in caps.iter().enumerate() {
         let left_open: f64 = (0..k)
-            .map(|m| 1.0 - pair_overlap(disc_direction, disc_rad_for(m, k), &caps[m], cap) / cap.hidden.max(1e-300))
+            .map(|m| {
+                1.0 - pair_overlap(disc_direction, disc_rad_for(&caps[m], cap), &caps[m], cap) / cap.hidden.max(1e-300)
+            })
             .product();
         union += cap.hidden * left_open.clamp(0.0, 1.0);
         largest = largest.max(cap.hidden);
@@ -111,6 +119,7 @@ mod tests {
             direction,
             radius_rad,
             horizon: 1.0,
+            distance_m: 1.0,
             hidden: hidden_fraction(disc_rad, radius_rad, angle_between(direction, DVec3::Z)),
         }
     }
