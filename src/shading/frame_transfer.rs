@@ -72,20 +72,22 @@ impl Transfer for FrameTransfer<'_> {
     }
 
     fn vertex_shading(&self, vertex: VertexRef, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
-        let (fixed, mut transfer) = self.direct.vertex_shading(vertex, eye);
-        if let Some(s) = self.direct.surface(vertex) {
-            self.add_indirect(&mut transfer, &s, vertex, 1.0);
-        }
+        let Some(s) = self.direct.surface(vertex) else {
+            return (0.0, Vec::new());
+        };
+        let (fixed, mut transfer) = self.direct.shading_at(&s, eye);
+        self.add_indirect(&mut transfer, &s, vertex, 1.0);
         (fixed, transfer)
     }
 
     fn point_shading(&self, point: &PaintedPoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
-        let (fixed, mut transfer) = self.direct.point_shading(point, eye);
-        if let Some(s) = self.direct.surface_at_point(point) {
-            for (vertex, share) in point.weighted_corners() {
-                if share > 0.0 {
-                    self.add_indirect(&mut transfer, &s, vertex, share);
-                }
+        let Some(s) = self.direct.surface_at_point(point) else {
+            return (0.0, Vec::new());
+        };
+        let (fixed, mut transfer) = self.direct.shading_at(&s, eye);
+        for (vertex, share) in point.weighted_corners() {
+            if share > 0.0 {
+                self.add_indirect(&mut transfer, &s, vertex, share);
             }
         }
         (fixed, transfer)

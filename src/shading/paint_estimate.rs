@@ -181,7 +181,7 @@ impl<'a> DirectEstimate<'a> {
     }
 
     /// Fixed luminance and per-light transfer at `s` toward `eye`.
-    fn shading_at(&self, s: &SurfacePoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
+    pub(crate) fn shading_at(&self, s: &SurfacePoint, eye: Vec3) -> (f64, Vec<(u32, f64)>) {
         let mut g = self.lazy();
         let transfer = self.transfer_at(s, eye, &mut g);
         (self.fixed_at(s, &mut g), transfer)
