@@ -7,11 +7,12 @@
 mod common;
 
 use lightpaint::blockers::Sphere;
+use lightpaint::sh::ExpMethod;
 use lightpaint::shading::{LightPaths, ShadowSettings};
 
 /// The SH path's visibility against the exact path's visibility of the
 /// same spheres, over the blocker bench scene's floor with 600 spheres (f64 twin, order 4
-/// and 8): penumbra RMS, umbra RMS and the lit floor's bias (where no sphere hides the
+/// and 8, and order 4 with the exact exponential): penumbra RMS, umbra RMS and the lit floor's bias (where no sphere hides the
 /// light). A measurement for docs/performance.md:
 /// `cargo nextest run --test sh_against_exact --run-ignored only --no-capture`.
 #[test]
@@ -25,11 +26,14 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
     let camera = lightpaint::samples::blocker_bench::thin_casters_camera();
     let surfaces = lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, 240, 135).expect("surfaces");
     let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&scene, 600);
-    for order in [4, 8] {
+    // The shipped exponentiation (HYB) at orders 4 and 8, and the exact exponential at 4.
+    let defaults = ShadowSettings::default();
+    for (order, exp) in [(4, defaults.exp), (8, defaults.exp), (4, ExpMethod::Reference)] {
         let shade = |paths: LightPaths, blockers: &[Sphere]| -> Vec<Option<f64>> {
             let shadows = ShadowSettings {
                 light_paths: paths,
                 order,
+                exp,
                 ..ShadowSettings::default()
             };
             let context = lightpaint::shading::LightPathContext::of_scene(&scene, blockers);
@@ -76,7 +80,7 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
         let rms = |v: &[f64]| (v.iter().map(|e| e * e).sum::<f64>() / v.len().max(1) as f64).sqrt();
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
         eprintln!(
-            "order {order}: penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px), lit floor bias {:+.4} ({} px)",
+            "order {order}, {exp:?}: penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px), lit floor bias {:+.4} ({} px)",
             rms(&penumbra),
             penumbra.len(),
             rms(&umbra),
