@@ -10,10 +10,10 @@ use lightpaint::blockers::Sphere;
 use lightpaint::sh::ExpMethod;
 use lightpaint::shading::{LightPaths, ShadowSettings};
 
-/// The SH path's visibility against the exact path's visibility of the
-/// same spheres, over the blocker bench scene's floor with 600 spheres (f64 twin, order 4
-/// and 8, and order 4 with the exact exponential): penumbra RMS, umbra RMS and the lit floor's bias (where no sphere hides the
-/// light). A measurement for docs/performance.md:
+/// The SH path's visibility against the exact path's visibility of the same spheres, over
+/// the blocker bench scene's floor with 600 spheres (f64 twin, order 4 and 8, and order 4
+/// with the exact exponential): penumbra RMS, umbra RMS and the lit floor's bias (where
+/// no sphere hides the light). A measurement for docs/performance.md:
 /// `cargo nextest run --test sh_against_exact --run-ignored only --no-capture`.
 #[test]
 #[ignore = "a measurement: run it with --run-ignored only --no-capture"]
