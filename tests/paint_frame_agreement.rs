@@ -83,6 +83,15 @@ impl Studio {
         self.view.view().project(point).expect("in view")
     }
 
+    /// The chest: two thirds up the figure's bounds, on their middle — on the studio
+    /// across the torso's edge against the backdrop; and the nearest dab wholly on the
+    /// torso.
+    fn chest_and_torso(&self) -> (Vec2, Vec2) {
+        let figure = self.object("Figure");
+        let chest = self.projected(figure, glam::Vec3::new(0.5, 0.66, 0.5));
+        (chest, self.dab_wholly_on(figure, chest))
+    }
+
     /// The dab centre nearest `near` whose disc, and a pixel around it, shows `object`
     /// alone.
     fn dab_wholly_on(&self, object: usize, near: Vec2) -> Vec2 {
@@ -228,11 +237,7 @@ fn frame_over_prediction(
 fn a_strokes_predicted_change_shows_in_the_frame_within_five_percent() {
     let Some(gpu) = common::gpu() else { return };
     let studio = Studio::open();
-    let figure = studio.object("Figure");
-    // The chest: two thirds up the figure's bounds, on their middle — on the studio across
-    // the torso's edge against the backdrop; and the nearest dab wholly on the torso.
-    let chest = studio.projected(figure, glam::Vec3::new(0.5, 0.66, 0.5));
-    let torso = studio.dab_wholly_on(figure, chest);
+    let (chest, torso) = studio.chest_and_torso();
     let mut misses = Vec::new();
     for name in ["Key", "Kicker", "Top", "Sky"] {
         let shipped = AntiAliasing::default();
@@ -302,9 +307,7 @@ fn a_target_on_the_textured_floor_is_reached_in_the_frame() {
 fn after_a_bake_a_strokes_predicted_change_shows_in_the_frame_within_five_percent() {
     let Some(gpu) = common::gpu() else { return };
     let studio = Studio::baked();
-    let figure = studio.object("Figure");
-    let chest = studio.projected(figure, glam::Vec3::new(0.5, 0.66, 0.5));
-    let torso = studio.dab_wholly_on(figure, chest);
+    let (_, torso) = studio.chest_and_torso();
     let mut misses = Vec::new();
     for name in ["Key", "Kicker", "Top", "Sky"] {
         let ratio = frame_over_prediction(&studio, &gpu, name, torso, AntiAliasing::default());
