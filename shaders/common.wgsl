@@ -1,6 +1,6 @@
 // Shared WGSL: the structs mirrored by Rust twins in src/shading/gpu_types.rs (layouts
-// asserted by tests), and the colour pipeline of docs/architecture.md. Included first by
-// every shader module (see src/shading/wgsl/mod.rs); never copied.
+// asserted by tests), and the colour pipeline of docs/architecture.md. Imported by every
+// shader module that needs them (src/shading/wgsl/compose.rs); never copied.
 
 const PI: f32 = 3.14159265358979;
 

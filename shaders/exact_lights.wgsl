@@ -2,7 +2,7 @@
 // visibility from p is 1 − the share of its disc hidden by the union of the blockers'
 // caps (each share faded below the horizon; src/penumbra/union.rs), skipping what
 // log_visibility skips and blockers wholly beyond the light; the discs' shares multiply
-// in after. Included after logsh.wgsl's bindings.
+// in after.
 //
 // Shaped for lavapipe, which runs every statement of a branch at every pixel whether
 // taken or not, and every loop at least once: lights go eight at a time (a vec4 lane
@@ -10,6 +10,7 @@
 // cheap tests of every blocker only list the few that may cut a disc, and the lens (three
 // arctangents per light) runs in a second loop over that list alone, with the overlaps of
 // each listed blocker with the listed ones before it.
+// #import blockers scene
 
 // Four exact-path lights seen from one receiver, one per lane (half of an eight-light
 // batch); unused lanes have distance 0, so that every blocker counts as beyond them.

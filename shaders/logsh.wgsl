@@ -1,7 +1,6 @@
-// Log-SH soft shadows (Ren et al. 2006), per pixel. Included after common.wgsl,
-// scene.wgsl and the generated SH module of the chosen order and exponentiation method
-// (src/shading/wgsl/sh.rs), and terrain.wgsl; exact_lights.wgsl follows. shading::cpu is
-// the f64 reference of exactly this shading:
+// Log-SH soft shadows (Ren et al. 2006), per pixel, on the SH code generated for the
+// chosen order and exponentiation method (`sh`, `lobes`: src/shading/wgsl/sh.rs, lobes.rs).
+// shading::cpu is the f64 reference of exactly this shading:
 //   F = Σ_blockers ln ε · fade · cap_zh(r/d) rotated toward the blocker (log-visibility)
 //       + the terrain's log-visibility (terrain.wgsl)
 //   G = exp*(F)                                                     (visibility SH)
@@ -12,131 +11,7 @@
 //       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
 // (shading-model.md §4b: never shade through an order-n triple product of light × cosine).
-
-@group(2) @binding(0) var<uniform> shadow: ShadowParams;
-// The blockers and their groups, read through blocker_at and group_at: the first
-// UNIFORM_BLOCKER_CAPACITY from uniform arrays, the rest (when there are more) from
-// every_blocker and every_group (see `lights` in scene.wgsl for why).
-@group(2) @binding(1) var<uniform> blockers: array<Blocker, UNIFORM_BLOCKER_CAPACITY>;
-@group(2) @binding(2) var<uniform> groups: array<BlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
-@group(2) @binding(5) var<storage, read> every_blocker: array<Blocker>;
-@group(2) @binding(6) var<storage, read> every_group: array<BlockerGroup>;
-// Bindings 7–9, the shadow maps and their views, are declared in shadow_lookup.wgsl.
-
-// false: the frame has at most UNIFORM_BLOCKER_CAPACITY blockers (and so as many groups),
-// and every_blocker and every_group are never read (shading::compiled_paths). Blockers
-// past the capacity then cast no shadow.
-override BLOCKER_OVERFLOW: bool = true;
-
-// A sphere around every receiver, which every test skips as one containing its receiver
-// (its radius squared overflows to infinity): what blockers past the capacity read as.
-const NO_BLOCKER: Blocker = Blocker(vec4<f32>(0.0, 0.0, 0.0, 1e30), vec4<f32>(0.0));
-
-// Blocker i.
-fn blocker_at(i: u32) -> Blocker {
-    if BLOCKER_OVERFLOW {
-        if i >= UNIFORM_BLOCKER_CAPACITY {
-            return every_blocker[i];
-        }
-    }
-    if i >= UNIFORM_BLOCKER_CAPACITY {
-        return NO_BLOCKER;
-    }
-    return blockers[min(i, UNIFORM_BLOCKER_CAPACITY - 1u)];
-}
-
-// Sphere b as a receiver at p with unit normal n sees it (blockers::Sphere::cap_from is
-// the f64 twin): x = sin of its cap's angular radius r/d, or −1 for a sphere containing
-// p; y = the fade below the tangent plane, smoothstep(−1, 1, (c − p)·n / r); z = distance.
-fn blocker_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    let offset = b.center_radius.xyz - p;
-    let distance2 = dot(offset, offset);
-    let distance = sqrt(max(distance2, 1e-30));
-    let radius = b.center_radius.w;
-    let ratio = select(radius / distance, -1.0, distance2 <= radius * radius);
-    return vec3<f32>(ratio, smoothstep(-1.0, 1.0, dot(offset, n) / radius), distance);
-}
-
-// A disc blocker as a receiver sees it: the cap of its solid angle around the mean
-// direction over it (disc_seen), faded below the tangent plane over the disc's
-// half-extent along n.
-struct SeenDisc {
-    direction: vec3<f32>,
-    ratio: f32,
-    horizon: f32,
-    distance: f32,
-};
-
-// The circumradius over the disc's radius of the square of the disc's area that stands
-// for it near by, √(π/2); beyond NEAR_FIELD_RADII radii the far-field cap
-// (src/blockers/disc.rs).
-const POLYGON_SCALE: f32 = 1.2533141373155003;
-const NEAR_FIELD_RADII: f32 = 4.0;
-const DISC_PLANE_TOLERANCE_M: f32 = 1e-3;
-
-// Signed solid angle of the triangle a, b, c seen from the origin (Van Oosterom and
-// Strackee: tan(Ω/2) = a·(b × c) / (abc + (a·b)c + (a·c)b + (b·c)a)).
-fn triangle_solid_angle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> f32 {
-    let la = length(a);
-    let lb = length(b);
-    let lc = length(c);
-    let numerator = dot(a, cross(b, c));
-    let denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-    return 2.0 * atan2(numerator, denominator);
-}
-
-// The solid angle a disc subtends from p (w, steradians) and the unit mean direction over
-// it (xyz); 0 from its own plane (blockers::disc::disc_seen).
-fn disc_seen(center: vec3<f32>, radius: f32, normal: vec3<f32>, p: vec3<f32>) -> vec4<f32> {
-    let to_center = center - p;
-    let height = abs(dot(to_center, normal));
-    let distance = length(to_center);
-    if height <= DISC_PLANE_TOLERANCE_M * max(radius, 1.0) {
-        return vec4<f32>(normal, 0.0);
-    }
-    let toward = to_center / max(distance, 1e-30);
-    if distance > NEAR_FIELD_RADII * radius {
-        let seen_radius2 = radius * radius * height / distance;
-        return vec4<f32>(toward, 2.0 * PI * (1.0 - distance * inverseSqrt(distance * distance + seen_radius2)));
-    }
-    // Duff et al.'s orthonormal pair, as disc_frame.
-    let sign = select(-1.0, 1.0, normal.z >= 0.0);
-    let a = -1.0 / (sign + normal.z);
-    let b = normal.x * normal.y * a;
-    let reach = radius * POLYGON_SCALE;
-    let frame_u = vec3<f32>(1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x);
-    let frame_v = vec3<f32>(b, sign + normal.y * normal.y * a, -normal.y);
-    // Corners on the frame's diagonals: the square's edges along its axes (disc_seen).
-    let u = (reach * 0.70710678) * (frame_u + frame_v);
-    let v = (reach * 0.70710678) * (frame_v - frame_u);
-    let q0 = to_center + u;
-    let q1 = to_center + v;
-    let q2 = to_center - u;
-    let q3 = to_center - v;
-    let solid_angle = triangle_solid_angle(q0, q1, q2) + triangle_solid_angle(q0, q2, q3);
-    let form_factor = edge_form_factor(q0, q1) + edge_form_factor(q1, q2) + edge_form_factor(q2, q3)
-        + edge_form_factor(q3, q0);
-    var direction = toward;
-    if dot(form_factor, form_factor) > 0.0 {
-        direction = normalize(form_factor);
-    }
-    direction = select(direction, -direction, dot(direction, to_center) < 0.0);
-    return vec4<f32>(direction, min(abs(solid_angle), 2.0 * PI));
-}
-
-fn disc_cap_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> SeenDisc {
-    let normal = b.disc_normal.xyz;
-    let radius = b.center_radius.w;
-    let seen = disc_seen(b.center_radius.xyz, radius, normal, p);
-    // The cap of that solid angle: cos = 1 − Ω/2π.
-    let cos_cap = 1.0 - seen.w / (2.0 * PI);
-    let ratio = sqrt(max(1.0 - cos_cap * cos_cap, 0.0));
-    let tilt = sqrt(max(1.0 - dot(n, normal) * dot(n, normal), 0.0));
-    let offset = b.center_radius.xyz - p;
-    // Unfaded while any of it can be above the tangent plane (Sphere::cap_from says why).
-    let horizon = select(0.0, 1.0, dot(offset, n) > -radius * max(tilt, 1e-4));
-    return SeenDisc(seen.xyz, ratio, horizon, length(offset));
-}
+// #import blockers exact_lights terrain shadow_lookup lobes
 
 // The discs' log-visibility at p (each shaded at every receiver, in their own loop so
 // that the spheres' walk stays small).
@@ -150,66 +25,6 @@ fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>) -> Sh {
     }
     return sum;
 }
-
-// Blocker group g.
-fn group_at(g: u32) -> BlockerGroup {
-    if BLOCKER_OVERFLOW {
-        if g >= UNIFORM_BLOCKER_CAPACITY {
-            return every_group[g];
-        }
-    }
-    var group = groups[min(g, UNIFORM_BLOCKER_CAPACITY - 1u)];
-    // Empty past the capacity.
-    group.count = select(group.count, 0u, g >= UNIFORM_BLOCKER_CAPACITY);
-    return group;
-}
-
-// The blockers of chosen groups, one per call of walk_next, so that one flat loop visits
-// them: lavapipe runs a loop's body at least once even when no pixel enters it, so a
-// loop over the blockers nested in a loop over the groups pays one blocker's work for
-// every group a receiver skips. `passing` holds bit k for group first_group + k (groups
-// with at least one blocker).
-struct BlockerWalk {
-    first_group: u32,
-    passing: u32,
-    next: u32,
-    end: u32,
-    // The receiver, and the weight of the current group's blockers there:
-    // 1 − stand_in_share (log_visibility's walk; the exact path ignores it).
-    receiver: vec3<f32>,
-    weight: f32,
-};
-
-// No blocker left to walk.
-const WALK_DONE: u32 = 0xffffffffu;
-
-fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, vec3<f32>(0.0), 1.0);
-}
-
-// A walk that weighs each group's blockers at receiver p.
-fn blocker_walk_at(first_group: u32, passing: u32, p: vec3<f32>) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, p, 1.0);
-}
-
-// The index of the walk's next blocker, or WALK_DONE.
-fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
-    if (*walk).next == (*walk).end {
-        if (*walk).passing == 0u {
-            return WALK_DONE;
-        }
-        let group = group_at((*walk).first_group + firstTrailingBit((*walk).passing));
-        (*walk).passing &= (*walk).passing - 1u;
-        (*walk).next = group.first;
-        (*walk).end = group.first + group.count;
-        (*walk).weight = 1.0 - stand_in_share(group, (*walk).receiver);
-    }
-    (*walk).next += 1u;
-    return (*walk).next - 1u;
-}
-
-// Groups per BlockerWalk (the bits of `passing`).
-const WALK_GROUPS: u32 = 32u;
 
 // Which surface property fs_surface writes (set by surface_pipeline in src/render/passes/logsh.rs).
 override SURFACE_CHANNEL: u32 = 0u;
@@ -245,15 +60,6 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     return sh_sum(f, terrain_log_visibility(p));
 }
 
-// Conservative group tests (see blocker_groups.rs): every sphere of a group out of reach
-// would be skipped by add_blocker's tests (beyond its influence, or wholly below the
-// tangent plane). Empty groups are out of reach too.
-fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
-    let to_group = group.center_extent.xyz - p;
-    return dot(to_group, to_group) <= group.influence_m * group.influence_m
-        && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
-}
-
 // The groups chunk..chunk + WALK_GROUPS − 1 in reach of p (as BlockerWalk bits). Each
 // group adds its stand-in to *f, weighed by its share at p (add_stand_in).
 fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>) -> u32 {
@@ -266,16 +72,6 @@ fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>)
         *f = add_stand_in(*f, group, p, n);
     }
     return passing;
-}
-
-// How much of a group's shadow at p its stand-in carries (blocker_groups.rs): 0 within
-// half its influence distance, 1 beyond it, smoothly between, where its blockers are
-// weighed 1 − share — so no ring shows where one takes over from the other.
-fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
-    if group.stand_in_radius_m <= 0.0 {
-        return 0.0;
-    }
-    return smoothstep(0.5 * group.influence_m, group.influence_m, distance(group.center_extent.xyz, p));
 }
 
 // A group's stand-in, one sphere of its spheres' summed projected area at its centre,

@@ -2,8 +2,9 @@
 // (log_visibility of logsh.wgsl at the vertex position and normal) into a buffer that the
 // shading pass reads as vertex attributes; the rasteriser interpolates the visibility SH
 // and each fragment shades its lights through it exactly as fs_logsh does. Shading cost
-// follows the vertex count instead of the pixel count. Appended after logsh.wgsl for the
+// follows the vertex count instead of the pixel count. Composed with logsh.wgsl for the
 // orders whose visibility fits the varyings (wgsl_sh::supports_per_vertex).
+// #import logsh
 
 // GpuVertex as plain floats (position xyz, normal xyz, uv): 8 per vertex.
 @group(3) @binding(0) var<storage, read> vertex_data: array<f32>;

@@ -9,7 +9,7 @@
 // per triangle for a pixel or less; a full-screen pass runs it once per pixel. Taking
 // the samples' surfaces from the full-resolution buffer also spares a second geometry
 // pass at low resolution, and each sample is exactly the surface of the pixel it sits
-// on. Appended after reduced_shading.wgsl.
+// on.
 //
 // The buffer, two Rgba32Uint texels per pixel:
 //   a: x view depth (f32 bits, 0 where no surface was drawn), y the octahedral normal
@@ -17,6 +17,7 @@
 //   b: xy the emission — the material's own and the baked indirect light —
 //      (pack_lighting), z k_s (three unorm10), w the Phong exponent (f32 bits).
 // The samples carry the light of the lights alone; each pixel adds its own emission.
+// #import reduced_shading logsh shadow_lookup
 
 @group(1) @binding(8) var surface_buffer_a: texture_2d<u32>;
 @group(1) @binding(9) var surface_buffer_b: texture_2d<u32>;
@@ -86,12 +87,6 @@ fn fs_surface_buffer(in: VertexOut, @builtin(front_facing) front_facing: bool) -
         ),
         vec4<u32>(emission.x, emission.y, k_s.r | (k_s.g << 10u) | (k_s.b << 20u), bitcast<u32>(s.phong_exponent)),
     );
-}
-
-// The depth of p along the camera's forward axis, kept above 0 (the mark of a drawn
-// surface: points in view lie past the near plane).
-fn view_depth_of(p: vec3<f32>) -> f32 {
-    return max(dot(p - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
 }
 
 // Full-resolution pixels per sample along each side in the image a full-screen pass draws

@@ -1,5 +1,6 @@
 // Rasterised direct lighting without shadows: every light's direct_radiance (scene.wgsl),
 // the environment's diffuse light and emission, exposed and tone mapped.
+// #import scene
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {

@@ -4,7 +4,7 @@
 // guided by position and normal, Kopf et al. 2007). Both are deferred on single-sampled
 // targets (low_resolution.wgsl: surface buffers, full-screen passes). With two-level
 // shading the light of soft shadows is shaded at every other sample only and upsampled
-// to the rest by the same function (upsampled_lighting). Appended after logsh.wgsl.
+// to the rest by the same function (upsampled_lighting).
 //
 // The samples carry the exposed light of the lights with the material divided out,
 //   lighting = 2^EV · (L − emission) / (k_d + k_s),
@@ -20,6 +20,7 @@
 // targets use the rasterised fs_upsample, where such pixels take the best-matching
 // sample nearby: lavapipe tests their depth after the fragment shader, so a full shading
 // pass would shade every fragment.
+// #import scene
 
 // One texel per sample, so that the upsampling reads each with one texel fetch (on
 // lavapipe the fetches were most of its cost; two images took two):

@@ -4,6 +4,7 @@
 // Radiance leaving a surface toward the eye, per light:
 //   E_l · [ k_d/π · (n·l) + k_s · (r+1)/(2π) · max(ρ·l, 0)^r ]
 // where E_l is the light's irradiance on a plane facing it and ρ the mirrored view vector.
+// #import common
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 // The lights, read through light_at: the first UNIFORM_LIGHT_CAPACITY from a uniform
@@ -310,4 +311,10 @@ fn environment_irradiance_at(s: Surface) -> vec3<f32> {
 // Diffuse light of the environment from its irradiance SH (clamped at 0 against ringing).
 fn environment_radiance(s: Surface) -> vec3<f32> {
     return s.k_d / PI * environment_irradiance_at(s);
+}
+
+// The depth of p along the camera's forward axis, kept above 0 (the mark of a drawn
+// surface: points in view lie past the near plane).
+fn view_depth_of(p: vec3<f32>) -> f32 {
+    return max(dot(p - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
 }

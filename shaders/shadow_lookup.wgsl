@@ -1,13 +1,7 @@
 // Shadow maps of the real triangles (src/shading/shadow_maps.rs): the lookup that turns
-// a light's maps into the share of it a surface point sees. Appended after scene.wgsl
-// (Light, Incidence, Surface) in the log-SH module.
+// a light's maps into the share of it a surface point sees.
 
-// The shadow maps of the lights on the shadow-map path: each view a depth layer or a quadrant of one (shading::shadow_atlas; depth
-// reversed: 1 nearest the light), read with a comparison sampler (linear: each read filters the 2 × 2 texels around) or, for
-// the blocker search, texel by texel; and the views' matrices.
-@group(2) @binding(7) var shadow_maps: texture_depth_2d_array;
-@group(2) @binding(8) var shadow_map_sampler: sampler_comparison;
-@group(2) @binding(9) var<uniform> shadow_views: array<ShadowView, MAX_SHADOW_VIEWS>;
+// #import shadow_bindings scene
 
 // false: no light of the frame has a shadow map (shading::compiled_paths).
 override SHADOW_MAPS: bool = true;

@@ -1,7 +1,8 @@
 // The depth of the scene's triangles seen from one shadow-map view (src/render/resources/
 // shadow_maps.rs draws every view of every light on the shadow-map path; logsh.wgsl's
-// shadow_map_visibility reads them). Included after common.wgsl. Depth only: no
-// fragment stage; both faces are drawn, so open and single-sided meshes cast too.
+// shadow_map_visibility reads them). Depth only: no fragment stage; both faces are
+// drawn, so open and single-sided meshes cast too.
+// #import common
 
 @group(0) @binding(0) var<uniform> shadow_view: ShadowView;
 

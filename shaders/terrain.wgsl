@@ -1,14 +1,10 @@
 // Height-field terrain shadows in log-SH (Giraud & Nowrouzezahrai 2015), the f32 twin of
-// src/terrain/visibility.rs. Included after the generated SH and terrain modules
-// (src/shading/wgsl/sh.rs, terrain.rs) and before logsh.wgsl:
+// src/terrain/visibility.rs, on the SH and terrain code generated for the
+// order (`sh`, `terrain_sh`: src/shading/wgsl/sh.rs, terrain.rs):
 //   F_terrain(p) = ln ε · R · Σ_k Rot_z(M_lin·[v̄(σ_k); v̄(σ_{k+1})], ϕ_k)
 // with σ_k the horizon along azimuth ϕ_k = 2πk/W, marched over the prefiltered height
 // pyramid, and R the turn from the terrain frame (polar axis world +y) to world axes.
-
-@group(2) @binding(3) var<uniform> terrain: TerrainParams;
-// Every pyramid level's heights (world y, metres), row-major, level after level, then the
-// surface cache (terrain.surface_first on): the marched sum at every finest sample.
-@group(2) @binding(4) var<storage, read> terrain_heights: array<f32>;
+// #import shadow_bindings terrain_sh scene
 
 // false: the frame has no terrain, and its code is left out of the pipeline (lavapipe
 // runs every branch at every pixel). Set at pipeline creation (shading::compiled_paths).

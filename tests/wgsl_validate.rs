@@ -61,3 +61,29 @@ fn logsh_modules_validate_with_the_brdf_in_the_sh_at_every_order() {
         }
     }
 }
+
+#[test]
+fn every_module_validates_with_only_what_it_imports() {
+    // A module that uses a declaration it does not import (directly or through its
+    // imports) fails here, even where the shaders that compose it also bring that in.
+    let generated = wgsl::GeneratedModules::new(4, ExpMethod::Hyb, BrdfShading::Separate);
+    let modules = generated.with_files();
+    for module in &modules {
+        let source = wgsl::compose(&[module.name], &modules).unwrap_or_else(|e| panic!("{}: {e}", module.name));
+        validate(module.name, &source);
+    }
+}
+
+#[test]
+fn every_file_under_shaders_is_a_module() {
+    let names: Vec<&str> = wgsl::FILES.iter().map(|m| m.name).collect();
+    for entry in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders")).unwrap() {
+        let path = entry.unwrap().path();
+        let stem = path.file_stem().unwrap().to_str().unwrap().to_string();
+        assert!(
+            names.contains(&stem.as_str()),
+            "{} is not in wgsl::FILES",
+            path.display()
+        );
+    }
+}

@@ -1,13 +1,19 @@
 //! WGSL sources and the code generated for them (no wgpu here: `render` compiles them).
-//! WGSL has no `#include`: a module is assembled from `common.wgsl` (shared
-//! structs and colour functions), `scene.wgsl` (bindings, vertex stage, lights, surfaces)
-//! and its own file, so shared code lives in exactly one place. The log-SH module also
-//! takes the SH code generated for its order and method (`sh`), the terrain's
-//! (`terrain`, then `terrain.wgsl`) and the shadow maps' lookup (`shadow_lookup.wgsl`).
+//! Each file under `shaders/` says which modules it imports (`// #import …` lines) and
+//! [`compose`] writes a shader from the modules it needs, each once, after its imports:
+//! `common.wgsl` (shared structs and colour functions), `scene.wgsl` (the frame and
+//! material bindings, vertex stage, lights, surfaces), `shadow_bindings.wgsl` (the shadow
+//! group), `blockers.wgsl` (the blocker walk) and so on, so shared code lives in exactly
+//! one place. The log-SH shader also takes modules generated for its settings: `sh` (the
+//! SH code of its order and exponentiation method, [`sh`]), `lobes` (its BRDF variant,
+//! [`lobes`]) and `terrain_sh` ([`terrain`]).
 
+pub mod compose;
 pub mod lobes;
 pub mod sh;
 pub mod terrain;
+
+pub use compose::{ComposeError, WgslModule, compose};
 
 use super::BrdfShading;
 use crate::sh::ExpMethod;
@@ -15,6 +21,8 @@ use crate::sh::ExpMethod;
 pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
 pub const SCENE: &str = include_str!("../../../shaders/scene.wgsl");
 pub const RASTER: &str = include_str!("../../../shaders/raster.wgsl");
+pub const SHADOW_BINDINGS: &str = include_str!("../../../shaders/shadow_bindings.wgsl");
+pub const BLOCKERS: &str = include_str!("../../../shaders/blockers.wgsl");
 pub const LOGSH: &str = include_str!("../../../shaders/logsh.wgsl");
 pub const EXACT_LIGHTS: &str = include_str!("../../../shaders/exact_lights.wgsl");
 pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
@@ -29,38 +37,141 @@ pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
 /// Standalone: the editor's viewport image drawn into egui's frame.
 pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.wgsl");
 
-/// The shared prelude, then `body`.
-pub fn with_common(body: &str) -> String {
-    format!("{COMMON}\n{body}")
+/// Every file under `shaders/`, by the name modules import it by (its file stem).
+pub const FILES: [WgslModule<'static>; 16] = [
+    WgslModule {
+        name: "common",
+        source: COMMON,
+    },
+    WgslModule {
+        name: "scene",
+        source: SCENE,
+    },
+    WgslModule {
+        name: "raster",
+        source: RASTER,
+    },
+    WgslModule {
+        name: "shadow_bindings",
+        source: SHADOW_BINDINGS,
+    },
+    WgslModule {
+        name: "blockers",
+        source: BLOCKERS,
+    },
+    WgslModule {
+        name: "logsh",
+        source: LOGSH,
+    },
+    WgslModule {
+        name: "exact_lights",
+        source: EXACT_LIGHTS,
+    },
+    WgslModule {
+        name: "terrain",
+        source: TERRAIN,
+    },
+    WgslModule {
+        name: "reduced_shading",
+        source: REDUCED_SHADING,
+    },
+    WgslModule {
+        name: "low_resolution",
+        source: LOW_RESOLUTION,
+    },
+    WgslModule {
+        name: "logsh_per_vertex",
+        source: LOGSH_PER_VERTEX,
+    },
+    WgslModule {
+        name: "heat_map",
+        source: HEAT_MAP,
+    },
+    WgslModule {
+        name: "shadow_map",
+        source: SHADOW_MAP,
+    },
+    WgslModule {
+        name: "shadow_lookup",
+        source: SHADOW_LOOKUP,
+    },
+    WgslModule {
+        name: "edge_filter",
+        source: EDGE_FILTER,
+    },
+    WgslModule {
+        name: "viewport_image",
+        source: VIEWPORT_IMAGE,
+    },
+];
+
+/// The modules generated for a log-SH shader's settings, with what each imports.
+pub struct GeneratedModules {
+    sh: String,
+    lobes: String,
+    terrain_sh: String,
+}
+
+impl GeneratedModules {
+    /// The code generated for `order` and `method` (not `Reference`, which has no GPU
+    /// form) and the `brdf` variant.
+    pub fn new(order: usize, method: ExpMethod, brdf: BrdfShading) -> GeneratedModules {
+        GeneratedModules {
+            sh: "// #import common scene\n".to_string() + &sh::sh_module(order, method),
+            lobes: "// #import sh scene\n".to_string() + &lobes::lobes_module(order, method, brdf),
+            terrain_sh: "// #import sh shadow_bindings\n".to_string() + &terrain::terrain_module(order),
+        }
+    }
+
+    /// The files under `shaders/` and these, as modules to compose from.
+    pub fn with_files(&self) -> Vec<WgslModule<'_>> {
+        let mut modules = FILES.to_vec();
+        modules.push(WgslModule {
+            name: "sh",
+            source: &self.sh,
+        });
+        modules.push(WgslModule {
+            name: "lobes",
+            source: &self.lobes,
+        });
+        modules.push(WgslModule {
+            name: "terrain_sh",
+            source: &self.terrain_sh,
+        });
+        modules
+    }
+}
+
+/// `root` and what it imports from the files under `shaders/`. Those files are part of
+/// the program, so a failure is a bug the tests catch (tests/wgsl_validate.rs).
+fn compose_files(root: &str) -> String {
+    compose(&[root], &FILES).unwrap_or_else(|err| panic!("{err}"))
 }
 
 /// The unshadowed raster module.
 pub fn raster_source() -> String {
-    format!("{COMMON}\n{SCENE}\n{RASTER}")
+    compose_files("raster")
 }
 
 /// The shadow-map depth pass's module.
 pub fn shadow_map_source() -> String {
-    format!("{COMMON}\n{SHADOW_MAP}")
+    compose_files("shadow_map")
 }
 
 /// The importance heat map module.
 pub fn heat_map_source() -> String {
-    format!("{COMMON}\n{SCENE}\n{HEAT_MAP}")
+    compose_files("heat_map")
 }
 
 /// The log-SH shadow module at `order` with `method` (not `Reference`, which has no GPU
 /// form) and the `brdf` variant, with the reduced-resolution entry points and the
 /// per-vertex ones where the order allows them.
 pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
-    let generated = sh::sh_module(order, method) + &lobes::lobes_module(order, method, brdf);
-    let per_vertex = if sh::supports_per_vertex(order) {
-        LOGSH_PER_VERTEX
+    let generated = GeneratedModules::new(order, method, brdf);
+    let roots: &[&str] = if sh::supports_per_vertex(order) {
+        &["logsh", "low_resolution", "logsh_per_vertex"]
     } else {
-        ""
+        &["logsh", "low_resolution"]
     };
-    let terrain = terrain::terrain_module(order);
-    format!(
-        "{COMMON}\n{SCENE}\n{generated}\n{terrain}\n{TERRAIN}\n{SHADOW_LOOKUP}\n{LOGSH}\n{EXACT_LIGHTS}\n{REDUCED_SHADING}\n{LOW_RESOLUTION}\n{per_vertex}"
-    )
+    compose(roots, &generated.with_files()).unwrap_or_else(|err| panic!("{err}"))
 }
