@@ -11,11 +11,12 @@
 // on those (its depth test rejects the marked ones before the shader). On a software GPU,
 // which runs both sides of a branch at every pixel, a single draw would pay the edge
 // search at every pixel.
+// #import slots
 
 // The frame as drawn, read raw (sRGB-encoded values).
-@group(0) @binding(0) var frame_image: texture_2d<f32>;
+@group(IMAGE_GROUP) @binding(FRAME_IMAGE_BINDING) var frame_image: texture_2d<f32>;
 // Bilinear, clamped at the border.
-@group(0) @binding(1) var frame_sampler: sampler;
+@group(IMAGE_GROUP) @binding(FRAME_SAMPLER_BINDING) var frame_sampler: sampler;
 
 // Contrast (in encoded luma) below which a pixel is left alone: an absolute floor for
 // dark regions, and a share of the neighbourhood's brightest luma.

@@ -4,12 +4,12 @@
 // and each fragment shades its lights through it exactly as fs_logsh does. Shading cost
 // follows the vertex count instead of the pixel count. Composed with logsh.wgsl for the
 // orders whose visibility fits the varyings (wgsl_sh::supports_per_vertex).
-// #import logsh
+// #import logsh slots
 
 // GpuVertex as plain floats (position xyz, normal xyz, uv): 8 per vertex.
-@group(3) @binding(0) var<storage, read> vertex_data: array<f32>;
+@group(PASS_GROUP) @binding(VERTEX_DATA_BINDING) var<storage, read> vertex_data: array<f32>;
 // The visibility SH of every vertex, as consecutive Sh.
-@group(3) @binding(1) var<storage, read_write> vertex_visibility: array<Sh>;
+@group(PASS_GROUP) @binding(VERTEX_VISIBILITY_BINDING) var<storage, read_write> vertex_visibility: array<Sh>;
 
 @compute @workgroup_size(64)
 fn cs_vertex_visibility(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -17,10 +17,10 @@
 //   b: xy the emission — the material's own and the baked indirect light —
 //      (pack_lighting), z k_s (three unorm10), w the Phong exponent (f32 bits).
 // The samples carry the light of the lights alone; each pixel adds its own emission.
-// #import reduced_shading logsh shadow_lookup
+// #import reduced_shading logsh shadow_lookup slots
 
-@group(1) @binding(8) var surface_buffer_a: texture_2d<u32>;
-@group(1) @binding(9) var surface_buffer_b: texture_2d<u32>;
+@group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_A_BINDING) var surface_buffer_a: texture_2d<u32>;
+@group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_B_BINDING) var surface_buffer_b: texture_2d<u32>;
 
 // The visibility of each light on the shadow-map path at each low-resolution sample,
 // written by fs_mark_surface_samples_keeping_visibility when the surfaces, those lights'
@@ -30,11 +30,11 @@
 // the visibility of light frame.first_mapped_light + k at sample j (row-major, n samples).
 // Shorter than the frame's lights need (past its memory budget): the passes read the
 // maps themselves.
-@group(1) @binding(10) var<storage, read> kept_mapped_visibility: array<f32>;
-@group(3) @binding(4) var<storage, read_write> mapped_visibility_out: array<f32>;
+@group(MATERIAL_GROUP) @binding(KEPT_MAPPED_VISIBILITY_BINDING) var<storage, read> kept_mapped_visibility: array<f32>;
+@group(PASS_GROUP) @binding(MAPPED_VISIBILITY_OUT_BINDING) var<storage, read_write> mapped_visibility_out: array<f32>;
 // 1 for each mapped light whose visibility fs_mark_surface_samples_keeping_visibility
 // writes (its geometry or maps changed), 0 for each whose entries hold.
-@group(3) @binding(5) var<storage, read> stale_lights: array<u32>;
+@group(PASS_GROUP) @binding(STALE_LIGHTS_BINDING) var<storage, read> stale_lights: array<u32>;
 
 // The number of low-resolution samples and the index of sample `texel`, samples spaced
 // LEVEL_STRIDE_PX pixels apart (reduced_shading::low_resolution_size).

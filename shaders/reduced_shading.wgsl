@@ -20,7 +20,7 @@
 // targets use the rasterised fs_upsample, where such pixels take the best-matching
 // sample nearby: lavapipe tests their depth after the fragment shader, so a full shading
 // pass would shade every fragment.
-// #import scene
+// #import scene slots
 
 // One texel per sample, so that the upsampling reads each with one texel fetch (on
 // lavapipe the fetches were most of its cost; two images took two):
@@ -31,8 +31,8 @@
 //      top 21 bits of its f32 (pack_lighting: a relative step of 2⁻¹³; half floats
 //      would need a capability not every device has);
 //   w: the unit shading normal, octahedral, two snorm16.
-@group(3) @binding(0) var<uniform> upsample: UpsampleParams;
-@group(3) @binding(1) var low_samples: texture_2d<u32>;
+@group(PASS_GROUP) @binding(UPSAMPLE_BINDING) var<uniform> upsample: UpsampleParams;
+@group(PASS_GROUP) @binding(LOW_SAMPLES_BINDING) var low_samples: texture_2d<u32>;
 
 // The octahedral map of a unit vector into [-1, 1]²: the upper half projected onto the
 // octahedron |x| + |y| + |z| = 1, the lower half folded over its diagonals.

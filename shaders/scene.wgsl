@@ -4,23 +4,23 @@
 // Radiance leaving a surface toward the eye, per light:
 //   E_l · [ k_d/π · (n·l) + k_s · (r+1)/(2π) · max(ρ·l, 0)^r ]
 // where E_l is the light's irradiance on a plane facing it and ρ the mirrored view vector.
-// #import common
+// #import common slots
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(FRAME_GROUP) @binding(FRAME_BINDING) var<uniform> frame: Frame;
 // The lights, read through light_at: the first UNIFORM_LIGHT_CAPACITY from a uniform
 // array, the rest (when there are more) from every_light. lavapipe gathers a uniform
 // array's values in registers, but reads a storage buffer lane by lane through memory,
 // which made the light loop cost several times more.
-@group(0) @binding(1) var<uniform> lights: array<Light, UNIFORM_LIGHT_CAPACITY>;
-@group(0) @binding(3) var<storage, read> every_light: array<Light>;
+@group(FRAME_GROUP) @binding(LIGHTS_BINDING) var<uniform> lights: array<Light, UNIFORM_LIGHT_CAPACITY>;
+@group(FRAME_GROUP) @binding(EVERY_LIGHT_BINDING) var<storage, read> every_light: array<Light>;
 // Baked indirect irradiance (linear RGB, 3 floats per vertex) of every object's vertices,
 // one object after another; zeros when there is none. A draw's first instance is its
 // object's first vertex here (render::gpu_scene).
-@group(0) @binding(2) var<storage, read> baked_indirect: array<f32>;
+@group(FRAME_GROUP) @binding(BAKED_INDIRECT_BINDING) var<storage, read> baked_indirect: array<f32>;
 
-@group(1) @binding(0) var<uniform> material: Material;
-@group(1) @binding(1) var base_color_texture: texture_2d<f32>;
-@group(1) @binding(2) var base_color_sampler: sampler;
+@group(MATERIAL_GROUP) @binding(MATERIAL_BINDING) var<uniform> material: Material;
+@group(MATERIAL_GROUP) @binding(BASE_COLOR_TEXTURE_BINDING) var base_color_texture: texture_2d<f32>;
+@group(MATERIAL_GROUP) @binding(BASE_COLOR_SAMPLER_BINDING) var base_color_sampler: sampler;
 
 // false: the frame has at most UNIFORM_LIGHT_CAPACITY lights, and every_light is never
 // read (shading::compiled_paths; set at pipeline creation). Lights past the capacity then

@@ -2,9 +2,9 @@
 // shadow_maps.rs draws every view of every light on the shadow-map path; logsh.wgsl's
 // shadow_map_visibility reads them). Depth only: no fragment stage; both faces are
 // drawn, so open and single-sided meshes cast too.
-// #import common
+// #import common slots
 
-@group(0) @binding(0) var<uniform> shadow_view: ShadowView;
+@group(IMAGE_GROUP) @binding(SHADOW_VIEW_BINDING) var<uniform> shadow_view: ShadowView;
 
 @vertex
 fn vs_shadow_map(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {

@@ -3,9 +3,10 @@
 // frame's texel. egui's own image shader costs lavapipe about 14 ms for a 960 × 540
 // image (it carries a second, bilinear path of four texel loads and wrap arithmetic that
 // a software GPU runs beside the first); this one fetches one texel. Standalone.
+// #import slots
 
-@group(0) @binding(0) var frame_image: texture_2d<f32>;
-@group(0) @binding(1) var frame_sampler: sampler;
+@group(IMAGE_GROUP) @binding(FRAME_IMAGE_BINDING) var frame_image: texture_2d<f32>;
+@group(IMAGE_GROUP) @binding(FRAME_SAMPLER_BINDING) var frame_sampler: sampler;
 
 // 1: the surface egui draws into is sRGB-encoding, so the frame's sRGB bytes are decoded
 // before the store encodes them again; 0: they are stored as they are.

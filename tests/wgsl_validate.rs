@@ -23,12 +23,12 @@ fn raster_module_validates() {
 
 #[test]
 fn edge_filter_module_validates() {
-    validate("edge filter", wgsl::EDGE_FILTER);
+    validate("edge filter", &wgsl::edge_filter_source());
 }
 
 #[test]
 fn viewport_image_module_validates() {
-    validate("viewport image", wgsl::VIEWPORT_IMAGE);
+    validate("viewport image", &wgsl::viewport_image_source());
 }
 
 #[test]

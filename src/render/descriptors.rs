@@ -1,5 +1,8 @@
 //! The formats and descriptor pieces every pass shares: target formats, the scene's
-//! triangle and depth states, frame textures, numbered bind group entries, shader modules.
+//! triangle and depth states, frame textures, bind group entries at their slots
+//! (`shading::wgsl::slots`), shader modules.
+
+use crate::shading::wgsl::slots::{self, Slot};
 
 /// Colour format of every render target: linear shader output, sRGB-encoded on store.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -76,31 +79,43 @@ pub fn frame_texture(
     })
 }
 
-/// A bind group layout entry for a storage buffer at `binding`, seen by `stages`, read
-/// only or read and written.
-pub fn storage_buffer_entry(binding: u32, stages: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+/// A bind group layout entry at `slot`, seen by `stages`.
+pub fn layout_entry(slot: Slot, stages: wgpu::ShaderStages, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
-        binding,
+        binding: slot.binding,
         visibility: stages,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
+        ty,
         count: None,
     }
 }
 
-/// Bind group entries binding each of `resources` at its position (0, 1, …), the order
-/// in which the shaders and the layout declare them.
-pub fn numbered_entries<'a, const N: usize>(
-    resources: [wgpu::BindingResource<'a>; N],
+/// A buffer binding of type `ty` (uniform or storage), without dynamic offsets.
+pub fn buffer_type(ty: wgpu::BufferBindingType) -> wgpu::BindingType {
+    wgpu::BindingType::Buffer {
+        ty,
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    }
+}
+
+/// A bind group layout entry for a storage buffer at `slot`, seen by `stages`, read only
+/// or read and written.
+pub fn storage_buffer_entry(slot: Slot, stages: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    layout_entry(
+        slot,
+        stages,
+        buffer_type(wgpu::BufferBindingType::Storage { read_only }),
+    )
+}
+
+/// Bind group entries binding each resource at its slot (all of one bind group).
+pub fn slot_entries<'a, const N: usize>(
+    resources: [(Slot, wgpu::BindingResource<'a>); N],
 ) -> [wgpu::BindGroupEntry<'a>; N] {
-    let mut binding = 0;
-    resources.map(|resource| {
-        let entry = wgpu::BindGroupEntry { binding, resource };
-        binding += 1;
-        entry
+    debug_assert!(resources.iter().all(|(slot, _)| slot.group == resources[0].0.group));
+    resources.map(|(slot, resource)| wgpu::BindGroupEntry {
+        binding: slot.binding,
+        resource,
     })
 }
 
@@ -123,29 +138,28 @@ pub fn bilinear_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
     })
 }
 
-/// A bind group layout of a filterable 2-D image (binding 0) and its filtering sampler
-/// (binding 1), read by a fragment stage: what a pass that draws a finished frame from an
-/// image binds (the edge filter, the editor's viewport image).
+/// A bind group layout of a filterable 2-D image and its filtering sampler (the slots
+/// `FRAME_IMAGE` and `FRAME_SAMPLER`), read by a fragment stage: what a pass that draws a
+/// finished frame from an image binds (the edge filter, the editor's viewport image).
 pub fn image_and_sampler_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
+            layout_entry(
+                slots::FRAME_IMAGE,
+                fragment,
+                wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Float { filterable: true },
                     view_dimension: wgpu::TextureViewDimension::D2,
                     multisampled: false,
                 },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
+            ),
+            layout_entry(
+                slots::FRAME_SAMPLER,
+                fragment,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            ),
         ],
     })
 }

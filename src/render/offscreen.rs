@@ -1,6 +1,7 @@
 //! Headless rendering into images: the unshadowed raster, the log-SH renderer on the GPU,
 //! and the f64 CPU reference shading the very surface points the GPU rasterised.
 
+use crate::shading::wgsl::slots;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -321,8 +322,8 @@ pub fn capture_surfaces(
                 multiview_mask: None,
             });
             pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &gpu_scene.frame_bind_group, &[]);
-            pass.set_bind_group(2, &no_blockers.bind_group, &[]);
+            pass.set_bind_group(slots::FRAME_GROUP, &gpu_scene.frame_bind_group, &[]);
+            pass.set_bind_group(slots::SHADOW_GROUP, &no_blockers.bind_group, &[]);
             draw_objects(&mut pass, &gpu_scene);
         }
         let bytes = read_texture(&gpu.device, &gpu.queue, encoder, &texture, 16, width, height)?;

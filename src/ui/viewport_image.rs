@@ -7,8 +7,8 @@
 
 use std::sync::Arc;
 
-use crate::render::descriptors::{bilinear_sampler, create_module, image_and_sampler_layout, numbered_entries};
-use crate::shading::wgsl;
+use crate::render::descriptors::{bilinear_sampler, create_module, image_and_sampler_layout, slot_entries};
+use crate::shading::wgsl::{self, slots};
 
 /// The pipelines, kept in egui's callback resources (one per render state).
 struct ViewportImagePipelines {
@@ -28,7 +28,7 @@ impl ViewportImagePipelines {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let module = create_module(device, "viewport image", wgsl::VIEWPORT_IMAGE);
+        let module = create_module(device, "viewport image", &wgsl::viewport_image_source());
         let constants = [("SRGB_TARGET", f64::from(u8::from(target_format.is_srgb())))];
         let pipeline = |entry_point| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -89,9 +89,9 @@ impl ViewportImage {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("viewport image"),
             layout: &pipelines.layout,
-            entries: &numbered_entries([
-                wgpu::BindingResource::TextureView(view),
-                wgpu::BindingResource::Sampler(&pipelines.sampler),
+            entries: &slot_entries([
+                (slots::FRAME_IMAGE, wgpu::BindingResource::TextureView(view)),
+                (slots::FRAME_SAMPLER, wgpu::BindingResource::Sampler(&pipelines.sampler)),
             ]),
         });
         ViewportImage {
@@ -123,7 +123,7 @@ impl egui_wgpu::CallbackTrait for ViewportImage {
         } else {
             &pipelines.filtered
         });
-        render_pass.set_bind_group(0, Some(self.bind_group.as_ref()), &[]);
+        render_pass.set_bind_group(slots::IMAGE_GROUP, Some(self.bind_group.as_ref()), &[]);
         render_pass.draw(0..3, 0..1);
     }
 }

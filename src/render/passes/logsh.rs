@@ -15,6 +15,7 @@ use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_object, draw_objects, shadow_layout};
 use crate::render::target::RenderTarget;
 use crate::sh::ExpMethod;
+use crate::shading::wgsl::slots;
 use crate::shading::wgsl::{self, sh as wgsl_sh};
 use crate::shading::{BrdfShading, CompiledPaths, ShadowSettings};
 
@@ -202,8 +203,8 @@ impl LogShPipeline {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-        pass.set_bind_group(2, &blockers.bind_group, &[]);
+        pass.set_bind_group(slots::FRAME_GROUP, &scene.frame_bind_group, &[]);
+        pass.set_bind_group(slots::SHADOW_GROUP, &blockers.bind_group, &[]);
         // The pre-pass settles depth, so the costly shading runs once per visible pixel.
         pass.set_pipeline(&self.depth_prepass);
         draw_objects(&mut pass, scene);
@@ -222,7 +223,7 @@ impl LogShPipeline {
                 // Multisampled: every pixel from the samples, the best match nearby where
                 // none matches (single-sampled frames were drawn deferred above).
                 if let FullResolution::Rasterised(upsample) = &pipelines.full_resolution {
-                    pass.set_bind_group(3, low.bind_group(), &[]);
+                    pass.set_bind_group(slots::PASS_GROUP, low.bind_group(), &[]);
                     upsample.draw_objects(&mut pass, scene);
                 }
             }

@@ -16,6 +16,7 @@ use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
 use crate::render::target::RenderTarget;
 use crate::shading::CompiledPaths;
+use crate::shading::wgsl::slots;
 
 /// The passes of reduced-resolution shading (see `reduced_shading`).
 pub(super) struct ReducedShadingPipelines {
@@ -298,8 +299,8 @@ fn draw_surfaces(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    pass.set_bind_group(0, &scene.frame_bind_group, &[]);
-    pass.set_bind_group(2, &blockers.bind_group, &[]);
+    pass.set_bind_group(slots::FRAME_GROUP, &scene.frame_bind_group, &[]);
+    pass.set_bind_group(slots::SHADOW_GROUP, &blockers.bind_group, &[]);
     pipelines.draw_objects(&mut pass, scene);
     drop(pass);
     frame.mark(LABEL);
@@ -378,12 +379,12 @@ impl Bound<'_> {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &self.scene.frame_bind_group, &[]);
-        pass.set_bind_group(1, self.surface, &[]);
-        pass.set_bind_group(2, &self.blockers.bind_group, &[]);
+        pass.set_bind_group(slots::FRAME_GROUP, &self.scene.frame_bind_group, &[]);
+        pass.set_bind_group(slots::MATERIAL_GROUP, self.surface, &[]);
+        pass.set_bind_group(slots::SHADOW_GROUP, &self.blockers.bind_group, &[]);
         for &(pipeline, coarser) in shading {
             if let Some(coarser) = coarser {
-                pass.set_bind_group(3, coarser, &[]);
+                pass.set_bind_group(slots::PASS_GROUP, coarser, &[]);
             }
             pass.set_pipeline(pipeline);
             pass.draw(0..3, 0..1);

@@ -2,9 +2,10 @@
 //! writes each vertex's visibility SH into a buffer per object, which the shading pass
 //! binds as a second vertex buffer.
 
-use crate::render::descriptors::{numbered_entries, storage_buffer_entry};
+use crate::render::descriptors::{slot_entries, storage_buffer_entry};
 use crate::render::resources::GpuScene;
 use crate::shading::wgsl::sh as wgsl_sh;
+use crate::shading::wgsl::slots;
 
 /// The compute pipeline and the bind group layout of its per-object buffers (group 3).
 pub struct PerVertexCompute {
@@ -23,10 +24,13 @@ impl PerVertexCompute {
         order: usize,
         constants: &[(&str, f64)],
     ) -> PerVertexCompute {
-        let storage = |binding, read_only| storage_buffer_entry(binding, wgpu::ShaderStages::COMPUTE, read_only);
+        let storage = |slot, read_only| storage_buffer_entry(slot, wgpu::ShaderStages::COMPUTE, read_only);
         let object_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("per-vertex object"),
-            entries: &[storage(0, true), storage(1, false)],
+            entries: &[
+                storage(slots::VERTEX_DATA, true),
+                storage(slots::VERTEX_VISIBILITY, false),
+            ],
         });
         let empty_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("empty"),
@@ -73,11 +77,11 @@ impl PerVertexCompute {
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.empty_group, &[]);
-        pass.set_bind_group(1, &self.empty_group, &[]);
-        pass.set_bind_group(2, blockers, &[]);
+        pass.set_bind_group(slots::FRAME_GROUP, &self.empty_group, &[]);
+        pass.set_bind_group(slots::MATERIAL_GROUP, &self.empty_group, &[]);
+        pass.set_bind_group(slots::SHADOW_GROUP, blockers, &[]);
         for (bind_group, vertex_count) in visibility.bind_groups.iter().zip(&visibility.vertex_counts) {
-            pass.set_bind_group(3, bind_group, &[]);
+            pass.set_bind_group(slots::PASS_GROUP, bind_group, &[]);
             pass.dispatch_workgroups(vertex_count.div_ceil(64), 1, 1);
         }
     }
@@ -116,7 +120,10 @@ impl VertexVisibility {
             bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("per-vertex object"),
                 layout: &compute.object_layout,
-                entries: &numbered_entries([object.vertex_buffer.as_entire_binding(), buffer.as_entire_binding()]),
+                entries: &slot_entries([
+                    (slots::VERTEX_DATA, object.vertex_buffer.as_entire_binding()),
+                    (slots::VERTEX_VISIBILITY, buffer.as_entire_binding()),
+                ]),
             }));
             buffers.push(buffer);
             vertex_counts.push(object.vertex_count);

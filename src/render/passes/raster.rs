@@ -4,6 +4,7 @@ use crate::render::descriptors::{COLOR_FORMAT, SAMPLE_COUNT, create_module, dept
 use crate::render::resources::{GpuScene, SceneLayouts, draw_objects, vertex_layout};
 use crate::render::target::RenderTarget;
 use crate::shading::wgsl;
+use crate::shading::wgsl::slots;
 
 pub struct ScenePipeline {
     pub layouts: SceneLayouts,
@@ -62,7 +63,7 @@ pub fn draw_meshes(
         multiview_mask: None,
     });
     pass.set_pipeline(pipeline);
-    pass.set_bind_group(0, frame_group, &[]);
+    pass.set_bind_group(slots::FRAME_GROUP, frame_group, &[]);
     draw_objects(&mut pass, scene);
     drop(pass);
     target.finish(encoder);

@@ -40,8 +40,9 @@ pub use super::surface_buffer::{
     mapped_visibility_writer_layout, surface_buffer_layout,
 };
 use super::surface_buffer::{SAMPLED_TARGET, cleared, depth_texture, image_extent};
-use crate::render::descriptors::{depth_attachment, frame_texture, numbered_entries};
+use crate::render::descriptors::{buffer_type, depth_attachment, frame_texture, layout_entry, slot_entries};
 use crate::shading::gpu_types::GpuUpsampleParams;
+use crate::shading::wgsl::slots;
 
 /// Formats of fs_shade_low's targets: one, holding view depth, lighting and the packed
 /// normal (see reduced_shading.wgsl). 16 bytes a sample, read with one texel fetch.
@@ -100,30 +101,20 @@ pub fn low_resolution_size(width: u32, height: u32, downsample: u32) -> [u32; 2]
 
 /// The bind group layout through which fs_upsample reads the low-resolution samples.
 pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    };
+    let fragment = wgpu::ShaderStages::FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("low-resolution samples"),
         entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
+            layout_entry(slots::UPSAMPLE, fragment, buffer_type(wgpu::BufferBindingType::Uniform)),
+            layout_entry(
+                slots::LOW_SAMPLES,
+                fragment,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
                 },
-                count: None,
-            },
-            texture(1, wgpu::TextureSampleType::Uint),
+            ),
         ],
     })
 }
@@ -254,7 +245,10 @@ fn sample_reader(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
-        entries: &numbered_entries([params.as_entire_binding(), wgpu::BindingResource::TextureView(view)]),
+        entries: &slot_entries([
+            (slots::UPSAMPLE, params.as_entire_binding()),
+            (slots::LOW_SAMPLES, wgpu::BindingResource::TextureView(view)),
+        ]),
     })
 }
 

@@ -5,7 +5,10 @@
 //! fs_mark_surface_samples_keeping_visibility, read by the samples' shading; see
 //! low_resolution.wgsl), with the key that says when it still holds.
 
-use crate::render::descriptors::{DEPTH_FORMAT, depth_attachment, frame_texture, storage_buffer_entry};
+use crate::render::descriptors::{
+    DEPTH_FORMAT, depth_attachment, frame_texture, layout_entry, slot_entries, storage_buffer_entry,
+};
+use crate::shading::wgsl::slots;
 
 /// Formats of the surface buffer fs_surface_buffer writes (see low_resolution.wgsl).
 pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureFormat::Rgba32Uint; 2];
@@ -13,22 +16,23 @@ pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureForma
 /// The bind group layout (group 1 of the full-screen passes, in place of the material)
 /// through which the low-resolution shading reads the surface buffer.
 pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let texture = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Uint,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
+    let texture = |slot| {
+        layout_entry(
+            slot,
+            wgpu::ShaderStages::FRAGMENT,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Uint,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+        )
     };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("surface buffer"),
         entries: &[
-            texture(8),
-            texture(9),
-            storage_buffer_entry(10, wgpu::ShaderStages::FRAGMENT, true),
+            texture(slots::SURFACE_BUFFER_A),
+            texture(slots::SURFACE_BUFFER_B),
+            storage_buffer_entry(slots::KEPT_MAPPED_VISIBILITY, wgpu::ShaderStages::FRAGMENT, true),
         ],
     })
 }
@@ -36,10 +40,13 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// The bind group layout (group 3 of fs_mark_surface_samples_keeping_visibility) through
 /// which the samples' visibility of the mapped lights is written.
 pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| storage_buffer_entry(binding, wgpu::ShaderStages::FRAGMENT, read_only);
+    let storage = |slot, read_only| storage_buffer_entry(slot, wgpu::ShaderStages::FRAGMENT, read_only);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("kept visibility of the mapped lights, written"),
-        entries: &[storage(4, false), storage(5, true)],
+        entries: &[
+            storage(slots::MAPPED_VISIBILITY_OUT, false),
+            storage(slots::STALE_LIGHTS, true),
+        ],
     })
 }
 
@@ -188,16 +195,10 @@ fn writer_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("kept visibility of the mapped lights, written"),
         layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 4,
-                resource: visibility.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 5,
-                resource: stale_lights.as_entire_binding(),
-            },
-        ],
+        entries: &slot_entries([
+            (slots::MAPPED_VISIBILITY_OUT, visibility.as_entire_binding()),
+            (slots::STALE_LIGHTS, stale_lights.as_entire_binding()),
+        ]),
     })
 }
 
@@ -210,20 +211,11 @@ fn surface_bind_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("surface buffer"),
         layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 8,
-                resource: wgpu::BindingResource::TextureView(&views[0]),
-            },
-            wgpu::BindGroupEntry {
-                binding: 9,
-                resource: wgpu::BindingResource::TextureView(&views[1]),
-            },
-            wgpu::BindGroupEntry {
-                binding: 10,
-                resource: mapped_visibility.as_entire_binding(),
-            },
-        ],
+        entries: &slot_entries([
+            (slots::SURFACE_BUFFER_A, wgpu::BindingResource::TextureView(&views[0])),
+            (slots::SURFACE_BUFFER_B, wgpu::BindingResource::TextureView(&views[1])),
+            (slots::KEPT_MAPPED_VISIBILITY, mapped_visibility.as_entire_binding()),
+        ]),
     })
 }
 

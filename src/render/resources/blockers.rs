@@ -8,10 +8,11 @@ use wgpu::util::DeviceExt;
 use super::shadow_maps::ShadowMapBinding;
 use super::terrain::GpuTerrain;
 use crate::blockers::Sphere;
-use crate::render::descriptors::numbered_entries;
+use crate::render::descriptors::{buffer_type, layout_entry, slot_entries};
 use crate::shading::ShadowSettings;
 use crate::shading::blocker_groups::group_blockers;
 use crate::shading::gpu_types::{GpuBlocker, GpuBlockerGroup, GpuShadowParams, UNIFORM_BLOCKER_CAPACITY};
+use crate::shading::wgsl::slots;
 use crate::terrain::HeightField;
 
 /// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
@@ -159,17 +160,17 @@ fn shadow_bind_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("shadow"),
         layout,
-        entries: &numbered_entries([
-            params.as_entire_binding(),
-            blockers.as_entire_binding(),
-            groups.as_entire_binding(),
-            terrain.params.as_entire_binding(),
-            terrain.heights.as_entire_binding(),
-            every_blocker.as_entire_binding(),
-            every_group.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&maps.layers),
-            wgpu::BindingResource::Sampler(&maps.sampler),
-            maps.views.as_entire_binding(),
+        entries: &slot_entries([
+            (slots::SHADOW, params.as_entire_binding()),
+            (slots::BLOCKERS, blockers.as_entire_binding()),
+            (slots::GROUPS, groups.as_entire_binding()),
+            (slots::TERRAIN, terrain.params.as_entire_binding()),
+            (slots::TERRAIN_HEIGHTS, terrain.heights.as_entire_binding()),
+            (slots::EVERY_BLOCKER, every_blocker.as_entire_binding()),
+            (slots::EVERY_GROUP, every_group.as_entire_binding()),
+            (slots::SHADOW_MAPS, wgpu::BindingResource::TextureView(&maps.layers)),
+            (slots::SHADOW_MAP_SAMPLER, wgpu::BindingResource::Sampler(&maps.sampler)),
+            (slots::SHADOW_VIEWS, maps.views.as_entire_binding()),
         ]),
     })
 }
@@ -198,42 +199,32 @@ fn uniform_and_storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, ite
 /// The bind group layout of [`GpuBlockers`].
 pub fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
-    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    let other = |binding, ty| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty,
-        count: None,
-    };
+    let entry = |slot, ty| layout_entry(slot, visibility, ty);
+    let uniform = buffer_type(wgpu::BufferBindingType::Uniform);
+    let storage = buffer_type(wgpu::BufferBindingType::Storage { read_only: true });
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("shadow"),
         entries: &[
-            entry(0, wgpu::BufferBindingType::Uniform),
-            entry(1, wgpu::BufferBindingType::Uniform),
-            entry(2, wgpu::BufferBindingType::Uniform),
-            entry(3, wgpu::BufferBindingType::Uniform),
-            entry(4, wgpu::BufferBindingType::Storage { read_only: true }),
-            entry(5, wgpu::BufferBindingType::Storage { read_only: true }),
-            entry(6, wgpu::BufferBindingType::Storage { read_only: true }),
-            other(
-                7,
+            entry(slots::SHADOW, uniform),
+            entry(slots::BLOCKERS, uniform),
+            entry(slots::GROUPS, uniform),
+            entry(slots::TERRAIN, uniform),
+            entry(slots::TERRAIN_HEIGHTS, storage),
+            entry(slots::EVERY_BLOCKER, storage),
+            entry(slots::EVERY_GROUP, storage),
+            entry(
+                slots::SHADOW_MAPS,
                 wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Depth,
                     view_dimension: wgpu::TextureViewDimension::D2Array,
                     multisampled: false,
                 },
             ),
-            other(8, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison)),
-            entry(9, wgpu::BufferBindingType::Uniform),
+            entry(
+                slots::SHADOW_MAP_SAMPLER,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            ),
+            entry(slots::SHADOW_VIEWS, uniform),
         ],
     })
 }

@@ -1,7 +1,9 @@
 //! The scene's bind group layouts (group 0: frame, group 1: material), the shared
 //! base-colour sampler and the vertex buffer layout of [`GpuVertex`].
 
+use crate::render::descriptors::{buffer_type, layout_entry};
 use crate::shading::gpu_types::GpuVertex;
+use crate::shading::wgsl::slots;
 
 const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
@@ -26,42 +28,25 @@ pub struct SceneLayouts {
 
 impl SceneLayouts {
     pub fn new(device: &wgpu::Device) -> SceneLayouts {
-        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty,
-            count: None,
-        };
-        let buffer = |ty| wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
+        let uniform = buffer_type(wgpu::BufferBindingType::Uniform);
+        let storage = buffer_type(wgpu::BufferBindingType::Storage { read_only: true });
         let both = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[
-                entry(0, both, buffer(wgpu::BufferBindingType::Uniform)),
-                entry(1, fragment, buffer(wgpu::BufferBindingType::Uniform)),
-                entry(
-                    2,
-                    wgpu::ShaderStages::VERTEX,
-                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
-                ),
-                entry(
-                    3,
-                    fragment,
-                    buffer(wgpu::BufferBindingType::Storage { read_only: true }),
-                ),
+                layout_entry(slots::FRAME, both, uniform),
+                layout_entry(slots::LIGHTS, fragment, uniform),
+                layout_entry(slots::BAKED_INDIRECT, wgpu::ShaderStages::VERTEX, storage),
+                layout_entry(slots::EVERY_LIGHT, fragment, storage),
             ],
         });
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("material"),
             entries: &[
-                entry(0, fragment, buffer(wgpu::BufferBindingType::Uniform)),
-                entry(
-                    1,
+                layout_entry(slots::MATERIAL, fragment, uniform),
+                layout_entry(
+                    slots::BASE_COLOR_TEXTURE,
                     fragment,
                     wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: true },
@@ -69,8 +54,8 @@ impl SceneLayouts {
                         multisampled: false,
                     },
                 ),
-                entry(
-                    2,
+                layout_entry(
+                    slots::BASE_COLOR_SAMPLER,
                     fragment,
                     wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 ),

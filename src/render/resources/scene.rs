@@ -5,12 +5,13 @@
 use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
-use crate::render::descriptors::numbered_entries;
+use crate::render::descriptors::slot_entries;
 use crate::scene::{Camera, Environment, Scene, TextureImage};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
     GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance,
 };
+use crate::shading::wgsl::slots;
 
 pub struct GpuObject {
     /// [`GpuVertex`]es, also readable as storage (the per-vertex shadow pass reads them).
@@ -148,10 +149,16 @@ impl GpuScene {
                 device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&material.name),
                     layout: &layouts.material,
-                    entries: &numbered_entries([
-                        buffer.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
-                        wgpu::BindingResource::Sampler(&layouts.sampler),
+                    entries: &slot_entries([
+                        (slots::MATERIAL, buffer.as_entire_binding()),
+                        (
+                            slots::BASE_COLOR_TEXTURE,
+                            wgpu::BindingResource::TextureView(texture.unwrap_or(&white)),
+                        ),
+                        (
+                            slots::BASE_COLOR_SAMPLER,
+                            wgpu::BindingResource::Sampler(&layouts.sampler),
+                        ),
                     ]),
                 })
             })
@@ -349,11 +356,11 @@ fn frame_bind_group(
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
         layout: &layouts.frame,
-        entries: &numbered_entries([
-            frame.as_entire_binding(),
-            lights.uniform.as_entire_binding(),
-            indirect.as_entire_binding(),
-            lights.every.as_entire_binding(),
+        entries: &slot_entries([
+            (slots::FRAME, frame.as_entire_binding()),
+            (slots::LIGHTS, lights.uniform.as_entire_binding()),
+            (slots::BAKED_INDIRECT, indirect.as_entire_binding()),
+            (slots::EVERY_LIGHT, lights.every.as_entire_binding()),
         ]),
     })
 }
@@ -411,7 +418,7 @@ pub fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
 /// Draws one object; its one instance's index is the object's first vertex in the baked
 /// indirect light (scene.wgsl reads it as `instance_index`).
 pub fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &GpuObject) {
-    pass.set_bind_group(1, &scene.material_bind_groups[object.material], &[]);
+    pass.set_bind_group(slots::MATERIAL_GROUP, &scene.material_bind_groups[object.material], &[]);
     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
     pass.draw_indexed(0..object.index_count, 0, object.first_vertex..object.first_vertex + 1);

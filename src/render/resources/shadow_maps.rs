@@ -15,7 +15,7 @@ use super::scene::GpuScene;
 use crate::render::descriptors::{DEPTH_FORMAT, create_module, depth_attachment};
 use crate::shading::gpu_types::{GpuShadowView, MAX_SHADOW_VIEWS};
 use crate::shading::shadow_maps::ShadowViews;
-use crate::shading::wgsl;
+use crate::shading::wgsl::{self, slots};
 
 /// Byte stride of one view in the draw pass's uniform (wgpu's dynamic offset alignment).
 const DRAW_STRIDE: u64 = 256;
@@ -53,7 +53,7 @@ impl ShadowMaps {
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("shadow map view"),
             entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
+                binding: slots::SHADOW_VIEW.binding,
                 visibility: wgpu::ShaderStages::VERTEX,
                 ty: wgpu::BindingType::Buffer {
                     ty: wgpu::BufferBindingType::Uniform,
@@ -171,7 +171,7 @@ impl ShadowMaps {
                 let (x, y, width) = (u * size as f32, v * size as f32, side * size as f32);
                 pass.set_viewport(x, y, width, width, 0.0, 1.0);
                 pass.set_scissor_rect(x as u32, y as u32, width as u32, width as u32);
-                pass.set_bind_group(0, &self.draw_group, &[(k as u64 * DRAW_STRIDE) as u32]);
+                pass.set_bind_group(slots::IMAGE_GROUP, &self.draw_group, &[(k as u64 * DRAW_STRIDE) as u32]);
                 for object in scene.objects.iter().filter(|o| !o.hidden) {
                     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
                     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
@@ -240,7 +240,7 @@ fn draw_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wg
         label: Some("shadow map view"),
         layout,
         entries: &[wgpu::BindGroupEntry {
-            binding: 0,
+            binding: slots::SHADOW_VIEW.binding,
             resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer,
                 offset: 0,

@@ -10,9 +10,9 @@
 
 use crate::render::descriptors::{
     COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, bilinear_sampler, create_module, depth_attachment, depth_test,
-    frame_texture, image_and_sampler_layout, numbered_entries,
+    frame_texture, image_and_sampler_layout, slot_entries,
 };
-use crate::shading::wgsl;
+use crate::shading::wgsl::{self, slots};
 
 /// The edge filter's pipelines, compiled once and shared by the targets that use them
 /// (the viewport makes a new target whenever its size changes).
@@ -28,7 +28,7 @@ impl EdgeFilter {
     pub fn new(device: &wgpu::Device) -> EdgeFilter {
         let sampler = bilinear_sampler(device, "edge filter");
         let layout = image_and_sampler_layout(device, "edge filter");
-        let module = create_module(device, "edge filter", wgsl::EDGE_FILTER);
+        let module = create_module(device, "edge filter", &wgsl::edge_filter_source());
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("edge filter"),
             bind_group_layouts: &[Some(&layout)],
@@ -108,9 +108,9 @@ impl EdgeFilterPass {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("edge filter"),
             layout: &filter.layout,
-            entries: &numbered_entries([
-                wgpu::BindingResource::TextureView(&raw_view),
-                wgpu::BindingResource::Sampler(&filter.sampler),
+            entries: &slot_entries([
+                (slots::FRAME_IMAGE, wgpu::BindingResource::TextureView(&raw_view)),
+                (slots::FRAME_SAMPLER, wgpu::BindingResource::Sampler(&filter.sampler)),
             ]),
         });
         let depth = texture(
@@ -146,7 +146,7 @@ impl EdgeFilterPass {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_bind_group(slots::IMAGE_GROUP, &self.bind_group, &[]);
         for pipeline in [&self.filter.keep_flat, &self.filter.filter_edges] {
             pass.set_pipeline(pipeline);
             pass.draw(0..3, 0..1);

@@ -11,6 +11,7 @@
 pub mod compose;
 pub mod lobes;
 pub mod sh;
+pub mod slots;
 pub mod terrain;
 
 pub use compose::{ComposeError, WgslModule, compose};
@@ -32,9 +33,9 @@ pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vert
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
 pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
 pub const SHADOW_LOOKUP: &str = include_str!("../../../shaders/shadow_lookup.wgsl");
-/// Standalone: it reads a finished frame, not the scene.
+/// Reads a finished frame, not the scene.
 pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
-/// Standalone: the editor's viewport image drawn into egui's frame.
+/// The editor's viewport image drawn into egui's frame.
 pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.wgsl");
 
 /// Every file under `shaders/`, by the name modules import it by (its file stem).
@@ -105,6 +106,20 @@ pub const FILES: [WgslModule<'static>; 16] = [
     },
 ];
 
+/// The constants of [`slots`], generated once.
+static SLOTS: std::sync::LazyLock<String> = std::sync::LazyLock::new(slots::wgsl_module);
+
+/// Every module to compose from but those generated for a log-SH shader's settings: the
+/// files under `shaders/` and `slots`.
+pub fn modules() -> Vec<WgslModule<'static>> {
+    let mut modules = FILES.to_vec();
+    modules.push(WgslModule {
+        name: "slots",
+        source: SLOTS.as_str(),
+    });
+    modules
+}
+
 /// The modules generated for a log-SH shader's settings, with what each imports.
 pub struct GeneratedModules {
     sh: String,
@@ -123,9 +138,9 @@ impl GeneratedModules {
         }
     }
 
-    /// The files under `shaders/` and these, as modules to compose from.
+    /// Every module: [`modules`] and these.
     pub fn with_files(&self) -> Vec<WgslModule<'_>> {
-        let mut modules = FILES.to_vec();
+        let mut modules = modules();
         modules.push(WgslModule {
             name: "sh",
             source: &self.sh,
@@ -145,12 +160,22 @@ impl GeneratedModules {
 /// `root` and what it imports from the files under `shaders/`. Those files are part of
 /// the program, so a failure is a bug the tests catch (tests/wgsl_validate.rs).
 fn compose_files(root: &str) -> String {
-    compose(&[root], &FILES).unwrap_or_else(|err| panic!("{err}"))
+    compose(&[root], &modules()).unwrap_or_else(|err| panic!("{err}"))
 }
 
 /// The unshadowed raster module.
 pub fn raster_source() -> String {
     compose_files("raster")
+}
+
+/// The edge filter's module.
+pub fn edge_filter_source() -> String {
+    compose_files("edge_filter")
+}
+
+/// The viewport image's module.
+pub fn viewport_image_source() -> String {
+    compose_files("viewport_image")
 }
 
 /// The shadow-map depth pass's module.
