@@ -19,6 +19,7 @@ pub mod reference;
 pub mod render;
 pub mod samples;
 pub mod scene;
+pub mod session;
 pub mod sh;
 pub mod shading;
 pub mod study;

@@ -23,6 +23,7 @@ const GPU_FREE: &[&str] = &[
     "reference",
     "random",
     "panic_guard",
+    "session",
 ];
 
 /// Longest a hand-written source file may grow (generated tables are exempt).

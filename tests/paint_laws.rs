@@ -311,13 +311,16 @@ fn undo_and_redo_restore_exact_intensities_and_replay_is_bit_identical() {
         d.dedup();
         d
     };
+    let mut undone = Vec::new();
     for expected in distinct.iter().rev().skip(1) {
-        assert!(painter.undo(&mut p));
+        undone.push(painter.undo(&mut p).expect("a stroke to undo"));
         assert_eq!(&p, expected);
     }
-    assert!(!painter.undo(&mut p));
+    assert!(painter.undo(&mut p).is_none());
     assert_eq!(p, start);
-    while painter.redo(&mut p) {}
+    while let Some(edit) = undone.pop() {
+        painter.redo(edit, &mut p);
+    }
     assert_eq!(p, end);
     // Replay the log from the start: bit-identical.
     let log: Vec<StrokeRecord> = painter.log().cloned().collect();
@@ -461,7 +464,7 @@ fn a_keep_from_an_earlier_session_holds_after_reopening() {
             paint(&mut painter, &mut p, stroke.clone());
         }
         // Nothing carried over is undoable in the new session.
-        while painter.undo(&mut p) {}
+        while painter.undo(&mut p).is_some() {}
         assert_eq!(p, saved);
         for stroke in &strokes {
             paint(&mut painter, &mut p, stroke.clone());
@@ -817,7 +820,7 @@ fn a_released_keep_area_no_longer_holds_and_undo_brings_it_back() {
     assert_eq!(p, free, "released, the Keep no longer limits the brighten");
 
     assert!(
-        painter.undo(&mut p) && painter.undo(&mut p),
+        painter.undo(&mut p).is_some() && painter.undo(&mut p).is_some(),
         "undo the brighten, then the release"
     );
     assert_eq!(p, start);

@@ -402,7 +402,7 @@ fn a_painted_project_reopens_exactly_as_saved() {
     };
     stroke_on_the_floor(&mut harness, egui::Key::B);
     let painted = harness.state().light_intensities();
-    let strokes = harness.state().document().expect("open").painting.strokes.clone();
+    let strokes = harness.state().painting_state().expect("open").strokes;
     assert_eq!(strokes.len(), 1, "one stroke in the history");
     harness.key_press(egui::Key::Escape);
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
@@ -417,7 +417,7 @@ fn a_painted_project_reopens_exactly_as_saved() {
     reopened.hover_at(egui::pos2(5.0, 790.0));
     reopened.run();
     assert_eq!(reopened.state().light_intensities(), painted);
-    assert_eq!(reopened.state().document().expect("open").painting.strokes, strokes);
+    assert_eq!(reopened.state().painting_state().expect("open").strokes, strokes);
     assert!(!reopened.state().has_unsaved_changes());
     let again = reopened.render().expect("render");
     let differing = viewport_pixels_differing(&again, &image, viewport, ppp);

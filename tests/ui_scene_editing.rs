@@ -718,9 +718,9 @@ fn a_locked_light_is_left_as_it_is_by_strokes_and_stays_locked() {
         after.iter().zip(&before).any(|(a, b)| a > b),
         "another light rose: {before:?} → {after:?}"
     );
-    let document = harness.state().document().expect("open");
+    let painting = harness.state().painting_state().expect("open");
     assert_eq!(
-        document.painting.strokes.last().map(|s| s.locked_lights.clone()),
+        painting.strokes.last().map(|s| s.locked_lights.clone()),
         Some(vec![key as u32])
     );
 

@@ -174,11 +174,12 @@ fn kept_vertices(stroke: StrokeTransfer, p: &[f64]) -> Vec<ConstrainedVertex> {
         .collect()
 }
 
-/// Strokes applied and undone.
+/// The strokes applied. An undone stroke is handed to the caller ([`Painter::undo`]),
+/// whose history keeps it for a redo ([`Painter::redo`]): the editor keeps strokes and
+/// light edits in one history (`session::history`).
 #[derive(Debug, Clone, Default)]
 pub struct Painter {
     done: Vec<Edit>,
-    undone: Vec<Edit>,
     /// What the strokes of earlier sessions still ask ([`Painter::carry_over`]): their
     /// Keep areas and, for the global solve, their equations. Not undoable here: they
     /// belong to the saved log, not to this session's history.
@@ -201,10 +202,6 @@ impl Painter {
 
     pub fn can_undo(&self) -> bool {
         !self.done.is_empty()
-    }
-
-    pub fn can_redo(&self) -> bool {
-        !self.undone.is_empty()
     }
 
     /// The vertices Keep strokes hold (this session's applied ones and those carried over),
@@ -557,31 +554,29 @@ impl Painter {
 
     fn push(&mut self, edit: Edit) {
         self.done.push(edit);
-        self.undone.clear();
     }
 
-    /// Undoes the last stroke, restoring the exact intensities before it. False if none.
-    pub fn undo(&mut self, intensities: &mut [f32]) -> bool {
-        let Some(edit) = self.done.pop() else { return false };
+    /// Takes back the last stroke, restoring the exact intensities before it; the stroke,
+    /// to give [`Painter::redo`] later. None if there is none.
+    pub fn undo(&mut self, intensities: &mut [f32]) -> Option<Edit> {
+        let edit = self.done.pop()?;
         for change in &edit.changes {
             if let Some(p) = intensities.get_mut(change.light as usize) {
                 *p = change.before;
             }
         }
-        self.undone.push(edit);
-        true
+        Some(edit)
     }
 
-    /// Re-applies the last undone stroke exactly. False if none.
-    pub fn redo(&mut self, intensities: &mut [f32]) -> bool {
-        let Some(edit) = self.undone.pop() else { return false };
+    /// Applies again, exactly, a stroke [`Painter::undo`] took back (the last one it took
+    /// back, with nothing applied since: the caller's history keeps that order).
+    pub fn redo(&mut self, edit: Edit, intensities: &mut [f32]) {
         for change in &edit.changes {
             if let Some(p) = intensities.get_mut(change.light as usize) {
                 *p = change.after;
             }
         }
         self.done.push(edit);
-        true
     }
 }
 

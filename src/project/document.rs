@@ -26,7 +26,9 @@ pub struct Document {
     /// What was done for the user on opening, to say once (not problems: `check` passes
     /// them), such as the default rig lighting a glTF that has no lights.
     pub notes: Vec<String>,
-    /// The stroke log, brush and painting strategies.
+    /// The stroke log, brush and painting strategies as the file holds them. In the
+    /// editor a `session::EditorSession` owns the live painting state and writes it back
+    /// here only when the document leaves the session or is saved.
     pub painting: PaintingState,
     /// Indices of the objects hidden in the viewport (see [`ProjectFile::hidden_objects`]).
     pub hidden_objects: std::collections::BTreeSet<usize>,
@@ -269,7 +271,14 @@ impl Document {
     /// Saves atomically to `project_path` (keeping the previous file as `STEM.previous.lightpaint`) and
     /// remembers it as the document's file.
     pub fn save(&mut self, project_path: &Path) -> Result<(), ProjectError> {
-        let text = self.to_project_file(project_path).to_json();
+        let file = self.to_project_file(project_path);
+        self.save_file(project_path, &file)
+    }
+
+    /// Saves `file` (this document's, as [`Document::to_project_file`] or an editor
+    /// session writes it) atomically to `project_path`, which becomes the document's file.
+    pub fn save_file(&mut self, project_path: &Path, file: &ProjectFile) -> Result<(), ProjectError> {
+        let text = file.to_json();
         write_atomically(project_path, text.as_bytes()).map_err(|source| ProjectError::Write {
             path: project_path.to_path_buf(),
             source,

@@ -4,13 +4,7 @@
 
 use egui::{Pos2, Vec2};
 
-/// A stroke finished in the viewport: its points relative to the viewport's top-left
-/// corner and the viewport's size, both in points.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FinishedStroke {
-    pub points: Vec<Vec2>,
-    pub viewport_size: Vec2,
-}
+use crate::session::ScreenStroke;
 
 #[derive(Debug, Default)]
 pub struct BrushInput {
@@ -18,8 +12,9 @@ pub struct BrushInput {
 }
 
 impl BrushInput {
-    /// Follows the pointer on `response` (the viewport's); the stroke on release.
-    pub fn update(&mut self, ui: &egui::Ui, response: &egui::Response) -> Option<FinishedStroke> {
+    /// Follows the pointer on `response` (the viewport's); the stroke on release, in the
+    /// viewport's points.
+    pub fn update(&mut self, ui: &egui::Ui, response: &egui::Response) -> Option<ScreenStroke> {
         let shift = ui.input(|i| i.modifiers.shift);
         let origin = response.rect.min;
         let pointer = response.interact_pointer_pos().or(response.hover_pos());
@@ -38,9 +33,10 @@ impl BrushInput {
             self.points.extend(pointer.map(|p| p - origin));
         }
         if (released || clicked) && !self.points.is_empty() {
-            return Some(FinishedStroke {
-                points: std::mem::take(&mut self.points),
-                viewport_size: response.rect.size(),
+            let glam = |v: Vec2| glam::Vec2::new(v.x, v.y);
+            return Some(ScreenStroke {
+                points_px: std::mem::take(&mut self.points).into_iter().map(glam).collect(),
+                viewport_size_px: glam(response.rect.size()),
             });
         }
         None

@@ -4,8 +4,8 @@
 //! has a one-line tooltip; the research names (Rozon 2009) are in the tooltips and in
 //! docs/strokes.md, the long form.
 
-use super::painting::{Painting, Tool};
 use crate::paint::{BrushKind, Falloff, ModificationStrategy, Ranking, SelectionStrategy, SolveMode};
+use crate::session::{Painting, Tool};
 
 /// What the section asks the app to do.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

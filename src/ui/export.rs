@@ -95,7 +95,7 @@ impl EditorApp {
 
     /// Where the export dialog starts: the project's folder and name.
     fn export_start(&self) -> (std::path::PathBuf, String) {
-        self.document.as_ref().map_or_else(
+        self.session.as_ref().map(|s| &s.document).map_or_else(
             || (std::path::PathBuf::from("."), "render".to_string()),
             |d| {
                 let (folder, name) = file_dialog::save_as_start(d.project_path.as_deref(), &d.scene_path);
@@ -111,7 +111,7 @@ impl EditorApp {
     /// a failed export leaves an existing file as it was).
     pub fn export_png_sized(&mut self, path: &Path, size: [u32; 2]) {
         let size = size.map(|side| side.clamp(1, MAX_EXPORT_SIDE_PX));
-        let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) else {
+        let (Some(viewport), Some(document)) = (&mut self.viewport, self.session.as_ref().map(|s| &s.document)) else {
             return self.report_error("nothing to export: no scene is shown".to_string());
         };
         let settings = document.settings;

@@ -35,8 +35,11 @@ impl EditorApp {
             Some(PaintAction::Undo) => self.undo(),
             Some(PaintAction::Redo) => self.redo(),
             Some(PaintAction::StartBake) => {
-                if let (Some(document), Some(painting)) = (&self.document, &mut self.painting) {
-                    painting.start_bake(&document.scene, document.project_path.as_deref());
+                if let Some(session) = &mut self.session {
+                    let document = &session.document;
+                    session
+                        .painting
+                        .start_bake(&document.scene, document.project_path.as_deref());
                 }
             }
             None => {}
@@ -47,7 +50,7 @@ impl EditorApp {
     /// the light to delete if its Delete button was clicked.
     fn selection_section(&mut self, ui: &mut egui::Ui) -> (LightEdit, Option<usize>) {
         let mut delete = None;
-        let Some(document) = &mut self.document else {
+        let Some(document) = self.session.as_mut().map(|s| &mut s.document) else {
             return (LightEdit::default(), delete);
         };
         let pivot = self.viewport.as_ref().map_or(glam::Vec3::ZERO, |v| v.orbit.target);
@@ -108,16 +111,15 @@ impl EditorApp {
 
     /// The Painting section and the table of every light's intensity and colour.
     fn painting_and_lights(&mut self, ui: &mut egui::Ui, light_edit: &mut LightEdit) -> Option<PaintAction> {
-        let document = self.document.as_mut()?;
+        let session = self.session.as_mut()?;
         let mut action = None;
-        let history = (self.history.can_undo(), self.history.can_redo());
-        if let Some(painting) = &mut self.painting {
-            egui::CollapsingHeader::new("Painting")
-                .default_open(true)
-                .show(ui, |ui| {
-                    action = painting_section(ui, painting, &document.scene, history)
-                });
-        }
+        let history = (session.can_undo(), session.can_redo());
+        let (document, painting) = (&mut session.document, &mut session.painting);
+        egui::CollapsingHeader::new("Painting")
+            .default_open(true)
+            .show(ui, |ui| {
+                action = painting_section(ui, painting, &document.scene, history)
+            });
         egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
             egui::Grid::new("lights").striped(true).num_columns(4).show(ui, |ui| {
                 for (index, light) in document.scene.lights.iter_mut().enumerate() {
@@ -153,7 +155,9 @@ impl EditorApp {
 
     /// Render settings, shadows and the environment.
     fn render_sections(&mut self, ui: &mut egui::Ui) {
-        let Some(document) = &mut self.document else { return };
+        let Some(document) = self.session.as_mut().map(|s| &mut s.document) else {
+            return;
+        };
         egui::CollapsingHeader::new("Render").default_open(true).show(ui, |ui| {
             self.indirect_stale |= render_settings(ui, &mut document.settings);
         });
@@ -207,7 +211,9 @@ impl EditorApp {
     }
 
     fn terrain_section(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
-        let Some(document) = &self.document else { return };
+        let Some(document) = self.session.as_ref().map(|s| &s.document) else {
+            return;
+        };
         let mut edit = None;
         egui::CollapsingHeader::new("Terrain")
             .default_open(true)

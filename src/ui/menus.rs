@@ -64,7 +64,7 @@ impl EditorApp {
             self.import_dialog(render_state);
         }
         ui.separator();
-        let open = self.document.is_some();
+        let open = self.session.is_some();
         if ui.add_enabled(open, egui::Button::new("Save (Ctrl+S)")).clicked() {
             self.save_document();
         }
@@ -92,14 +92,21 @@ impl EditorApp {
 
     /// Saves to the document's project file, or asks where when it has none.
     pub(super) fn save_document(&mut self) {
-        match self.document.as_ref().and_then(|d| d.project_path.clone()) {
+        match self
+            .session
+            .as_ref()
+            .map(|s| &s.document)
+            .and_then(|d| d.project_path.clone())
+        {
             Some(path) => self.save_to(&path),
             None => self.save_as_dialog(),
         }
     }
 
     fn save_as_dialog(&mut self) {
-        let Some(document) = &self.document else { return };
+        let Some(document) = self.session.as_ref().map(|s| &s.document) else {
+            return;
+        };
         let (folder, name) = file_dialog::save_as_start(document.project_path.as_deref(), &document.scene_path);
         let dialog = rfd::FileDialog::new().add_filter("lightpaint project", &[PROJECT_EXTENSION]);
         let dialog = file_dialog::start_in(dialog, &folder, &name);

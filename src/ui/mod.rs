@@ -2,21 +2,18 @@
 //! settings and a status bar. Every action calls into the library.
 
 mod app;
-mod bake_job;
 mod blocker_overlay;
 mod brush_input;
 mod brush_panel;
 mod export;
 mod file_dialog;
 mod frame_clock;
-mod history;
 mod inspector;
 mod light_gizmo;
 mod light_inspector;
 mod menus;
 mod outliner;
 mod outlines;
-mod painting;
 mod preferences;
 mod shadow_panel;
 mod terrain_panel;
@@ -24,9 +21,9 @@ mod unsaved_prompt;
 mod viewport;
 mod viewport_image;
 
+pub use crate::session::Tool;
 pub use app::{EditorApp, EditorOptions, FIRST_FRAME_LINE, FrameRateMeasurement};
 pub use outliner::Selection;
-pub use painting::Tool;
 pub use viewport::Viewport;
 
 /// Opens the editor window and runs until it is closed.

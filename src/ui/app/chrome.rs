@@ -19,7 +19,9 @@ impl EditorApp {
     }
 
     pub(super) fn tool_bar(&mut self, ui: &mut egui::Ui) {
-        let Some(painting) = &mut self.painting else { return };
+        let Some(painting) = self.session.as_mut().map(|s| &mut s.painting) else {
+            return;
+        };
         egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, &mut painting.tool));
     }
 
@@ -27,14 +29,16 @@ impl EditorApp {
         let mut action = None;
         egui::Panel::left("outliner").default_size(220.0).show(ui, |ui| {
             ui.heading("Scene");
-            let Some(document) = &self.document else { return };
+            let Some(document) = self.session.as_ref().map(|s| &s.document) else {
+                return;
+            };
             let hidden: Vec<bool> = (0..document.scene.objects.len())
                 .map(|i| document.hidden_objects.contains(&i))
                 .collect();
             let state = OutlinerState {
                 selection: self.selection,
                 hidden: &hidden,
-                solo: self.solo_light,
+                solo: self.session.as_ref().and_then(|s| s.solo_light()),
             };
             action = outliner(ui, &document.scene, &state);
         });
@@ -188,7 +192,7 @@ impl EditorApp {
     /// "NAME.lightpaint • — lightpaint" (the dot: unsaved changes), as window managers
     /// and task bars show it.
     pub(super) fn update_window_title(&mut self, ctx: &egui::Context, unsaved: bool) {
-        let title = match &self.document {
+        let title = match self.session.as_ref().map(|s| &s.document) {
             Some(document) => {
                 let path = document.project_path.as_ref().unwrap_or(&document.scene_path);
                 let name = path.file_name().map_or("untitled".into(), |n| n.to_string_lossy());

@@ -14,8 +14,8 @@ impl EditorApp {
                     .file_name()
                     .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
                 self.install(document, &format!("opened {name}"), render_state);
-                self.saved = self.document.as_ref().and_then(|document| {
-                    let mut saved = document.to_project_file(document.project_path.as_ref()?);
+                self.saved = self.session.as_ref().and_then(|session| {
+                    let mut saved = session.project_file(session.document.project_path.as_ref()?);
                     // A project without a camera opens on the scene's view: that view is
                     // what was saved, not a change.
                     if let Some(viewport) = &self.viewport {
@@ -32,9 +32,13 @@ impl EditorApp {
     /// objects and lights, with the document's settings; the stroke log starts afresh. The
     /// project file is untouched until the next save. On failure nothing changes.
     pub fn show_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
-        let Some(current) = &self.document else { return };
-        match current.with_gltf_scene(index) {
-            Ok(document) => {
+        let Some(session) = &self.session else { return };
+        match session.document.with_gltf_scene(index) {
+            Ok(mut document) => {
+                // The brush and strategies as they are now (the stroke log starts afresh).
+                let now = session.painting_state();
+                document.painting.brush = now.brush;
+                document.painting.settings = now.settings;
                 let label = document.scene.gltf_scene_label(index);
                 self.install(document, &format!("showing glTF scene {label}"), render_state);
             }
@@ -46,7 +50,9 @@ impl EditorApp {
     /// sphere fit and the viewport follow; bake maps of the old geometry no longer apply).
     /// A height map that cannot be read is reported and changes nothing.
     pub fn apply_terrain_edit(&mut self, edit: TerrainEdit, render_state: Option<&egui_wgpu::RenderState>) {
-        let Some(current) = &self.document else { return };
+        let Some(current) = self.session.as_ref().map(|s| &s.document) else {
+            return;
+        };
         let spec = match edit {
             TerrainEdit::Remove => None,
             TerrainEdit::Set(spec) => Some(spec),
@@ -79,7 +85,7 @@ impl EditorApp {
         } else {
             "terrain removed"
         };
-        let Some(mut document) = self.document.take() else {
+        let Some(mut document) = self.session.take().map(EditorSession::into_document) else {
             return;
         };
         document.scene.set_terrain(terrain);
@@ -99,7 +105,7 @@ impl EditorApp {
     /// True when an action that replaces the document may go ahead now; with unsaved
     /// changes it waits as `pending` for the answer to "save the changes?" instead.
     pub(in crate::ui) fn ready_or_ask(&mut self, pending: Pending) -> bool {
-        let ready = !(self.has_unsaved_changes() && self.document.is_some());
+        let ready = !(self.has_unsaved_changes() && self.session.is_some());
         if !ready {
             self.pending = Some(pending);
         }
@@ -142,19 +148,13 @@ impl EditorApp {
             viewport.set_hidden(&document.hidden_objects);
             viewport
         });
-        let mut painting = Painting::for_document(&document);
-        painting.resume_cached_bake(&document.scene, document.project_path.as_deref());
-        self.painting = Some(painting);
-        self.document = Some(document);
+        self.session = Some(EditorSession::new(document));
         self.indirect_stale = true;
-        // An edit in progress, the selection and the solo belonged to the previous document.
+        // An edit in progress and the selection belonged to the previous document.
         self.terrain_editing = None;
         self.selection = None;
-        self.solo_light = None;
-        self.lights_moved = false;
         // The new viewport has no heat map yet.
         self.heat_map = None;
-        self.history = History::new(self.document.as_ref().map_or(&[][..], |d| &d.scene.lights));
     }
 
     /// Opens `path`, first asking to save when the document has unsaved changes.
@@ -172,17 +172,13 @@ impl EditorApp {
     /// Closes the document without asking (File ▸ New after the unsaved-changes prompt):
     /// the start page with the recent files is shown.
     pub fn close_document(&mut self) {
-        self.document = None;
+        self.session = None;
         self.saved = None;
         self.viewport = None;
-        self.painting = None;
         self.blockers = SceneBlockers::default();
         self.selection = None;
-        self.solo_light = None;
-        self.lights_moved = false;
         self.terrain_editing = None;
         self.heat_map = None;
-        self.history = History::default();
         self.message = "nothing open".to_string();
     }
 
@@ -229,21 +225,22 @@ impl EditorApp {
 
     /// Saves the document to `path` (a project file), recording the current camera.
     pub fn save_to(&mut self, path: &Path) {
-        let Some(document) = &mut self.document else { return };
+        let Some(session) = &mut self.session else { return };
         if let Some(viewport) = &self.viewport {
-            document.camera = Some(viewport.orbit);
+            session.document.camera = Some(viewport.orbit);
         }
-        match document.save(path) {
+        match session.save(path) {
             Ok(()) => {
                 self.preferences.remember(path);
                 // The fit goes beside the project too, so it reopens without refitting.
                 let spheres = sphere_cache::cache_path(path);
-                if let Err(e) = sphere_cache::save(&spheres, &document.scene, &self.fitted_with, &self.blockers) {
+                let scene = &session.document.scene;
+                if let Err(e) = sphere_cache::save(&spheres, scene, &self.fitted_with, &self.blockers) {
                     log::warn!("the sphere fit could not be cached at {}: {e}", spheres.display());
                 }
-                self.saved = Some(document.to_project_file(path));
+                self.saved = Some(session.project_file(path));
                 self.message = format!("saved {}", path.display());
-                if let Some(problem) = self.painting.as_mut().and_then(|p| p.save_cache(&document.scene, path)) {
+                if let Some(problem) = session.painting.save_cache(scene, path) {
                     self.message = problem;
                 }
             }
@@ -259,7 +256,7 @@ impl EditorApp {
 
     /// The open document, if any.
     pub fn document(&self) -> Option<&Document> {
-        self.document.as_ref()
+        self.session.as_ref().map(|s| &s.document)
     }
 
     /// Whether the document differs from its file (a document never saved counts as
@@ -268,10 +265,10 @@ impl EditorApp {
     /// the camera looks is not a change (saving records it all the same): looking around
     /// and quitting must not ask to save.
     pub fn has_unsaved_changes(&self) -> bool {
-        let Some(document) = &self.document else { return false };
-        match (&document.project_path, &self.saved) {
+        let Some(session) = &self.session else { return false };
+        match (&session.document.project_path, &self.saved) {
             (Some(path), Some(saved)) => {
-                let mut current = document.to_project_file(path);
+                let mut current = session.project_file(path);
                 current.camera = saved.camera;
                 current != *saved
             }

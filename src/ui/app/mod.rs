@@ -7,13 +7,11 @@ use std::time::Instant;
 
 use super::Viewport;
 use super::blocker_overlay::{BlockerSummary, draw_blocker_summary, draw_blockers, draw_meshes_without_spheres};
-use super::brush_input::{BrushInput, FinishedStroke};
+use super::brush_input::BrushInput;
 use super::brush_panel::tool_bar;
-use super::history::{History, Step};
 use super::light_gizmo::{GizmoLights, GizmoOutput, light_gizmo};
 use super::outliner::{OutlinerAction, OutlinerState, Selection, outliner};
 use super::outlines::{box_outline, draw_kept_points, draw_outline};
-use super::painting::{Painting, Tool};
 use super::preferences::Preferences;
 use super::terrain_panel::{TerrainEdit, image_terrain};
 use super::unsaved_prompt::{self, Answer, Pending};
@@ -23,6 +21,7 @@ use crate::project::sphere_cache;
 use crate::project::{Document, ProjectFile};
 use crate::render::describe_adapter;
 use crate::scene::Light;
+use crate::session::{EditorSession, Painting, ScreenStroke, Tool};
 
 mod chrome;
 mod documents;
@@ -64,13 +63,6 @@ pub enum FrameRateMeasurement {
 /// wait for it before they look at the window.
 pub const FIRST_FRAME_LINE: &str = "lightpaint: first frame drawn";
 
-/// Which way through the history a step is carried out.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Direction {
-    Undo,
-    Redo,
-}
-
 /// How long a status message reads as news; after that, and once the undo history has
 /// changed under it, it is shown faded.
 const FRESH_MESSAGE: std::time::Duration = std::time::Duration::from_secs(10);
@@ -84,7 +76,8 @@ struct SeenMessage {
 }
 
 pub struct EditorApp {
-    pub(super) document: Option<Document>,
+    /// The open document with its painting state and undo history (None: nothing open).
+    pub(super) session: Option<EditorSession>,
     /// The project as last opened or saved, to tell whether there are unsaved changes.
     pub(super) saved: Option<ProjectFile>,
     pub(super) viewport: Option<Viewport>,
@@ -110,8 +103,6 @@ pub struct EditorApp {
     pub(super) first_frame_reported: bool,
     /// When the frame rate was last printed (EditorOptions::measure_frame_rate).
     pub(super) frame_rate_printed_at: Option<std::time::Instant>,
-    /// The document's painting state (None without a document).
-    pub(super) painting: Option<Painting>,
     pub(super) brush_input: BrushInput,
     /// A close or open waiting for the answer to "save the changes?".
     pub(super) pending: Option<Pending>,
@@ -123,17 +114,11 @@ pub struct EditorApp {
     pub(super) terrain_editing: Option<crate::scene::TerrainSpec>,
     /// The light or object the inspector edits.
     pub(super) selection: Option<Selection>,
-    /// The light shown alone in the viewport (a view setting, not saved).
-    pub(super) solo_light: Option<usize>,
-    /// A light moved or changed shape and its maps wait to be re-baked once the edit ends.
-    pub(super) lights_moved: bool,
     /// Recent files and view choices, kept between runs.
     pub(super) preferences: Preferences,
     /// What the viewport's heat map shows (None: no heat map) and the value its
     /// brightest colour stands for (cd/m²).
     pub(super) heat_map: Option<(HeatMapKey, f32)>,
-    /// Strokes and light edits, for undo and redo.
-    pub(super) history: History,
 }
 
 /// What a heat map was computed from: the light, its placement and intensity, whether
@@ -156,7 +141,7 @@ impl EditorApp {
             .map(|rs| describe_adapter(&rs.adapter.get_info()))
             .unwrap_or_else(|| "no wgpu adapter".into());
         let mut app = EditorApp {
-            document: None,
+            session: None,
             saved: None,
             viewport: None,
             blockers: SceneBlockers::default(),
@@ -177,18 +162,14 @@ impl EditorApp {
             window_title: String::new(),
             first_frame_reported: false,
             frame_rate_printed_at: None,
-            painting: None,
             brush_input: BrushInput::default(),
             pending: None,
             closing: false,
             indirect_stale: true,
             terrain_editing: None,
             selection: None,
-            solo_light: None,
-            lights_moved: false,
             preferences: Preferences::load(cc.storage),
             heat_map: None,
-            history: History::default(),
         };
         app.open(&options.file, cc.wgpu_render_state.as_ref());
         app
@@ -197,10 +178,10 @@ impl EditorApp {
     /// Selects what the viewport shows at `offset` (points from its top-left corner): the
     /// nearest shown object under it, or nothing.
     pub fn select_at(&mut self, offset: glam::Vec2) {
-        let (Some(document), Some(viewport), Some(painting)) = (&self.document, &self.viewport, &mut self.painting)
-        else {
+        let (Some(session), Some(viewport)) = (&mut self.session, &self.viewport) else {
             return;
         };
+        let (document, painting) = (&session.document, &mut session.painting);
         let Some((origin, direction)) = viewport.view().ray_through(offset) else {
             return;
         };
@@ -225,7 +206,7 @@ impl EditorApp {
 
     /// The open document's render settings, to change them as the inspector does.
     pub fn render_settings_mut(&mut self) -> Option<&mut crate::shading::RenderSettings> {
-        self.document.as_mut().map(|d| &mut d.settings)
+        self.session.as_mut().map(|s| &mut s.document).map(|d| &mut d.settings)
     }
 
     /// The current selection in the outliner, inspector and viewport.
@@ -261,16 +242,13 @@ impl EditorApp {
 
     /// Intensities of the document's lights, in order.
     pub fn light_intensities(&self) -> Vec<f32> {
-        self.document
-            .as_ref()
-            .map(|d| d.scene.light_intensities())
-            .unwrap_or_default()
+        self.document().map(|d| d.scene.light_intensities()).unwrap_or_default()
     }
 
     /// Frames the selection (F): the selected object, the space around the selected light
     /// (1 m each way), or everything when nothing (or a directional light) is selected.
     pub fn frame_selection(&mut self) {
-        let (Some(viewport), Some(document)) = (&mut self.viewport, &self.document) else {
+        let (Some(viewport), Some(document)) = (&mut self.viewport, self.session.as_ref().map(|s| &s.document)) else {
             return;
         };
         let scene = &document.scene;
@@ -318,7 +296,12 @@ impl eframe::App for EditorApp {
         if self.preferences.show_inspector {
             self.inspector(ui, render_state.as_ref());
         }
-        if let Some(message) = self.painting.as_mut().and_then(Painting::poll_bake) {
+        if let Some(message) = self
+            .session
+            .as_mut()
+            .map(|s| &mut s.painting)
+            .and_then(Painting::poll_bake)
+        {
             self.message = message;
             self.indirect_stale = true;
         }
@@ -328,7 +311,7 @@ impl eframe::App for EditorApp {
         if self.indirect_stale {
             self.refresh_baked_indirect();
         }
-        let brush_radius = match self.painting.as_ref() {
+        let brush_radius = match self.session.as_ref().map(|s| &s.painting) {
             Some(p) if p.tool != Tool::Navigate => Some(p.brush.radius_px),
             _ => None,
         };
@@ -337,7 +320,11 @@ impl eframe::App for EditorApp {
         let mut clicked_at = None;
         let mut recent = None;
         egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
-            match (&mut self.viewport, &self.document, &render_state) {
+            match (
+                &mut self.viewport,
+                self.session.as_ref().map(|s| &s.document),
+                &render_state,
+            ) {
                 (Some(viewport), Some(document), Some(rs)) => {
                     let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
                     if self.preferences.show_blockers {
@@ -370,7 +357,7 @@ impl eframe::App for EditorApp {
                             super::viewport::screen_point(&view, rect, p)
                         });
                     }
-                    if let Some(painting) = &self.painting {
+                    if let Some(painting) = self.session.as_ref().map(|s| &s.painting) {
                         let kept: Vec<glam::Vec3> = painting.kept_points(&document.scene);
                         let (view, rect) = (viewport.view(), response.rect);
                         // Stronger while a tool that works on them is in hand.
@@ -420,12 +407,6 @@ impl eframe::App for EditorApp {
         }
         if let Some(path) = recent {
             self.request_open(&path, render_state.as_ref());
-        }
-        if let (Some(document), Some(painting)) = (&mut self.document, &self.painting) {
-            // Brush and strategy edits are part of the project (restored on reopening); the
-            // strokes are copied only when they change (`lights_changed`), not every frame.
-            document.painting.brush = painting.brush_for_file();
-            document.painting.settings = painting.settings;
         }
         self.error_window(&ctx);
         self.export_window(&ctx);

@@ -1,5 +1,5 @@
-//! The editor's painting state: the tool, brush and strategies, the `Painter` with this
-//! session's undoable strokes, and where the transfer comes from (baked maps once a
+//! The editor's painting state, its one owner in a session: the tool, brush and
+//! strategies, the `Painter` with this session's applied strokes, and where the transfer comes from (baked maps once a
 //! background bake finished, the log-SH direct estimate until then, so painting never
 //! waits). The logic is the library's (`paint`); this file only holds state and turns a
 //! viewport stroke into a stroke record.
@@ -9,7 +9,6 @@ use std::sync::Arc;
 use glam::Vec2;
 
 use super::bake_job::{BakeJob, BakePoll};
-use super::brush_input::FinishedStroke;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::bake::{BakeSettings, ImportanceMaps};
 use crate::blockers::Sphere;
@@ -20,6 +19,14 @@ use crate::project::bake_cache::light_hash;
 use crate::project::{Document, PaintingState};
 use crate::scene::{Camera, Scene};
 use crate::shading::ShadowSettings;
+
+/// A stroke as the viewport took it: its points relative to the viewport's top-left
+/// corner and the viewport's size, in the viewport's pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScreenStroke {
+    pub points_px: Vec<Vec2>,
+    pub viewport_size_px: Vec2,
+}
 
 /// What the left mouse button does in the viewport.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -36,7 +43,8 @@ pub struct Painting {
     /// The brush the project file named (None: it had none, and the default applies).
     opened_brush: Option<Brush>,
     pub settings: PaintSettings,
-    painter: Painter,
+    /// This session's applied strokes (undone ones are in the session's history).
+    pub(super) painter: Painter,
     /// Strokes the document's log held when it was opened (applied, not undoable here).
     earlier: Vec<StrokeRecord>,
     bvh: Option<Arc<SceneBvh>>,
@@ -247,7 +255,7 @@ impl Painting {
         &mut self,
         scene: &mut Scene,
         camera: Camera,
-        stroke: &FinishedStroke,
+        stroke: &ScreenStroke,
         blockers: &[Sphere],
         shadows: &ShadowSettings,
         hidden: &std::collections::BTreeSet<usize>,
@@ -255,14 +263,14 @@ impl Painting {
         let Tool::Brush(kind) = self.tool else { return None };
         let view = View {
             camera,
-            width_px: stroke.viewport_size.x.round().max(1.0) as u32,
-            height_px: stroke.viewport_size.y.round().max(1.0) as u32,
+            width_px: stroke.viewport_size_px.x.round().max(1.0) as u32,
+            height_px: stroke.viewport_size_px.y.round().max(1.0) as u32,
         };
-        let points: Vec<Vec2> = stroke.points.iter().map(|p| Vec2::new(p.x, p.y)).collect();
+        let points = &stroke.points_px;
         let brush = Brush { kind, ..self.brush };
         let record = StrokeRecord {
             view: ViewRecord::of(&view),
-            dabs_px: dabs_along(&points, (brush.radius_px * 0.25).max(1.0)),
+            dabs_px: dabs_along(points, (brush.radius_px * 0.25).max(1.0)),
             brush,
             settings: self.settings,
             seed: self.next_seed,
@@ -284,8 +292,8 @@ impl Painting {
             let mut report = self
                 .painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
-            if let Some(keeps) = taken_up {
-                report.message = format!("{} ({keeps})", report.message);
+            if let Some(keeps) = taken_up.filter(|&keeps| keeps > 0) {
+                report.message = format!("{} ({})", report.message, super::Happened::SavedKeepsHold(keeps));
             }
             report
         };
@@ -296,14 +304,14 @@ impl Painting {
 
     /// Takes up what the saved strokes ask (their Keep areas, and their rows of the global
     /// solve: `Painter::carry_over`) at the intensities the project opened with, as soon
-    /// as the picking BVH has been built in the background; what to tell the user when it
-    /// did and there were Keep areas. Cheap while waiting or once done.
+    /// as the picking BVH has been built in the background; how many Keep areas, when it
+    /// did. Cheap while waiting or once done.
     pub fn take_up_saved_strokes(
         &mut self,
         scene: &Scene,
         blockers: impl FnOnce() -> Vec<Sphere>,
         shadows: &ShadowSettings,
-    ) -> Option<String> {
+    ) -> Option<usize> {
         let built = self.bvh.is_some() || self.bvh_job.as_ref().is_some_and(|job| job.is_finished());
         if self.opened_intensities.is_none() || !built {
             return None;
@@ -316,7 +324,7 @@ impl Painting {
         let keeps = self
             .painter
             .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier);
-        (keeps > 0).then(|| format!("{keeps} Keep area(s) of earlier sessions hold"))
+        Some(keeps)
     }
 
     /// The points of `scene` that Keep strokes hold (this session's and the saved ones
@@ -362,20 +370,5 @@ impl Painting {
         let bvh = Arc::new(built.unwrap_or_else(|| SceneBvh::build(scene)));
         self.bvh = Some(bvh.clone());
         bvh
-    }
-
-    /// Undoes the last stroke of this session; false if there is none.
-    pub fn undo(&mut self, scene: &mut Scene) -> bool {
-        let mut intensities = scene.light_intensities();
-        let undone = self.painter.undo(&mut intensities);
-        scene.set_light_intensities(&intensities);
-        undone
-    }
-
-    pub fn redo(&mut self, scene: &mut Scene) -> bool {
-        let mut intensities = scene.light_intensities();
-        let redone = self.painter.redo(&mut intensities);
-        scene.set_light_intensities(&intensities);
-        redone
     }
 }
