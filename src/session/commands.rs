@@ -3,7 +3,7 @@
 //! saved strokes taken up, a finished bake, a moved light's re-bake, the baked indirect
 //! light). Each says what happened and what changed; none touches a view.
 
-use super::{Changes, EditorSession, Happened, Outcome, ScreenStroke};
+use super::{Changes, EditorSession, Happened, Outcome, ScreenStroke, Tool};
 use crate::blockers::Sphere;
 use crate::project::bake_cache::light_hash;
 use crate::scene::{Camera, Light, LightKind};
@@ -19,12 +19,24 @@ impl EditorSession {
         let strokes_before = self.painting.stroke_count();
         let shadows = document.settings.shadows;
         let hidden = &document.hidden_objects;
-        let Some(report) = self
+        if self.painting.tool == Tool::Navigate {
+            return Outcome::NOTHING;
+        }
+        // The saved strokes are taken up before the first stroke if the frames have not
+        // done it yet (the picking BVH is built by then).
+        self.painting.picking_bvh(&document.scene);
+        let taken_up = self
+            .painting
+            .take_up_saved_strokes(&document.scene, || spheres.to_vec(), &shadows);
+        let Some(mut report) = self
             .painting
             .paint(&mut document.scene, camera, stroke, spheres, &shadows, hidden)
         else {
             return Outcome::NOTHING;
         };
+        if let Some(keeps) = taken_up.filter(|&keeps| keeps > 0) {
+            report.message = format!("{} ({})", report.message, Happened::SavedKeepsHold(keeps));
+        }
         if self.painting.stroke_count() > strokes_before {
             self.history.stroke_done(&document.scene.lights);
         } else {

@@ -107,7 +107,7 @@ impl Outcome {
         changes: Changes::NONE,
     };
 
-    fn new(happened: Happened, changes: Changes) -> Outcome {
+    pub fn new(happened: Happened, changes: Changes) -> Outcome {
         Outcome {
             happened: Some(happened),
             changes,

@@ -279,9 +279,6 @@ impl Painting {
         };
         self.next_seed += 1;
         let bvh = self.picking_bvh(scene);
-        // Taken up before the first stroke if the frames have not done it yet (the BVH is
-        // built now).
-        let taken_up = self.take_up_saved_strokes(scene, || blockers.to_vec(), shadows);
         let mut intensities = scene.light_intensities();
         let report = {
             let scene: &Scene = scene;
@@ -289,13 +286,8 @@ impl Painting {
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
             let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, blockers, shadows);
-            let mut report = self
-                .painter
-                .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record);
-            if let Some(keeps) = taken_up.filter(|&keeps| keeps > 0) {
-                report.message = format!("{} ({})", report.message, super::Happened::SavedKeepsHold(keeps));
-            }
-            report
+            self.painter
+                .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
         };
         scene.set_light_intensities(&intensities);
         self.last_report = Some(report.clone());

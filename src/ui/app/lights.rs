@@ -9,22 +9,22 @@ impl EditorApp {
     /// Applies a session command's outcome: the status bar says what happened, and the
     /// viewport and the editor's caches take up what changed.
     pub(in crate::ui) fn apply(&mut self, outcome: Outcome) {
-        match &outcome.happened {
-            // "nothing to undo" twice is still news.
-            Some(
-                happened
-                @ (Happened::Undid(_) | Happened::Redid(_) | Happened::NothingToUndo | Happened::NothingToRedo),
-            ) => self.say_again(happened.to_string()),
-            Some(Happened::LightAdded { index, .. }) => {
-                self.selection = Some(Selection::Light(*index));
-                self.message = outcome.happened.as_ref().map(ToString::to_string).unwrap_or_default();
+        if let Some(happened) = &outcome.happened {
+            match happened {
+                Happened::LightAdded { index, .. } => self.selection = Some(Selection::Light(*index)),
+                Happened::LightDeleted { .. } => self.selection = None,
+                _ => {}
             }
-            Some(Happened::LightDeleted { .. }) => {
-                self.selection = None;
-                self.message = outcome.happened.as_ref().map(ToString::to_string).unwrap_or_default();
+            let undo_or_redo = matches!(
+                happened,
+                Happened::Undid(_) | Happened::Redid(_) | Happened::NothingToUndo | Happened::NothingToRedo
+            );
+            if undo_or_redo {
+                // "nothing to undo" twice is still news.
+                self.say_again(happened.to_string());
+            } else {
+                self.message = happened.to_string();
             }
-            Some(happened) => self.message = happened.to_string(),
-            None => {}
         }
         let Changes {
             lights,

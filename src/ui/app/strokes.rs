@@ -2,6 +2,7 @@
 //! strokes and light edits.
 
 use super::*;
+use crate::session::{Changes, Happened, Outcome};
 
 impl EditorApp {
     /// The current tool (what a left drag in the viewport does).
@@ -37,25 +38,15 @@ impl EditorApp {
 
     /// Undoes the last stroke or light edit (Ctrl+Z).
     pub fn undo(&mut self) {
-        let outcome = self.session.as_mut().map_or(
-            crate::session::Outcome {
-                happened: Some(crate::session::Happened::NothingToUndo),
-                changes: crate::session::Changes::NONE,
-            },
-            EditorSession::undo,
-        );
+        let nothing = Outcome::new(Happened::NothingToUndo, Changes::NONE);
+        let outcome = self.session.as_mut().map_or(nothing, EditorSession::undo);
         self.apply(outcome);
     }
 
     /// Redoes the last undone stroke or light edit (Ctrl+Shift+Z or Ctrl+Y).
     pub fn redo(&mut self) {
-        let outcome = self.session.as_mut().map_or(
-            crate::session::Outcome {
-                happened: Some(crate::session::Happened::NothingToRedo),
-                changes: crate::session::Changes::NONE,
-            },
-            EditorSession::redo,
-        );
+        let nothing = Outcome::new(Happened::NothingToRedo, Changes::NONE);
+        let outcome = self.session.as_mut().map_or(nothing, EditorSession::redo);
         self.apply(outcome);
     }
 
