@@ -698,3 +698,53 @@ fn bake_uses_the_cache_beside_the_project_and_never_trusts_a_bad_one() {
     );
     assert!(bake().contains("read the bake cache"));
 }
+
+/// The painted luminance a stroke of `paint` started from ("painted luminance from X"),
+/// as it printed it.
+fn painted_luminance_before(stdout: &str) -> f64 {
+    let after = stdout
+        .split("painted luminance from ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no painted luminance in: {stdout}"));
+    after
+        .split_whitespace()
+        .next()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("unreadable luminance in: {stdout}"))
+}
+
+/// After a bake a stroke reads the light the frame shows: the direct light through the
+/// view's shadows (as without a bake) plus the maps' bounced light only where the frame
+/// adds it. A bake without bounces, or a project whose frame adds no baked light, reads
+/// exactly what the estimate reads; with the baked light shown it reads more. (`paint`
+/// once read the direct light without any shadow after a bake.)
+#[test]
+fn paint_after_a_bake_reads_the_view_s_shadows_and_the_bounce_the_frame_shows() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let sample = lightpaint::samples::Sample::Sample.write(dir.path()).expect("sample");
+    // A dab on the floor under the ball at (1.4, 0.55, 0.9), which hides much of the
+    // sky there (the environment's light is shadowed by the sphere blockers).
+    let script = r#"{"strokes": [{"brush": {"kind": "positive", "radius_px": 20}, "world": [[1.4, 0.0, 0.9]]}]}"#;
+    let read = |project: &Path, extra: &[&str]| {
+        let out_dir = tempfile::tempdir().expect("temp dir");
+        let (stdout, _) = run_paint_ok(project, script, out_dir.path(), extra);
+        painted_luminance_before(&stdout)
+    };
+    let estimate = read(&sample, &["--no-bake"]);
+    let without_bounces = read(&sample, &["--bounces", "0"]);
+    assert_eq!(
+        without_bounces, estimate,
+        "a bake of direct light adds nothing to the estimate"
+    );
+    let bounced = read(&sample, &["--bounces", "1"]);
+    assert!(bounced > estimate, "the frame adds the bounce: {bounced} vs {estimate}");
+    let mut document = lightpaint::project::Document::open(&sample).expect("sample");
+    document.settings.baked_indirect = false;
+    let no_baked_light = dir.path().join("no_baked_light.lightpaint");
+    document.save(&no_baked_light).expect("save");
+    assert_eq!(
+        read(&no_baked_light, &["--bounces", "1"]),
+        estimate,
+        "the frame adds no baked light, so neither do strokes"
+    );
+}

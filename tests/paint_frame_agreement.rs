@@ -139,9 +139,16 @@ impl Studio {
             hidden_objects: Vec::new(),
             locked_lights,
         };
-        let shadows = self.document.settings.shadows;
-        let transfer =
-            lightpaint::shading::frame_transfer::transfer_for(self.maps.as_ref(), scene, &self.blockers, &shadows);
+        // The frame the prediction is checked against adds the baked light when there are
+        // maps (frame_luminance).
+        let mut frame_settings = self.document.settings;
+        frame_settings.baked_indirect = self.maps.is_some();
+        let transfer = lightpaint::shading::frame_transfer::transfer_for(
+            self.maps.as_ref(),
+            scene,
+            &self.blockers,
+            &frame_settings,
+        );
         let mut after = scene.light_intensities();
         let report = Painter::new().paint(scene, &self.bvh, transfer.as_ref(), &mut after, stroke);
         (report, after)

@@ -702,8 +702,8 @@ fn a_target_is_reached_on_a_textured_surface() {
         locked_lights: Vec::new(),
         view,
     };
-    let shadows = lightpaint::shading::ShadowSettings::default();
-    let transfer = lightpaint::shading::frame_transfer::transfer_for(None, &scene, &[], &shadows);
+    let settings = lightpaint::shading::RenderSettings::default();
+    let transfer = lightpaint::shading::frame_transfer::transfer_for(None, &scene, &[], &settings);
     let mut p = scene.light_intensities();
     let report = Painter::new().paint(&scene, &bvh, transfer.as_ref(), &mut p, stroke);
     assert_eq!(report.outcome, Outcome::Changed, "{}", report.message);

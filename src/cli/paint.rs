@@ -38,15 +38,12 @@ pub fn paint(file: &Path, strokes: &Path, output: &Path, bounces: Option<usize>)
         Some(bounces) => Some(baked_maps(&document, file, output, bounces)?),
         None => None,
     };
-    // The estimate sees the blockers the editor shows (hidden objects cast none); a bake
-    // needs none.
-    let blockers = match &maps {
-        Some(_) => Vec::new(),
-        None => sphere_cache::cached_or_fitted(scene, &document.settings.blockers, document.project_path.as_deref())
-            .shown_spheres(&document.hidden_objects),
-    };
+    // Strokes read the direct light through the blockers the editor shows (hidden objects
+    // cast none), with or without maps: after a bake only the bounce comes from them.
+    let blockers = sphere_cache::cached_or_fitted(scene, &document.settings.blockers, document.project_path.as_deref())
+        .shown_spheres(&document.hidden_objects);
     let transfer: Box<dyn Transfer> =
-        lightpaint::shading::frame_transfer::transfer_for(maps.as_ref(), scene, &blockers, &document.settings.shadows);
+        lightpaint::shading::frame_transfer::transfer_for(maps.as_ref(), scene, &blockers, &document.settings);
     let bvh = lightpaint::bake::scene_bvh::SceneBvh::build(scene);
     say!(
         "{} the transfer of {} lights in {:.0} ms",

@@ -17,7 +17,7 @@ impl EditorSession {
         // A light edit still settling belongs before the stroke in the history.
         self.history.settle(&document.scene.lights);
         let strokes_before = self.painting.stroke_count();
-        let shadows = document.settings.shadows;
+        let settings = document.settings;
         let hidden = &document.hidden_objects;
         if self.painting.tool == Tool::Navigate {
             return Outcome::NOTHING;
@@ -27,10 +27,10 @@ impl EditorSession {
         self.painting.picking_bvh(&document.scene);
         let taken_up = self
             .painting
-            .take_up_saved_strokes(&document.scene, || spheres.to_vec(), &shadows);
+            .take_up_saved_strokes(&document.scene, || spheres.to_vec(), &settings);
         let Some(mut report) = self
             .painting
-            .paint(&mut document.scene, camera, stroke, spheres, &shadows, hidden)
+            .paint(&mut document.scene, camera, stroke, spheres, &settings, hidden)
         else {
             return Outcome::NOTHING;
         };
@@ -202,7 +202,7 @@ impl EditorSession {
         let document = &self.document;
         match self
             .painting
-            .take_up_saved_strokes(&document.scene, spheres, &document.settings.shadows)
+            .take_up_saved_strokes(&document.scene, spheres, &document.settings)
         {
             Some(keeps) if keeps > 0 => Outcome::new(Happened::SavedKeepsHold(keeps), Changes::NONE),
             _ => Outcome::NOTHING,

@@ -18,7 +18,7 @@ use crate::paint::{
 use crate::project::bake_cache::light_hash;
 use crate::project::{Document, PaintingState};
 use crate::scene::{Camera, Scene};
-use crate::shading::ShadowSettings;
+use crate::shading::RenderSettings;
 
 /// A stroke as the viewport took it: its points relative to the viewport's top-left
 /// corner and the viewport's size, in the viewport's pixels.
@@ -123,10 +123,14 @@ impl Painting {
         self.painter.log().count()
     }
 
-    /// Where strokes read the transfer from, for the panel.
-    pub fn transfer_label(&self, scene: &Scene) -> String {
+    /// Where strokes read the transfer from under the frame `settings`, for the panel.
+    pub fn transfer_label(&self, scene: &Scene, settings: &RenderSettings) -> String {
         match (&self.maps, self.maps_for(scene)) {
-            (_, Some(maps)) => format!("baked maps ({} vertex-light pairs)", maps.entry_count()),
+            (_, Some(maps)) if settings.baked_indirect => format!(
+                "baked maps: the view's direct light and their bounce ({} vertex-light pairs)",
+                maps.entry_count()
+            ),
+            (_, Some(_)) => "direct estimate from the view's shadows (the frame adds no baked light)".to_string(),
             (Some(_), None) => "direct estimate from the view's shadows (maps out of date: lights moved)".to_string(),
             (None, None) => "direct estimate from the view's shadows (no bake yet)".to_string(),
         }
@@ -257,7 +261,7 @@ impl Painting {
         camera: Camera,
         stroke: &ScreenStroke,
         blockers: &[Sphere],
-        shadows: &ShadowSettings,
+        settings: &RenderSettings,
         hidden: &std::collections::BTreeSet<usize>,
     ) -> Option<StrokeReport> {
         let Tool::Brush(kind) = self.tool else { return None };
@@ -285,7 +289,7 @@ impl Painting {
             // `maps_for` borrows all of `self`; the field alone leaves the painter free.
             let fresh = self.maps_for(scene).is_some();
             let maps = self.maps.as_ref().filter(|_| fresh);
-            let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, blockers, shadows);
+            let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, blockers, settings);
             self.painter
                 .paint(scene, &bvh, transfer.as_ref(), &mut intensities, record)
         };
@@ -302,7 +306,7 @@ impl Painting {
         &mut self,
         scene: &Scene,
         blockers: impl FnOnce() -> Vec<Sphere>,
-        shadows: &ShadowSettings,
+        settings: &RenderSettings,
     ) -> Option<usize> {
         let built = self.bvh.is_some() || self.bvh_job.as_ref().is_some_and(|job| job.is_finished());
         if self.opened_intensities.is_none() || !built {
@@ -312,7 +316,7 @@ impl Painting {
         let bvh = self.picking_bvh(scene);
         let fresh = self.maps_for(scene).is_some();
         let maps = self.maps.as_ref().filter(|_| fresh);
-        let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, &blockers(), shadows);
+        let transfer = crate::shading::frame_transfer::transfer_for(maps, scene, &blockers(), settings);
         let keeps = self
             .painter
             .carry_over(scene, &bvh, transfer.as_ref(), &opened, &self.earlier);
@@ -342,9 +346,9 @@ impl Painting {
         &'a self,
         scene: &'a Scene,
         blockers: &[Sphere],
-        shadows: &ShadowSettings,
+        settings: &RenderSettings,
     ) -> Box<dyn Transfer + 'a> {
-        crate::shading::frame_transfer::transfer_for(self.maps_for(scene), scene, blockers, shadows)
+        crate::shading::frame_transfer::transfer_for(self.maps_for(scene), scene, blockers, settings)
     }
 
     /// Whether strokes read baked maps (fresh for `scene`) rather than the estimate.

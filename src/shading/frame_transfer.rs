@@ -12,7 +12,7 @@
 
 use glam::Vec3;
 
-use super::ShadowSettings;
+use super::RenderSettings;
 use super::cpu::SurfacePoint;
 use super::paint_estimate::DirectEstimate;
 use crate::bake::ImportanceMaps;
@@ -94,18 +94,19 @@ impl Transfer for FrameTransfer<'_> {
     }
 }
 
-/// The transfer strokes read: the light the frame shows — the direct estimate through
-/// `blockers` (the view's visibility), plus, when there are maps for this scene, their
-/// bounced light as the frame adds it ([`FrameTransfer`]). One choice for the editor and
+/// The transfer strokes read: the light the frame `settings` draw — the direct estimate
+/// through `blockers` (the view's visibility), plus, when there are maps for this scene
+/// and the frame adds their baked light (`settings.baked_indirect`), their bounced light
+/// as the frame adds it ([`FrameTransfer`]). One choice for the editor and
 /// `lightpaint paint` alike.
 pub fn transfer_for<'a>(
     maps: Option<&'a crate::bake::ImportanceMaps>,
     scene: &'a Scene,
     blockers: &[Sphere],
-    shadows: &ShadowSettings,
+    settings: &RenderSettings,
 ) -> Box<dyn Transfer + 'a> {
-    let direct = DirectEstimate::new(scene, blockers.to_vec(), *shadows);
-    match maps {
+    let direct = DirectEstimate::new(scene, blockers.to_vec(), settings.shadows);
+    match maps.filter(|_| settings.baked_indirect) {
         Some(maps) => Box::new(FrameTransfer::new(direct, scene, maps)),
         None => Box::new(direct),
     }
@@ -119,18 +120,17 @@ mod tests {
 
     use super::*;
     use crate::bake::{LightContribution, ObjectMaps, Precision};
+    use crate::shading::ShadowSettings;
 
-    /// A white Lambertian floor under a unit point light whose maps give every vertex an
-    /// indirect irradiance that grows along x: at a point inside a triangle a stroke reads
-    /// the closed-form direct light there, cos θ/(π d²), plus the corners' indirect
-    /// irradiance interpolated to the point over π — the frame's own sum.
-    #[test]
-    fn a_point_reads_the_direct_light_there_and_the_interpolated_bounced_light() {
-        let light = Vec3::new(0.3, 1.0, 0.2);
-        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
-        let object = &scene.objects[0];
-        let indirect_at = |p: Vec3| 0.1 + 0.05 * (p.x + 1.0);
-        let vertices: Vec<Vec<LightContribution>> = object
+    /// Indirect irradiance (per unit intensity) the test maps give a vertex at p: linear in x.
+    fn indirect_at(p: Vec3) -> f32 {
+        0.1 + 0.05 * (p.x + 1.0)
+    }
+
+    /// Maps of `scene`'s one object and one light whose indirect irradiance is
+    /// [`indirect_at`].
+    fn linear_maps(scene: &Scene) -> ImportanceMaps {
+        let vertices: Vec<Vec<LightContribution>> = scene.objects[0]
             .positions
             .iter()
             .map(|&p| {
@@ -141,11 +141,23 @@ mod tests {
                 }]
             })
             .collect();
-        let maps = ImportanceMaps {
+        ImportanceMaps {
             order: 3,
             objects: vec![ObjectMaps::from_vertices(3, &vertices, Precision::F32)],
             dropped_entries: 0,
-        };
+        }
+    }
+
+    /// A white Lambertian floor under a unit point light whose maps give every vertex an
+    /// indirect irradiance that grows along x: at a point inside a triangle a stroke reads
+    /// the closed-form direct light there, cos θ/(π d²), plus the corners' indirect
+    /// irradiance interpolated to the point over π — the frame's own sum.
+    #[test]
+    fn a_point_reads_the_direct_light_there_and_the_interpolated_bounced_light() {
+        let light = Vec3::new(0.3, 1.0, 0.2);
+        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
+        let object = &scene.objects[0];
+        let maps = linear_maps(&scene);
         let direct = DirectEstimate::new(&scene, Vec::new(), ShadowSettings::default());
         let transfer = FrameTransfer::new(direct, &scene, &maps);
         let (point, at) = crate::shading::paint_estimate::tests::point_inside_the_first_triangle(&scene);
@@ -164,5 +176,28 @@ mod tests {
         let expected = offset.normalize().y / offset.length_squared() / PI + indirect_at(p) as f64 / PI;
         let t = transfer.vertex_transfer(vertex, Vec3::new(0.0, 3.0, 3.0));
         assert!((t[0].1 / expected - 1.0).abs() < 1e-5, "{} vs {expected}", t[0].1);
+    }
+
+    /// Where the frame adds no baked light (`baked_indirect` off), strokes read the direct
+    /// light alone, maps or not: cos θ/(π d²) at the point.
+    #[test]
+    fn without_baked_light_in_the_frame_the_maps_add_nothing() {
+        let light = Vec3::new(0.3, 1.0, 0.2);
+        let scene = Scene::lambert_floor_under_point_light(2, light, 30.0);
+        let maps = linear_maps(&scene);
+        let (point, at) = crate::shading::paint_estimate::tests::point_inside_the_first_triangle(&scene);
+        let offset = light.as_dvec3() - at;
+        let direct = offset.normalize().y / offset.length_squared() / PI;
+        let read = |baked_indirect: bool| {
+            let settings = RenderSettings {
+                baked_indirect,
+                ..RenderSettings::default()
+            };
+            let transfer = transfer_for(Some(&maps), &scene, &[], &settings);
+            transfer.point_shading(&point, Vec3::new(0.0, 3.0, 3.0)).1[0].1
+        };
+        assert!((read(false) / direct - 1.0).abs() < 1e-5, "{} vs {direct}", read(false));
+        let bounced = indirect_at(at.as_vec3()) as f64 / PI;
+        assert!((read(true) / (direct + bounced) - 1.0).abs() < 1e-5);
     }
 }

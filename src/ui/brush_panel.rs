@@ -36,7 +36,7 @@ pub fn tool_bar(ui: &mut egui::Ui, tool: &mut Tool) {
 pub fn painting_section(
     ui: &mut egui::Ui,
     painting: &mut Painting,
-    scene: &crate::scene::Scene,
+    document: &crate::project::Document,
     history: (bool, bool),
 ) -> Option<PaintAction> {
     let mut action = None;
@@ -117,7 +117,10 @@ pub fn painting_section(
         ui.label(&report.message);
     }
     ui.separator();
-    ui.label(format!("Transfer: {}", painting.transfer_label(scene)));
+    ui.label(format!(
+        "Transfer: {}",
+        painting.transfer_label(&document.scene, &document.settings)
+    ));
     match &painting.bake {
         Some(job) => {
             let eta = job.eta().map_or_else(String::new, |eta| {

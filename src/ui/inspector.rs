@@ -117,9 +117,7 @@ impl EditorApp {
         let (document, painting) = (&mut session.document, &mut session.painting);
         egui::CollapsingHeader::new("Painting")
             .default_open(true)
-            .show(ui, |ui| {
-                action = painting_section(ui, painting, &document.scene, history)
-            });
+            .show(ui, |ui| action = painting_section(ui, painting, document, history));
         egui::CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
             egui::Grid::new("lights").striped(true).num_columns(4).show(ui, |ui| {
                 for (index, light) in document.scene.lights.iter_mut().enumerate() {

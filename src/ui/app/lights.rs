@@ -100,7 +100,7 @@ impl EditorApp {
                     light,
                     placement: crate::project::bake_cache::light_hash(l),
                     intensity: l.intensity,
-                    baked: session.painting.has_fresh_maps(&document.scene),
+                    baked: session.painting.has_fresh_maps(&document.scene) && document.settings.baked_indirect,
                     shadows: document.settings.shadows,
                     blockers: self.fitted_with,
                 })
@@ -120,9 +120,7 @@ impl EditorApp {
         };
         let document = &session.document;
         let spheres = self.blockers.shown_spheres(&document.hidden_objects);
-        let transfer = session
-            .painting
-            .transfer(&document.scene, &spheres, &document.settings.shadows);
+        let transfer = session.painting.transfer(&document.scene, &spheres, &document.settings);
         let eye = viewport.orbit.camera().position;
         let values =
             crate::paint::light_reach::light_reach_per_vertex(&document.scene, transfer.as_ref(), key.light, eye);
