@@ -489,7 +489,7 @@ fn opening_a_corrupt_file_shows_an_error_and_keeps_the_document() {
     let lights = harness.state().light_intensities();
     let bad = dir.path().join("broken.lightpaint");
     std::fs::write(&bad, "{ \"format_version\": 3, \"scene\": ").unwrap();
-    harness.state_mut().open(&bad, None);
+    harness.state_mut().open(&bad);
     harness.run();
     harness.get_by_label("Error");
     assert!(harness.query_all_by_label_contains("broken.lightpaint").count() >= 1);
@@ -551,7 +551,7 @@ fn opening_over_unsaved_changes_asks_first() {
     scroll_and_click(&mut harness, "per vertex");
     harness.run();
     let studio = lightpaint::samples::Sample::Studio.write(dir.path()).unwrap();
-    harness.state_mut().request_open(&studio, None);
+    harness.state_mut().request_open(&studio);
     harness.run();
     assert!(harness.state().is_asking_to_save());
     harness.get_by_label_contains("before opening studio.lightpaint");

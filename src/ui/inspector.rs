@@ -13,7 +13,7 @@ use crate::project::Document;
 use crate::project::sphere_cache;
 
 impl EditorApp {
-    pub(super) fn inspector(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn inspector(&mut self, ui: &mut egui::Ui) {
         let mut action = None;
         let mut light_edit = LightEdit::default();
         let mut delete = None;
@@ -22,7 +22,7 @@ impl EditorApp {
                 (light_edit, delete) = self.selection_section(ui);
                 action = self.painting_and_lights(ui, &mut light_edit);
                 self.render_sections(ui);
-                self.terrain_section(ui, render_state);
+                self.terrain_section(ui);
             });
         });
         if light_edit.changed {
@@ -208,7 +208,7 @@ impl EditorApp {
         }
     }
 
-    fn terrain_section(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    fn terrain_section(&mut self, ui: &mut egui::Ui) {
         let Some(document) = self.session.as_ref().map(|s| &s.document) else {
             return;
         };
@@ -219,7 +219,7 @@ impl EditorApp {
                 edit = terrain_section(ui, &document.scene, &mut self.terrain_editing);
             });
         if let Some(edit) = edit {
-            self.apply_terrain_edit(edit, render_state);
+            self.apply_terrain_edit(edit);
         }
     }
 }

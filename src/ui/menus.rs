@@ -9,10 +9,10 @@ use super::{EditorApp, file_dialog};
 use crate::project::PROJECT_EXTENSION;
 
 impl EditorApp {
-    pub(super) fn menu_bar(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn menu_bar(&mut self, ui: &mut egui::Ui) {
         egui::Panel::top("menu").show(ui, |ui| {
             egui::MenuBar::new().ui(ui, |ui| {
-                ui.menu_button("File", |ui| self.file_menu(ui, render_state));
+                ui.menu_button("File", |ui| self.file_menu(ui));
                 ui.menu_button("Edit", |ui| {
                     let (can_undo, can_redo) = (self.can_undo(), self.can_redo());
                     if ui.add_enabled(can_undo, egui::Button::new("Undo (Ctrl+Z)")).clicked() {
@@ -41,12 +41,12 @@ impl EditorApp {
         });
     }
 
-    fn file_menu(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    fn file_menu(&mut self, ui: &mut egui::Ui) {
         if ui.button("New (Ctrl+N)").clicked() {
             self.request_new();
         }
         if ui.button("Open… (Ctrl+O)").clicked() {
-            self.open_dialog(render_state);
+            self.open_dialog();
         }
         ui.add_enabled_ui(!self.preferences.recent_files.is_empty(), |ui| {
             ui.menu_button("Open Recent", |ui| {
@@ -55,13 +55,13 @@ impl EditorApp {
                         .file_name()
                         .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
                     if ui.button(name).on_hover_text(path.display().to_string()).clicked() {
-                        self.request_open(&path, render_state);
+                        self.request_open(&path);
                     }
                 }
             });
         });
         if ui.button("Import glTF…").clicked() {
-            self.import_dialog(render_state);
+            self.import_dialog();
         }
         ui.separator();
         let open = self.session.is_some();
@@ -133,21 +133,21 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn open_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn open_dialog(&mut self) {
         let extensions = [PROJECT_EXTENSION, "gltf", "glb"];
-        self.pick_and_open("lightpaint project or glTF scene", &extensions, render_state);
+        self.pick_and_open("lightpaint project or glTF scene", &extensions);
     }
 
     /// A new, unsaved project on a glTF scene.
-    fn import_dialog(&mut self, render_state: Option<&egui_wgpu::RenderState>) {
-        self.pick_and_open("glTF scene", &["gltf", "glb"], render_state);
+    fn import_dialog(&mut self) {
+        self.pick_and_open("glTF scene", &["gltf", "glb"]);
     }
 
     /// Asks for a file of `extensions` and opens it (asking to save changes first).
-    fn pick_and_open(&mut self, filter: &str, extensions: &[&str], render_state: Option<&egui_wgpu::RenderState>) {
+    fn pick_and_open(&mut self, filter: &str, extensions: &[&str]) {
         let dialog = rfd::FileDialog::new().add_filter(filter, extensions);
         if let Some(path) = self.ask(|| dialog.pick_file()) {
-            self.request_open(&path, render_state);
+            self.request_open(&path);
         }
     }
 

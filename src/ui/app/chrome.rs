@@ -25,7 +25,7 @@ impl EditorApp {
         egui::Panel::top("tools").show(ui, |ui| tool_bar(ui, &mut painting.tool));
     }
 
-    pub(super) fn outliner(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn outliner(&mut self, ui: &mut egui::Ui) {
         let mut action = None;
         egui::Panel::left("outliner").default_size(220.0).show(ui, |ui| {
             ui.heading("Scene");
@@ -47,7 +47,7 @@ impl EditorApp {
             Some(OutlinerAction::ToggleHidden(index)) => self.toggle_hidden(index),
             Some(OutlinerAction::Solo(light)) => self.solo(light),
             Some(OutlinerAction::AddLight) => self.add_light(),
-            Some(OutlinerAction::ShowGltfScene(index)) => self.request_gltf_scene(index, render_state),
+            Some(OutlinerAction::ShowGltfScene(index)) => self.request_gltf_scene(index),
             None => {}
         }
     }
@@ -122,11 +122,7 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn handle_shortcuts_and_drops(
-        &mut self,
-        ctx: &egui::Context,
-        render_state: Option<&egui_wgpu::RenderState>,
-    ) {
+    pub(super) fn handle_shortcuts_and_drops(&mut self, ctx: &egui::Context) {
         let typing = ctx.egui_wants_keyboard_input();
         let new_key = ctx.input(|i| i.key_pressed(egui::Key::N) && i.modifiers.command);
         if new_key {
@@ -175,13 +171,13 @@ impl EditorApp {
             self.frame_selection();
         }
         if open_key {
-            self.open_dialog(render_state);
+            self.open_dialog();
         }
         if save_key {
             self.save_document();
         }
         if let Some(path) = dropped {
-            self.request_open(&path, render_state);
+            self.request_open(&path);
         }
     }
 

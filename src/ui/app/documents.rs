@@ -6,14 +6,14 @@ use super::*;
 impl EditorApp {
     /// Opens a project or a glTF scene, replacing the current document; on failure the
     /// current document stays and the error is shown.
-    pub fn open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn open(&mut self, path: &Path) {
         match Document::open(path) {
             Ok(document) => {
                 self.preferences.remember(path);
                 let name = path
                     .file_name()
                     .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
-                self.install(document, &format!("opened {name}"), render_state);
+                self.install(document, &format!("opened {name}"));
                 self.saved = self.session.as_ref().and_then(|session| {
                     let mut saved = session.project_file(session.document.project_path.as_ref()?);
                     // A project without a camera opens on the scene's view: that view is
@@ -31,7 +31,7 @@ impl EditorApp {
     /// Shows scene `index` of the document's glTF file (a file can hold several): its
     /// objects and lights, with the document's settings; the stroke log starts afresh. The
     /// project file is untouched until the next save. On failure nothing changes.
-    pub fn show_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn show_gltf_scene(&mut self, index: usize) {
         let Some(session) = &self.session else { return };
         match session.document.with_gltf_scene(index) {
             Ok(mut document) => {
@@ -40,7 +40,7 @@ impl EditorApp {
                 document.painting.brush = now.brush;
                 document.painting.settings = now.settings;
                 let label = document.scene.gltf_scene_label(index);
-                self.install(document, &format!("showing glTF scene {label}"), render_state);
+                self.install(document, &format!("showing glTF scene {label}"));
             }
             Err(e) => self.report_error(e.to_string()),
         }
@@ -49,7 +49,7 @@ impl EditorApp {
     /// Applies a terrain edit: the scene gets the new terrain mesh and is reinstalled (the
     /// sphere fit and the viewport follow; bake maps of the old geometry no longer apply).
     /// A height map that cannot be read is reported and changes nothing.
-    pub fn apply_terrain_edit(&mut self, edit: TerrainEdit, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn apply_terrain_edit(&mut self, edit: TerrainEdit) {
         let Some(current) = self.session.as_ref().map(|s| &s.document) else {
             return;
         };
@@ -92,13 +92,13 @@ impl EditorApp {
         if let Some(viewport) = &self.viewport {
             document.camera = Some(viewport.orbit);
         }
-        self.install(document, what, render_state);
+        self.install(document, what);
     }
 
     /// Shows glTF scene `index`, first asking to save when there are unsaved changes.
-    pub fn request_gltf_scene(&mut self, index: usize, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn request_gltf_scene(&mut self, index: usize) {
         if self.ready_or_ask(Pending::ShowGltfScene(index)) {
-            self.show_gltf_scene(index, render_state);
+            self.show_gltf_scene(index);
         }
     }
 
@@ -114,7 +114,7 @@ impl EditorApp {
 
     /// Makes `document` the open one: fits its blockers, builds the viewport and the
     /// painting state, and reports `what` happened in the status bar.
-    pub(super) fn install(&mut self, document: Document, what: &str, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn install(&mut self, document: Document, what: &str) {
         let scene = &document.scene;
         self.message = format!(
             "{what} — {} objects, {} vertices, {}{}{}",
@@ -143,7 +143,7 @@ impl EditorApp {
         self.blockers = sphere_cache::fit_with_cache(scene, &document.settings.blockers, project);
         self.fitted_with = document.settings.blockers;
         let spheres = self.blockers.shown_spheres(&document.hidden_objects);
-        self.viewport = render_state.map(|rs| {
+        self.viewport = self.render_state.as_ref().map(|rs| {
             let mut viewport = Viewport::new(rs, scene, document.camera, &spheres, &document.settings.shadows);
             viewport.set_hidden(&document.hidden_objects);
             viewport
@@ -158,9 +158,9 @@ impl EditorApp {
     }
 
     /// Opens `path`, first asking to save when the document has unsaved changes.
-    pub fn request_open(&mut self, path: &Path, render_state: Option<&egui_wgpu::RenderState>) {
+    pub fn request_open(&mut self, path: &Path) {
         if self.ready_or_ask(Pending::Open(path.to_path_buf())) {
-            self.open(path, render_state);
+            self.open(path);
         }
     }
 
@@ -188,7 +188,7 @@ impl EditorApp {
     }
 
     /// Intercepts a close of the window with unsaved changes, and acts on the answer.
-    pub(super) fn guard_unsaved_changes(&mut self, ctx: &egui::Context, render_state: Option<&egui_wgpu::RenderState>) {
+    pub(super) fn guard_unsaved_changes(&mut self, ctx: &egui::Context) {
         if ctx.input(|i| i.viewport().close_requested()) && !self.closing {
             if self.ready_or_ask(Pending::Close) {
                 self.closing = true;
@@ -218,8 +218,8 @@ impl EditorApp {
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
             Pending::New => self.close_document(),
-            Pending::Open(path) => self.open(&path, render_state),
-            Pending::ShowGltfScene(index) => self.show_gltf_scene(index, render_state),
+            Pending::Open(path) => self.open(&path),
+            Pending::ShowGltfScene(index) => self.show_gltf_scene(index),
         }
     }
 

@@ -76,6 +76,9 @@ struct SeenMessage {
 }
 
 pub struct EditorApp {
+    /// The window's wgpu device, queue and egui renderer (None in harnesses without a GPU):
+    /// what the viewport draws with.
+    render_state: Option<egui_wgpu::RenderState>,
     /// The open document with its painting state and undo history (None: nothing open).
     pub(super) session: Option<EditorSession>,
     /// The project as last opened or saved, to tell whether there are unsaved changes.
@@ -170,8 +173,9 @@ impl EditorApp {
             selection: None,
             preferences: Preferences::load(cc.storage),
             heat_map: None,
+            render_state: cc.wgpu_render_state.clone(),
         };
-        app.open(&options.file, cc.wgpu_render_state.as_ref());
+        app.open(&options.file);
         app
     }
 
@@ -278,23 +282,22 @@ impl eframe::App for EditorApp {
         theme.panel_fill.to_normalized_gamma_f32()
     }
 
-    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.track_frame_time();
-        let render_state = frame.wgpu_render_state().cloned();
         let ctx = ui.ctx().clone();
-        self.handle_shortcuts_and_drops(&ctx, render_state.as_ref());
+        self.handle_shortcuts_and_drops(&ctx);
         self.take_up_saved_strokes();
-        self.menu_bar(ui, render_state.as_ref());
+        self.menu_bar(ui);
         self.tool_bar(ui);
         // Compared with the saved file once a frame, for the title and the status bar.
         let unsaved = self.has_unsaved_changes();
         self.update_window_title(&ctx, unsaved);
         self.status_bar(ui, unsaved);
         if self.preferences.show_outliner {
-            self.outliner(ui, render_state.as_ref());
+            self.outliner(ui);
         }
         if self.preferences.show_inspector {
-            self.inspector(ui, render_state.as_ref());
+            self.inspector(ui);
         }
         if let Some(message) = self
             .session
@@ -323,7 +326,7 @@ impl eframe::App for EditorApp {
             match (
                 &mut self.viewport,
                 self.session.as_ref().map(|s| &s.document),
-                &render_state,
+                &self.render_state,
             ) {
                 (Some(viewport), Some(document), Some(rs)) => {
                     let response = viewport.show(ui, rs, &document.settings, brush_radius.is_some());
@@ -406,11 +409,11 @@ impl eframe::App for EditorApp {
             self.set_light(index, light);
         }
         if let Some(path) = recent {
-            self.request_open(&path, render_state.as_ref());
+            self.request_open(&path);
         }
         self.error_window(&ctx);
         self.export_window(&ctx);
-        self.guard_unsaved_changes(&ctx, render_state.as_ref());
+        self.guard_unsaved_changes(&ctx);
         if !self.first_frame_reported {
             self.first_frame_reported = true;
             eprintln!("{FIRST_FRAME_LINE}");
