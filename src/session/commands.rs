@@ -13,15 +13,15 @@ impl EditorSession {
     /// Paints a stroke taken in a view seen by `camera`, with the painting's tool and
     /// brush, through the blockers `spheres`; nothing when the tool is not a brush.
     pub fn paint_stroke(&mut self, camera: Camera, stroke: &ScreenStroke, spheres: &[Sphere]) -> Outcome {
+        if self.painting.tool == Tool::Navigate {
+            return Outcome::NOTHING;
+        }
         let document = &mut self.document;
         // A light edit still settling belongs before the stroke in the history.
         self.history.settle(&document.scene.lights);
         let strokes_before = self.painting.stroke_count();
         let settings = document.settings;
         let hidden = &document.hidden_objects;
-        if self.painting.tool == Tool::Navigate {
-            return Outcome::NOTHING;
-        }
         // The saved strokes are taken up before the first stroke if the frames have not
         // done it yet (the picking BVH is built by then).
         self.painting.picking_bvh(&document.scene);
