@@ -19,8 +19,8 @@ use common::thin_casters::linear_luma;
 use glam::Vec2;
 use lightpaint::bake::scene_bvh::SceneBvh;
 use lightpaint::paint::{
-    Brush, BrushKind, Falloff, ModificationStrategy, PaintSettings, Painter, SelectionStrategy, StrokeRecord,
-    StrokeReport, View, ViewRecord,
+    BakedTransfer, Brush, BrushKind, Falloff, ModificationStrategy, PaintSettings, Painter, SelectionStrategy,
+    StrokeRecord, StrokeReport, Transfer, View, ViewRecord,
 };
 use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{AntiAliasing, ShadowFrame, render_logsh_image};
@@ -120,10 +120,36 @@ impl Studio {
             .expect("a dab's disc wholly on the object")
     }
 
-    /// A one-dab stroke at `dab`, painted with the direct estimate the editor reads
-    /// before a bake: its report and the intensities after it.
+    /// The transfer strokes read: the direct estimate the editor reads before a bake, and
+    /// after one the maps' bounce with it (the frame the prediction is checked against
+    /// adds the baked light when there are maps: frame_luminance).
+    fn transfer(&self) -> Box<dyn Transfer + '_> {
+        let mut frame_settings = self.document.settings;
+        frame_settings.baked_indirect = self.maps.is_some();
+        lightpaint::shading::frame_transfer::transfer_for(
+            self.maps.as_ref(),
+            &self.document.scene,
+            &self.blockers,
+            &frame_settings,
+        )
+    }
+
+    /// A one-dab stroke at `dab`, painted with [`Studio::transfer`]: its report and the
+    /// intensities after it.
     fn paint(
         &self,
+        dab: Vec2,
+        brush: Brush,
+        settings: PaintSettings,
+        locked_lights: Vec<u32>,
+    ) -> (StrokeReport, Vec<f32>) {
+        self.paint_with(self.transfer().as_ref(), dab, brush, settings, locked_lights)
+    }
+
+    /// A one-dab stroke at `dab`, painted with `transfer`.
+    fn paint_with(
+        &self,
+        transfer: &dyn Transfer,
         dab: Vec2,
         brush: Brush,
         settings: PaintSettings,
@@ -139,19 +165,37 @@ impl Studio {
             hidden_objects: Vec::new(),
             locked_lights,
         };
-        // The frame the prediction is checked against adds the baked light when there are
-        // maps (frame_luminance).
-        let mut frame_settings = self.document.settings;
-        frame_settings.baked_indirect = self.maps.is_some();
-        let transfer = lightpaint::shading::frame_transfer::transfer_for(
-            self.maps.as_ref(),
-            scene,
-            &self.blockers,
-            &frame_settings,
-        );
         let mut after = scene.light_intensities();
-        let report = Painter::new().paint(scene, &self.bvh, transfer.as_ref(), &mut after, stroke);
+        let report = Painter::new().paint(scene, &self.bvh, transfer, &mut after, stroke);
         (report, after)
+    }
+
+    /// The mean luminance (cd/m², linear) the path tracer shows over the dab's pixels
+    /// with light `light` alone at `intensity` (no other light, no environment), after
+    /// `bounces` (0: direct light, what the estimate models; 1: the maps' bounce too).
+    fn path_traced_luminance(&self, light: usize, intensity: f32, dab: Vec2, bounces: u32, spp: u32) -> f64 {
+        let mut alone = self.document.scene.clone();
+        for (index, l) in alone.lights.iter_mut().enumerate() {
+            l.intensity = if index == light { intensity } else { 0.0 };
+        }
+        alone.environment = None;
+        let camera = self.document.view().camera();
+        let mut render = lightpaint::reference::ProgressiveRender::new(&alone, &camera, WIDTH, HEIGHT, bounces, 7);
+        for _ in 0..spp {
+            render.run_pass();
+        }
+        let image = render.image();
+        let (mut sum, mut count) = (0.0, 0.0);
+        for y in 0..HEIGHT {
+            for x in 0..WIDTH {
+                let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                if centre.distance(dab) <= RADIUS_PX {
+                    sum += lightpaint::scene::luminance(image.radiance[(y * WIDTH + x) as usize]);
+                    count += 1.0;
+                }
+            }
+        }
+        sum / count
     }
 
     /// The mean luminance (cd/m², tone curve undone) of the frame's pixels within the
@@ -208,15 +252,10 @@ fn hard_brush(kind: BrushKind, target_luminance_nits: f32) -> Brush {
     }
 }
 
-/// The frame's change over the predicted one for a "× 2" stroke at `dab` on
-/// `light_name` alone (the other lights locked).
-fn frame_over_prediction(
-    studio: &Studio,
-    gpu: &lightpaint::render::GpuContext,
-    light_name: &str,
-    dab: Vec2,
-    anti_aliasing: AntiAliasing,
-) -> f64 {
+/// A "× 2" stroke at `dab` on `light_name` alone (the other lights locked), read through
+/// `transfer`: the light's index, the predicted change of the painted luminance, and the
+/// intensities after it.
+fn double_alone(studio: &Studio, transfer: &dyn Transfer, light_name: &str, dab: Vec2) -> (usize, f64, Vec<f32>) {
     let scene = &studio.document.scene;
     let light = scene
         .lights
@@ -231,10 +270,22 @@ fn frame_over_prediction(
     let locked = (0..scene.lights.len() as u32)
         .filter(|&i| i as usize != light)
         .collect();
-    let (report, after) = studio.paint(dab, hard_brush(BrushKind::Positive, 1.0), settings, locked);
+    let (report, after) = studio.paint_with(transfer, dab, hard_brush(BrushKind::Positive, 1.0), settings, locked);
     assert_eq!(report.changes.len(), 1, "{light_name}: {}", report.message);
-    let predicted = report.mean_after - report.mean_before;
-    let before = scene.light_intensities();
+    (light, report.mean_after - report.mean_before, after)
+}
+
+/// The frame's change over the predicted one for a "× 2" stroke at `dab` on
+/// `light_name` alone, read through the studio's transfer.
+fn frame_over_prediction(
+    studio: &Studio,
+    gpu: &lightpaint::render::GpuContext,
+    light_name: &str,
+    dab: Vec2,
+    anti_aliasing: AntiAliasing,
+) -> f64 {
+    let (_, predicted, after) = double_alone(studio, studio.transfer().as_ref(), light_name, dab);
+    let before = studio.document.scene.light_intensities();
     let shown = studio.frame_luminance(gpu, &after, dab, anti_aliasing)
         - studio.frame_luminance(gpu, &before, dab, anti_aliasing);
     shown / predicted
@@ -324,4 +375,45 @@ fn after_a_bake_a_strokes_predicted_change_shows_in_the_frame_within_five_percen
         }
     }
     assert!(misses.is_empty(), "frame/prediction outside 5 %: {misses:?}");
+}
+
+/// The change the path tracer shows (that light alone at the intensity added, with
+/// `bounces`) over the predicted one for a "× 2" stroke on `light_name` alone at `dab`,
+/// read through `transfer`.
+fn path_tracer_over_prediction(
+    studio: &Studio,
+    transfer: &dyn Transfer,
+    light_name: &str,
+    dab: Vec2,
+    bounces: u32,
+) -> f64 {
+    let (light, predicted, after) = double_alone(studio, transfer, light_name, dab);
+    let added = after[light] - studio.document.scene.lights[light].intensity;
+    studio.path_traced_luminance(light, added, dab, bounces, 256) / predicted
+}
+
+/// The representation strokes read, chosen against the path tracer (the painting issue's
+/// item 8): on the studio torso, one light at a time, the change a "× 2" stroke predicts
+/// against the change the path tracer shows for that light alone (256 samples per pixel
+/// over the dab's ~110 pixels) — before a bake the direct estimate against direct light;
+/// after a bake the estimate plus the maps' bounce, and the maps' order-3 SH of the
+/// incident light (what strokes read before), against one bounce. A measurement:
+/// `cargo nextest run --test paint_frame_agreement --run-ignored only --no-capture path_tracer`.
+#[test]
+#[ignore = "a measurement against the path tracer: run it with --run-ignored only --no-capture"]
+fn the_transfer_strokes_read_against_the_path_tracer_per_light() {
+    let direct = Studio::open();
+    let baked = Studio::baked();
+    let (_, torso) = direct.chest_and_torso();
+    let maps = baked.maps.as_ref().expect("maps");
+    let harmonics = BakedTransfer::new(&baked.document.scene, maps);
+    for name in ["Key", "Kicker", "Top", "Sky"] {
+        let estimate = path_tracer_over_prediction(&direct, direct.transfer().as_ref(), name, torso, 0);
+        let frame_transfer = path_tracer_over_prediction(&baked, baked.transfer().as_ref(), name, torso, 1);
+        let sh = path_tracer_over_prediction(&baked, &harmonics, name, torso, 1);
+        eprintln!(
+            "{name}: path tracer / prediction — estimate (direct) {estimate:.3}, \
+             estimate + maps' bounce {frame_transfer:.3}, maps' order-3 SH {sh:.3}"
+        );
+    }
 }
