@@ -11,7 +11,9 @@
 //! - the same after a bake, the frame adding the maps' bounced light and strokes reading
 //!   it (`shading::frame_transfer`);
 //! - on the checkered floor, "direct to a target" above and below what it shows: the
-//!   frame reaches the target within 5 %.
+//!   frame reaches the target within 5 %;
+//! - on the torso again, the prediction against the path tracer, light by light, before
+//!   and after a bake, within 5 %.
 
 mod common;
 
@@ -170,32 +172,37 @@ impl Studio {
         (report, after)
     }
 
-    /// The mean luminance (cd/m², linear) the path tracer shows over the dab's pixels
-    /// with light `light` alone at `intensity` (no other light, no environment), after
-    /// `bounces` (0: direct light, what the estimate models; 1: the maps' bounce too).
+    /// The mean luminance (cd/m², linear) the path tracer shows at the surfaces seen
+    /// through the dab's pixel centres (the points a stroke reads), with light `light`
+    /// alone at `intensity` (no other light, no environment), after `bounces` (0: direct
+    /// light, what the estimate models; 1: the maps' bounce too), `spp` paths each.
     fn path_traced_luminance(&self, light: usize, intensity: f32, dab: Vec2, bounces: u32, spp: u32) -> f64 {
         let mut alone = self.document.scene.clone();
         for (index, l) in alone.lights.iter_mut().enumerate() {
             l.intensity = if index == light { intensity } else { 0.0 };
         }
         alone.environment = None;
-        let camera = self.document.view().camera();
-        let mut render = lightpaint::reference::ProgressiveRender::new(&alone, &camera, WIDTH, HEIGHT, bounces, 7);
-        for _ in 0..spp {
-            render.run_pass();
-        }
-        let image = render.image();
-        let (mut sum, mut count) = (0.0, 0.0);
+        let view = self.view.view();
+        let mut hits = Vec::new();
         for y in 0..HEIGHT {
             for x in 0..WIDTH {
                 let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-                if centre.distance(dab) <= RADIUS_PX {
-                    sum += lightpaint::scene::luminance(image.radiance[(y * WIDTH + x) as usize]);
-                    count += 1.0;
+                if centre.distance(dab) > RADIUS_PX {
+                    continue;
                 }
+                let (origin, direction) = view.ray_through(centre).expect("a ray");
+                let hit = self.bvh.closest_hit(origin, direction, 0.0, f32::INFINITY);
+                hits.push(hit.map(|hit| lightpaint::reference::surface_at(&alone, &hit, origin, direction)));
             }
         }
-        sum / count
+        let count = hits.len() as u32;
+        let eye = view.camera.position;
+        let mut render = lightpaint::reference::ProgressiveRender::from_surfaces(&alone, hits, eye, count, bounces, 7);
+        for _ in 0..spp {
+            render.run_pass();
+        }
+        let radiance = render.image().radiance;
+        radiance.iter().map(|&r| lightpaint::scene::luminance(r)).sum::<f64>() / count as f64
     }
 
     /// The mean luminance (cd/m², tone curve undone) of the frame's pixels within the
@@ -389,24 +396,24 @@ fn path_tracer_over_prediction(
 ) -> f64 {
     let (light, predicted, after) = double_alone(studio, transfer, light_name, dab);
     let added = after[light] - studio.document.scene.lights[light].intensity;
-    studio.path_traced_luminance(light, added, dab, bounces, 256) / predicted
+    studio.path_traced_luminance(light, added, dab, bounces, 1024) / predicted
 }
 
 /// The representation strokes read, chosen against the path tracer (the painting issue's
 /// item 8): on the studio torso, one light at a time, the change a "× 2" stroke predicts
-/// against the change the path tracer shows for that light alone (256 samples per pixel
-/// over the dab's ~110 pixels) — before a bake the direct estimate against direct light;
-/// after a bake the estimate plus the maps' bounce, and the maps' order-3 SH of the
-/// incident light (what strokes read before), against one bounce. A measurement:
-/// `cargo nextest run --test paint_frame_agreement --run-ignored only --no-capture path_tracer`.
+/// against the change the path tracer shows for that light alone (1,024 paths at each
+/// point under the dab) — before a bake the direct estimate against direct light; after
+/// a bake the estimate plus the maps' bounce against one bounce: within 5 % for the key,
+/// kicker, top and sky lights. The maps' order-3 SH of the incident light (what strokes
+/// read before) is printed beside it; it was up to 8 % off (docs/strokes.md).
 #[test]
-#[ignore = "a measurement against the path tracer: run it with --run-ignored only --no-capture"]
-fn the_transfer_strokes_read_against_the_path_tracer_per_light() {
+fn the_transfer_strokes_read_agrees_with_the_path_tracer_per_light() {
     let direct = Studio::open();
     let baked = Studio::baked();
     let (_, torso) = direct.chest_and_torso();
     let maps = baked.maps.as_ref().expect("maps");
     let harmonics = BakedTransfer::new(&baked.document.scene, maps);
+    let mut misses = Vec::new();
     for name in ["Key", "Kicker", "Top", "Sky"] {
         let estimate = path_tracer_over_prediction(&direct, direct.transfer().as_ref(), name, torso, 0);
         let frame_transfer = path_tracer_over_prediction(&baked, baked.transfer().as_ref(), name, torso, 1);
@@ -415,5 +422,11 @@ fn the_transfer_strokes_read_against_the_path_tracer_per_light() {
             "{name}: path tracer / prediction — estimate (direct) {estimate:.3}, \
              estimate + maps' bounce {frame_transfer:.3}, maps' order-3 SH {sh:.3}"
         );
+        for (what, ratio) in [("direct", estimate), ("after a bake", frame_transfer)] {
+            if !(0.95..=1.05).contains(&ratio) {
+                misses.push((name, what, ratio));
+            }
+        }
     }
+    assert!(misses.is_empty(), "path tracer / prediction outside 5 %: {misses:?}");
 }

@@ -6,8 +6,10 @@
 //! estimation), f the shared diffuse + Phong model ([`Reflectance`]), so glossy surfaces
 //! bounce light in their mirror direction; further bounces follow the path on from q
 //! ([`indirect_sh`]). The SH of the incident radiance is then (2π/M)·Σ_k L_k·y(ω_k).
-//! Colours are reduced to their Rec. 709 luminance, and a material's reflectance comes
-//! from its factors (base colour, metallic, roughness, specular; textures are not sampled).
+//! Colours are reduced to their Rec. 709 luminance, and a surface's reflectance comes from
+//! its material's factors (base colour, metallic, roughness, specular) and its base-colour
+//! texture at the hit, sampled as the path tracer samples it (bilinear, no mip chain): a
+//! checkered floor bounces its texture's light, not its factor's.
 
 use std::f32::consts::{PI, TAU};
 
@@ -23,7 +25,8 @@ use crate::sh;
 /// Golden angle in radians.
 const GOLDEN_ANGLE: f32 = 2.399_963_2;
 
-/// What a path bounces off, per material: its reflectance from the material's factors.
+/// What a path bounces off, per material: its reflectance from the material's factors
+/// (a black one reflects nothing, whatever its texture).
 pub fn bounce_reflectance(material: &Material) -> Reflectance {
     Reflectance::of_material(material, DVec3::ONE)
 }
@@ -61,9 +64,17 @@ fn next_surface(
 ) -> Option<PathVertex> {
     let hit = bvh.closest_hit(origin, direction, 0.0, f32::INFINITY)?;
     let object = &scene.objects[hit.object];
-    let reflectance = *reflectances.get(object.material)?;
+    let mut reflectance = *reflectances.get(object.material)?;
     if reflectance.is_black() {
         return None;
+    }
+    let material = scene.materials.get(object.material);
+    if let Some(texture) = material
+        .and_then(|m| m.base_color_texture)
+        .and_then(|t| scene.textures.get(t))
+    {
+        let colour = texture.sample_bilinear(object.interpolated_uv(hit.triangle, hit.barycentric));
+        reflectance = Reflectance::of_material(material?, colour);
     }
     let mut geometric_normal = object.face_normal(hit.triangle);
     let mut normal = object.interpolated_normal(hit.triangle, hit.barycentric);

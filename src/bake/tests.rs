@@ -166,6 +166,79 @@ fn one_bounce_from_a_uniformly_lit_ceiling_matches_the_solid_angle() {
     assert_eq!(lit, maps.objects[1].vertex_count() - 1);
 }
 
+/// A small patch 1 m under a wide matte ceiling lit from below by a directional light,
+/// the ceiling's base colour `factor` × `texture` (a uniform one, if any).
+fn patch_under_a_ceiling(factor: f32, texture: Option<u8>) -> Scene {
+    let patch = shapes::plane(0.02, 1, 1.0);
+    let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
+        glam::Quat::from_rotation_x(std::f32::consts::PI),
+        Vec3::Y,
+    ));
+    let mut ceiling_object = object("ceiling", ceiling);
+    ceiling_object.material = 1;
+    Scene {
+        objects: vec![object("patch", patch), ceiling_object],
+        materials: vec![
+            crate::scene::Material::default(),
+            crate::scene::Material {
+                base_color: glam::Vec4::new(factor, factor, factor, 1.0),
+                base_color_texture: texture.map(|_| 0),
+                specular: 0.0,
+                metallic: 0.0,
+                ..Default::default()
+            },
+        ],
+        textures: texture
+            .map(|srgb| crate::scene::TextureImage {
+                name: "grey".into(),
+                width: 2,
+                height: 2,
+                rgba8: [srgb, srgb, srgb, 255].repeat(4),
+            })
+            .into_iter()
+            .collect(),
+        lights: vec![Light {
+            kind: LightKind::Directional,
+            direction: Vec3::Y,
+            ..point_light(Vec3::ZERO)
+        }],
+        ..Default::default()
+    }
+}
+
+/// The bounce sees the base-colour texture where it lands, as the path tracer does: a
+/// ceiling textured a uniform grey of linear value v bounces what a ceiling of factor v
+/// does (one bounce is linear in the albedo), not what its white factor would. (The
+/// bake once ignored textures: the studio's checkered floor bounced as if white.)
+#[test]
+fn a_bounce_sees_the_base_colour_texture_where_it_lands() {
+    let srgb = 188u8;
+    let c = srgb as f64 / 255.0;
+    let linear = ((c + 0.055) / 1.055).powf(2.4);
+    let settings = BakeSettings {
+        indirect_directions: 64,
+        precision: Precision::F32,
+        ..BakeSettings::default()
+    };
+    let patch_bounce = |scene: &Scene| -> Vec<(f64, f64)> {
+        let maps = bake_maps(scene, &settings);
+        maps.objects[0]
+            .to_vertices()
+            .iter()
+            .map(|e| (e[0].sh[0] as f64, e[0].indirect_irradiance as f64))
+            .collect()
+    };
+    let textured = patch_bounce(&patch_under_a_ceiling(1.0, Some(srgb)));
+    let factor = patch_bounce(&patch_under_a_ceiling(linear as f32, None));
+    let white = patch_bounce(&patch_under_a_ceiling(1.0, None));
+    for ((t, f), w) in textured.iter().zip(&factor).zip(&white) {
+        assert!(t.0 > 0.0 && t.1 > 0.0, "{t:?}");
+        assert!((t.0 / f.0 - 1.0).abs() < 1e-4, "SH DC {} vs {}", t.0, f.0);
+        assert!((t.1 / f.1 - 1.0).abs() < 1e-4, "irradiance {} vs {}", t.1, f.1);
+        assert!((t.1 / w.1 - linear).abs() < 1e-3, "{} of white's", t.1 / w.1);
+    }
+}
+
 /// A glossy metal ceiling (k_d = 0, k_s = 1, Phong exponent 30: glTF roughness 0.5)
 /// 1 m above a tiny floor patch, and a 1 cd point light 0.5 m up and 1 m aside: the
 /// patch's one-bounce light is the ceiling's glossy reflection of the light, whose DC

@@ -14,7 +14,8 @@
 //! object the u32 lengths of its offset and light arrays, the u32 offsets and lights, a
 //! storage byte (0: f32 values follow; 1: a u32 count of per-light f32 scales, the
 //! scales, then f16 values), n² + 1 values per entry (the SH coefficients, then the
-//! indirect irradiance; version 5, earlier versions had no irradiance and are rebuilt),
+//! indirect irradiance; version 5 added the irradiance, version 6 bounces that see the
+//! base-colour textures: caches of earlier versions are rebuilt),
 //! and last the BLAKE3 hash of everything before it.
 
 use std::path::{Path, PathBuf};
@@ -27,7 +28,7 @@ use crate::bake::{
 use crate::scene::Scene;
 
 const MAGIC: &[u8; 6] = b"LPBAKE";
-const VERSION: u16 = 5;
+const VERSION: u16 = 6;
 
 /// What the maps were baked from.
 #[derive(Debug, Clone, PartialEq)]

@@ -20,7 +20,7 @@ mod surface;
 pub use camera_rays::{CameraRay, CameraRays};
 pub use emitters::{EmitterSample, sample_light};
 pub use path::PathTracer;
-pub use surface::SurfaceHit;
+pub use surface::{SurfaceHit, surface_at};
 
 use glam::DVec3;
 use rayon::prelude::*;
