@@ -25,6 +25,19 @@ fn point_light(position: Vec3) -> Light {
     }
 }
 
+/// A 2 cm floor patch at the origin (material 0) and a 40 m ceiling 1 m above it facing
+/// down (material 1).
+fn patch_and_ceiling() -> [MeshObject; 2] {
+    let patch = shapes::plane(0.02, 1, 1.0);
+    let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
+        glam::Quat::from_rotation_x(std::f32::consts::PI),
+        Vec3::Y,
+    ));
+    let mut ceiling_object = object("ceiling", ceiling);
+    ceiling_object.material = 1;
+    [object("patch", patch), ceiling_object]
+}
+
 /// A 4 m floor of 8×8 quads, a 1 m box hovering over its −x half, a light 3 m up.
 fn floor_box_light() -> Scene {
     let floor = shapes::plane(4.0, 8, 1.0);
@@ -119,16 +132,9 @@ fn a_cancelled_bake_keeps_nothing_and_progress_reaches_the_end() {
 /// ρ/π · Ω · y₀.
 #[test]
 fn one_bounce_from_a_uniformly_lit_ceiling_matches_the_solid_angle() {
-    let patch = shapes::plane(0.02, 1, 1.0);
-    let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
-        glam::Quat::from_rotation_x(std::f32::consts::PI),
-        Vec3::Y,
-    ));
     let albedo = 0.5f32;
-    let mut ceiling_object = object("ceiling", ceiling);
-    ceiling_object.material = 1;
     let scene = Scene {
-        objects: vec![object("patch", patch), ceiling_object],
+        objects: patch_and_ceiling().into(),
         materials: vec![
             crate::scene::Material::default(),
             crate::scene::Material {
@@ -169,15 +175,8 @@ fn one_bounce_from_a_uniformly_lit_ceiling_matches_the_solid_angle() {
 /// A small patch 1 m under a wide matte ceiling lit from below by a directional light,
 /// the ceiling's base colour `factor` × `texture` (a uniform one, if any).
 fn patch_under_a_ceiling(factor: f32, texture: Option<u8>) -> Scene {
-    let patch = shapes::plane(0.02, 1, 1.0);
-    let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
-        glam::Quat::from_rotation_x(std::f32::consts::PI),
-        Vec3::Y,
-    ));
-    let mut ceiling_object = object("ceiling", ceiling);
-    ceiling_object.material = 1;
     Scene {
-        objects: vec![object("patch", patch), ceiling_object],
+        objects: patch_and_ceiling().into(),
         materials: vec![
             crate::scene::Material::default(),
             crate::scene::Material {
@@ -247,16 +246,9 @@ fn a_bounce_sees_the_base_colour_texture_where_it_lands() {
 /// bounce would give nothing.
 #[test]
 fn a_glossy_ceiling_bounces_the_light_in_its_mirror_direction() {
-    let patch = shapes::plane(0.02, 1, 1.0);
-    let ceiling = shapes::plane(40.0, 4, 1.0).transformed(glam::Affine3A::from_rotation_translation(
-        glam::Quat::from_rotation_x(std::f32::consts::PI),
-        Vec3::Y,
-    ));
-    let mut ceiling_object = object("ceiling", ceiling);
-    ceiling_object.material = 1;
     let light_position = Vec3::new(1.0, 0.5, 0.0);
     let scene = Scene {
-        objects: vec![object("patch", patch), ceiling_object],
+        objects: patch_and_ceiling().into(),
         materials: vec![
             crate::scene::Material::default(),
             crate::scene::Material {
