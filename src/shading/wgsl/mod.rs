@@ -1,6 +1,6 @@
 //! WGSL sources and the code generated for them (no wgpu here: `render` compiles them).
 //! Each file under `shaders/` says which modules it imports (`// #import …` lines) and
-//! [`compose`] writes a shader from the modules it needs, each once, after its imports:
+//! [`compose()`] writes a shader from the modules it needs, each once, after its imports:
 //! `common.wgsl` (shared structs and colour functions), `scene.wgsl` (the frame and
 //! material bindings, vertex stage, lights, surfaces), `shadow_bindings.wgsl` (the shadow
 //! group), `blockers.wgsl` (the blocker walk) and so on, so shared code lives in exactly
