@@ -1,8 +1,8 @@
 //! The editor's painting state, its one owner in a session: the tool, brush and
-//! strategies, the `Painter` with this session's applied strokes, and where the transfer comes from (baked maps once a
-//! background bake finished, the log-SH direct estimate until then, so painting never
-//! waits). The logic is the library's (`paint`); this file only holds state and turns a
-//! viewport stroke into a stroke record.
+//! strategies, the `Painter` with this session's applied strokes, and where the transfer
+//! comes from (baked maps once a background bake finished, the log-SH direct estimate
+//! until then, so painting never waits). The logic is the library's (`paint`); this file
+//! only holds state and turns a viewport stroke into a stroke record.
 
 use std::sync::Arc;
 
