@@ -49,10 +49,7 @@ impl EditorSession {
     pub fn undo(&mut self) -> Outcome {
         self.history.settle(&self.document.scene.lights);
         let before = self.document.scene.lights.clone();
-        match self
-            .history
-            .undo(&mut self.painting.painter, &mut self.document.scene.lights)
-        {
+        match self.history.undo(&mut self.painting.painter, &mut self.document.scene) {
             Some(kind) => {
                 self.note_moves(&before);
                 Outcome::new(Happened::Undid(kind), Changes::LIGHTS)
@@ -64,10 +61,7 @@ impl EditorSession {
     /// Carries out again what was undone last (Ctrl+Shift+Z or Ctrl+Y).
     pub fn redo(&mut self) -> Outcome {
         let before = self.document.scene.lights.clone();
-        match self
-            .history
-            .redo(&mut self.painting.painter, &mut self.document.scene.lights)
-        {
+        match self.history.redo(&mut self.painting.painter, &mut self.document.scene) {
             Some(kind) => {
                 self.note_moves(&before);
                 Outcome::new(Happened::Redid(kind), Changes::LIGHTS)

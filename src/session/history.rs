@@ -8,7 +8,7 @@
 use std::fmt;
 
 use crate::paint::{Edit, Painter};
-use crate::scene::Light;
+use crate::scene::{Light, Scene};
 
 /// What was done, newest last.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,50 +95,45 @@ impl History {
         self.settled = lights.to_vec();
     }
 
-    /// Takes back the last entry on `lights` and `painter`; which kind it was, if any.
-    pub fn undo(&mut self, painter: &mut Painter, lights: &mut Vec<Light>) -> Option<EntryKind> {
+    /// Takes back the last entry on `scene`'s lights and `painter`; which kind it was, if
+    /// any.
+    pub fn undo(&mut self, painter: &mut Painter, scene: &mut Scene) -> Option<EntryKind> {
         let entry = self.done.pop()?;
         let (undone, kind) = match entry {
             Done::Stroke => {
-                let mut intensities: Vec<f32> = lights.iter().map(|l| l.intensity).collect();
+                let mut intensities = scene.light_intensities();
                 let edit = painter.undo(&mut intensities)?;
-                set_intensities(lights, &intensities);
+                scene.set_light_intensities(&intensities);
                 (Undone::Stroke(Box::new(edit)), EntryKind::Stroke)
             }
             Done::Lights { before, after } => {
-                *lights = before.clone();
+                scene.lights = before.clone();
                 (Undone::Lights { before, after }, EntryKind::LightEdit)
             }
         };
         self.undone.push(undone);
-        self.settled = lights.clone();
+        self.settled = scene.lights.clone();
         Some(kind)
     }
 
     /// Carries out again the entry undone last; which kind it was, if any.
-    pub fn redo(&mut self, painter: &mut Painter, lights: &mut Vec<Light>) -> Option<EntryKind> {
+    pub fn redo(&mut self, painter: &mut Painter, scene: &mut Scene) -> Option<EntryKind> {
         let entry = self.undone.pop()?;
         let (done, kind) = match entry {
             Undone::Stroke(edit) => {
-                let mut intensities: Vec<f32> = lights.iter().map(|l| l.intensity).collect();
+                let mut intensities = scene.light_intensities();
                 painter.redo(*edit, &mut intensities);
-                set_intensities(lights, &intensities);
+                scene.set_light_intensities(&intensities);
                 (Done::Stroke, EntryKind::Stroke)
             }
             Undone::Lights { before, after } => {
-                *lights = after.clone();
+                scene.lights = after.clone();
                 (Done::Lights { before, after }, EntryKind::LightEdit)
             }
         };
         self.done.push(done);
-        self.settled = lights.clone();
+        self.settled = scene.lights.clone();
         Some(kind)
-    }
-}
-
-fn set_intensities(lights: &mut [Light], intensities: &[f32]) {
-    for (light, &p) in lights.iter_mut().zip(intensities) {
-        light.intensity = p;
     }
 }
 
@@ -162,41 +157,48 @@ mod tests {
         }]
     }
 
+    fn scene_with(lights: Vec<Light>) -> Scene {
+        Scene {
+            lights,
+            ..Scene::default()
+        }
+    }
+
     #[test]
     fn light_edits_undo_last_first_and_redo_in_order() {
         let mut painter = Painter::new();
-        let mut now = lights(10.0, 0.0);
-        let mut history = History::new(&now);
-        assert!(!history.settle(&now), "nothing changed");
-        now = lights(12.0, 0.0);
-        assert!(history.settle(&now));
-        now = lights(12.0, 1.5);
-        assert!(history.settle(&now), "the light moved");
+        let mut now = scene_with(lights(10.0, 0.0));
+        let mut history = History::new(&now.lights);
+        assert!(!history.settle(&now.lights), "nothing changed");
+        now.lights = lights(12.0, 0.0);
+        assert!(history.settle(&now.lights));
+        now.lights = lights(12.0, 1.5);
+        assert!(history.settle(&now.lights), "the light moved");
         assert_eq!(history.undo(&mut painter, &mut now), Some(EntryKind::LightEdit));
-        assert_eq!(now, lights(12.0, 0.0));
+        assert_eq!(now.lights, lights(12.0, 0.0));
         assert_eq!(history.undo(&mut painter, &mut now), Some(EntryKind::LightEdit));
-        assert_eq!(now, lights(10.0, 0.0));
+        assert_eq!(now.lights, lights(10.0, 0.0));
         assert_eq!(history.undo(&mut painter, &mut now), None);
         assert_eq!(history.redo(&mut painter, &mut now), Some(EntryKind::LightEdit));
-        assert_eq!(now, lights(12.0, 0.0));
+        assert_eq!(now.lights, lights(12.0, 0.0));
         assert_eq!(history.redo(&mut painter, &mut now), Some(EntryKind::LightEdit));
-        assert_eq!(now, lights(12.0, 1.5));
+        assert_eq!(now.lights, lights(12.0, 1.5));
         assert!(!history.can_redo());
     }
 
     #[test]
     fn a_new_edit_drops_what_was_undone() {
         let mut painter = Painter::new();
-        let mut now = lights(10.0, 0.0);
-        let mut history = History::new(&now);
+        let mut now = scene_with(lights(10.0, 0.0));
+        let mut history = History::new(&now.lights);
         history.settle(&lights(12.0, 0.0));
-        now = lights(12.0, 0.0);
+        now.lights = lights(12.0, 0.0);
         history.undo(&mut painter, &mut now);
         assert!(history.can_redo());
         history.settle(&lights(10.0, 3.0));
         assert!(!history.can_redo());
-        now = lights(10.0, 3.0);
+        now.lights = lights(10.0, 3.0);
         assert_eq!(history.undo(&mut painter, &mut now), Some(EntryKind::LightEdit));
-        assert_eq!(now, lights(10.0, 0.0));
+        assert_eq!(now.lights, lights(10.0, 0.0));
     }
 }
