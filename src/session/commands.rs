@@ -4,7 +4,7 @@
 //! light). Each says what happened and what changed; none touches a view.
 
 use super::{Changes, EditorSession, Happened, Outcome, ScreenStroke, Tool};
-use crate::blockers::Sphere;
+use crate::blockers::{SceneBlockers, Sphere};
 use crate::project::bake_cache::light_hash;
 use crate::scene::{Camera, Light, LightKind};
 use crate::shading::BakedIndirect;
@@ -191,9 +191,12 @@ impl EditorSession {
     }
 
     /// Takes up the saved strokes' Keep areas and equations once the picking BVH is ready
-    /// (`Painting::take_up_saved_strokes`); cheap until then and once done.
-    pub fn take_up_saved_strokes(&mut self, spheres: impl FnOnce() -> Vec<Sphere>) -> Outcome {
+    /// (`Painting::take_up_saved_strokes`); cheap until then and once done (the editor
+    /// calls it every frame). The view's blockers are `blockers` less the hidden
+    /// objects', worked out only when the strokes are taken up.
+    pub fn take_up_saved_strokes(&mut self, blockers: &SceneBlockers) -> Outcome {
         let document = &self.document;
+        let spheres = || blockers.shown_spheres(&document.hidden_objects);
         match self
             .painting
             .take_up_saved_strokes(&document.scene, spheres, &document.settings)

@@ -70,9 +70,7 @@ impl EditorApp {
     /// the status bar.
     pub(super) fn take_up_saved_strokes(&mut self) {
         let Some(session) = &mut self.session else { return };
-        let blockers = &self.blockers;
-        let hidden = session.document.hidden_objects.clone();
-        let outcome = session.take_up_saved_strokes(|| blockers.shown_spheres(&hidden));
+        let outcome = session.take_up_saved_strokes(&self.blockers);
         self.apply(outcome);
     }
 }
