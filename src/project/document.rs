@@ -213,6 +213,12 @@ impl Document {
 
     /// The project file for saving at `project_path` (the glTF path made relative to it).
     pub fn to_project_file(&self, project_path: &Path) -> ProjectFile {
+        self.to_project_file_with(project_path, self.painting.clone())
+    }
+
+    /// [`Document::to_project_file`] with `painting` as its painting state (an editor
+    /// session's, which owns it while the document is open).
+    pub fn to_project_file_with(&self, project_path: &Path, painting: PaintingState) -> ProjectFile {
         let directory = absolute(project_path.parent().unwrap_or(Path::new("")));
         let relative = |path: &Path| {
             let path = absolute(path);
@@ -235,7 +241,7 @@ impl Document {
             render: self.settings,
             camera: self.camera,
             environment,
-            painting: self.painting.clone(),
+            painting,
             terrain: self.scene.terrain.as_ref().map(|t| t.spec.with_image_path(relative)),
             hidden_objects: self.hidden_objects.iter().copied().collect(),
             object_names: self.object_names.clone(),

@@ -164,9 +164,7 @@ impl EditorSession {
 
     /// The project file for saving at `project_path`.
     pub fn project_file(&self, project_path: &Path) -> ProjectFile {
-        let mut file = self.document.to_project_file(project_path);
-        file.painting = self.painting.state();
-        file
+        self.document.to_project_file_with(project_path, self.painting.state())
     }
 
     /// Saves atomically to `project_path`, which becomes the document's file.
