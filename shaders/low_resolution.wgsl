@@ -250,13 +250,14 @@ fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
     return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
 }
 
-// The full-resolution frame deferred too (single-sampled targets): the upsampling and the
-// full shading of the pixels it leaves as full-screen passes over the surface buffer, as
-// at low resolution. A mesh of triangles a few pixels wide (a terrain) had each
-// rasterised pass pay per triangle.
+// The full-resolution frame deferred too (single-sampled targets): the upsampling as a
+// full-screen pass over the surface buffer, as at low resolution, and the shading of the
+// pixels it leaves in listed_pixels.wgsl. A mesh of triangles a few pixels wide (a
+// terrain) had each rasterised pass pay per triangle.
 
-// A pixel from the low-resolution samples (group 3), or discarded for fs_logsh_deferred
-// where they do not match or disagree; writes depth 1 where it shades (its pipeline).
+// A pixel from the low-resolution samples (group 3), or discarded where they do not match
+// or disagree (listed_pixels.wgsl then shades it); writes depth 1 where it shades (its
+// pipeline).
 @fragment
 fn fs_upsample_deferred_marking(in: FullScreen) -> @location(0) vec4<f32> {
     let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
@@ -265,30 +266,4 @@ fn fs_upsample_deferred_marking(in: FullScreen) -> @location(0) vec4<f32> {
         discard;
     }
     return vec4<f32>(tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting), 1.0);
-}
-
-// A pixel the upsampling left (two-level shading): the soft layer upsampled to it (group 3
-// then holds the soft layer, read at full resolution) plus the lights of sharp shadows
-// shaded here, as fs_shade_sharp_marking does for a low-resolution sample; discarded for
-// fs_logsh_deferred where the soft layer does not match or disagrees. Most such pixels lie
-// on a sharp edge of the light — a shadow map's or the exact path's shadow, a highlight —
-// across which the soft light stays smooth, and the soft light (the SH path's walk of the
-// blockers) is about half the cost of a pixel's full shading. Writes depth 1 where it
-// shades (its pipeline).
-@fragment
-fn fs_shade_sharp_deferred_marking(in: FullScreen) -> @location(0) vec4<f32> {
-    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
-    let soft = upsampled_lighting(in.clip.xy, s, false);
-    if !soft.matches {
-        discard;
-    }
-    let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
-    return vec4<f32>(tonemap_aces_fit(frame.exposure * (s.emissive + sharp) + reflectance(s) * soft.lighting), 1.0);
-}
-
-// A pixel shaded in full: fs_logsh from the surface buffer.
-@fragment
-fn fs_logsh_deferred(in: FullScreen) -> @location(0) vec4<f32> {
-    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
-    return vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0);
 }

@@ -147,7 +147,13 @@ fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
         .find(|l| l.starts_with("GPU time per pass:"))
         .expect("pass times");
     let mut total_ms = 0.0;
-    for pass in ["low-resolution shading", "surfaces", "scene pass (upsampling, shading)"] {
+    for pass in [
+        "low-resolution shading",
+        "surfaces",
+        "upsampling",
+        "pixels left listed",
+        "listed pixels drawn",
+    ] {
         let ms = number_after(passes, pass);
         assert!(ms > 0.0, "{passes}");
         total_ms += ms;

@@ -143,11 +143,14 @@ impl LogShPipeline {
             Some(targets) if targets.fits(full_size, reduced.downsample, reduced.levels()) => Some(targets),
             _ => Some(LowResolutionTargets::new(
                 device,
-                [
-                    &reduced.low_resolution_layout,
-                    &reduced.surface_buffer_layout,
-                    &reduced.mapped_visibility_writer_layout,
-                ],
+                (
+                    [
+                        &reduced.low_resolution_layout,
+                        &reduced.surface_buffer_layout,
+                        &reduced.mapped_visibility_writer_layout,
+                    ],
+                    &reduced.listed_pixels_layouts,
+                ),
                 full_size,
                 reduced.downsample,
                 reduced.levels(),

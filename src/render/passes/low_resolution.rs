@@ -4,14 +4,15 @@
 //! two, the light of soft shadows at twice the spacing and the sharp lights added at
 //! every sample — and on single-sampled targets the full-resolution frame likewise: the
 //! upsampling and the shading of the pixels it leaves (from the soft layer where there
-//! is one, in full where it does not serve).
+//! is one, in full where it does not serve), listed and shaded densely (`listed_pixels`).
 
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout,
     mapped_visibility_writer_layout, surface_buffer_layout,
 };
+use super::listed_pixels::{ListedPixelsLayouts, ListedPixelsPipelines};
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
-use crate::render::descriptors::{COLOR_FORMAT, depth_test};
+use crate::render::descriptors::{COLOR_FORMAT, depth_attachment, depth_test};
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
 use crate::render::target::RenderTarget;
@@ -24,6 +25,7 @@ pub(super) struct ReducedShadingPipelines {
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
     pub mapped_visibility_writer_layout: wgpu::BindGroupLayout,
+    pub listed_pixels_layouts: ListedPixelsLayouts,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
     surface_buffer: ByTexture,
@@ -60,14 +62,15 @@ pub(super) struct SoftLayerPipelines {
     shade_sharp: wgpu::RenderPipeline,
 }
 
-/// The full-resolution frame from the surface buffer, full-screen: the upsampling
-/// (fs_upsample_deferred_marking); with two-level shading, the soft layer upsampled to
-/// the pixels it left plus the sharp lights (fs_shade_sharp_deferred_marking); then the
-/// pixels left shaded in full (fs_logsh_deferred).
+/// The full-resolution frame from the surface buffer: the upsampling, full-screen
+/// (fs_upsample_deferred_marking); the pixels it left listed and shaded (with two-level
+/// shading, from the soft layer upsampled to them plus the sharp lights, else or where
+/// the soft layer does not serve in full); their colours drawn into the frame,
+/// full-screen (fs_listed_colour).
 pub(super) struct FullResolutionPipelines {
     upsample: wgpu::RenderPipeline,
-    shade_sharp: Option<wgpu::RenderPipeline>,
-    shade: wgpu::RenderPipeline,
+    listed: ListedPixelsPipelines,
+    draw_listed: wgpu::RenderPipeline,
 }
 
 impl ReducedShadingPipelines {
@@ -85,6 +88,7 @@ impl ReducedShadingPipelines {
         let low_resolution_layout = low_resolution_layout(device);
         let surface_buffer_layout = surface_buffer_layout(device);
         let mapped_visibility_writer_layout = mapped_visibility_writer_layout(device);
+        let listed_pixels_layouts = ListedPixelsLayouts::new(device);
         let surface_variant = Variant { samples: 1, ..variant };
         let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
             full_screen_pipeline(
@@ -153,18 +157,20 @@ impl ReducedShadingPipelines {
                         Some(&low_resolution_layout),
                         FullScreenDepth::Marking,
                     ),
-                    shade_sharp: two_level(paths).then(|| {
-                        full_screen(
-                            "fs_shade_sharp_deferred_marking",
-                            (Some(COLOR_FORMAT), 1),
-                            Some(&low_resolution_layout),
-                            FullScreenDepth::Marking,
-                        )
-                    }),
-                    shade: full_screen(
-                        "fs_logsh_deferred",
+                    listed: ListedPixelsPipelines::new(
+                        device,
+                        module,
+                        (
+                            [&layouts.frame, &surface_buffer_layout, shadow_layout],
+                            &listed_pixels_layouts,
+                        ),
+                        &path_constants(paths),
+                        two_level(paths),
+                    ),
+                    draw_listed: full_screen(
+                        "fs_listed_colour",
                         (Some(COLOR_FORMAT), 1),
-                        None,
+                        Some(&listed_pixels_layouts.colours),
                         FullScreenDepth::Unmarked,
                     ),
                 })
@@ -183,6 +189,7 @@ impl ReducedShadingPipelines {
             low_resolution_layout,
             surface_buffer_layout,
             mapped_visibility_writer_layout,
+            listed_pixels_layouts,
         }
     }
 }
@@ -307,9 +314,9 @@ fn draw_surfaces(
 }
 
 /// The full-resolution frame deferred: from the surface buffer `shade_low_resolution`
-/// drew (its depth copied into `target`'s), the upsampling and the full shading of what
-/// it left into `target`'s colour (cleared to `background_linear`). False, drawing nothing, where
-/// `pipelines` have no deferred full-resolution frame.
+/// drew (its depth copied into the listed pixels' marks), the upsampling into `target`'s
+/// colour (cleared to `background_linear`), then the pixels it left listed, shaded and
+/// drawn. False, drawing nothing, where `pipelines` have no deferred full-resolution frame.
 pub(super) fn draw_full_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
@@ -318,32 +325,44 @@ pub(super) fn draw_full_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) -> bool {
-    let FullResolution::Deferred(full) = &pipelines.full_resolution else {
+    let (FullResolution::Deferred(full), Some(listed)) = (&pipelines.full_resolution, low.listed.as_ref()) else {
         return false;
     };
-    // The upsampling marks what it drew (depth 1), and so does the sharp lights' pass, so
-    // each pass after them shades only the pixels they discarded.
-    let mut passes = vec![(&full.upsample, Some(low.bind_group()))];
-    if let (Some(shade_sharp), Some(soft)) = (&full.shade_sharp, &low.soft_at_full_resolution) {
-        passes.push((shade_sharp, Some(soft)));
-    }
-    passes.push((&full.shade, None));
-    // The passes mark pixels in the frame's depth; the buffer's stays as drawn.
-    target.copy_depth_from(frame.encoder, &low.surface.depth);
+    // The upsampling marks what it drew (depth 1); the listing takes what it left. The
+    // buffer's depth stays as drawn.
+    frame.encoder.copy_texture_to_texture(
+        low.surface.depth.as_image_copy(),
+        listed.marks_texture.as_image_copy(),
+        low.surface.depth.size(),
+    );
     frame.mark("depth copy");
-    Bound {
+    let bound = Bound {
         scene,
         blockers,
         surface: &low.surface.bind_group,
-    }
-    .full_screen(
+    };
+    bound.full_screen(
         frame,
-        "scene pass (upsampling, shading)",
+        "upsampling",
         (
             &[Some(target.color_attachment(background_linear))],
-            Some(target.depth_attachment_for(false, false)),
+            Some(depth_attachment(&listed.marks, None, true)),
         ),
-        &passes,
+        &[(&full.upsample, Some(low.bind_group()))],
+    );
+    full.listed.shade(
+        frame,
+        listed,
+        [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
+    );
+    bound.full_screen(
+        frame,
+        "listed pixels drawn",
+        (
+            &[Some(target.color_attachment_kept())],
+            Some(depth_attachment(&listed.marks, None, false)),
+        ),
+        &[(&full.draw_listed, Some(&listed.colours_group))],
     );
     true
 }

@@ -16,9 +16,10 @@
 //! spacing; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
 //! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the
 //! sharp lights, and in full where the soft layer does not match or disagrees); then in
-//! the frame's [`crate::render::RenderTarget`] the upsampling and, full-screen as well,
-//! the pixels it left (two levels: the soft layer upsampled plus the sharp lights, and in
-//! full where the soft layer does not match or disagrees; one level: in full). Multisampled targets draw the full-resolution
+//! the frame's [`crate::render::RenderTarget`] the upsampling, full-screen as well, and the
+//! pixels it left, listed and shaded densely by compute passes (`listed_pixels`; two
+//! levels: the soft layer upsampled plus the sharp lights, and in full where the soft
+//! layer does not match or disagrees; one level: in full). Multisampled targets draw the full-resolution
 //! frame rasterised instead: a depth pre-pass, fs_upsample and nothing shaded in full.
 //!
 //! Why deferred: rasterised at a third of the resolution, a figure's triangles are
@@ -34,6 +35,7 @@
 
 use wgpu::util::DeviceExt;
 
+use super::listed_pixels::{ListedPixels, ListedPixelsLayouts};
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
     MAPPED_VISIBILITY_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
@@ -138,10 +140,10 @@ pub struct LowResolutionTargets {
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
-    /// The soft layer read at full resolution (its parameters for a reader of stride 1):
-    /// present with a soft layer when the full-resolution frame is deferred, where
-    /// fs_shade_sharp_deferred_marking shades the pixels the upsampling leaves from it.
-    pub(crate) soft_at_full_resolution: Option<wgpu::BindGroup>,
+    /// Where the full-resolution frame is deferred: the depth its passes mark, and the
+    /// pixels the upsampling leaves listed, shaded (with a soft layer, from it read at
+    /// full resolution) and their colours.
+    pub(crate) listed: Option<ListedPixels>,
     /// The full-resolution frame is deferred (drawn by full-screen passes from the buffer).
     deferred_frame: bool,
     /// What the surface buffer and the soft layer show, if known
@@ -284,12 +286,13 @@ impl SampleImage {
 impl LowResolutionTargets {
     /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
-    /// surfaces through `surface_layout` ([`surface_buffer_layout`]); `soft_layer`: with
+    /// surfaces through `surface_layout` ([`surface_buffer_layout`]), the listed pixels'
+    /// resources through `listed_layouts`; `soft_layer`: with
     /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: the
     /// full-resolution frame is deferred too (its passes start from the buffer's depth).
     pub fn new(
         device: &wgpu::Device,
-        [layout, surface_layout, writer_layout]: [&wgpu::BindGroupLayout; 3],
+        ([layout, surface_layout, writer_layout], listed_layouts): ([&wgpu::BindGroupLayout; 3], &ListedPixelsLayouts),
         full_size: [u32; 2],
         downsample: u32,
         [soft_layer, deferred_frame]: [bool; 2],
@@ -315,24 +318,23 @@ impl LowResolutionTargets {
                 ),
             )
         });
-        let soft_at_full_resolution = soft.as_ref().filter(|_| deferred_frame).map(|soft| {
-            sample_reader(
-                device,
-                layout,
-                "soft layer samples at full resolution",
-                &soft.view,
-                upsample_params(
+        let listed = deferred_frame.then(|| {
+            // The listed pixels upsample the soft layer read at full resolution.
+            let soft_layer = soft.as_ref().map(|soft| {
+                let params = upsample_params(
                     full_size,
                     [1, 2 * downsample],
                     [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
-                ),
-            )
+                );
+                (&soft.view, params)
+            });
+            ListedPixels::new(device, listed_layouts, full_size, soft_layer)
         });
         LowResolutionTargets {
             full_size,
             downsample,
             size,
-            soft_at_full_resolution,
+            listed,
             surface: SurfaceBuffer::new(device, [surface_layout, writer_layout], full_size, size),
             deferred_frame,
             drawn_from: None,

@@ -16,10 +16,12 @@ pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureForma
 /// The bind group layout (group 1 of the full-screen passes, in place of the material)
 /// through which the low-resolution shading reads the surface buffer.
 pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    // Read by the full-screen passes and by the compute passes shading the pixels the
+    // upsampling leaves (listed_pixels.wgsl).
     let texture = |slot| {
         layout_entry(
             slot,
-            wgpu::ShaderStages::FRAGMENT,
+            wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
             wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Uint,
                 view_dimension: wgpu::TextureViewDimension::D2,

@@ -30,15 +30,18 @@ impl SceneLayouts {
     pub fn new(device: &wgpu::Device) -> SceneLayouts {
         let uniform = buffer_type(wgpu::BufferBindingType::Uniform);
         let storage = buffer_type(wgpu::BufferBindingType::Storage { read_only: true });
-        let both = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let every_stage = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        // The shading reads the lights in fragment shaders and in the compute passes that
+        // shade the pixels the upsampling leaves (listed_pixels.wgsl).
+        let shading = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[
-                layout_entry(slots::FRAME, both, uniform),
-                layout_entry(slots::LIGHTS, fragment, uniform),
+                layout_entry(slots::FRAME, every_stage, uniform),
+                layout_entry(slots::LIGHTS, shading, uniform),
                 layout_entry(slots::BAKED_INDIRECT, wgpu::ShaderStages::VERTEX, storage),
-                layout_entry(slots::EVERY_LIGHT, fragment, storage),
+                layout_entry(slots::EVERY_LIGHT, shading, storage),
             ],
         });
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

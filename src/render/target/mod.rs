@@ -60,7 +60,6 @@ pub struct RenderTarget {
     pub display_view: wgpu::TextureView,
     msaa_view: Option<wgpu::TextureView>,
     edge_filter: Option<EdgeFilterPass>,
-    depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
 }
 
@@ -116,13 +115,7 @@ impl RenderTarget {
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
         let edge_filter = edge_filter.map(|filter| EdgeFilterPass::new(device, size, filter));
-        // A single-sampled frame's depth may start as a copy of a surface buffer's.
-        let depth_usage = if samples == 1 {
-            attachment | wgpu::TextureUsages::COPY_DST
-        } else {
-            attachment
-        };
-        let depth = texture("depth", DEPTH_FORMAT, samples, depth_usage, &[]);
+        let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
         RenderTarget {
             width: size.width,
             height: size.height,
@@ -135,7 +128,6 @@ impl RenderTarget {
             msaa_view,
             edge_filter,
             depth_view: view(&depth),
-            depth,
             color,
         }
     }
@@ -143,6 +135,15 @@ impl RenderTarget {
     /// The colour attachment, cleared to `background` (linear RGB).
     pub fn color_attachment(&self, background_linear: [f64; 3]) -> wgpu::RenderPassColorAttachment<'_> {
         let [r, g, b] = background_linear;
+        self.color_attachment_loading(wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }))
+    }
+
+    /// The colour attachment as the previous pass left it.
+    pub fn color_attachment_kept(&self) -> wgpu::RenderPassColorAttachment<'_> {
+        self.color_attachment_loading(wgpu::LoadOp::Load)
+    }
+
+    fn color_attachment_loading(&self, load: wgpu::LoadOp<wgpu::Color>) -> wgpu::RenderPassColorAttachment<'_> {
         let (view, resolve_target, store) = match (&self.msaa_view, &self.edge_filter) {
             (Some(msaa), _) => (msaa, Some(&self.color_view), wgpu::StoreOp::Discard),
             (None, Some(filter)) => (&filter.attachment_view, None, wgpu::StoreOp::Store),
@@ -152,10 +153,7 @@ impl RenderTarget {
             view,
             depth_slice: None,
             resolve_target,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
-                store,
-            },
+            ops: wgpu::Operations { load, store },
         }
     }
 
@@ -163,12 +161,6 @@ impl RenderTarget {
     /// left it, and kept for a later pass if `keep`.
     pub fn depth_attachment_for(&self, clear: bool, keep: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         depth_attachment(&self.depth_view, clear.then_some(1.0), keep)
-    }
-
-    /// Records a copy of `source` (a depth texture of the frame's size, single-sampled as
-    /// this target must be) into the frame's depth.
-    pub(crate) fn copy_depth_from(&self, encoder: &mut wgpu::CommandEncoder, source: &wgpu::Texture) {
-        encoder.copy_texture_to_texture(source.as_image_copy(), self.depth.as_image_copy(), self.depth.size());
     }
 
     /// The depth attachment, cleared to the far plane, for one pass.
