@@ -249,21 +249,3 @@ fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
     let sharp = kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy)) + exact_path_radiance(s);
     return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
 }
-
-// The full-resolution frame deferred too (single-sampled targets): the upsampling as a
-// full-screen pass over the surface buffer, as at low resolution, and the shading of the
-// pixels it leaves in listed_pixels.wgsl. A mesh of triangles a few pixels wide (a
-// terrain) had each rasterised pass pay per triangle.
-
-// A pixel from the low-resolution samples (group 3), or discarded where they do not match
-// or disagree (listed_pixels.wgsl then shades it); writes depth 1 where it shades (its
-// pipeline).
-@fragment
-fn fs_upsample_deferred_marking(in: FullScreen) -> @location(0) vec4<f32> {
-    let s = buffered_surface(vec2<i32>(in.clip.xy)).s;
-    let up = upsampled_lighting(in.clip.xy, s, false);
-    if !up.matches {
-        discard;
-    }
-    return vec4<f32>(tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting), 1.0);
-}

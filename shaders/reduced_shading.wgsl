@@ -2,7 +2,7 @@
 // d × d block of pixels is shaded with the full log-SH shading of logsh.wgsl, and every
 // pixel blends the samples that lie on its own surface (a joint bilateral upsampling
 // guided by position and normal, Kopf et al. 2007). Both are deferred on single-sampled
-// targets (low_resolution.wgsl: surface buffers, full-screen passes). With two-level
+// targets (low_resolution.wgsl, full_resolution.wgsl). With two-level
 // shading the light of soft shadows is shaded at every other sample only and upsampled
 // to the rest by the same function (upsampled_lighting).
 //
@@ -13,13 +13,11 @@
 // texture detail and material edges stay sharp at full resolution while only the smooth
 // lighting is interpolated. Pixels that no sample matches (thin objects, silhouettes),
 // and those whose nearest samples on their surface disagree (an edge of the light runs
-// between them) or are fewer than two, are discarded by the upsampling and shaded in
-// full right after: the upsampling writes depth 1 where it draws, so the depth test
-// leaves only the discarded ones to the full shading. (A fallback branch inside the upsampling would cost every pixel the full
-// shading on a software GPU, which runs both sides of a divergent branch.) Multisampled
-// targets use the rasterised fs_upsample, where such pixels take the best-matching
-// sample nearby: lavapipe tests their depth after the fragment shader, so a full shading
-// pass would shade every fragment.
+// between them) or are fewer than two, are left by the upsampling and shaded in full
+// (full_resolution.wgsl lists them and shades them densely: a fallback branch inside the
+// upsampling would cost every pixel the full shading on a software GPU, which runs both
+// sides of a divergent branch). Multisampled targets use the rasterised fs_upsample,
+// where such pixels take the best-matching sample nearby.
 // #import scene slots
 
 // One texel per sample, so that the upsampling reads each with one texel fetch (on
@@ -131,80 +129,133 @@ fn upsampled(in: VertexOut, front_facing: bool, ring: bool) -> vec4<f32> {
     return vec4<f32>(tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting), 1.0);
 }
 
-// `ring`: also look at the ring of 12 samples around the 2 × 2 nearest for the best match
-// of a pixel they do not match (without it, such a pixel's colour is left undefined: the
-// caller discards it). A constant at each call, so the compiler drops the unused half.
-// `pixel`: the pixel's centre in its own image's pixels (in.clip.xy), which
-// upsample.full_to_low maps to the samples' image; s: its surface.
-fn upsampled_lighting(pixel: vec2<f32>, s: Surface, ring: bool) -> UpsampledLighting {
-    let low_size = vec2<f32>(textureDimensions(low_samples));
-    let last = vec2<i32>(low_size) - vec2<i32>(1);
-    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
-    // in.clip is the pixel centre in framebuffer pixels here; low-resolution texel centres
-    // sit at integer + 0.5 in texel units.
+// The running sums of a pixel's blend of samples (blend_sample).
+struct Blend {
+    lighting: vec3<f32>,
+    matched: f32,
+    // The darkest and brightest lighting among the 2 × 2 nearest samples on the surface,
+    // and how many lie on it.
+    darkest: f32,
+    brightest: f32,
+    on_surface: u32,
+};
+
+fn empty_blend() -> Blend {
+    return Blend(vec3<f32>(0.0), 0.0, 3.0e38, 0.0, 0u);
+}
+
+// How well sample `low` lies on surface s: 0 where the low-resolution pixel saw no surface.
+fn sample_geometry(low: LowSample, s: Surface, tolerance_m: f32) -> f32 {
+    let off_plane = dot(low.position - s.position, s.normal) / tolerance_m;
+    // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
+    // lighting of the rim of a curved object changes fast with its normal).
+    let facing2 = pow2(max(dot(low.normal, s.normal), 0.0));
+    let facing16 = pow2(pow2(pow2(facing2)));
+    return select(0.0, exp(-off_plane * off_plane) * facing16, low.shaded);
+}
+
+// `b` with sample `low` of geometry `geometry` at `step` from the corner added, for a
+// pixel at `t` from the corner (in samples).
+fn blend_sample(b: Blend, low: LowSample, geometry: f32, step: vec2<i32>, t: vec2<f32>) -> Blend {
+    // Bilinear weights of the 2 × 2 nearest samples; a ring around them only stands in
+    // for the best match.
+    let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
+    let weight = tent.x * tent.y * geometry;
+    let nearest = all(step >= vec2<i32>(0)) && all(step <= vec2<i32>(1));
+    let counted = nearest && geometry > 0.5;
+    let brightness = dot(low.lighting, vec3<f32>(0.2126, 0.7152, 0.0722));
+    return Blend(
+        b.lighting + weight * low.lighting,
+        b.matched + weight,
+        select(b.darkest, min(b.darkest, brightness), counted),
+        select(b.brightest, max(b.brightest, brightness), counted),
+        b.on_surface + select(0u, 1u, counted),
+    );
+}
+
+// Samples on the surface that disagree straddle an edge of the light (a hard shadow's,
+// a rim's) that interpolation would blur and misplace, and a lone one on the surface
+// (a limb a few pixels wide) cannot tell: such pixels are shaded in full too.
+fn blend_agrees(b: Blend) -> bool {
+    return b.on_surface >= 2u && b.brightest <= upsample.max_lighting_ratio * b.darkest + upsample.lighting_floor;
+}
+
+// Where a pixel centre `pixel` (in its own image's pixels, which upsample.full_to_low maps
+// to the samples' image) lies among the samples: the nearest samples' corner, and the
+// pixel's place from it in samples.
+struct SamplePlace {
+    corner: vec2<i32>,
+    t: vec2<f32>,
+};
+
+fn sample_place(pixel: vec2<f32>) -> SamplePlace {
+    // Low-resolution texel centres sit at integer + 0.5 in texel units.
     let at = pixel * upsample.full_to_low - upsample.sample_offset;
     let corner = floor(at);
-    let t = at - corner;
-    var lighting = vec3<f32>(0.0);
-    var matched = 0.0;
+    return SamplePlace(vec2<i32>(corner), at - corner);
+}
+
+// The sample at `corner` + `step`, clamped into the image.
+fn low_sample_near(corner: vec2<i32>, step: vec2<i32>) -> LowSample {
+    let last = vec2<i32>(textureDimensions(low_samples)) - vec2<i32>(1);
+    return low_sample(clamp(corner + step, vec2<i32>(0), last));
+}
+
+// The 2 × 2 nearest samples blended for surface s at `t` from their corner: the lighting
+// (exposed, per unit reflectance) and whether they matched its surface and agreed.
+fn quad_lighting(quad: array<LowSample, 4>, t: vec2<f32>, s: Surface) -> UpsampledLighting {
+    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
+    var b = empty_blend();
+    for (var k = 0u; k < 4u; k++) {
+        let step = vec2<i32>(i32(k % 2u), i32(k / 2u));
+        b = blend_sample(b, quad[k], sample_geometry(quad[k], s, tolerance_m), step, t);
+    }
+    let matches = b.matched >= upsample.min_matched_weight && blend_agrees(b);
+    return UpsampledLighting(b.lighting / b.matched, matches);
+}
+
+// The 2 × 2 samples around `corner`, in quad_lighting's order.
+fn sample_quad(corner: vec2<i32>) -> array<LowSample, 4> {
+    return array<LowSample, 4>(
+        low_sample_near(corner, vec2<i32>(0, 0)),
+        low_sample_near(corner, vec2<i32>(1, 0)),
+        low_sample_near(corner, vec2<i32>(0, 1)),
+        low_sample_near(corner, vec2<i32>(1, 1)),
+    );
+}
+
+// The lighting the samples give the pixel whose centre is `pixel` on surface s (in
+// its own image's pixels; in.clip.xy for a fragment), and whether they matched its
+// surface and agreed. `ring`: where the 2 × 2 nearest do not, the best match among them
+// and the ring of 12 around them (matches is then true: such pixels have no full shading
+// to fall back on). A constant at each call, so the compiler drops the unused half.
+fn upsampled_lighting(pixel: vec2<f32>, s: Surface, ring: bool) -> UpsampledLighting {
+    let place = sample_place(pixel);
+    if !ring {
+        return quad_lighting(sample_quad(place.corner), place.t, s);
+    }
+    let tolerance_m = max(upsample.plane_tolerance_px * pixel_footprint(s.position), 1e-6);
+    var b = empty_blend();
     // The best-matching sample (by score), for pixels the 2 × 2 nearest do not match.
     var best_lighting = vec3<f32>(0.0);
     var best_match = 0.0;
-    // The darkest and brightest lighting among the 2 × 2 nearest samples on the surface,
-    // and how many lie on it.
-    var darkest = 3.0e38;
-    var brightest = 0.0;
-    var on_surface = 0u;
-    let side = select(2u, 4u, ring);
-    let first = select(0, -1, ring);
-    for (var k = 0u; k < side * side; k++) {
-        let step = vec2<i32>(i32(k % side), i32(k / side)) + vec2<i32>(first);
-        let texel = clamp(vec2<i32>(corner) + step, vec2<i32>(0), last);
-        let low = low_sample(texel);
-        let sample = low.lighting;
-        let shaded = low.shaded;
-        let normal = low.normal;
-        let off_plane = dot(low.position - s.position, s.normal) / tolerance_m;
-        // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
-        // lighting of the rim of a curved object changes fast with its normal).
-        let facing2 = pow2(max(dot(normal, s.normal), 0.0));
-        let facing16 = pow2(pow2(pow2(facing2)));
-        // 0 where the low-resolution pixel saw no surface.
-        let geometry = select(0.0, exp(-off_plane * off_plane) * facing16, shaded);
+    for (var k = 0u; k < 16u; k++) {
+        let step = vec2<i32>(i32(k % 4u), i32(k / 4u)) - vec2<i32>(1);
+        let low = low_sample_near(place.corner, step);
+        let geometry = sample_geometry(low, s, tolerance_m);
         // Any surface beats none, the nearer the better, when no sample matches (a sliver
         // such as the top face of a wall takes its neighbour's light rather than none).
-        if ring {
-            let distance2 = dot(vec2<f32>(step) - t, vec2<f32>(step) - t);
-            let score = geometry + select(0.0, 1e-3 / (1.0 + distance2), shaded);
-            let better = score > best_match;
-            best_match = select(best_match, score, better);
-            best_lighting = select(best_lighting, sample, better);
-        }
-        // Bilinear weights of the 2 × 2 nearest samples; the ring around them only stands
-        // in for the best match.
-        let tent = max(vec2<f32>(1.0) - abs(vec2<f32>(step) - t), vec2<f32>(0.0));
-        let weight = tent.x * tent.y * geometry;
-        let nearest = all(step >= vec2<i32>(0)) && all(step <= vec2<i32>(1));
-        let counted = nearest && geometry > 0.5;
-        let brightness = dot(sample, vec3<f32>(0.2126, 0.7152, 0.0722));
-        darkest = select(darkest, min(darkest, brightness), counted);
-        on_surface += select(0u, 1u, counted);
-        brightest = select(brightest, max(brightest, brightness), counted);
-        lighting += weight * sample;
-        matched += weight;
+        let distance2 = dot(vec2<f32>(step) - place.t, vec2<f32>(step) - place.t);
+        let score = geometry + select(0.0, 1e-3 / (1.0 + distance2), low.shaded);
+        let better = score > best_match;
+        best_match = select(best_match, score, better);
+        best_lighting = select(best_lighting, low.lighting, better);
+        b = blend_sample(b, low, geometry, step, place.t);
     }
-    // Samples on the surface that disagree straddle an edge of the light (a hard shadow's,
-    // a rim's) that interpolation would blur and misplace, and a lone one on the surface
-    // (a limb a few pixels wide) cannot tell: such pixels are shaded in full too. (Not
-    // when taking the best match: those pixels have no full shading to fall back on.)
-    let agree = on_surface >= 2u
-        && brightest <= upsample.max_lighting_ratio * darkest + upsample.lighting_floor;
-    let matches = matched >= upsample.min_matched_weight && (ring || agree);
-    if ring && !matches {
-        lighting = best_lighting;
-        matched = 1.0;
+    if b.matched < upsample.min_matched_weight {
+        return UpsampledLighting(best_lighting, true);
     }
-    return UpsampledLighting(lighting / matched, matches);
+    return UpsampledLighting(b.lighting / b.matched, true);
 }
 
 // Upsampling into a multisampled target.

@@ -149,7 +149,7 @@ impl LogShPipeline {
                         &reduced.surface_buffer_layout,
                         &reduced.mapped_visibility_writer_layout,
                     ],
-                    &reduced.listed_pixels_layouts,
+                    &reduced.full_resolution_layouts,
                 ),
                 full_size,
                 reduced.downsample,

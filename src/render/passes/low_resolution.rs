@@ -4,15 +4,15 @@
 //! two, the light of soft shadows at twice the spacing and the sharp lights added at
 //! every sample — and on single-sampled targets the full-resolution frame likewise: the
 //! upsampling and the shading of the pixels it leaves (from the soft layer where there
-//! is one, in full where it does not serve), listed and shaded densely (`listed_pixels`).
+//! is one, in full where it does not serve), in compute passes (`full_resolution`).
 
+use super::full_resolution::{FullResolutionCompute, FullResolutionLayouts};
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout,
     mapped_visibility_writer_layout, surface_buffer_layout,
 };
-use super::listed_pixels::{ListedPixelsLayouts, ListedPixelsPipelines};
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
-use crate::render::descriptors::{COLOR_FORMAT, depth_attachment, depth_test};
+use crate::render::descriptors::{COLOR_FORMAT, depth_test};
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
 use crate::render::target::RenderTarget;
@@ -25,7 +25,7 @@ pub(super) struct ReducedShadingPipelines {
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
     pub mapped_visibility_writer_layout: wgpu::BindGroupLayout,
-    pub listed_pixels_layouts: ListedPixelsLayouts,
+    pub full_resolution_layouts: FullResolutionLayouts,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
     surface_buffer: ByTexture,
@@ -62,15 +62,12 @@ pub(super) struct SoftLayerPipelines {
     shade_sharp: wgpu::RenderPipeline,
 }
 
-/// The full-resolution frame from the surface buffer: the upsampling, full-screen
-/// (fs_upsample_deferred_marking); the pixels it left listed and shaded (with two-level
-/// shading, from the soft layer upsampled to them plus the sharp lights, else or where
-/// the soft layer does not serve in full); their colours drawn into the frame,
-/// full-screen (fs_listed_colour).
+/// The full-resolution frame from the surface buffer: the upsampling and the shading of
+/// the pixels it leaves in compute passes (`full_resolution`), then their colours drawn
+/// into the frame, full-screen (fs_frame_colour).
 pub(super) struct FullResolutionPipelines {
-    upsample: wgpu::RenderPipeline,
-    listed: ListedPixelsPipelines,
-    draw_listed: wgpu::RenderPipeline,
+    compute: FullResolutionCompute,
+    draw_colours: wgpu::RenderPipeline,
 }
 
 impl ReducedShadingPipelines {
@@ -88,7 +85,7 @@ impl ReducedShadingPipelines {
         let low_resolution_layout = low_resolution_layout(device);
         let surface_buffer_layout = surface_buffer_layout(device);
         let mapped_visibility_writer_layout = mapped_visibility_writer_layout(device);
-        let listed_pixels_layouts = ListedPixelsLayouts::new(device);
+        let full_resolution_layouts = FullResolutionLayouts::new(device);
         let surface_variant = Variant { samples: 1, ..variant };
         let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
             full_screen_pipeline(
@@ -151,26 +148,20 @@ impl ReducedShadingPipelines {
             }),
             full_resolution: if shades_unmatched_exactly(variant.samples) {
                 FullResolution::Deferred(FullResolutionPipelines {
-                    upsample: full_screen(
-                        "fs_upsample_deferred_marking",
-                        (Some(COLOR_FORMAT), 1),
-                        Some(&low_resolution_layout),
-                        FullScreenDepth::Marking,
-                    ),
-                    listed: ListedPixelsPipelines::new(
+                    compute: FullResolutionCompute::new(
                         device,
                         module,
                         (
                             [&layouts.frame, &surface_buffer_layout, shadow_layout],
-                            &listed_pixels_layouts,
+                            &full_resolution_layouts,
                         ),
                         &path_constants(paths),
-                        two_level(paths),
+                        (downsample, two_level(paths)),
                     ),
-                    draw_listed: full_screen(
-                        "fs_listed_colour",
+                    draw_colours: full_screen(
+                        "fs_frame_colour",
                         (Some(COLOR_FORMAT), 1),
-                        Some(&listed_pixels_layouts.colours),
+                        Some(&full_resolution_layouts.colours),
                         FullScreenDepth::Unmarked,
                     ),
                 })
@@ -189,7 +180,7 @@ impl ReducedShadingPipelines {
             low_resolution_layout,
             surface_buffer_layout,
             mapped_visibility_writer_layout,
-            listed_pixels_layouts,
+            full_resolution_layouts,
         }
     }
 }
@@ -313,10 +304,11 @@ fn draw_surfaces(
     frame.mark(LABEL);
 }
 
-/// The full-resolution frame deferred: from the surface buffer `shade_low_resolution`
-/// drew (its depth copied into the listed pixels' marks), the upsampling into `target`'s
-/// colour (cleared to `background_linear`), then the pixels it left listed, shaded and
-/// drawn. False, drawing nothing, where `pipelines` have no deferred full-resolution frame.
+/// The full-resolution frame deferred: from the surface buffer and the samples
+/// `shade_low_resolution` drew, the compute passes (`full_resolution`), then their
+/// colours drawn into `target` (cleared to `background_linear`) where the buffer has a
+/// surface. False, drawing nothing, where `pipelines` have no deferred full-resolution
+/// frame.
 pub(super) fn draw_full_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
@@ -325,44 +317,28 @@ pub(super) fn draw_full_resolution(
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) -> bool {
-    let (FullResolution::Deferred(full), Some(listed)) = (&pipelines.full_resolution, low.listed.as_ref()) else {
+    let (FullResolution::Deferred(full), Some(images)) = (&pipelines.full_resolution, low.full_resolution.as_ref())
+    else {
         return false;
     };
-    // The upsampling marks what it drew (depth 1); the listing takes what it left. The
-    // buffer's depth stays as drawn.
-    frame.encoder.copy_texture_to_texture(
-        low.surface.depth.as_image_copy(),
-        listed.marks_texture.as_image_copy(),
-        low.surface.depth.size(),
+    full.compute.draw(
+        frame,
+        images,
+        [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
     );
-    frame.mark("depth copy");
-    let bound = Bound {
+    Bound {
         scene,
         blockers,
         surface: &low.surface.bind_group,
-    };
-    bound.full_screen(
+    }
+    .full_screen(
         frame,
-        "upsampling",
+        "frame colours drawn",
         (
             &[Some(target.color_attachment(background_linear))],
-            Some(depth_attachment(&listed.marks, None, true)),
+            Some(low.surface.depth_tested()),
         ),
-        &[(&full.upsample, Some(low.bind_group()))],
-    );
-    full.listed.shade(
-        frame,
-        listed,
-        [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
-    );
-    bound.full_screen(
-        frame,
-        "listed pixels drawn",
-        (
-            &[Some(target.color_attachment_kept())],
-            Some(depth_attachment(&listed.marks, None, false)),
-        ),
-        &[(&full.draw_listed, Some(&listed.colours_group))],
+        &[(&full.draw_colours, Some(&images.colours_group))],
     );
     true
 }

@@ -1,10 +1,10 @@
 //! The passes that draw a frame: the raster preview without shadows (`raster`), the
 //! log-SH shading with its reduced-resolution (`reduced_shading`) and per-vertex
-//! (`per_vertex`) forms (`logsh`) and the pixels the upsampling leaves shaded densely
-//! (`listed_pixels`), and the importance heat map (`heat_map`).
+//! (`per_vertex`) forms (`logsh`) and its deferred full-resolution frame in compute
+//! passes (`full_resolution`), and the importance heat map (`heat_map`).
 
+mod full_resolution;
 pub mod heat_map;
-mod listed_pixels;
 pub mod logsh;
 mod low_resolution;
 pub mod per_vertex;

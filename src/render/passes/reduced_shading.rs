@@ -35,7 +35,7 @@
 
 use wgpu::util::DeviceExt;
 
-use super::listed_pixels::{ListedPixels, ListedPixelsLayouts};
+use super::full_resolution::{FullResolutionImages, FullResolutionLayouts};
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
     MAPPED_VISIBILITY_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
@@ -140,10 +140,9 @@ pub struct LowResolutionTargets {
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
-    /// Where the full-resolution frame is deferred: the depth its passes mark, and the
-    /// pixels the upsampling leaves listed, shaded (with a soft layer, from it read at
-    /// full resolution) and their colours.
-    pub(crate) listed: Option<ListedPixels>,
+    /// Where the full-resolution frame is deferred: its lists of the pixels the
+    /// upsampling leaves and its colours (`full_resolution`).
+    pub(crate) full_resolution: Option<FullResolutionImages>,
     /// The full-resolution frame is deferred (drawn by full-screen passes from the buffer).
     deferred_frame: bool,
     /// What the surface buffer and the soft layer show, if known
@@ -286,13 +285,13 @@ impl SampleImage {
 impl LowResolutionTargets {
     /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
-    /// surfaces through `surface_layout` ([`surface_buffer_layout`]), the listed pixels'
-    /// resources through `listed_layouts`; `soft_layer`: with
+    /// surfaces through `surface_layout` ([`surface_buffer_layout`]), the full-resolution
+    /// frame's through `full_layouts`; `soft_layer`: with
     /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: the
     /// full-resolution frame is deferred too (its passes start from the buffer's depth).
     pub fn new(
         device: &wgpu::Device,
-        ([layout, surface_layout, writer_layout], listed_layouts): ([&wgpu::BindGroupLayout; 3], &ListedPixelsLayouts),
+        ([layout, surface_layout, writer_layout], full_layouts): ([&wgpu::BindGroupLayout; 3], &FullResolutionLayouts),
         full_size: [u32; 2],
         downsample: u32,
         [soft_layer, deferred_frame]: [bool; 2],
@@ -318,7 +317,11 @@ impl LowResolutionTargets {
                 ),
             )
         });
-        let listed = deferred_frame.then(|| {
+        let full_resolution = deferred_frame.then(|| {
+            let reader = (
+                &samples.view,
+                upsample_params(full_size, [1, downsample], [MAX_LIGHTING_RATIO, LIGHTING_FLOOR]),
+            );
             // The listed pixels upsample the soft layer read at full resolution.
             let soft_layer = soft.as_ref().map(|soft| {
                 let params = upsample_params(
@@ -328,13 +331,13 @@ impl LowResolutionTargets {
                 );
                 (&soft.view, params)
             });
-            ListedPixels::new(device, listed_layouts, full_size, soft_layer)
+            FullResolutionImages::new(device, full_layouts, (full_size, downsample), reader, soft_layer)
         });
         LowResolutionTargets {
             full_size,
             downsample,
             size,
-            listed,
+            full_resolution,
             surface: SurfaceBuffer::new(device, [surface_layout, writer_layout], full_size, size),
             deferred_frame,
             drawn_from: None,

@@ -58,12 +58,11 @@ pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroup
 /// studio at 960 × 540 (320 × 180 samples) with its nine mapped lights takes 2.1 MB.
 pub const MAPPED_VISIBILITY_BUDGET_BYTES: u64 = 128 << 20;
 
-/// The full-resolution surfaces: two images, their depth (copied into the frame's depth
-/// where the full-resolution frame is deferred, whose passes mark pixels in it), and the
-/// bind group through which the full-screen passes read them.
+/// The full-resolution surfaces: two images, their depth (which the pass drawing the
+/// deferred full-resolution frame's colours tests), and the bind group through which the
+/// full-screen passes read them.
 pub(crate) struct SurfaceBuffer {
     views: [wgpu::TextureView; 2],
-    pub(crate) depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
     pub bind_group: wgpu::BindGroup,
     layouts: [wgpu::BindGroupLayout; 2],
@@ -107,10 +106,9 @@ impl SurfaceBuffer {
         let mapped_visibility = mapped_visibility_buffer(device, 4);
         let stale_lights = stale_lights_buffer(device, 1);
         let bind_group = surface_bind_group(device, layout, &views, &mapped_visibility);
-        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
+        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::empty());
         SurfaceBuffer {
             depth_view: depth.create_view(&Default::default()),
-            depth,
             bind_group,
             layouts: [layout.clone(), writer_layout.clone()],
             samples: u64::from(samples[0]) * u64::from(samples[1]),
@@ -168,6 +166,12 @@ impl SurfaceBuffer {
     /// Its depth attachment, cleared and kept (later frames may reuse it).
     pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         depth_attachment(&self.depth_view, Some(1.0), true)
+    }
+
+    /// The buffer's depth as it was drawn, for a pass that only tests it (its pipeline
+    /// writes no depth), kept for later frames.
+    pub(crate) fn depth_tested(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        depth_attachment(&self.depth_view, None, true)
     }
 }
 

@@ -29,7 +29,7 @@ pub const EXACT_LIGHTS: &str = include_str!("../../../shaders/exact_lights.wgsl"
 pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
 pub const LOW_RESOLUTION: &str = include_str!("../../../shaders/low_resolution.wgsl");
-pub const LISTED_PIXELS: &str = include_str!("../../../shaders/listed_pixels.wgsl");
+pub const FULL_RESOLUTION: &str = include_str!("../../../shaders/full_resolution.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
 pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
@@ -82,8 +82,8 @@ pub const FILES: [WgslModule<'static>; 17] = [
         source: LOW_RESOLUTION,
     },
     WgslModule {
-        name: "listed_pixels",
-        source: LISTED_PIXELS,
+        name: "full_resolution",
+        source: FULL_RESOLUTION,
     },
     WgslModule {
         name: "logsh_per_vertex",
@@ -199,9 +199,9 @@ pub fn heat_map_source() -> String {
 pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
     let generated = GeneratedModules::new(order, method, brdf);
     let roots: &[&str] = if sh::supports_per_vertex(order) {
-        &["logsh", "low_resolution", "listed_pixels", "logsh_per_vertex"]
+        &["logsh", "low_resolution", "full_resolution", "logsh_per_vertex"]
     } else {
-        &["logsh", "low_resolution", "listed_pixels"]
+        &["logsh", "low_resolution", "full_resolution"]
     };
     compose(roots, &generated.with_files()).unwrap_or_else(|err| panic!("{err}"))
 }

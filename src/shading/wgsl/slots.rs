@@ -63,24 +63,23 @@ pub const UPSAMPLE: Slot = slot(PASS_GROUP, 0, "upsample");
 pub const LOW_SAMPLES: Slot = slot(PASS_GROUP, 1, "low_samples");
 pub const MAPPED_VISIBILITY_OUT: Slot = slot(PASS_GROUP, 4, "mapped_visibility_out");
 pub const STALE_LIGHTS: Slot = slot(PASS_GROUP, 5, "stale_lights");
-// The listed pixels' passes (listed_pixels.wgsl): bindings clear of the samples' (0, 1),
-// which their group also holds.
-pub const FRAME_DEPTH: Slot = slot(PASS_GROUP, 6, "frame_depth");
-pub const LIST_COUNTS: Slot = slot(PASS_GROUP, 7, "list_counts");
-pub const SHARP_PIXELS: Slot = slot(PASS_GROUP, 8, "sharp_pixels");
+// The deferred full-resolution frame's passes (full_resolution.wgsl): bindings clear of
+// the samples' (0, 1), which their groups also hold.
+pub const LIST_COUNTS: Slot = slot(PASS_GROUP, 6, "list_counts");
+pub const SHARP_PIXELS: Slot = slot(PASS_GROUP, 7, "sharp_pixels");
+pub const SHARP_PIXELS_OUT: Slot = slot(PASS_GROUP, 8, "sharp_pixels_out");
 pub const FULL_PIXELS: Slot = slot(PASS_GROUP, 9, "full_pixels");
-pub const LISTED_COLOURS: Slot = slot(PASS_GROUP, 10, "listed_colours");
-pub const DISPATCH_ARGS: Slot = slot(PASS_GROUP, 11, "dispatch_args");
-pub const LISTED_COLOURS_READ: Slot = slot(PASS_GROUP, 12, "listed_colours_read");
-pub const SHARP_PIXELS_OUT: Slot = slot(PASS_GROUP, 13, "sharp_pixels_out");
-pub const FULL_PIXELS_OUT: Slot = slot(PASS_GROUP, 14, "full_pixels_out");
+pub const FULL_PIXELS_OUT: Slot = slot(PASS_GROUP, 10, "full_pixels_out");
+pub const FRAME_COLOURS: Slot = slot(PASS_GROUP, 11, "frame_colours");
+pub const FRAME_COLOURS_READ: Slot = slot(PASS_GROUP, 12, "frame_colours_read");
+pub const DISPATCH_ARGS: Slot = slot(PASS_GROUP, 13, "dispatch_args");
 
 pub const FRAME_IMAGE: Slot = slot(IMAGE_GROUP, 0, "frame_image");
 pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 38] = [
+pub const ALL: [Slot; 37] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -107,15 +106,14 @@ pub const ALL: [Slot; 38] = [
     LOW_SAMPLES,
     MAPPED_VISIBILITY_OUT,
     STALE_LIGHTS,
-    FRAME_DEPTH,
     LIST_COUNTS,
     SHARP_PIXELS,
-    FULL_PIXELS,
-    LISTED_COLOURS,
-    DISPATCH_ARGS,
-    LISTED_COLOURS_READ,
     SHARP_PIXELS_OUT,
+    FULL_PIXELS,
     FULL_PIXELS_OUT,
+    FRAME_COLOURS,
+    FRAME_COLOURS_READ,
+    DISPATCH_ARGS,
     FRAME_IMAGE,
     FRAME_SAMPLER,
     SHADOW_VIEW,

@@ -1,41 +1,39 @@
-//! The pixels the deferred upsampling leaves, listed and shaded densely (see
-//! shaders/listed_pixels.wgsl for why): a compute pass lists the surface pixels whose depth
-//! the upsampling left below 1, compute passes shade each list 64 pixels at a time
-//! (dispatched indirectly, as many workgroups as a list holds) into an image at those
-//! pixels, and a full-screen pass with the upsampling's depth test copies that image into
-//! the frame where the upsampling did not draw.
+//! The full-resolution frame of deferred reduced shading on single-sampled targets, in
+//! compute passes (see shaders/full_resolution.wgsl for why): the upsampling, a d × d
+//! block of pixels per invocation, writes the pixels the samples match to an image of the
+//! frame's colours and lists the rest; compute passes shade each list 64 pixels at a time
+//! (dispatched indirectly, as many workgroups as a list holds) into the same image; a
+//! full-screen pass copies it into the frame where the surface buffer has a surface.
 //!
-//! The pipelines ([`ListedPixelsPipelines`]) belong to a scene pipeline; the lists, the
-//! colours and the depth the upsampling marks ([`ListedPixels`]) to the frame size's
-//! reduced-shading targets.
+//! The pipelines ([`FullResolutionCompute`]) belong to a scene pipeline; the lists and the
+//! colours ([`FullResolutionImages`]) to the frame size's reduced-shading targets.
 
-use super::surface_buffer::{depth_texture, image_extent};
+use super::surface_buffer::image_extent;
 use crate::render::descriptors::{buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry};
 use crate::render::pass_timer::TimedEncoder;
 use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 use wgpu::util::DeviceExt;
 
-/// Where the colours of listed pixels wait to be drawn: full f32, so a pixel's colour
-/// reaches the frame exactly as a fragment shader would have written it.
-const LISTED_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Where the frame's colours wait to be drawn: full f32, so a pixel's colour reaches the
+/// frame exactly as a fragment shader would have written it.
+const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The lists' entries: a pixel's x | y << 16.
 const LIST_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
-/// The listing pass's workgroup: LIST_WORKGROUP_SIDE² invocations, each looking at
-/// LIST_RUN_PX pixels along a row (override constants of listed_pixels.wgsl).
-const LIST_WORKGROUP_SIDE: u32 = 8;
-const LIST_RUN_PX: u32 = 4;
+/// The upsampling's workgroups: BLOCK_WORKGROUP_SIDE² invocations, each a block of d × d
+/// pixels (override constants of full_resolution.wgsl).
+const BLOCK_WORKGROUP_SIDE: u32 = 8;
 
 /// Byte offsets of the shading passes' workgroup counts in the dispatch arguments.
 const SHARP_ARGS_OFFSET: u64 = 0;
 const FULL_ARGS_OFFSET: u64 = 12;
 
-/// The bind group layouts of the listed pixels' passes (group 3 of each).
-pub struct ListedPixelsLayouts {
-    /// The listing: the marked depth, the lists' lengths and the lists written.
-    pub listing: wgpu::BindGroupLayout,
+/// The bind group layouts of the full-resolution passes (group 3 of each).
+pub struct FullResolutionLayouts {
+    /// The upsampling: the samples, the lists' lengths, the lists written, the colours.
+    pub upsampling: wgpu::BindGroupLayout,
     /// The pass that turns the lists' lengths into workgroup counts.
     pub dispatch_args: wgpu::BindGroupLayout,
     /// The shading from the soft layer: the soft layer read at full resolution, the sharp
@@ -47,8 +45,8 @@ pub struct ListedPixelsLayouts {
     pub colours: wgpu::BindGroupLayout,
 }
 
-impl ListedPixelsLayouts {
-    pub fn new(device: &wgpu::Device) -> ListedPixelsLayouts {
+impl FullResolutionLayouts {
+    pub fn new(device: &wgpu::Device) -> FullResolutionLayouts {
         let compute = wgpu::ShaderStages::COMPUTE;
         let texture = |slot, stages, sample_type| {
             layout_entry(
@@ -73,21 +71,25 @@ impl ListedPixelsLayouts {
                 },
             )
         };
+        let samples = layout_entry(slots::UPSAMPLE, compute, buffer_type(wgpu::BufferBindingType::Uniform));
         let counts = storage_buffer_entry(slots::LIST_COUNTS, compute, false);
+        let colours = written(slots::FRAME_COLOURS, FRAME_COLOURS_FORMAT);
         let layout = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some(label),
                 entries,
             })
         };
-        ListedPixelsLayouts {
-            listing: layout(
-                "pixels left listed",
+        FullResolutionLayouts {
+            upsampling: layout(
+                "upsampling",
                 &[
-                    texture(slots::FRAME_DEPTH, compute, wgpu::TextureSampleType::Depth),
+                    samples,
+                    uint_texture(slots::LOW_SAMPLES),
                     counts,
                     written(slots::SHARP_PIXELS_OUT, LIST_FORMAT),
                     written(slots::FULL_PIXELS_OUT, LIST_FORMAT),
+                    colours,
                 ],
             ),
             dispatch_args: layout(
@@ -97,26 +99,22 @@ impl ListedPixelsLayouts {
             sharp: layout(
                 "listed pixels shaded from the soft layer",
                 &[
-                    layout_entry(slots::UPSAMPLE, compute, buffer_type(wgpu::BufferBindingType::Uniform)),
+                    samples,
                     uint_texture(slots::LOW_SAMPLES),
                     counts,
                     uint_texture(slots::SHARP_PIXELS),
                     written(slots::FULL_PIXELS_OUT, LIST_FORMAT),
-                    written(slots::LISTED_COLOURS, LISTED_COLOURS_FORMAT),
+                    colours,
                 ],
             ),
             full: layout(
                 "listed pixels shaded in full",
-                &[
-                    counts,
-                    uint_texture(slots::FULL_PIXELS),
-                    written(slots::LISTED_COLOURS, LISTED_COLOURS_FORMAT),
-                ],
+                &[counts, uint_texture(slots::FULL_PIXELS), colours],
             ),
             colours: layout(
-                "listed pixels' colours",
+                "frame colours",
                 &[texture(
-                    slots::LISTED_COLOURS_READ,
+                    slots::FRAME_COLOURS_READ,
                     wgpu::ShaderStages::FRAGMENT,
                     wgpu::TextureSampleType::Float { filterable: false },
                 )],
@@ -125,26 +123,27 @@ impl ListedPixelsLayouts {
     }
 }
 
-/// The compute pipelines of the listed pixels (the full-screen pass that draws them is
-/// built with the other full-screen passes).
-pub(super) struct ListedPixelsPipelines {
-    list: wgpu::ComputePipeline,
+/// The compute pipelines of the full-resolution frame (the full-screen pass that draws its
+/// colours is built with the other full-screen passes).
+pub(super) struct FullResolutionCompute {
+    upsample: wgpu::ComputePipeline,
     dispatch_args: wgpu::ComputePipeline,
     /// Two-level shading: the listed pixels from the soft layer and the sharp lights.
     shade_sharp: Option<wgpu::ComputePipeline>,
     shade_full: wgpu::ComputePipeline,
 }
 
-impl ListedPixelsPipelines {
+impl FullResolutionCompute {
     /// The pipelines from `module` with `constants` (the compiled paths), the scene's
-    /// groups 0–2 `groups`; `two_level`: with the sharp list.
+    /// groups 0–2 `groups`, for samples `downsample` pixels apart; `two_level`: with the
+    /// sharp list.
     pub fn new(
         device: &wgpu::Device,
         module: &wgpu::ShaderModule,
-        (groups, layouts): ([&wgpu::BindGroupLayout; 3], &ListedPixelsLayouts),
+        (groups, layouts): ([&wgpu::BindGroupLayout; 3], &FullResolutionLayouts),
         constants: &[(&str, f64)],
-        two_level: bool,
-    ) -> ListedPixelsPipelines {
+        (downsample, two_level): (u32, bool),
+    ) -> FullResolutionCompute {
         let mut constants = constants.to_vec();
         let pipeline = |entry_point: &str, group_3: &wgpu::BindGroupLayout, constants: &[(&str, f64)]| {
             let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> =
@@ -171,22 +170,21 @@ impl ListedPixelsPipelines {
         let dispatch_args = pipeline("cs_dispatch_args", &layouts.dispatch_args, &[]);
         constants.extend([
             ("LIST_FOR_SHARP", if two_level { 1.0 } else { 0.0 }),
-            ("LIST_WORKGROUP_SIDE", f64::from(LIST_WORKGROUP_SIDE)),
-            ("LIST_RUN_PX", f64::from(LIST_RUN_PX)),
+            ("BLOCK_PX", f64::from(downsample)),
+            ("BLOCK_WORKGROUP_SIDE", f64::from(BLOCK_WORKGROUP_SIDE)),
         ]);
-        ListedPixelsPipelines {
-            list: pipeline("cs_list_unshaded", &layouts.listing, &constants),
+        FullResolutionCompute {
+            upsample: pipeline("cs_upsample_blocks", &layouts.upsampling, &constants),
             dispatch_args,
             shade_sharp,
             shade_full,
         }
     }
 
-    /// Lists the pixels `listed`'s depth leaves unmarked and shades them into its colours,
-    /// with groups 0–2 `groups` (frame, surface buffer, shadow).
-    pub fn shade(&self, frame: &mut TimedEncoder, listed: &ListedPixels, groups: [&wgpu::BindGroup; 3]) {
-        frame.encoder.clear_buffer(&listed.counts, 0, None);
-        let [width, height] = listed.size;
+    /// Upsamples the samples into `images`' colours, lists the pixels they leave and
+    /// shades those, with groups 0–2 `groups` (frame, surface buffer, shadow).
+    pub fn draw(&self, frame: &mut TimedEncoder, images: &FullResolutionImages, groups: [&wgpu::BindGroup; 3]) {
+        frame.encoder.clear_buffer(&images.counts, 0, None);
         let pass = |frame: &mut TimedEncoder, label: &'static str, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
             let mut pass = frame.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(label),
@@ -204,45 +202,52 @@ impl ListedPixelsPipelines {
         };
         let dispatch_args = |pass: &mut wgpu::ComputePass<'_>| {
             pass.set_pipeline(&self.dispatch_args);
-            pass.set_bind_group(slots::PASS_GROUP, &listed.dispatch_args_group, &[]);
+            pass.set_bind_group(slots::PASS_GROUP, &images.dispatch_args_group, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         };
-        pass(frame, "pixels left listed", &|pass| {
-            pass.set_pipeline(&self.list);
-            pass.set_bind_group(slots::PASS_GROUP, &listed.listing_group, &[]);
+        pass(frame, "upsampling", &|pass| {
+            pass.set_pipeline(&self.upsample);
+            pass.set_bind_group(slots::PASS_GROUP, &images.upsampling_group, &[]);
+            let [blocks_x, blocks_y] = images.blocks;
             pass.dispatch_workgroups(
-                width.div_ceil(LIST_RUN_PX * LIST_WORKGROUP_SIDE),
-                height.div_ceil(LIST_WORKGROUP_SIDE),
+                blocks_x.div_ceil(BLOCK_WORKGROUP_SIDE),
+                blocks_y.div_ceil(BLOCK_WORKGROUP_SIDE),
                 1,
             );
             dispatch_args(pass);
         });
-        if let (Some(shade_sharp), Some(sharp_group)) = (&self.shade_sharp, &listed.sharp_group) {
+        if let (Some(shade_sharp), Some(sharp_group)) = (&self.shade_sharp, &images.sharp_group) {
             pass(frame, "listed pixels shaded from the soft layer", &|pass| {
                 pass.set_pipeline(shade_sharp);
                 pass.set_bind_group(slots::PASS_GROUP, sharp_group, &[]);
-                pass.dispatch_workgroups_indirect(&listed.dispatch_args, SHARP_ARGS_OFFSET);
+                pass.dispatch_workgroups_indirect(&images.dispatch_args, SHARP_ARGS_OFFSET);
                 dispatch_args(pass);
             });
         }
         pass(frame, "listed pixels shaded in full", &|pass| {
             pass.set_pipeline(&self.shade_full);
-            pass.set_bind_group(slots::PASS_GROUP, &listed.full_group, &[]);
-            pass.dispatch_workgroups_indirect(&listed.dispatch_args, FULL_ARGS_OFFSET);
+            pass.set_bind_group(slots::PASS_GROUP, &images.full_group, &[]);
+            pass.dispatch_workgroups_indirect(&images.dispatch_args, FULL_ARGS_OFFSET);
         });
     }
 }
 
-/// One frame size's lists, colours and the depth the full-resolution passes mark.
-pub(crate) struct ListedPixels {
-    size: [u32; 2],
-    /// The frame's depth for the upsampling and the drawing of the colours: a copy of the
-    /// surface buffer's, set to 1 where the upsampling draws.
-    pub(crate) marks_texture: wgpu::Texture,
-    pub(crate) marks: wgpu::TextureView,
+/// Blocks of `downsample` × `downsample` pixels, each sharing its 2 × 2 nearest samples,
+/// that cover a frame of `size` (full_resolution.wgsl's cs_upsample_blocks): block i
+/// along an axis starts at pixel downsample · (i − 1) + ⌊downsample / 2⌋, block 0 taking
+/// the pixels before the first sample.
+pub fn upsampling_blocks(size: [u32; 2], downsample: u32) -> [u32; 2] {
+    let d = downsample.max(1);
+    size.map(|side| (side + d - d / 2).div_ceil(d))
+}
+
+/// One frame size's lists and colours.
+pub(crate) struct FullResolutionImages {
+    /// Upsampling blocks along each side ([`upsampling_blocks`]).
+    blocks: [u32; 2],
     counts: wgpu::Buffer,
     dispatch_args: wgpu::Buffer,
-    listing_group: wgpu::BindGroup,
+    upsampling_group: wgpu::BindGroup,
     dispatch_args_group: wgpu::BindGroup,
     /// Present with a soft layer.
     sharp_group: Option<wgpu::BindGroup>,
@@ -251,23 +256,20 @@ pub(crate) struct ListedPixels {
     pub(crate) colours_group: wgpu::BindGroup,
 }
 
-impl ListedPixels {
-    /// Lists and images for frames of `size`; `soft_layer`: the soft layer the listed
-    /// pixels upsample (its view and how a full-resolution reader finds its samples),
-    /// with two-level shading.
+/// Samples as a reader finds them: their image and the reader's upsampling parameters.
+pub(crate) type SampleReader<'a> = (&'a wgpu::TextureView, GpuUpsampleParams);
+
+impl FullResolutionImages {
+    /// Lists and colours for frames of `size` upsampled from `samples`, spaced
+    /// `downsample` pixels apart; `soft_layer`: with two-level shading, the soft layer the
+    /// listed pixels upsample.
     pub fn new(
         device: &wgpu::Device,
-        layouts: &ListedPixelsLayouts,
-        size: [u32; 2],
-        soft_layer: Option<(&wgpu::TextureView, GpuUpsampleParams)>,
-    ) -> ListedPixels {
-        let marks = depth_texture(
-            device,
-            "frame marks",
-            size,
-            wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
-        let marks_view = marks.create_view(&Default::default());
+        layouts: &FullResolutionLayouts,
+        (size, downsample): ([u32; 2], u32),
+        samples: SampleReader<'_>,
+        soft_layer: Option<SampleReader<'_>>,
+    ) -> FullResolutionImages {
         let buffer = |label, bytes: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -278,7 +280,11 @@ impl ListedPixels {
         };
         let storage = wgpu::BufferUsages::STORAGE;
         let counts = buffer("listed pixels' counts", 8, storage | wgpu::BufferUsages::COPY_DST);
-        let dispatch_args = buffer("listed pixels' dispatch arguments", 24, storage | wgpu::BufferUsages::INDIRECT);
+        let dispatch_args = buffer(
+            "listed pixels' dispatch arguments",
+            24,
+            storage | wgpu::BufferUsages::INDIRECT,
+        );
         let image = |label, format| {
             frame_texture(
                 device,
@@ -293,7 +299,7 @@ impl ListedPixels {
         };
         let sharp_pixels = image("pixels to shade from the soft layer", LIST_FORMAT);
         let full_pixels = image("pixels to shade in full", LIST_FORMAT);
-        let colours = image("listed pixels' colours", LISTED_COLOURS_FORMAT);
+        let colours = image("frame colours", FRAME_COLOURS_FORMAT);
         let view = wgpu::BindingResource::TextureView;
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -302,35 +308,41 @@ impl ListedPixels {
                 entries,
             })
         };
-        let sharp_group = soft_layer.map(|(soft_view, params)| {
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("soft layer at full resolution"),
+        let params = |(_, params): SampleReader<'_>| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("upsampling parameters"),
                 contents: bytemuck::bytes_of(&params),
                 usage: wgpu::BufferUsages::UNIFORM,
-            });
+            })
+        };
+        let sample_params = params(samples);
+        let sharp_group = soft_layer.map(|soft| {
+            let soft_params = params(soft);
             group(
                 "listed pixels shaded from the soft layer",
                 &layouts.sharp,
                 &slot_entries([
-                    (slots::UPSAMPLE, params.as_entire_binding()),
-                    (slots::LOW_SAMPLES, view(soft_view)),
+                    (slots::UPSAMPLE, soft_params.as_entire_binding()),
+                    (slots::LOW_SAMPLES, view(soft.0)),
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::SHARP_PIXELS, view(&sharp_pixels)),
                     (slots::FULL_PIXELS_OUT, view(&full_pixels)),
-                    (slots::LISTED_COLOURS, view(&colours)),
+                    (slots::FRAME_COLOURS, view(&colours)),
                 ]),
             )
         });
-        ListedPixels {
-            size,
-            listing_group: group(
-                "pixels left listed",
-                &layouts.listing,
+        FullResolutionImages {
+            blocks: upsampling_blocks(size, downsample),
+            upsampling_group: group(
+                "upsampling",
+                &layouts.upsampling,
                 &slot_entries([
-                    (slots::FRAME_DEPTH, view(&marks_view)),
+                    (slots::UPSAMPLE, sample_params.as_entire_binding()),
+                    (slots::LOW_SAMPLES, view(samples.0)),
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::SHARP_PIXELS_OUT, view(&sharp_pixels)),
                     (slots::FULL_PIXELS_OUT, view(&full_pixels)),
+                    (slots::FRAME_COLOURS, view(&colours)),
                 ]),
             ),
             dispatch_args_group: group(
@@ -348,18 +360,48 @@ impl ListedPixels {
                 &slot_entries([
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::FULL_PIXELS, view(&full_pixels)),
-                    (slots::LISTED_COLOURS, view(&colours)),
+                    (slots::FRAME_COLOURS, view(&colours)),
                 ]),
             ),
             colours_group: group(
-                "listed pixels' colours",
+                "frame colours",
                 &layouts.colours,
-                &slot_entries([(slots::LISTED_COLOURS_READ, view(&colours))]),
+                &slot_entries([(slots::FRAME_COLOURS_READ, view(&colours))]),
             ),
-            marks_texture: marks,
-            marks: marks_view,
             counts,
             dispatch_args,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The corner of the 2 × 2 samples nearest to pixel `p` for samples at pixels
+    /// d·k + ⌊d/2⌋ (exact arithmetic: (p − ⌊d/2⌋) / d rounded down).
+    fn nearest_corner(p: i64, d: i64) -> i64 {
+        (p - d / 2).div_euclid(d)
+    }
+
+    #[test]
+    fn each_block_holds_exactly_the_pixels_of_its_corner() {
+        for d in 1..=8u32 {
+            for side in [1u32, 2, 3, 7, 540, 541, 960] {
+                let blocks = upsampling_blocks([side, side], d)[0];
+                let mut covered = vec![0u32; side as usize];
+                for block in 0..blocks {
+                    let (d, block) = (i64::from(d), i64::from(block));
+                    let first = d * (block - 1) + d / 2;
+                    for p in first..first + d {
+                        if (0..i64::from(side)).contains(&p) {
+                            assert_eq!(nearest_corner(p, d), block - 1, "d {d}, pixel {p}");
+                            covered[p as usize] += 1;
+                        }
+                    }
+                }
+                assert!(covered.iter().all(|&n| n == 1), "d {d}, side {side}: {covered:?}");
+            }
         }
     }
 }

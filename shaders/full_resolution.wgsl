@@ -1,0 +1,162 @@
+// The full-resolution frame of deferred reduced shading on single-sampled targets
+// (src/render/passes/full_resolution.rs), in compute passes over the surface buffer:
+//
+// 1. cs_upsample_blocks: each invocation takes the d × d pixels that share their 2 × 2
+//    nearest samples (d the samples' spacing), reads and unpacks those four samples once
+//    and blends them for each of its pixels (reduced_shading.wgsl's quad_lighting, as a
+//    fragment would for itself: the same pixel gets the same colour). Pixels the samples
+//    match are written to the frame's colours; those they do not match, or where they
+//    disagree, go on a list.
+// 2. cs_shade_listed_sharp (two-level shading): a listed pixel takes the soft layer
+//    upsampled to it plus the sharp lights shaded at the pixel; where the soft layer does
+//    not match or disagrees, it goes on a second list. With one level every listed pixel
+//    goes straight to the second list.
+// 3. cs_shade_listed_full: the pixels on the second list shaded in full.
+// 4. fs_frame_colour: a full-screen pass copies the colours into the frame wherever the
+//    surface buffer has a surface (its depth, tested read-only).
+//
+// Why: a fragment pass reads the four samples for every pixel (a fetch and an unpack
+// each, nine pixels reading the same four at the default spacing), and the pixels the
+// samples leave (about 3 % of the studio's frame: the edges of hard shadows, rims,
+// silhouettes) lie scattered along lines, where a software GPU, which shades a fragment
+// pass in blocks of pixels, paid the full shading for whole blocks around one or two of
+// them. Listed, they are shaded 64 at a time (docs/performance.md).
+// #import low_resolution reduced_shading logsh slots
+
+// How many pixels each list holds (cleared before the upsampling).
+struct ListCounts {
+    sharp: atomic<u32>,
+    full: atomic<u32>,
+};
+@group(PASS_GROUP) @binding(LIST_COUNTS_BINDING) var<storage, read_write> list_counts: ListCounts;
+// The pixels to shade from the soft layer and the sharp lights, and those to shade in full,
+// each x | y << 16 (frames are below 65 536 pixels on a side): entry i of a list at texel
+// (i mod width, i / width) of an image of the frame's size, written by one pass and read
+// by the next. (Images of the frame's size fit every device that draws the frame; a
+// storage buffer of 4 bytes a pixel passed the binding limit of some.)
+@group(PASS_GROUP) @binding(SHARP_PIXELS_OUT_BINDING) var sharp_pixels_out: texture_storage_2d<r32uint, write>;
+@group(PASS_GROUP) @binding(SHARP_PIXELS_BINDING) var sharp_pixels: texture_2d<u32>;
+@group(PASS_GROUP) @binding(FULL_PIXELS_OUT_BINDING) var full_pixels_out: texture_storage_2d<r32uint, write>;
+@group(PASS_GROUP) @binding(FULL_PIXELS_BINDING) var full_pixels: texture_2d<u32>;
+// Every surface pixel's colour, tone-mapped (what a fragment shader would write to the
+// frame), written by the passes above; read by fs_frame_colour.
+@group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<rgba32float, write>;
+@group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<f32>;
+// The workgroup counts of the two shading passes' indirect dispatches: sharp xyz, full xyz.
+@group(PASS_GROUP) @binding(DISPATCH_ARGS_BINDING) var<storage, read_write> dispatch_args: array<u32, 6>;
+
+// Invocations per workgroup of the listed pixels' shading passes.
+const LISTED_WORKGROUP_SIZE: u32 = 64u;
+
+// Set by full_resolution.rs: the samples' spacing d in pixels (each upsampling invocation
+// takes d × d pixels), the side of the upsampling's square workgroups, and whether the
+// pixels the samples leave go to the sharp list (two-level shading) or the full one.
+override BLOCK_PX: u32;
+override BLOCK_WORKGROUP_SIDE: u32;
+override LIST_FOR_SHARP: bool;
+
+fn packed_pixel(pixel: vec2<u32>) -> u32 {
+    return pixel.x | (pixel.y << 16u);
+}
+
+fn unpacked_pixel(packed: u32) -> vec2<i32> {
+    return vec2<i32>(i32(packed & 0xffffu), i32(packed >> 16u));
+}
+
+// Where entry `entry` of a list `width` texels wide sits.
+fn entry_texel(entry: u32, width: u32) -> vec2<u32> {
+    return vec2<u32>(entry % width, entry / width);
+}
+
+fn list_on_sharp(pixel: vec2<u32>) {
+    let entry = atomicAdd(&list_counts.sharp, 1u);
+    textureStore(sharp_pixels_out, entry_texel(entry, textureDimensions(sharp_pixels_out).x), vec4<u32>(packed_pixel(pixel)));
+}
+
+fn list_on_full(pixel: vec2<u32>) {
+    let entry = atomicAdd(&list_counts.full, 1u);
+    textureStore(full_pixels_out, entry_texel(entry, textureDimensions(full_pixels_out).x), vec4<u32>(packed_pixel(pixel)));
+}
+
+// Block (i, j) holds the pixels whose nearest samples' corner is (i − 1, j − 1): with the
+// samples at pixels d·k + ⌊d/2⌋ (low_resolution.wgsl's level_pixel), pixels d·(i − 1) +
+// ⌊d/2⌋ up to d more along each axis (reduced_shading.rs tests the mapping). Block 0
+// holds the pixels before the first sample, whose corner −1 clamps to sample 0.
+@compute @workgroup_size(BLOCK_WORKGROUP_SIDE, BLOCK_WORKGROUP_SIDE)
+fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<i32>(textureDimensions(surface_buffer_a));
+    let d = i32(BLOCK_PX);
+    let corner = vec2<i32>(id.xy) - vec2<i32>(1);
+    let first = d * corner + vec2<i32>(d / 2);
+    if any(first >= size) {
+        return;
+    }
+    let quad = sample_quad(corner);
+    for (var k = 0u; k < BLOCK_PX * BLOCK_PX; k++) {
+        let pixel = first + vec2<i32>(i32(k % BLOCK_PX), i32(k / BLOCK_PX));
+        if all(pixel >= vec2<i32>(0)) && all(pixel < size) {
+            let buffered = buffered_surface(pixel);
+            let s = buffered.s;
+            // The pixel's place among the samples, as sample_place gives a fragment at its
+            // centre, from the block's corner.
+            let at = (vec2<f32>(pixel) + vec2<f32>(0.5)) * upsample.full_to_low - upsample.sample_offset;
+            let up = quad_lighting(quad, at - vec2<f32>(corner), s);
+            if buffered.drawn {
+                if up.matches {
+                    let colour = tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting);
+                    textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+                } else if LIST_FOR_SHARP {
+                    list_on_sharp(vec2<u32>(pixel));
+                } else {
+                    list_on_full(vec2<u32>(pixel));
+                }
+            }
+        }
+    }
+}
+
+// The shading passes' workgroup counts from the lists' lengths.
+@compute @workgroup_size(1)
+fn cs_dispatch_args() {
+    let groups = (vec2<u32>(atomicLoad(&list_counts.sharp), atomicLoad(&list_counts.full)) + vec2<u32>(LISTED_WORKGROUP_SIZE - 1u)) / LISTED_WORKGROUP_SIZE;
+    dispatch_args = array<u32, 6>(groups.x, 1u, 1u, groups.y, 1u, 1u);
+}
+
+// A listed pixel from the soft layer upsampled to it (group 3's samples) plus the sharp
+// lights shaded here, or put on the full list where the soft layer does not match it or
+// disagrees.
+@compute @workgroup_size(LISTED_WORKGROUP_SIZE)
+fn cs_shade_listed_sharp(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= atomicLoad(&list_counts.sharp) {
+        return;
+    }
+    let pixel = unpacked_pixel(textureLoad(sharp_pixels, entry_texel(id.x, textureDimensions(sharp_pixels).x), 0).x);
+    let s = buffered_surface(pixel).s;
+    // The pixel's centre, as a fragment's position is.
+    let soft = upsampled_lighting(vec2<f32>(pixel) + vec2<f32>(0.5), s, false);
+    if soft.matches {
+        let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
+        let colour = tonemap_aces_fit(frame.exposure * (s.emissive + sharp) + reflectance(s) * soft.lighting);
+        textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+    } else {
+        list_on_full(vec2<u32>(pixel));
+    }
+}
+
+// A listed pixel shaded in full.
+@compute @workgroup_size(LISTED_WORKGROUP_SIZE)
+fn cs_shade_listed_full(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= atomicLoad(&list_counts.full) {
+        return;
+    }
+    let pixel = unpacked_pixel(textureLoad(full_pixels, entry_texel(id.x, textureDimensions(full_pixels).x), 0).x);
+    let s = buffered_surface(pixel).s;
+    textureStore(frame_colours, pixel, vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0));
+}
+
+// The colours into the frame, at the pixels where the surface buffer has a surface (the
+// full-screen triangle at depth 1 passes the test "greater" only there).
+@fragment
+fn fs_frame_colour(in: FullScreen) -> @location(0) vec4<f32> {
+    return textureLoad(frame_colours_read, vec2<i32>(in.clip.xy), 0);
+}
