@@ -229,22 +229,30 @@ pub(super) fn shade_low_resolution(
     // surfaces, those lights' geometry and their maps do; else the marking pass writes it.
     let (mark, writing) = match &pipelines.mark_keeping_visibility {
         Some(keeping) if !low.mapped_visibility_current() => (
-            (keeping, Some(&low.surface.mapped_visibility_writer)),
+            Some((keeping, Some(&low.surface.mapped_visibility_writer))),
             // The buffer is written in this pass, so the surface group reads none.
             &low.surface.bind_group_without_visibility,
         ),
-        _ => ((&pipelines.mark_surface_samples, None), &low.surface.bind_group),
+        // With the surfaces the last marks were made on, the marks are copied back.
+        _ if low.surfaces_current() => (None, &low.surface.bind_group),
+        _ => (Some((&pipelines.mark_surface_samples, None)), &low.surface.bind_group),
     };
-    Bound {
-        surface: writing,
-        ..bound
+    match mark {
+        Some(mark) => {
+            Bound {
+                surface: writing,
+                ..bound
+            }
+            .full_screen(
+                frame,
+                "low-resolution depth",
+                (&[], Some(low.low_depth_attachment(true))),
+                &[mark],
+            );
+            low.keep_marked_samples(frame.encoder);
+        }
+        None => low.restore_marked_samples(frame.encoder),
     }
-    .full_screen(
-        frame,
-        "low-resolution depth",
-        (&[], Some(low.low_depth_attachment(true))),
-        &[mark],
-    );
     let samples = low.samples.color_attachments();
     match (&pipelines.soft_layer, &low.soft) {
         (Some(soft_pipelines), Some(soft)) => {
