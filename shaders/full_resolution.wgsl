@@ -68,6 +68,11 @@ fn entry_texel(entry: u32, width: u32) -> vec2<u32> {
     return vec2<u32>(entry % width, entry / width);
 }
 
+// The pixel entry `entry` of `list` holds.
+fn listed_pixel(list: texture_2d<u32>, entry: u32) -> vec2<i32> {
+    return unpacked_pixel(textureLoad(list, entry_texel(entry, textureDimensions(list).x), 0).x);
+}
+
 fn list_on_sharp(pixel: vec2<u32>) {
     let entry = atomicAdd(&list_counts.sharp, 1u);
     textureStore(sharp_pixels_out, entry_texel(entry, textureDimensions(sharp_pixels_out).x), vec4<u32>(packed_pixel(pixel)));
@@ -130,7 +135,7 @@ fn cs_shade_listed_sharp(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= atomicLoad(&list_counts.sharp) {
         return;
     }
-    let pixel = unpacked_pixel(textureLoad(sharp_pixels, entry_texel(id.x, textureDimensions(sharp_pixels).x), 0).x);
+    let pixel = listed_pixel(sharp_pixels, id.x);
     let s = buffered_surface(pixel).s;
     // The pixel's centre, as a fragment's position is.
     let soft = upsampled_lighting(vec2<f32>(pixel) + vec2<f32>(0.5), s, false);
@@ -149,7 +154,7 @@ fn cs_shade_listed_full(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= atomicLoad(&list_counts.full) {
         return;
     }
-    let pixel = unpacked_pixel(textureLoad(full_pixels, entry_texel(id.x, textureDimensions(full_pixels).x), 0).x);
+    let pixel = listed_pixel(full_pixels, id.x);
     let s = buffered_surface(pixel).s;
     textureStore(frame_colours, pixel, vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0));
 }

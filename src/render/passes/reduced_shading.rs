@@ -427,24 +427,19 @@ impl LowResolutionTargets {
     /// Records a copy of the low-resolution depth just marked, for later frames with the
     /// same surfaces ([`Self::restore_marked_samples`]).
     pub(crate) fn keep_marked_samples(&self, encoder: &mut wgpu::CommandEncoder) {
-        let size = self.low_depth_texture.size();
-        encoder.copy_texture_to_texture(
-            self.low_depth_texture.as_image_copy(),
-            self.marked_samples.as_image_copy(),
-            size,
-        );
+        copy_whole(encoder, &self.low_depth_texture, &self.marked_samples);
     }
 
     /// Records the low-resolution depth as the last marking pass left it: what that pass
     /// would draw again where the surfaces are current.
     pub(crate) fn restore_marked_samples(&self, encoder: &mut wgpu::CommandEncoder) {
-        let size = self.low_depth_texture.size();
-        encoder.copy_texture_to_texture(
-            self.marked_samples.as_image_copy(),
-            self.low_depth_texture.as_image_copy(),
-            size,
-        );
+        copy_whole(encoder, &self.marked_samples, &self.low_depth_texture);
     }
+}
+
+/// Records a copy of all of `from` into `to` (of the same size and format).
+fn copy_whole(encoder: &mut wgpu::CommandEncoder, from: &wgpu::Texture, to: &wgpu::Texture) {
+    encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
 }
 
 #[cfg(test)]
