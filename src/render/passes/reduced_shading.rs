@@ -16,11 +16,13 @@
 //! spacing; the samples ([`LOW_RESOLUTION_FORMATS`]) shaded by full-screen passes
 //! reading the buffer (one level: in full; two levels: the soft layer upsampled plus the
 //! sharp lights, and in full where the soft layer does not match or disagrees); then in
-//! the frame's [`crate::render::RenderTarget`] the upsampling, full-screen as well, and the
-//! pixels it left, listed and shaded densely by compute passes (`listed_pixels`; two
-//! levels: the soft layer upsampled plus the sharp lights, and in full where the soft
-//! layer does not match or disagrees; one level: in full). Multisampled targets draw the full-resolution
-//! frame rasterised instead: a depth pre-pass, fs_upsample and nothing shaded in full.
+//! the frame's [`crate::render::RenderTarget`] the upsampling and the pixels it left, in
+//! compute passes (`full_resolution`: the upsampling by blocks of pixels, the pixels it
+//! leaves listed and shaded densely — two levels: the soft layer upsampled plus the sharp
+//! lights, and in full where the soft layer does not match or disagrees; one level: in
+//! full — and their colours drawn into the frame). Multisampled targets draw the
+//! full-resolution frame rasterised instead: a depth pre-pass, fs_upsample and nothing
+//! shaded in full.
 //!
 //! Why deferred: rasterised at a third of the resolution, a figure's triangles are
 //! smaller than a sample, and lavapipe runs a fragment shader over blocks of pixels per

@@ -17,7 +17,7 @@ pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureForma
 /// through which the low-resolution shading reads the surface buffer.
 pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     // Read by the full-screen passes and by the compute passes shading the pixels the
-    // upsampling leaves (listed_pixels.wgsl).
+    // upsampling leaves (full_resolution.wgsl).
     let texture = |slot| {
         layout_entry(
             slot,

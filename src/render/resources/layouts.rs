@@ -32,7 +32,7 @@ impl SceneLayouts {
         let storage = buffer_type(wgpu::BufferBindingType::Storage { read_only: true });
         let every_stage = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
         // The shading reads the lights in fragment shaders and in the compute passes that
-        // shade the pixels the upsampling leaves (listed_pixels.wgsl).
+        // shade the pixels the upsampling leaves (full_resolution.wgsl).
         let shading = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
