@@ -45,8 +45,12 @@ struct ListCounts {
 // The workgroup counts of the two shading passes' indirect dispatches: sharp xyz, full xyz.
 @group(PASS_GROUP) @binding(DISPATCH_ARGS_BINDING) var<storage, read_write> dispatch_args: array<u32, 6>;
 
-// Invocations per workgroup of the listed pixels' shading passes.
+// Invocations per workgroup of the listed pixels' shading passes, and their workgroups
+// per row of a dispatch: a list's workgroups are dispatched in rows of at most this many,
+// as a dispatch may have at most 65 535 along each side (one row would cap a list at 4.2
+// million pixels; these rows reach 536 million, past a 16384² frame).
 const LISTED_WORKGROUP_SIZE: u32 = 64u;
+const LISTED_WORKGROUPS_PER_ROW: u32 = 128u;
 
 // Set by full_resolution.rs: the samples' spacing d in pixels (each upsampling invocation
 // takes d × d pixels), the side of the upsampling's square workgroups, and whether the
@@ -120,22 +124,31 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
-// The shading passes' workgroup counts from the lists' lengths.
+// The shading passes' workgroup counts from the lists' lengths: rows of
+// LISTED_WORKGROUPS_PER_ROW workgroups (fewer where one row holds the list).
 @compute @workgroup_size(1)
 fn cs_dispatch_args() {
     let groups = (vec2<u32>(atomicLoad(&list_counts.sharp), atomicLoad(&list_counts.full)) + vec2<u32>(LISTED_WORKGROUP_SIZE - 1u)) / LISTED_WORKGROUP_SIZE;
-    dispatch_args = array<u32, 6>(groups.x, 1u, 1u, groups.y, 1u, 1u);
+    let per_row = min(groups, vec2<u32>(LISTED_WORKGROUPS_PER_ROW));
+    let rows = (groups + vec2<u32>(LISTED_WORKGROUPS_PER_ROW - 1u)) / LISTED_WORKGROUPS_PER_ROW;
+    dispatch_args = array<u32, 6>(per_row.x, rows.x, 1u, per_row.y, rows.y, 1u);
+}
+
+// The list entry an invocation of a shading pass takes (cs_dispatch_args' rows).
+fn listed_entry(workgroup: vec3<u32>, lane: u32) -> u32 {
+    return (workgroup.y * LISTED_WORKGROUPS_PER_ROW + workgroup.x) * LISTED_WORKGROUP_SIZE + lane;
 }
 
 // A listed pixel from the soft layer upsampled to it (group 3's samples) plus the sharp
 // lights shaded here, or put on the full list where the soft layer does not match it or
 // disagrees.
 @compute @workgroup_size(LISTED_WORKGROUP_SIZE)
-fn cs_shade_listed_sharp(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= atomicLoad(&list_counts.sharp) {
+fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
+    let entry = listed_entry(workgroup, lane);
+    if entry >= atomicLoad(&list_counts.sharp) {
         return;
     }
-    let pixel = listed_pixel(sharp_pixels, id.x);
+    let pixel = listed_pixel(sharp_pixels, entry);
     let s = buffered_surface(pixel).s;
     // The pixel's centre, as a fragment's position is.
     let soft = upsampled_lighting(vec2<f32>(pixel) + vec2<f32>(0.5), s, false);
@@ -150,11 +163,12 @@ fn cs_shade_listed_sharp(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // A listed pixel shaded in full.
 @compute @workgroup_size(LISTED_WORKGROUP_SIZE)
-fn cs_shade_listed_full(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= atomicLoad(&list_counts.full) {
+fn cs_shade_listed_full(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
+    let entry = listed_entry(workgroup, lane);
+    if entry >= atomicLoad(&list_counts.full) {
         return;
     }
-    let pixel = listed_pixel(full_pixels, id.x);
+    let pixel = listed_pixel(full_pixels, entry);
     let s = buffered_surface(pixel).s;
     textureStore(frame_colours, pixel, vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0));
 }
