@@ -135,15 +135,6 @@ impl RenderTarget {
     /// The colour attachment, cleared to `background` (linear RGB).
     pub fn color_attachment(&self, background_linear: [f64; 3]) -> wgpu::RenderPassColorAttachment<'_> {
         let [r, g, b] = background_linear;
-        self.color_attachment_loading(wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }))
-    }
-
-    /// The colour attachment as the previous pass left it.
-    pub fn color_attachment_kept(&self) -> wgpu::RenderPassColorAttachment<'_> {
-        self.color_attachment_loading(wgpu::LoadOp::Load)
-    }
-
-    fn color_attachment_loading(&self, load: wgpu::LoadOp<wgpu::Color>) -> wgpu::RenderPassColorAttachment<'_> {
         let (view, resolve_target, store) = match (&self.msaa_view, &self.edge_filter) {
             (Some(msaa), _) => (msaa, Some(&self.color_view), wgpu::StoreOp::Discard),
             (None, Some(filter)) => (&filter.attachment_view, None, wgpu::StoreOp::Store),
@@ -153,19 +144,16 @@ impl RenderTarget {
             view,
             depth_slice: None,
             resolve_target,
-            ops: wgpu::Operations { load, store },
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                store,
+            },
         }
-    }
-
-    /// The depth attachment, cleared to the far plane (`clear`) or as the previous pass
-    /// left it, and kept for a later pass if `keep`.
-    pub fn depth_attachment_for(&self, clear: bool, keep: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        depth_attachment(&self.depth_view, clear.then_some(1.0), keep)
     }
 
     /// The depth attachment, cleared to the far plane, for one pass.
     pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        self.depth_attachment_for(true, false)
+        depth_attachment(&self.depth_view, Some(1.0), false)
     }
 
     /// Writes `rgba8` (sRGB-encoded bytes, row by row) as the frame drawn so far, in place
