@@ -108,7 +108,7 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>) {
             let s = buffered.s;
             // The pixel's place among the samples, as sample_place gives a fragment at its
             // centre, from the block's corner.
-            let at = (vec2<f32>(pixel) + vec2<f32>(0.5)) * upsample.full_to_low - upsample.sample_offset;
+            let at = sample_coordinates(vec2<f32>(pixel) + vec2<f32>(0.5));
             let up = quad_lighting(quad, at - vec2<f32>(corner), s);
             if buffered.drawn {
                 if up.matches {

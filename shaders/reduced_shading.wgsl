@@ -188,9 +188,14 @@ struct SamplePlace {
     t: vec2<f32>,
 };
 
+// Where pixel centre `pixel` lies in the samples' image, in samples (texel centres at
+// integer + 0.5 in texel units map to integers).
+fn sample_coordinates(pixel: vec2<f32>) -> vec2<f32> {
+    return pixel * upsample.full_to_low - upsample.sample_offset;
+}
+
 fn sample_place(pixel: vec2<f32>) -> SamplePlace {
-    // Low-resolution texel centres sit at integer + 0.5 in texel units.
-    let at = pixel * upsample.full_to_low - upsample.sample_offset;
+    let at = sample_coordinates(pixel);
     let corner = floor(at);
     return SamplePlace(vec2<i32>(corner), at - corner);
 }

@@ -108,6 +108,24 @@ pub fn storage_buffer_entry(slot: Slot, stages: wgpu::ShaderStages, read_only: b
     )
 }
 
+/// A bind group layout entry for a 2-D, single-sampled texture at `slot`, seen by
+/// `stages`, whose texels read as `sample_type`.
+pub fn texture_entry(
+    slot: Slot,
+    stages: wgpu::ShaderStages,
+    sample_type: wgpu::TextureSampleType,
+) -> wgpu::BindGroupLayoutEntry {
+    layout_entry(
+        slot,
+        stages,
+        wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+    )
+}
+
 /// Bind group entries binding each resource at its slot (all of one bind group).
 pub fn slot_entries<'a, const N: usize>(
     resources: [(Slot, wgpu::BindingResource<'a>); N],
@@ -146,14 +164,10 @@ pub fn image_and_sampler_layout(device: &wgpu::Device, label: &str) -> wgpu::Bin
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &[
-            layout_entry(
+            texture_entry(
                 slots::FRAME_IMAGE,
                 fragment,
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
+                wgpu::TextureSampleType::Float { filterable: true },
             ),
             layout_entry(
                 slots::FRAME_SAMPLER,

@@ -9,7 +9,9 @@
 //! colours ([`FullResolutionImages`]) to the frame size's reduced-shading targets.
 
 use super::surface_buffer::image_extent;
-use crate::render::descriptors::{buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry};
+use crate::render::descriptors::{
+    buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry, texture_entry,
+};
 use crate::render::pass_timer::TimedEncoder;
 use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
@@ -48,18 +50,7 @@ pub struct FullResolutionLayouts {
 impl FullResolutionLayouts {
     pub fn new(device: &wgpu::Device) -> FullResolutionLayouts {
         let compute = wgpu::ShaderStages::COMPUTE;
-        let texture = |slot, stages, sample_type| {
-            layout_entry(
-                slot,
-                stages,
-                wgpu::BindingType::Texture {
-                    sample_type,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-            )
-        };
-        let uint_texture = |slot| texture(slot, compute, wgpu::TextureSampleType::Uint);
+        let uint_texture = |slot| texture_entry(slot, compute, wgpu::TextureSampleType::Uint);
         let written = |slot, format| {
             layout_entry(
                 slot,
@@ -113,7 +104,7 @@ impl FullResolutionLayouts {
             ),
             colours: layout(
                 "frame colours",
-                &[texture(
+                &[texture_entry(
                     slots::FRAME_COLOURS_READ,
                     wgpu::ShaderStages::FRAGMENT,
                     wgpu::TextureSampleType::Float { filterable: false },

@@ -44,7 +44,9 @@ pub use super::surface_buffer::{
     mapped_visibility_writer_layout, surface_buffer_layout,
 };
 use super::surface_buffer::{SAMPLED_TARGET, cleared, depth_texture, image_extent};
-use crate::render::descriptors::{buffer_type, depth_attachment, frame_texture, layout_entry, slot_entries};
+use crate::render::descriptors::{
+    buffer_type, depth_attachment, frame_texture, layout_entry, slot_entries, texture_entry,
+};
 use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 
@@ -110,15 +112,7 @@ pub fn low_resolution_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         label: Some("low-resolution samples"),
         entries: &[
             layout_entry(slots::UPSAMPLE, fragment, buffer_type(wgpu::BufferBindingType::Uniform)),
-            layout_entry(
-                slots::LOW_SAMPLES,
-                fragment,
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Uint,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-            ),
+            texture_entry(slots::LOW_SAMPLES, fragment, wgpu::TextureSampleType::Uint),
         ],
     })
 }
@@ -300,13 +294,9 @@ impl LowResolutionTargets {
         [soft_layer, deferred_frame]: [bool; 2],
     ) -> LowResolutionTargets {
         let size = low_resolution_size(full_size[0], full_size[1], downsample);
-        let samples = SampleImage::new(
-            device,
-            layout,
-            "low-resolution samples",
-            size,
-            upsample_params(full_size, [1, downsample], [MAX_LIGHTING_RATIO, LIGHTING_FLOOR]),
-        );
+        // How the full-resolution frame finds the samples.
+        let full_resolution_reader = upsample_params(full_size, [1, downsample], [MAX_LIGHTING_RATIO, LIGHTING_FLOOR]);
+        let samples = SampleImage::new(device, layout, "low-resolution samples", size, full_resolution_reader);
         let soft = soft_layer.then(|| {
             SampleImage::new(
                 device,
@@ -321,10 +311,7 @@ impl LowResolutionTargets {
             )
         });
         let full_resolution = deferred_frame.then(|| {
-            let reader = (
-                &samples.view,
-                upsample_params(full_size, [1, downsample], [MAX_LIGHTING_RATIO, LIGHTING_FLOOR]),
-            );
+            let reader = (&samples.view, full_resolution_reader);
             // The listed pixels upsample the soft layer read at full resolution.
             let soft_layer = soft.as_ref().map(|soft| {
                 let params = upsample_params(

@@ -6,7 +6,7 @@
 //! low_resolution.wgsl), with the key that says when it still holds.
 
 use crate::render::descriptors::{
-    DEPTH_FORMAT, depth_attachment, frame_texture, layout_entry, slot_entries, storage_buffer_entry,
+    DEPTH_FORMAT, depth_attachment, frame_texture, slot_entries, storage_buffer_entry, texture_entry,
 };
 use crate::shading::wgsl::slots;
 
@@ -19,14 +19,10 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     // Read by the full-screen passes and by the compute passes shading the pixels the
     // upsampling leaves (full_resolution.wgsl).
     let texture = |slot| {
-        layout_entry(
+        texture_entry(
             slot,
             wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-            wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
+            wgpu::TextureSampleType::Uint,
         )
     };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

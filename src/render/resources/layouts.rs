@@ -1,7 +1,7 @@
 //! The scene's bind group layouts (group 0: frame, group 1: material), the shared
 //! base-colour sampler and the vertex buffer layout of [`GpuVertex`].
 
-use crate::render::descriptors::{buffer_type, layout_entry};
+use crate::render::descriptors::{buffer_type, layout_entry, texture_entry};
 use crate::shading::gpu_types::GpuVertex;
 use crate::shading::wgsl::slots;
 
@@ -48,14 +48,10 @@ impl SceneLayouts {
             label: Some("material"),
             entries: &[
                 layout_entry(slots::MATERIAL, fragment, uniform),
-                layout_entry(
+                texture_entry(
                     slots::BASE_COLOR_TEXTURE,
                     fragment,
-                    wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
+                    wgpu::TextureSampleType::Float { filterable: true },
                 ),
                 layout_entry(
                     slots::BASE_COLOR_SAMPLER,
