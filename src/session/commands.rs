@@ -3,10 +3,12 @@
 //! saved strokes taken up, a finished bake, a moved light's re-bake, the baked indirect
 //! light). Each says what happened and what changed; none touches a view.
 
+use super::history::{EntryKind, History};
 use super::{Changes, EditorSession, Happened, Outcome, ScreenStroke, Tool};
 use crate::blockers::{SceneBlockers, Sphere};
+use crate::paint::Painter;
 use crate::project::bake_cache::light_hash;
-use crate::scene::{Camera, Light, LightKind};
+use crate::scene::{Camera, Light, LightKind, Scene};
 use crate::shading::BakedIndirect;
 
 impl EditorSession {
@@ -48,25 +50,29 @@ impl EditorSession {
     /// Takes back the last stroke or light edit (Ctrl+Z).
     pub fn undo(&mut self) -> Outcome {
         self.history.settle(&self.document.scene.lights);
-        let before = self.document.scene.lights.clone();
-        match self.history.undo(&mut self.painting.painter, &mut self.document.scene) {
-            Some(kind) => {
-                self.note_moves(&before);
-                Outcome::new(Happened::Undid(kind), Changes::LIGHTS)
-            }
-            None => Outcome::new(Happened::NothingToUndo, Changes::NONE),
-        }
+        self.step_through_history(History::undo, Happened::Undid, Happened::NothingToUndo)
     }
 
     /// Carries out again what was undone last (Ctrl+Shift+Z or Ctrl+Y).
     pub fn redo(&mut self) -> Outcome {
+        self.step_through_history(History::redo, Happened::Redid, Happened::NothingToRedo)
+    }
+
+    /// One step of `step` (undo or redo) on the scene and the strokes: `done` with the
+    /// entry's kind where there was one, else `nothing`.
+    fn step_through_history(
+        &mut self,
+        step: fn(&mut History, &mut Painter, &mut Scene) -> Option<EntryKind>,
+        done: fn(EntryKind) -> Happened,
+        nothing: Happened,
+    ) -> Outcome {
         let before = self.document.scene.lights.clone();
-        match self.history.redo(&mut self.painting.painter, &mut self.document.scene) {
+        match step(&mut self.history, &mut self.painting.painter, &mut self.document.scene) {
             Some(kind) => {
                 self.note_moves(&before);
-                Outcome::new(Happened::Redid(kind), Changes::LIGHTS)
+                Outcome::new(done(kind), Changes::LIGHTS)
             }
-            None => Outcome::new(Happened::NothingToRedo, Changes::NONE),
+            None => Outcome::new(nothing, Changes::NONE),
         }
     }
 
