@@ -238,11 +238,27 @@ fn mapped_lights_radiance(s: Surface) -> vec3<f32> {
     if SHADOW_MAPS {
         for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
             let light = light_at(i);
-            let inc = incidence(light, s.position);
-            radiance += direct_radiance(s, inc) * shadow_map_visibility(light, inc, s);
+            radiance += mapped_light_radiance(light.intensity_rgb.rgb, s, mapped_light_factors(light, s));
         }
     }
     return radiance;
+}
+
+// A light on the shadow-map path seen from s at unit intensity, shadowed: its diffuse
+// and glossy factors (direct_lobes) times its falloff and its maps' visibility, which
+// depend on where the light is but not on how bright: the samples keep them across the
+// frames of a stroke, which change intensities alone (low_resolution.wgsl).
+fn mapped_light_factors(light: Light, s: Surface) -> vec2<f32> {
+    var unit_light = light;
+    unit_light.intensity_rgb = vec4<f32>(1.0);
+    let inc = incidence(unit_light, s.position);
+    return inc.irradiance.x * direct_lobes(s, inc) * shadow_map_visibility(light, inc, s);
+}
+
+// The radiance of a light of intensity `intensity_rgb` (colour × intensity) whose factors
+// at s are `factors` (mapped_light_factors).
+fn mapped_light_radiance(intensity_rgb: vec3<f32>, s: Surface, factors: vec2<f32>) -> vec3<f32> {
+    return intensity_rgb * (s.k_d * factors.x + s.k_s * factors.y);
 }
 
 // Radiance of surface s: its emission, the light the SH carries

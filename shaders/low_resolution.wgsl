@@ -22,17 +22,19 @@
 @group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_A_BINDING) var surface_buffer_a: texture_2d<u32>;
 @group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_B_BINDING) var surface_buffer_b: texture_2d<u32>;
 
-// The visibility of each light on the shadow-map path at each low-resolution sample,
-// written by fs_mark_surface_samples_keeping_visibility when the surfaces, those lights'
-// geometry or their maps changed since the last frame (reduced_shading::
-// MappedVisibilityKey), and read by the shading passes: a frame after an edit of the
-// lights' intensities alone (a stroke) reads no map at the samples. Entry k·n + j holds
-// the visibility of light frame.first_mapped_light + k at sample j (row-major, n samples).
-// Shorter than the frame's lights need (past its memory budget): the passes read the
-// maps themselves.
-@group(MATERIAL_GROUP) @binding(KEPT_MAPPED_VISIBILITY_BINDING) var<storage, read> kept_mapped_visibility: array<f32>;
-@group(PASS_GROUP) @binding(MAPPED_VISIBILITY_OUT_BINDING) var<storage, read_write> mapped_visibility_out: array<f32>;
-// 1 for each mapped light whose visibility fs_mark_surface_samples_keeping_visibility
+// The factors of each light on the shadow-map path at each low-resolution sample
+// (mapped_light_factors: its diffuse and glossy lobes at unit intensity, times its
+// falloff and its maps' visibility), written by
+// fs_mark_surface_samples_keeping_visibility when the surfaces, those lights' geometry or
+// their maps changed since the last frame (reduced_shading::MappedVisibilityKey), and
+// read by the shading passes: a frame after an edit of the lights' intensities alone (a
+// stroke) reads no map and evaluates no lobe at the samples, only intensity × factors.
+// Entry k·n + j holds the factors of light frame.first_mapped_light + k at sample j
+// (row-major, n samples). Shorter than the frame's lights need (past its memory budget):
+// the passes read the maps themselves.
+@group(MATERIAL_GROUP) @binding(KEPT_MAPPED_FACTORS_BINDING) var<storage, read> kept_mapped_factors: array<vec2<f32>>;
+@group(PASS_GROUP) @binding(MAPPED_FACTORS_OUT_BINDING) var<storage, read_write> mapped_factors_out: array<vec2<f32>>;
+// 1 for each mapped light whose factors fs_mark_surface_samples_keeping_visibility
 // writes (its geometry or maps changed), 0 for each whose entries hold.
 @group(PASS_GROUP) @binding(STALE_LIGHTS_BINDING) var<storage, read> stale_lights: array<u32>;
 
@@ -49,18 +51,17 @@ fn holds_mapped_lights(length: u32, samples: u32) -> bool {
 }
 
 // mapped_lights_radiance at low-resolution sample `texel` (surface s), each light's
-// visibility read from kept_mapped_visibility.
+// factors read from kept_mapped_factors (the same sum, so the same bytes, either way).
 fn kept_mapped_lights_radiance(s: Surface, texel: vec2<i32>) -> vec3<f32> {
     var radiance = vec3<f32>(0.0);
     if SHADOW_MAPS {
         let at = sample_count_and_index(texel);
-        if !holds_mapped_lights(arrayLength(&kept_mapped_visibility), at.x) {
+        if !holds_mapped_lights(arrayLength(&kept_mapped_factors), at.x) {
             return mapped_lights_radiance(s);
         }
         var entry = at.y;
         for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
-            let inc = incidence(light_at(i), s.position);
-            radiance += direct_radiance(s, inc) * kept_mapped_visibility[entry];
+            radiance += mapped_light_radiance(light_at(i).intensity_rgb.rgb, s, kept_mapped_factors[entry]);
             entry += at.x;
         }
     }
@@ -188,9 +189,10 @@ fn fs_mark_surface_samples(in: FullScreen) -> @builtin(frag_depth) f32 {
     return 0.0;
 }
 
-// fs_mark_surface_samples, and each marked sample's visibility of the mapped lights that
-// stale_lights marks written to mapped_visibility_out (the lights' shadow_map_visibility at the surface of
-// the sample's pixel, which sample_surface gives the shading passes).
+// fs_mark_surface_samples, and each marked sample's factors of the mapped lights that
+// stale_lights marks written to mapped_factors_out (mapped_light_factors at the surface
+// of the sample's pixel, whose position, normal and gloss sample_surface gives the
+// shading passes; they average k_d alone, which the factors leave out).
 @fragment
 fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_depth) f32 {
     let texel = vec2<i32>(in.clip.xy);
@@ -199,13 +201,13 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
         discard;
     }
     let at = sample_count_and_index(texel);
-    if SHADOW_MAPS && holds_mapped_lights(arrayLength(&mapped_visibility_out), at.x) {
+    if SHADOW_MAPS && holds_mapped_lights(arrayLength(&mapped_factors_out), at.x) {
         var entry = at.y;
         for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
             let k = i - frame.first_mapped_light;
             if k >= arrayLength(&stale_lights) || stale_lights[k] != 0u {
                 let light = light_at(i);
-                mapped_visibility_out[entry] = shadow_map_visibility(light, incidence(light, buffered.s.position), buffered.s);
+                mapped_factors_out[entry] = mapped_light_factors(light, buffered.s);
             }
             entry += at.x;
         }

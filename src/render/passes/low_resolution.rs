@@ -8,8 +8,8 @@
 
 use super::full_resolution::{FullResolutionCompute, FullResolutionLayouts};
 use super::reduced_shading::{
-    LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout,
-    mapped_visibility_writer_layout, surface_buffer_layout,
+    LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, mapped_factors_writer_layout,
+    surface_buffer_layout,
 };
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
 use crate::render::descriptors::{COLOR_FORMAT, depth_test};
@@ -24,7 +24,7 @@ pub(super) struct ReducedShadingPipelines {
     pub downsample: u32,
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
-    pub mapped_visibility_writer_layout: wgpu::BindGroupLayout,
+    pub mapped_factors_writer_layout: wgpu::BindGroupLayout,
     pub full_resolution_layouts: FullResolutionLayouts,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
@@ -84,7 +84,7 @@ impl ReducedShadingPipelines {
         let paths = variant.paths;
         let low_resolution_layout = low_resolution_layout(device);
         let surface_buffer_layout = surface_buffer_layout(device);
-        let mapped_visibility_writer_layout = mapped_visibility_writer_layout(device);
+        let mapped_factors_writer_layout = mapped_factors_writer_layout(device);
         let full_resolution_layouts = FullResolutionLayouts::new(device);
         let surface_variant = Variant { samples: 1, ..variant };
         let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
@@ -122,7 +122,7 @@ impl ReducedShadingPipelines {
                 full_screen(
                     "fs_mark_surface_samples_keeping_visibility",
                     (None, downsample),
-                    Some(&mapped_visibility_writer_layout),
+                    Some(&mapped_factors_writer_layout),
                     FullScreenDepth::MarkSurfaces,
                 )
             }),
@@ -179,7 +179,7 @@ impl ReducedShadingPipelines {
             },
             low_resolution_layout,
             surface_buffer_layout,
-            mapped_visibility_writer_layout,
+            mapped_factors_writer_layout,
             full_resolution_layouts,
         }
     }
@@ -228,10 +228,10 @@ pub(super) fn shade_low_resolution(
     // The samples' visibility of the mapped lights the last frames wrote holds while the
     // surfaces, those lights' geometry and their maps do; else the marking pass writes it.
     let (mark, writing) = match &pipelines.mark_keeping_visibility {
-        Some(keeping) if !low.mapped_visibility_current() => (
-            Some((keeping, Some(&low.surface.mapped_visibility_writer))),
+        Some(keeping) if !low.mapped_factors_current() => (
+            Some((keeping, Some(&low.surface.mapped_factors_writer))),
             // The buffer is written in this pass, so the surface group reads none.
-            &low.surface.bind_group_without_visibility,
+            &low.surface.bind_group_without_factors,
         ),
         // With the surfaces the last marks were made on, the marks are copied back.
         _ if low.surfaces_current() => (None, &low.surface.bind_group),

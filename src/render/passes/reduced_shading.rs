@@ -40,8 +40,8 @@ use wgpu::util::DeviceExt;
 use super::full_resolution::{FullResolutionImages, FullResolutionLayouts};
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
-    MAPPED_VISIBILITY_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
-    mapped_visibility_writer_layout, surface_buffer_layout,
+    MAPPED_FACTORS_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
+    mapped_factors_writer_layout, surface_buffer_layout,
 };
 use super::surface_buffer::{SAMPLED_TARGET, cleared, depth_texture, image_extent};
 use crate::render::descriptors::{
@@ -154,7 +154,7 @@ pub struct LowResolutionTargets {
     /// The next frame's soft layer is the one drawn (its surfaces too).
     soft_layer_current: bool,
     /// The kept visibility of the mapped lights is the next frame's.
-    mapped_visibility_current: bool,
+    mapped_factors_current: bool,
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
@@ -335,7 +335,7 @@ impl LowResolutionTargets {
             drawn_from: None,
             surfaces_current: false,
             soft_layer_current: false,
-            mapped_visibility_current: false,
+            mapped_factors_current: false,
             low_depth: low_depth_texture.create_view(&Default::default()),
             low_depth_texture,
             marked_samples: depth_texture(device, "marked samples", size, copied),
@@ -367,7 +367,7 @@ impl LowResolutionTargets {
         self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
         self.soft_layer_current =
             self.surfaces_current && matches!((&inputs, &last), (Some(i), Some(l)) if i.soft_layer == l.soft_layer);
-        let reallocated = self.surface.reserve_mapped_visibility(device, mapped_lights);
+        let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
         // Every light anew where the buffer or the surfaces are new; else those whose
         // geometry or maps changed.
         let kept_from = last
@@ -378,8 +378,8 @@ impl LowResolutionTargets {
             Some(i) => i.mapped_visibility.stale_lights(kept_from),
             None => vec![1; mapped_lights],
         };
-        self.mapped_visibility_current = stale.iter().all(|&flag| flag == 0);
-        if !self.mapped_visibility_current {
+        self.mapped_factors_current = stale.iter().all(|&flag| flag == 0);
+        if !self.mapped_factors_current {
             self.surface.write_stale_lights(device, queue, &stale);
         }
         self.drawn_from = inputs;
@@ -387,8 +387,8 @@ impl LowResolutionTargets {
 
     /// Whether the kept visibility of the mapped lights holds this frame's (else the
     /// pass marking the samples on a surface writes it).
-    pub(crate) fn mapped_visibility_current(&self) -> bool {
-        self.mapped_visibility_current
+    pub(crate) fn mapped_factors_current(&self) -> bool {
+        self.mapped_factors_current
     }
 
     /// Whether the surface buffer already shows the next frame's surfaces.

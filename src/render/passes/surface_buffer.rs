@@ -1,7 +1,8 @@
 //! The full-resolution surface buffer of deferred reduced shading (`reduced_shading`):
 //! the two images fs_surface_buffer writes and their depth, the bind group (group 1 of
-//! the full-screen passes) that reads them, and the kept visibility of the shadow-map
-//! path's lights at the low-resolution samples (written by
+//! the full-screen passes) that reads them, and the kept factors of the shadow-map
+//! path's lights at the low-resolution samples (lobes × falloff × visibility at unit
+//! intensity) (written by
 //! fs_mark_surface_samples_keeping_visibility, read by the samples' shading; see
 //! low_resolution.wgsl), with the key that says when it still holds.
 
@@ -30,29 +31,29 @@ pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         entries: &[
             texture(slots::SURFACE_BUFFER_A),
             texture(slots::SURFACE_BUFFER_B),
-            storage_buffer_entry(slots::KEPT_MAPPED_VISIBILITY, wgpu::ShaderStages::FRAGMENT, true),
+            storage_buffer_entry(slots::KEPT_MAPPED_FACTORS, wgpu::ShaderStages::FRAGMENT, true),
         ],
     })
 }
 
 /// The bind group layout (group 3 of fs_mark_surface_samples_keeping_visibility) through
-/// which the samples' visibility of the mapped lights is written.
-pub fn mapped_visibility_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+/// which the samples' factors of the mapped lights are written.
+pub fn mapped_factors_writer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let storage = |slot, read_only| storage_buffer_entry(slot, wgpu::ShaderStages::FRAGMENT, read_only);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("kept visibility of the mapped lights, written"),
+        label: Some("kept factors of the mapped lights, written"),
         entries: &[
-            storage(slots::MAPPED_VISIBILITY_OUT, false),
+            storage(slots::MAPPED_FACTORS_OUT, false),
             storage(slots::STALE_LIGHTS, true),
         ],
     })
 }
 
-/// The most memory the kept visibility of the shadow-map path's lights may take (the
-/// low-resolution samples × the mapped lights × 4 bytes; wgpu's default limit on a
+/// The most memory the kept factors of the shadow-map path's lights may take (the
+/// low-resolution samples × the mapped lights × 8 bytes; wgpu's default limit on a
 /// storage buffer's binding): past it the shading passes read the maps every frame. The
-/// studio at 960 × 540 (320 × 180 samples) with its nine mapped lights takes 2.1 MB.
-pub const MAPPED_VISIBILITY_BUDGET_BYTES: u64 = 128 << 20;
+/// studio at 960 × 540 (320 × 180 samples) with its nine mapped lights takes 4.1 MB.
+pub const MAPPED_FACTORS_BUDGET_BYTES: u64 = 128 << 20;
 
 /// The full-resolution surfaces: two images, their depth (which the pass drawing the
 /// deferred full-resolution frame's colours tests), and the bind group through which the
@@ -62,22 +63,23 @@ pub(crate) struct SurfaceBuffer {
     depth_view: wgpu::TextureView,
     pub bind_group: wgpu::BindGroup,
     layouts: [wgpu::BindGroupLayout; 2],
-    /// Entries per light of the kept visibility: the low-resolution samples.
+    /// Entries per light of the kept factors: the low-resolution samples.
     samples: u64,
-    /// The visibility of each light on the shadow-map path at each low-resolution sample
-    /// (low_resolution.wgsl, `kept_mapped_visibility`), written by the pass marking the
-    /// samples on a surface when the surfaces, those lights or their maps changed, and
-    /// read by the shading passes: a stroke's frame reads no map at the samples. At least
-    /// 4 bytes; too short for the frame's lights, the passes read the maps instead.
-    mapped_visibility: wgpu::Buffer,
-    /// 1 for each mapped light whose visibility the writing pass computes anew, 0 for
+    /// The diffuse and glossy factors (two f32) of each light on the shadow-map path at
+    /// each low-resolution sample, at unit intensity and shadowed (low_resolution.wgsl,
+    /// `kept_mapped_factors`), written by the pass marking the samples on a surface when
+    /// the surfaces, those lights or their maps changed, and read by the shading passes:
+    /// a stroke's frame reads no map and evaluates no lobe at the samples. At least 8
+    /// bytes; too short for the frame's lights, the passes read the maps instead.
+    mapped_factors: wgpu::Buffer,
+    /// 1 for each mapped light whose factors the writing pass computes anew, 0 for
     /// those it keeps (`MappedVisibilityKey::stale_lights`).
     stale_lights: wgpu::Buffer,
     /// Group 3 of the marking pass that writes it.
-    pub(crate) mapped_visibility_writer: wgpu::BindGroup,
-    /// The surface group with a 4-byte buffer in its place, for that pass (a buffer
+    pub(crate) mapped_factors_writer: wgpu::BindGroup,
+    /// The surface group with an 8-byte buffer in its place, for that pass (a buffer
     /// written in a pass may not be bound for reading in it too).
-    pub(crate) bind_group_without_visibility: wgpu::BindGroup,
+    pub(crate) bind_group_without_factors: wgpu::BindGroup,
 }
 
 impl SurfaceBuffer {
@@ -99,55 +101,49 @@ impl SurfaceBuffer {
             )
             .create_view(&Default::default())
         });
-        let mapped_visibility = mapped_visibility_buffer(device, 4);
+        let mapped_factors = mapped_factors_buffer(device, 8);
         let stale_lights = stale_lights_buffer(device, 1);
-        let bind_group = surface_bind_group(device, layout, &views, &mapped_visibility);
+        let bind_group = surface_bind_group(device, layout, &views, &mapped_factors);
         let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::empty());
         SurfaceBuffer {
             depth_view: depth.create_view(&Default::default()),
             bind_group,
             layouts: [layout.clone(), writer_layout.clone()],
             samples: u64::from(samples[0]) * u64::from(samples[1]),
-            mapped_visibility_writer: writer_group(device, writer_layout, [&mapped_visibility, &stale_lights]),
+            mapped_factors_writer: writer_group(device, writer_layout, [&mapped_factors, &stale_lights]),
             stale_lights,
-            bind_group_without_visibility: surface_bind_group(
-                device,
-                layout,
-                &views,
-                &mapped_visibility_buffer(device, 4),
-            ),
-            mapped_visibility,
+            bind_group_without_factors: surface_bind_group(device, layout, &views, &mapped_factors_buffer(device, 8)),
+            mapped_factors,
             views,
         }
     }
 
-    /// Makes the kept visibility hold `lights` mapped lights at every sample where that
-    /// fits [`MAPPED_VISIBILITY_BUDGET_BYTES`] and the device's limits on a storage
+    /// Makes the kept factors hold `lights` mapped lights at every sample where that
+    /// fits [`MAPPED_FACTORS_BUDGET_BYTES`] and the device's limits on a storage
     /// binding and a buffer; true when the buffer is new (it holds nothing yet).
-    pub(super) fn reserve_mapped_visibility(&mut self, device: &wgpu::Device, lights: usize) -> bool {
-        let bytes = self.samples * lights as u64 * 4;
+    pub(super) fn reserve_mapped_factors(&mut self, device: &wgpu::Device, lights: usize) -> bool {
+        let bytes = self.samples * lights as u64 * 8;
         let limits = device.limits();
-        let budget = MAPPED_VISIBILITY_BUDGET_BYTES
+        let budget = MAPPED_FACTORS_BUDGET_BYTES
             .min(limits.max_storage_buffer_binding_size)
             .min(limits.max_buffer_size);
-        if bytes <= self.mapped_visibility.size() || bytes > budget {
+        if bytes <= self.mapped_factors.size() || bytes > budget {
             return false;
         }
-        self.mapped_visibility = mapped_visibility_buffer(device, bytes);
-        self.bind_group = surface_bind_group(device, &self.layouts[0], &self.views, &self.mapped_visibility);
-        self.mapped_visibility_writer =
-            writer_group(device, &self.layouts[1], [&self.mapped_visibility, &self.stale_lights]);
+        self.mapped_factors = mapped_factors_buffer(device, bytes);
+        self.bind_group = surface_bind_group(device, &self.layouts[0], &self.views, &self.mapped_factors);
+        self.mapped_factors_writer = writer_group(device, &self.layouts[1], [&self.mapped_factors, &self.stale_lights]);
         true
     }
 
-    /// Has the writing pass compute the visibility of the lights `stale` marks (1) and
+    /// Has the writing pass compute the factors of the lights `stale` marks (1) and
     /// keep the others'.
     pub(super) fn write_stale_lights(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, stale: &[u32]) {
         let bytes = (stale.len().max(1) * 4) as u64;
         if bytes > self.stale_lights.size() {
             self.stale_lights = stale_lights_buffer(device, stale.len());
-            self.mapped_visibility_writer =
-                writer_group(device, &self.layouts[1], [&self.mapped_visibility, &self.stale_lights]);
+            self.mapped_factors_writer =
+                writer_group(device, &self.layouts[1], [&self.mapped_factors, &self.stale_lights]);
         }
         if !stale.is_empty() {
             queue.write_buffer(&self.stale_lights, 0, bytemuck::cast_slice(stale));
@@ -171,10 +167,10 @@ impl SurfaceBuffer {
     }
 }
 
-fn mapped_visibility_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {
+fn mapped_factors_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("kept visibility of the mapped lights"),
-        size: bytes.max(4),
+        label: Some("kept factors of the mapped lights"),
+        size: bytes.max(8),
         usage: wgpu::BufferUsages::STORAGE,
         mapped_at_creation: false,
     })
@@ -182,7 +178,7 @@ fn mapped_visibility_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {
 
 fn stale_lights_buffer(device: &wgpu::Device, lights: usize) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("mapped lights whose visibility is written"),
+        label: Some("mapped lights whose factors are written"),
         size: (lights.max(1) * 4) as u64,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
@@ -195,10 +191,10 @@ fn writer_group(
     [visibility, stale_lights]: [&wgpu::Buffer; 2],
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("kept visibility of the mapped lights, written"),
+        label: Some("kept factors of the mapped lights, written"),
         layout,
         entries: &slot_entries([
-            (slots::MAPPED_VISIBILITY_OUT, visibility.as_entire_binding()),
+            (slots::MAPPED_FACTORS_OUT, visibility.as_entire_binding()),
             (slots::STALE_LIGHTS, stale_lights.as_entire_binding()),
         ]),
     })
@@ -208,7 +204,7 @@ fn surface_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     views: &[wgpu::TextureView; 2],
-    mapped_visibility: &wgpu::Buffer,
+    mapped_factors: &wgpu::Buffer,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("surface buffer"),
@@ -216,7 +212,7 @@ fn surface_bind_group(
         entries: &slot_entries([
             (slots::SURFACE_BUFFER_A, wgpu::BindingResource::TextureView(&views[0])),
             (slots::SURFACE_BUFFER_B, wgpu::BindingResource::TextureView(&views[1])),
-            (slots::KEPT_MAPPED_VISIBILITY, mapped_visibility.as_entire_binding()),
+            (slots::KEPT_MAPPED_FACTORS, mapped_factors.as_entire_binding()),
         ]),
     })
 }

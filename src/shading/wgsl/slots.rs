@@ -44,7 +44,7 @@ pub const BASE_COLOR_SAMPLER: Slot = slot(MATERIAL_GROUP, 2, "base_color_sampler
 // bindings stay clear of the material's, which the same shader module declares.
 pub const SURFACE_BUFFER_A: Slot = slot(MATERIAL_GROUP, 8, "surface_buffer_a");
 pub const SURFACE_BUFFER_B: Slot = slot(MATERIAL_GROUP, 9, "surface_buffer_b");
-pub const KEPT_MAPPED_VISIBILITY: Slot = slot(MATERIAL_GROUP, 10, "kept_mapped_visibility");
+pub const KEPT_MAPPED_FACTORS: Slot = slot(MATERIAL_GROUP, 10, "kept_mapped_factors");
 
 pub const SHADOW: Slot = slot(SHADOW_GROUP, 0, "shadow");
 pub const BLOCKERS: Slot = slot(SHADOW_GROUP, 1, "blockers");
@@ -61,7 +61,7 @@ pub const VERTEX_DATA: Slot = slot(PASS_GROUP, 0, "vertex_data");
 pub const VERTEX_VISIBILITY: Slot = slot(PASS_GROUP, 1, "vertex_visibility");
 pub const UPSAMPLE: Slot = slot(PASS_GROUP, 0, "upsample");
 pub const LOW_SAMPLES: Slot = slot(PASS_GROUP, 1, "low_samples");
-pub const MAPPED_VISIBILITY_OUT: Slot = slot(PASS_GROUP, 4, "mapped_visibility_out");
+pub const MAPPED_FACTORS_OUT: Slot = slot(PASS_GROUP, 4, "mapped_factors_out");
 pub const STALE_LIGHTS: Slot = slot(PASS_GROUP, 5, "stale_lights");
 // The deferred full-resolution frame's passes (full_resolution.wgsl): bindings clear of
 // the samples' (0, 1), which their groups also hold.
@@ -89,7 +89,7 @@ pub const ALL: [Slot; 37] = [
     BASE_COLOR_SAMPLER,
     SURFACE_BUFFER_A,
     SURFACE_BUFFER_B,
-    KEPT_MAPPED_VISIBILITY,
+    KEPT_MAPPED_FACTORS,
     SHADOW,
     BLOCKERS,
     GROUPS,
@@ -104,7 +104,7 @@ pub const ALL: [Slot; 37] = [
     VERTEX_VISIBILITY,
     UPSAMPLE,
     LOW_SAMPLES,
-    MAPPED_VISIBILITY_OUT,
+    MAPPED_FACTORS_OUT,
     STALE_LIGHTS,
     LIST_COUNTS,
     SHARP_PIXELS,
