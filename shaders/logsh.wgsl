@@ -45,6 +45,9 @@ override SH_VISIBILITY: bool = true;
 // wholly below the tangent plane; blockers straddling it are faded by
 // smoothstep(−1, 1, (c − p)·n / h), h their half-extent along n.
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
+    if LIGHT_WINDOWS > 0u {
+        open_light_windows(p);
+    }
     var f = sh_zero();
     for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
         var walk = blocker_walk_at(chunk, groups_in_reach(chunk, p, n, &f), p);
@@ -66,7 +69,7 @@ fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>)
     var passing = 0u;
     for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
         let group = group_at(g);
-        if group_in_reach(group, p, n) {
+        if group_in_reach(group, p, n) && group_in_windows(group, p) {
             passing |= 1u << (g - chunk);
         }
         *f = add_stand_in(*f, group, p, n);
@@ -116,11 +119,168 @@ fn add_blocker(f: Sh, b: Blocker, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh
 // [· s with ratio attenuation] times the cap's ZH rotated there (shading::cpu::visibility's
 // add_cap is the twin).
 fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32) -> Sh {
-    var scale = shadow.ln_epsilon * weight * cap_mass_scale(ratio);
+    var scale = shadow.ln_epsilon * weight;
+    if LIGHT_WINDOWS > 0u && windows_open {
+        scale *= windowed_cap_scale(direction, ratio, cap_mass_scale(ratio));
+    } else {
+        scale *= cap_mass_scale(ratio);
+    }
     if shadow.ratio_attenuation != 0u {
         scale *= ratio;
     }
     return sh_add_zonal(f, sh_cap_zh(ratio), scale, direction);
+}
+
+// Windows on the blockers for the SH path's lights (shading::light_windows, the twin):
+// without an environment's light, only visibility inside the SH lights' caps is read, so
+// each cap is weighed by how near it comes to the nearest light's cap and scaled for
+// that light's mean (min(1, k(s) · gain)) instead of by k(s); blockers far from every
+// light then no longer darken the lights they do not hide through the band limit.
+// The number of windows compiled in (shading::compiled_paths): 0 for a frame without
+// them; lavapipe pays for each window at every blocker, used or not.
+override LIGHT_WINDOWS: u32 = 4u;
+const MAX_WINDOW_LIGHTS: u32 = 4u;
+
+// The receiver's windows, set by open_light_windows: per SH light the unit direction
+// toward it and the cosine of the half-angle of the cap holding its emitter (w = 2: no
+// such light), that half-angle's sine in window_sines and each window's gain on k(s) in
+// window_gains. Four variables rather than an array: lavapipe reads a private array
+// lane by lane.
+var<private> windows_open: bool;
+var<private> window_0: vec4<f32>;
+var<private> window_1: vec4<f32>;
+var<private> window_2: vec4<f32>;
+var<private> window_3: vec4<f32>;
+var<private> window_sines: vec4<f32>;
+var<private> window_half_angles: vec4<f32>;
+var<private> window_gains: vec4<f32>;
+
+// Whether the windows apply to this frame (light_windows::windows_apply): no environment
+// light and 1 to MAX_WINDOW_LIGHTS lights on the SH path (the first frame.first_mapped_light).
+fn light_windows_apply() -> bool {
+    var environment_lights = false;
+    for (var k = 0u; k < 9u; k++) {
+        environment_lights = environment_lights || any(frame.environment_irradiance[k].xyz != vec3<f32>(0.0));
+    }
+    return !environment_lights && frame.first_mapped_light >= 1u && frame.first_mapped_light <= MAX_WINDOW_LIGHTS;
+}
+
+// SH light i's window seen from p (LightWindows::at): its cap grown to hold the emitter,
+// as (direction, half-angle).
+fn light_window(i: u32, p: vec3<f32>) -> vec4<f32> {
+    if i >= frame.first_mapped_light {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let light = light_at(i);
+    let inc = incidence(light, p);
+    let bound = light_bounding_radius_m(light) / inc.distance;
+    return vec4<f32>(inc.to_light, asin(clamp(max(inc.cap_ratio, bound), 0.0, 1.0)));
+}
+
+// A window's gain on k(s), max(1, (4π/n²)/Ω) (LightWindow::new); 1 − cos α = 2 sin²(α/2).
+fn window_gain(half_angle: f32) -> f32 {
+    let half = sin(0.5 * half_angle);
+    let solid_angle_sr = 4.0 * PI * half * half;
+    return max(4.0 * PI / f32(SH_ORDER * SH_ORDER) / max(solid_angle_sr, 1e-12), 1.0);
+}
+
+// A window from light_window as read per blocker: (direction, cos α), 2 for none.
+fn window_cosine(window: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(window.xyz, select(cos(window.w), 2.0, window.w < 0.0));
+}
+
+fn open_light_windows(p: vec3<f32>) {
+    windows_open = light_windows_apply();
+    if windows_open {
+        let w = array<vec4<f32>, 4>(light_window(0u, p), light_window(1u, p), light_window(2u, p), light_window(3u, p));
+        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
+        window_0 = window_cosine(w[0]);
+        window_1 = window_cosine(w[1]);
+        window_2 = window_cosine(w[2]);
+        window_3 = window_cosine(w[3]);
+        window_sines = sin(half_angles);
+        window_half_angles = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
+        window_gains = vec4<f32>(
+            window_gain(half_angles.x),
+            window_gain(half_angles.y),
+            window_gain(half_angles.z),
+            window_gain(half_angles.w),
+        );
+    }
+}
+
+// Whether a group's blockers can have any weight in the windows: its bounding sphere
+// (every blocker within it) seen under half-angle γ, its centre θ from a window of
+// half-angle α, holds none beyond it unless θ < α + 3γ/2 (a blocker's cap of half-angle
+// β ≤ γ inside the group's reaches the window's ramp only within α + 3β/2 of it). Its
+// blockers skipped, the walk costs the windows nothing where no light can be hidden;
+// their weights were 0 (the twin, which walks them all, adds nothing for them).
+fn group_in_windows(group: BlockerGroup, p: vec3<f32>) -> bool {
+    if LIGHT_WINDOWS == 0u || !windows_open {
+        return true;
+    }
+    let to_group = group.center_extent.xyz - p;
+    let distance = length(to_group);
+    if distance <= group.center_extent.w {
+        return true;
+    }
+    let reaches = window_half_angles + vec4<f32>(1.5 * asin(group.center_extent.w / distance) + 1e-3);
+    let direction = to_group / distance;
+    var inside = angle_between(direction, window_0.xyz) < reaches.x;
+    if LIGHT_WINDOWS >= 2u {
+        inside = inside || angle_between(direction, window_1.xyz) < reaches.y;
+    }
+    if LIGHT_WINDOWS >= 3u {
+        inside = inside || angle_between(direction, window_2.xyz) < reaches.z;
+    }
+    if LIGHT_WINDOWS >= 4u {
+        inside = inside || angle_between(direction, window_3.xyz) < reaches.w;
+    }
+    return inside;
+}
+
+fn angle_between(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return acos(clamp(dot(a, b), -1.0, 1.0));
+}
+
+// A blocker cap's half-angle β as the windows read it: cos and sin of β/2 (xy) and of
+// 3β/2 (zw), from its sine s by half- and triple-angle formulas.
+fn cap_angles(ratio: f32) -> vec4<f32> {
+    let cos_cap = sqrt(max(1.0 - ratio * ratio, 0.0));
+    let c = sqrt(0.5 + 0.5 * cos_cap);
+    let s = 0.5 * ratio / c;
+    return vec4<f32>(c, s, c * (4.0 * c * c - 3.0), s * (3.0 - 4.0 * s * s));
+}
+
+// The weight a window (direction, cos α; sine sin α) gives a cap toward unit `direction`
+// of angles `cap` (cap_angles) (LightWindow::weight): smoothstep in cos θ from
+// cos(α + 3β/2) to cos(α + β/2), by angle-sum formulas (an angle past π counts as π); 0
+// for no window (cos α = 2).
+fn window_weight(window: vec4<f32>, sine: f32, direction: vec3<f32>, cap: vec4<f32>) -> f32 {
+    let whole = window.w * cap.x - sine * cap.y;
+    let past_pi = sine * cap.z + window.w * cap.w < 0.0;
+    let none = select(window.w * cap.z - sine * cap.w, -1.0, past_pi);
+    let cos_between = dot(direction, window.xyz);
+    let weight = select(select(0.0, 1.0, cos_between >= whole), smoothstep(none, whole, cos_between), none < whole);
+    return select(weight, 0.0, window.w > 1.5);
+}
+
+// The factor on a cap's ln ε · f_n (LightWindows::cap_scale): the largest
+// weight × min(1, k(s) · gain) of the LIGHT_WINDOWS windows compiled in.
+fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 {
+    let cap = cap_angles(ratio);
+    let scales = min(vec4<f32>(1.0), mass_scale * window_gains);
+    var scale = window_weight(window_0, window_sines.x, direction, cap) * scales.x;
+    if LIGHT_WINDOWS >= 2u {
+        scale = max(scale, window_weight(window_1, window_sines.y, direction, cap) * scales.y);
+    }
+    if LIGHT_WINDOWS >= 3u {
+        scale = max(scale, window_weight(window_2, window_sines.z, direction, cap) * scales.z);
+    }
+    if LIGHT_WINDOWS >= 4u {
+        scale = max(scale, window_weight(window_3, window_sines.w, direction, cap) * scales.w);
+    }
+    return scale;
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'

@@ -169,6 +169,23 @@ fn edge_form_factor(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
     return atan2(plane_length, dot(a, b)) * plane / max(plane_length, 1e-30);
 }
 
+// The radius (metres) of the smallest sphere about a light's centre that holds its
+// emitter (cpu::area::bounding_radius_m): a rect's half diagonal, the circumradius of a
+// disk's polygon, a sphere light's radius, 0 for point-like lights.
+fn light_bounding_radius_m(light: Light) -> f32 {
+    if light.kind == LIGHT_AREA {
+        let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
+        let half_width_m = length(half_width);
+        if half_width_m > 0.0 {
+            let half_height_m = light.source_size / (4.0 * half_width_m);
+            return sqrt(half_width_m * half_width_m + half_height_m * half_height_m);
+        }
+        let n = f32(DISK_LIGHT_SIDES);
+        return sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+    }
+    return select(0.0, light.source_size, light.kind == LIGHT_POINT);
+}
+
 // The vector irradiance at p of an area light of unit radiance, Φ = ½ Σ_edges γ·n̂
 // (Lambert's formula; Arvo 1994): E = L·Φ·n for a receiver whose horizon the light is
 // wholly above. Its polygon: a rect's 4 corners, or for a disk the regular polygon of

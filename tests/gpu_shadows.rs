@@ -116,6 +116,38 @@ fn gpu_matches_the_cpu_reference_on_the_samples() {
     }
 }
 
+/// The SH lights' windows on the blockers (`shading::light_windows`: no environment, one
+/// light on the SH path) on the thin-caster bench with 600 spheres, at orders 4 and 8.
+#[test]
+fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
+    use lightpaint::samples::blocker_bench;
+    use lightpaint::shading::LightPaths;
+    let Some(gpu) = common::gpu() else { return };
+    let scene = blocker_bench::thin_casters_scene();
+    assert!(scene.environment.is_none(), "no environment: the windows apply");
+    let camera = blocker_bench::thin_casters_camera();
+    let blockers = blocker_bench::spheres_on_casters(&scene, 600);
+    let settings = RenderSettings::default();
+    for order in [4, 8] {
+        let shadows = ShadowSettings {
+            light_paths: LightPaths::Harmonics,
+            order,
+            ..ShadowSettings::default().every_pixel()
+        };
+        let frame = ShadowFrame {
+            baked_indirect: None,
+            scene: &scene,
+            camera: &camera,
+            settings: &settings,
+            shadows: &shadows,
+            blockers: &blockers,
+            width: 120,
+            height: 68,
+        };
+        assert_parity(&gpu, &format!("bench-windows-order-{order}"), &frame);
+    }
+}
+
 #[test]
 fn every_method_and_order_matches_the_cpu_reference() {
     let Some(gpu) = common::gpu() else { return };
@@ -258,7 +290,11 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
         .expect("order 4 runs per vertex");
     let (compute, _) = pipeline.per_vertex.as_ref().expect("per-vertex pipelines");
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    compute.run(&mut encoder, &gpu_blockers.bind_group, &visibility);
+    compute.run(
+        &mut encoder,
+        [&gpu_scene.frame_bind_group, &gpu_blockers.bind_group],
+        &visibility,
+    );
     let objects: Vec<_> = scene.objects.iter().filter(|o| !o.indices.is_empty()).collect();
     let readbacks: Vec<wgpu::Buffer> = visibility
         .buffers

@@ -1,14 +1,122 @@
 //! The SH path against exact visibility of the same spheres on the blocker bench scene
 //! (`samples::blocker_bench`: thin casters over a floor under one rect light, spheres
 //! spread over the casters): how far hundreds of small caps summed in log space drag the
-//! light down where nothing hides it. A measurement (ignored in the suite), for
-//! docs/performance.md and the issue on the blocker hierarchy.
+//! light down where nothing hides it: a test of the SH lights' windows on the blockers
+//! (`shading::light_windows`), and a measurement (ignored in the suite) for
+//! docs/performance.md.
 
 mod common;
 
 use lightpaint::blockers::Sphere;
 use lightpaint::sh::ExpMethod;
 use lightpaint::shading::{LightPaths, ShadowSettings};
+
+/// How the SH path's visibility departs from the exact path's over the same spheres, on
+/// the blocker bench's floor: RMS and mean in the penumbra (exact visibility 0.05–0.999)
+/// and the umbra (below 0.05), and the mean where nothing hides the light (the lit floor).
+struct Departure {
+    penumbra_rms: f64,
+    penumbra_bias: f64,
+    umbra_rms: f64,
+    umbra_bias: f64,
+    lit_bias: f64,
+    pixels: [usize; 3],
+}
+
+/// The SH path (order `order`, exponentiation `exp`) against the exact path with
+/// `spheres` spheres spread over the bench's casters, on the f64 twin at `width` ×
+/// `height` surfaces; None without a GPU (the surfaces are rasterised on it).
+fn departure(order: usize, exp: ExpMethod, spheres: usize, width: u32, height: u32) -> Option<Departure> {
+    use lightpaint::scene::luminance;
+    use lightpaint::shading::cpu::{ShadingInputs, shadowed_radiance};
+    use rayon::prelude::*;
+    let gpu = common::gpu()?;
+    let scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    let camera = lightpaint::samples::blocker_bench::thin_casters_camera();
+    let surfaces = lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
+    let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&scene, spheres);
+    let shade = |paths: LightPaths, blockers: &[Sphere]| -> Vec<Option<f64>> {
+        let shadows = ShadowSettings {
+            light_paths: paths,
+            order,
+            exp,
+            ..ShadowSettings::default()
+        };
+        let context = lightpaint::shading::LightPathContext::of_scene(&scene, blockers);
+        let lights = lightpaint::shading::shading_lights(&scene.lights, &shadows, &context);
+        let environment = lightpaint::shading::gpu_types::environment_irradiance(scene.environment.as_ref());
+        let inputs = ShadingInputs {
+            lights: &lights,
+            environment_irradiance: &environment,
+            blockers,
+            terrain: None,
+            settings: &shadows,
+            eye: camera.position.as_dvec3(),
+            pixel_angle_rad: 0.0,
+            occluders: None,
+        };
+        surfaces
+            .par_iter()
+            .map(|s| {
+                let s = s.as_ref().filter(|s| s.position.y.abs() < 1e-3)?;
+                Some(luminance(shadowed_radiance(s, &inputs)))
+            })
+            .collect()
+    };
+    let open = shade(LightPaths::Harmonics, &[]);
+    let exact = shade(LightPaths::Exact, &spheres);
+    let harmonics = shade(LightPaths::Harmonics, &spheres);
+    let (mut penumbra, mut umbra, mut lit) = (Vec::new(), Vec::new(), Vec::new());
+    for ((open, exact), harmonics) in open.iter().zip(&exact).zip(&harmonics) {
+        let (Some(open), Some(exact), Some(harmonics)) = (open, exact, harmonics) else {
+            continue;
+        };
+        if *open <= 1e-9 {
+            continue;
+        }
+        let (v_exact, v_sh) = (exact / open, harmonics / open);
+        if v_exact >= 0.999 {
+            lit.push(v_sh - 1.0);
+        } else if v_exact > 0.05 {
+            penumbra.push(v_sh - v_exact);
+        } else {
+            umbra.push(v_sh - v_exact);
+        }
+    }
+    let rms = |v: &[f64]| (v.iter().map(|e| e * e).sum::<f64>() / v.len().max(1) as f64).sqrt();
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    Some(Departure {
+        penumbra_rms: rms(&penumbra),
+        penumbra_bias: mean(&penumbra),
+        umbra_rms: rms(&umbra),
+        umbra_bias: mean(&umbra),
+        lit_bias: mean(&lit),
+        pixels: [penumbra.len(), umbra.len(), lit.len()],
+    })
+}
+
+/// The issue's bar for the lit floor with 600 spheres at order 4 (HYB): within 5 % of
+/// exact visibility (it was −23 % before the SH lights' windows on the blockers, −72 %
+/// when the issue was filed), with no more penumbra error than before the windows (RMS
+/// 0.397 at 240 × 135, the measurement below) — on the f64 twin, which the GPU matches
+/// (tests/gpu_shadows.rs), at a quarter of the measurement's surfaces.
+#[test]
+fn six_hundred_spheres_leave_the_lit_floor_lit_at_order_4() {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 120, 68) else {
+        return;
+    };
+    eprintln!(
+        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
+        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
+    );
+    assert!(
+        d.pixels.iter().all(|&n| n > 100),
+        "the floor has lit, penumbra and umbra pixels: {:?}",
+        d.pixels
+    );
+    assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
+    assert!(d.penumbra_rms <= 0.397, "penumbra RMS {:.4}", d.penumbra_rms);
+}
 
 /// The SH path's visibility against the exact path's visibility of the same spheres, over
 /// the blocker bench scene's floor with 600 spheres (f64 twin, order 4 and 8, and order 4
@@ -18,75 +126,22 @@ use lightpaint::shading::{LightPaths, ShadowSettings};
 #[test]
 #[ignore = "a measurement: run it with --run-ignored only --no-capture"]
 fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
-    use lightpaint::scene::luminance;
-    use lightpaint::shading::cpu::{ShadingInputs, shadowed_radiance};
-    use rayon::prelude::*;
-    let Some(gpu) = common::gpu() else { return };
-    let scene = lightpaint::samples::blocker_bench::thin_casters_scene();
-    let camera = lightpaint::samples::blocker_bench::thin_casters_camera();
-    let surfaces = lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, 240, 135).expect("surfaces");
-    let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&scene, 600);
     // The shipped exponentiation (HYB) at orders 4 and 8, and the exact exponential at 4.
     let defaults = ShadowSettings::default();
     for (order, exp) in [(4, defaults.exp), (8, defaults.exp), (4, ExpMethod::Reference)] {
-        let shade = |paths: LightPaths, blockers: &[Sphere]| -> Vec<Option<f64>> {
-            let shadows = ShadowSettings {
-                light_paths: paths,
-                order,
-                exp,
-                ..ShadowSettings::default()
-            };
-            let context = lightpaint::shading::LightPathContext::of_scene(&scene, blockers);
-            let lights = lightpaint::shading::shading_lights(&scene.lights, &shadows, &context);
-            let environment = lightpaint::shading::gpu_types::environment_irradiance(scene.environment.as_ref());
-            let inputs = ShadingInputs {
-                lights: &lights,
-                environment_irradiance: &environment,
-                blockers,
-                terrain: None,
-                settings: &shadows,
-                eye: camera.position.as_dvec3(),
-                pixel_angle_rad: 0.0,
-                occluders: None,
-            };
-            surfaces
-                .par_iter()
-                .map(|s| {
-                    let s = s.as_ref().filter(|s| s.position.y.abs() < 1e-3)?;
-                    Some(luminance(shadowed_radiance(s, &inputs)))
-                })
-                .collect()
+        let Some(d) = departure(order, exp, 600, 240, 135) else {
+            return;
         };
-        let open = shade(LightPaths::Harmonics, &[]);
-        let exact = shade(LightPaths::Exact, &spheres);
-        let harmonics = shade(LightPaths::Harmonics, &spheres);
-        let (mut penumbra, mut umbra, mut lit) = (Vec::new(), Vec::new(), Vec::new());
-        for ((open, exact), harmonics) in open.iter().zip(&exact).zip(&harmonics) {
-            let (Some(open), Some(exact), Some(harmonics)) = (open, exact, harmonics) else {
-                continue;
-            };
-            if *open <= 1e-9 {
-                continue;
-            }
-            let (v_exact, v_sh) = (exact / open, harmonics / open);
-            if v_exact >= 0.999 {
-                lit.push(v_sh - 1.0);
-            } else if v_exact > 0.05 {
-                penumbra.push(v_sh - v_exact);
-            } else {
-                umbra.push(v_sh - v_exact);
-            }
-        }
-        let rms = |v: &[f64]| (v.iter().map(|e| e * e).sum::<f64>() / v.len().max(1) as f64).sqrt();
-        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
         eprintln!(
-            "order {order}, {exp:?}: penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px), lit floor bias {:+.4} ({} px)",
-            rms(&penumbra),
-            penumbra.len(),
-            rms(&umbra),
-            umbra.len(),
-            mean(&lit),
-            lit.len()
+            "order {order}, {exp:?}: penumbra RMS {:.4} (bias {:+.4}, {} px), umbra RMS {:.4} (bias {:+.4}, {} px), lit floor bias {:+.4} ({} px)",
+            d.penumbra_rms,
+            d.penumbra_bias,
+            d.pixels[0],
+            d.umbra_rms,
+            d.umbra_bias,
+            d.pixels[1],
+            d.lit_bias,
+            d.pixels[2]
         );
     }
 }

@@ -167,6 +167,14 @@ pub fn environment_irradiance(environment: Option<&Environment>) -> [[f32; 4]; 9
     out
 }
 
+/// Whether `environment` lights anything: its irradiance SH (as the frame carries them)
+/// are not all zero. A frame without is lit by its lights alone (`light_windows`).
+pub fn environment_lights(environment: Option<&Environment>) -> bool {
+    environment_irradiance(environment)
+        .iter()
+        .any(|c| c[..3].iter().any(|&x| x != 0.0))
+}
+
 /// WGSL `Light`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

@@ -56,6 +56,11 @@ pub struct CompiledPaths {
     pub light_overflow: bool,
     /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
     pub blocker_overflow: bool,
+    /// How many windows of SH-path lights on the blockers the code holds (LIGHT_WINDOWS;
+    /// `shading::light_windows`): the SH lights' count when no environment lights the
+    /// frame and 1 to 4 lights are on the SH path, else 0 (the shaders check
+    /// `windows_apply` per frame too; lavapipe pays for every window compiled in).
+    pub light_windows: u32,
     /// Back faces are culled: every material of the scene is single-sided. Not code but
     /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent
     /// a tenth of the studio's default frame on the back faces it rasterised only for
@@ -75,6 +80,7 @@ impl CompiledPaths {
         area_lights: true,
         light_overflow: true,
         blocker_overflow: true,
+        light_windows: super::light_windows::MAX_WINDOW_LIGHTS as u32,
         cull_back_faces: false,
     };
 
@@ -89,6 +95,7 @@ impl CompiledPaths {
         area_lights: false,
         light_overflow: false,
         blocker_overflow: false,
+        light_windows: 0,
         cull_back_faces: false,
     };
 }
@@ -106,7 +113,7 @@ pub struct SceneLighting {
 impl SceneLighting {
     pub fn of(scene: &Scene) -> SceneLighting {
         SceneLighting {
-            has_environment: scene.environment.is_some(),
+            has_environment: super::gpu_types::environment_lights(scene.environment.as_ref()),
             has_terrain: scene.terrain.is_some(),
             single_sided: scene.every_material_single_sided(),
         }
@@ -137,6 +144,7 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         area_lights: shaded.iter().any(|light| light.kind == super::gpu_types::LIGHT_AREA),
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
+        light_windows: super::light_windows::compiled_windows(lighting.has_environment, shaded),
         cull_back_faces: lighting.single_sided,
     }
 }

@@ -15,6 +15,7 @@ pub mod frame_transfer;
 pub mod gpu_types;
 mod light_path_context;
 mod light_paths;
+pub mod light_windows;
 pub mod paint_estimate;
 mod settings;
 pub mod shadow_atlas;

@@ -9,9 +9,11 @@
 use glam::{DVec3, Vec3};
 
 use super::ShadowSettings;
+use super::cpu::LightWindows;
 use super::cpu::mapped_visibility;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
+use super::light_windows::windows_apply;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{PaintedPoint, Transfer, VertexRef};
@@ -110,12 +112,16 @@ impl<'a> DirectEstimate<'a> {
 
     /// Exponentiated visibility SH at the surface point.
     fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
+        // The view's windows on the blockers (same lights, same environment).
+        let windows = windows_apply(&self.environment, &self.unit_lights)
+            .then(|| LightWindows::at(&self.unit_lights, s.position, self.settings.order));
         let f = cpu::scene_log_visibility(
             &self.settings,
             &self.blockers,
             self.terrain.as_ref(),
             s.position,
             s.normal,
+            windows.as_ref(),
         );
         sh::exp(self.settings.exp, &f)
     }

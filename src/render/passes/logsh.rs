@@ -87,7 +87,13 @@ impl LogShPipeline {
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
             (
-                PerVertexCompute::new(device, &module, &shadow_layout, settings.order, &path_constants(paths)),
+                PerVertexCompute::new(
+                    device,
+                    &module,
+                    [&layouts.frame, &shadow_layout],
+                    settings.order,
+                    &path_constants(paths),
+                ),
                 make(Stage::ShadePerVertex(settings.order)),
             )
         });
@@ -187,7 +193,11 @@ impl LogShPipeline {
             _ => None,
         };
         if let Some((visibility, (compute, _))) = per_vertex {
-            compute.run(frame.encoder, &blockers.bind_group, visibility);
+            compute.run(
+                frame.encoder,
+                [&scene.frame_bind_group, &blockers.bind_group],
+                visibility,
+            );
             frame.mark("per-vertex visibility");
         }
         if let Some((low, pipelines)) = reduced {

@@ -8,6 +8,8 @@ use crate::shading::wgsl::sh as wgsl_sh;
 use crate::shading::wgsl::slots;
 
 /// The compute pipeline and the bind group layout of its per-object buffers (group 3).
+/// It reads the frame's group (0) too: the SH lights' windows on the blockers
+/// (`shading::light_windows`) depend on the lights and the environment.
 pub struct PerVertexCompute {
     pub pipeline: wgpu::ComputePipeline,
     object_layout: wgpu::BindGroupLayout,
@@ -20,7 +22,7 @@ impl PerVertexCompute {
     pub fn new(
         device: &wgpu::Device,
         module: &wgpu::ShaderModule,
-        shadow_layout: &wgpu::BindGroupLayout,
+        [frame_layout, shadow_layout]: [&wgpu::BindGroupLayout; 2],
         order: usize,
         constants: &[(&str, f64)],
     ) -> PerVertexCompute {
@@ -44,7 +46,7 @@ impl PerVertexCompute {
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("per-vertex visibility"),
             bind_group_layouts: &[
-                Some(&empty_layout),
+                Some(frame_layout),
                 Some(&empty_layout),
                 Some(shadow_layout),
                 Some(&object_layout),
@@ -71,13 +73,20 @@ impl PerVertexCompute {
     }
 
     /// Computes every vertex's visibility into `visibility` (bind group 2 = the blockers).
-    pub fn run(&self, encoder: &mut wgpu::CommandEncoder, blockers: &wgpu::BindGroup, visibility: &VertexVisibility) {
+    /// Writes every vertex's visibility SH, the frame's group `frame` and the blockers'
+    /// `blockers` bound.
+    pub fn run(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        [frame, blockers]: [&wgpu::BindGroup; 2],
+        visibility: &VertexVisibility,
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("per-vertex visibility"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(slots::FRAME_GROUP, &self.empty_group, &[]);
+        pass.set_bind_group(slots::FRAME_GROUP, frame, &[]);
         pass.set_bind_group(slots::MATERIAL_GROUP, &self.empty_group, &[]);
         pass.set_bind_group(slots::SHADOW_GROUP, blockers, &[]);
         for (bind_group, vertex_count) in visibility.bind_groups.iter().zip(&visibility.vertex_counts) {

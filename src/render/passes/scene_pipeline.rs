@@ -85,6 +85,7 @@ pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("AREA_LIGHTS", flag(paths.area_lights)),
         ("LIGHT_OVERFLOW", flag(paths.light_overflow)),
         ("BLOCKER_OVERFLOW", flag(paths.blocker_overflow)),
+        ("LIGHT_WINDOWS", f64::from(paths.light_windows)),
     ]
 }
 

@@ -349,7 +349,7 @@ impl SceneRenderer {
     /// Replaces the environment light (one that appears or goes away recompiles).
     pub fn set_environment(&mut self, environment: Option<&Environment>) {
         self.gpu_scene.set_environment(environment);
-        self.lighting.has_environment = environment.is_some();
+        self.lighting.has_environment = crate::shading::gpu_types::environment_lights(environment);
         self.recompile_if_paths_changed();
     }
 

@@ -20,7 +20,7 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 
 use crate::blockers::disc::edge_form_factor;
-use crate::shading::gpu_types::GpuLight;
+use crate::shading::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_POINT};
 
 /// The xyz of a GPU vector in f64.
 fn v3(a: [f32; 4]) -> DVec3 {
@@ -74,6 +74,24 @@ pub fn area_light_corners(light: &GpuLight) -> ([DVec3; DISK_LIGHT_SIDES], usize
         *corner = centre + u * angle.cos() + v * angle.sin();
     }
     (corners, sides)
+}
+
+/// The radius (metres) of the smallest sphere about a light's centre that holds its
+/// emitter: a rect's half diagonal, a disk's polygon's circumradius, a sphere light's
+/// radius, 0 for point-like lights.
+pub fn bounding_radius_m(light: &GpuLight) -> f64 {
+    match light.kind {
+        LIGHT_AREA => {
+            let (corners, sides) = area_light_corners(light);
+            let centre = v3(light.position);
+            corners[..sides]
+                .iter()
+                .map(|c| (*c - centre).length())
+                .fold(0.0, f64::max)
+        }
+        LIGHT_POINT => light.source_size as f64,
+        _ => 0.0,
+    }
 }
 
 /// The vector irradiance Φ at p of a polygon of unit radiance (corners in order around

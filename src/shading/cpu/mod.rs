@@ -5,6 +5,8 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
+//!   With no environment and 1–4 lights on the SH path, each cap is weighed by how near it
+//!   comes to those lights' caps and kept whole (`shading::light_windows`);
 //! - visibility G = exp*(F) by the chosen [`crate::sh::ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
@@ -28,6 +30,7 @@ pub mod lobes;
 mod mapped;
 mod surface;
 mod visibility;
+mod windows;
 
 use glam::DVec3;
 
@@ -37,14 +40,16 @@ pub use surface::{
     mirrored_view,
 };
 pub use visibility::{
-    BlockersInReach, blockers_in_reach, exact_visibility, log_visibility, scene_log_visibility, visibility_cosine,
-    visibility_toward,
+    BlockersInReach, blockers_in_reach, exact_visibility, log_visibility, log_visibility_within, scene_log_visibility,
+    visibility_cosine, visibility_toward,
 };
+pub use windows::{LightWindow, LightWindows};
 
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
+use crate::shading::light_windows::windows_apply;
 use crate::terrain::TerrainShadow;
 pub use lobes::environment_through_visibility;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
@@ -73,7 +78,16 @@ pub struct ShadingInputs<'a> {
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
 pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     let settings = inputs.settings;
-    let f = scene_log_visibility(settings, inputs.blockers, inputs.terrain, s.position, s.normal);
+    let windows = windows_apply(inputs.environment_irradiance, inputs.lights)
+        .then(|| LightWindows::at(inputs.lights, s.position, settings.order));
+    let f = scene_log_visibility(
+        settings,
+        inputs.blockers,
+        inputs.terrain,
+        s.position,
+        s.normal,
+        windows.as_ref(),
+    );
     let lobes = lobes_from_log_visibility(settings, s, inputs.eye, &f, |f| exp_for_shading(settings.exp, f));
     let mut radiance = s.emissive + environment_through(settings, s, inputs.environment_irradiance, &lobes);
     let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;

@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::surface::{Incidence, SurfacePoint};
+use super::windows::LightWindows;
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
 use crate::shading::ShadowSettings;
@@ -18,12 +19,35 @@ use crate::terrain::TerrainShadow;
 /// stand-in share, and each group's stand-in sphere weighed by that share
 /// (`shading::blocker_groups`).
 pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> Vec<f64> {
+    log_visibility_within(settings, blockers, p, n, None)
+}
+
+/// [`log_visibility`] with each cap weighed and scaled by the SH-path lights' `windows`
+/// (`LightWindows::cap_scale`, in place of the cap-mass scale k(s)), or as it is with
+/// None.
+pub fn log_visibility_within(
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    p: DVec3,
+    n: DVec3,
+    windows: Option<&LightWindows>,
+) -> Vec<f64> {
     let order = settings.order;
     let ln_epsilon = (settings.epsilon as f64).ln();
     let mass_scales = settings.cap_mass_table();
     let mut f = vec![0.0; order * order];
     let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
-        let mass_scale = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
+        let (mass_scale, window) = match windows {
+            Some(windows) => (
+                1.0,
+                windows.cap_scale(direction, ratio, sh::interpolate_cap_mass_scale(&mass_scales, ratio)),
+            ),
+            None => (sh::interpolate_cap_mass_scale(&mass_scales, ratio), 1.0),
+        };
+        if window <= 0.0 {
+            return;
+        }
+        let horizon = horizon * window;
         let scale = if settings.ratio_attenuation {
             ln_epsilon * horizon * ratio * mass_scale
         } else {
@@ -144,15 +168,17 @@ fn with_groups<R>(
 }
 
 /// The blockers' log-visibility plus, with a terrain, the terrain's (`log_visibility` in
-/// logsh.wgsl, which adds `terrain_log_visibility`).
+/// logsh.wgsl, which adds `terrain_log_visibility`), the blockers' weighed by `windows`
+/// when given (the terrain's never: its horizon is not a blocker's cap).
 pub fn scene_log_visibility(
     settings: &ShadowSettings,
     blockers: &[Sphere],
     terrain: Option<&TerrainShadow>,
     p: DVec3,
     n: DVec3,
+    windows: Option<&LightWindows>,
 ) -> Vec<f64> {
-    let mut f = log_visibility(settings, blockers, p, n);
+    let mut f = log_visibility_within(settings, blockers, p, n, windows);
     if let Some(terrain) = terrain {
         let ln_epsilon = (settings.epsilon as f64).ln();
         for (a, b) in f.iter_mut().zip(terrain.log_visibility(p, ln_epsilon)) {
