@@ -94,8 +94,6 @@ fn smoothstep(low: f64, high: f64, x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Light, LightKind};
-    use glam::Vec3;
 
     fn window(half_angle_deg: f64) -> LightWindow {
         LightWindow::new(DVec3::Y, half_angle_deg.to_radians(), 4)
@@ -164,30 +162,17 @@ mod tests {
         assert_eq!(windows.cap_scale(DVec3::Z, 0.05, 1.0), 0.0);
     }
 
-    fn panel() -> Light {
-        Light {
-            name: "panel".into(),
-            kind: LightKind::Rect {
-                width_m: 1.2,
-                height_m: 0.8,
-                turn_rad: 0.0,
-            },
-            color: Vec3::ONE,
-            intensity: 1.0,
-            position: Vec3::new(0.0, 3.0, 0.0),
-            direction: Vec3::NEG_Y,
-            range: None,
-            locked: false,
-        }
-    }
-
     #[test]
     fn a_rect_lights_window_holds_its_corners() {
-        let windows = LightWindows::at(&[GpuLight::new(&panel())], DVec3::ZERO, 4);
+        // The bench's 1.2 m × 0.8 m panel, 3.2 m above the floor, facing down.
+        let panel = &crate::samples::blocker_bench::thin_casters_scene().lights[0];
+        let below = DVec3::new(0.3, 0.0, 0.6);
+        assert!((panel.position.as_dvec3() - below - 3.2 * DVec3::Y).length() < 1e-6);
+        let windows = LightWindows::at(&[GpuLight::new(panel)], below, 4);
         let w = windows.windows[0];
         assert!((w.toward - DVec3::Y).length() < 1e-6);
-        // Half diagonal √(0.6² + 0.4²) at 3 m.
-        let expected = (0.52f64.sqrt() / 3.0).asin();
+        // Half diagonal √(0.6² + 0.4²) at 3.2 m.
+        let expected = (0.52f64.sqrt() / 3.2).asin();
         assert!(
             (w.half_angle_rad - expected).abs() < 1e-6,
             "{} vs {expected}",
