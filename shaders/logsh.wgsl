@@ -212,7 +212,8 @@ fn open_light_windows(p: vec3<f32>) {
 // Whether a group's blockers can have any weight in the windows: its bounding sphere
 // (every blocker within it) seen under half-angle γ, its centre θ from a window of
 // half-angle α, holds none beyond it unless θ < α + 3γ/2 (a blocker's cap of half-angle
-// β ≤ γ inside the group's reaches the window's ramp only within α + 3β/2 of it). Its
+// β ≤ γ inside the group's reaches the window's ramp only within α + 3β/2 of it; 1e-3
+// rad more for rounding). Its
 // blockers skipped, the walk costs the windows nothing where no light can be hidden;
 // their weights were 0 (the twin, which walks them all, adds nothing for them).
 fn group_in_windows(group: BlockerGroup, p: vec3<f32>) -> bool {

@@ -23,9 +23,9 @@
 //! weight × scale any light's window gives it. Measured on the thin-caster bench (f64
 //! twin, HYB, against the exact path over the same 600 spheres; `cargo nextest run
 //! --test sh_against_exact --run-ignored only --no-capture`, docs/performance.md): at
-//! order 4 the lit floor −23.1 % → −2.4 %, penumbra RMS 0.397 → 0.326, umbra RMS 0.079 →
-//! 0.065; at order 8 the lit floor −4.6 % → −4.9 %, umbra 0.139 → 0.019, penumbra 0.291
-//! → 0.482 (too dark: blockers at the light's rim spread their mass over its middle;
+//! order 4 the lit floor −23.1 % → −2.5 %, penumbra RMS 0.397 → 0.329, umbra RMS 0.079 →
+//! 0.062; at order 8 the lit floor −4.6 % → −5.0 %, umbra 0.139 → 0.019, penumbra 0.291
+//! → 0.484 (too dark: blockers at the light's rim spread their mass over its middle;
 //! a light this small, 10–13°, is what the exact path and the shadow maps are for, and
 //! Auto gives it them). Without the larger scale (k(s) in the windows) the umbrae at
 //! order 4 came out 36 % too light.

@@ -5,8 +5,9 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
-//!   With no environment and 1–4 lights on the SH path, each cap is weighed by how near it
-//!   comes to those lights' caps and kept whole (`shading::light_windows`);
+//!   with no environment and 1–4 lights on the SH path, each cap is weighed by how near it
+//!   comes to those lights' caps and scaled for their means instead of by k(s)
+//!   (`shading::light_windows`, `windows.rs`);
 //! - visibility G = exp*(F) by the chosen [`crate::sh::ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
