@@ -170,9 +170,13 @@ pub fn environment_irradiance(environment: Option<&Environment>) -> [[f32; 4]; 9
 /// Whether `environment` lights anything: its irradiance SH (as the frame carries them)
 /// are not all zero. A frame without is lit by its lights alone (`light_windows`).
 pub fn environment_lights(environment: Option<&Environment>) -> bool {
-    environment_irradiance(environment)
-        .iter()
-        .any(|c| c[..3].iter().any(|&x| x != 0.0))
+    irradiance_lights(&environment_irradiance(environment))
+}
+
+/// Whether irradiance SH as the frame carries them (`Frame::environment_irradiance`)
+/// light anything: not all zero.
+pub fn irradiance_lights(irradiance: &[[f32; 4]; 9]) -> bool {
+    irradiance.iter().any(|c| c[..3].iter().any(|&x| x != 0.0))
 }
 
 /// WGSL `Light`.

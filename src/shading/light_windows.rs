@@ -33,7 +33,7 @@
 //! With an environment the windows are off: its light comes from the whole sky. So are
 //! they past [`MAX_WINDOW_LIGHTS`] SH lights (the shaders keep each window in registers).
 
-use super::gpu_types::{GpuLight, SHADOW_PATH_SH};
+use super::gpu_types::{GpuLight, SHADOW_PATH_SH, irradiance_lights};
 
 /// The most SH-path lights a frame may have for the windows to apply
 /// (`MAX_WINDOW_LIGHTS` in logsh.wgsl).
@@ -44,10 +44,7 @@ pub const MAX_WINDOW_LIGHTS: usize = 4;
 /// light, and 1 to [`MAX_WINDOW_LIGHTS`] lights on the SH path (`light_windows_apply` in
 /// logsh.wgsl decides alike from the same numbers).
 pub fn windows_apply(environment_irradiance: &[[f32; 4]; 9], lights: &[GpuLight]) -> bool {
-    // As gpu_types::environment_lights, on the frame's numbers.
-    let environment_lights = environment_irradiance.iter().any(|c| c[..3].iter().any(|&x| x != 0.0));
-    let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    !environment_lights && (1..=MAX_WINDOW_LIGHTS).contains(&sh_lights)
+    compiled_windows(irradiance_lights(environment_irradiance), lights) > 0
 }
 
 /// The windows the shaders compile in for a frame with (`environment_lights`) or without

@@ -37,12 +37,10 @@ pub fn log_visibility_within(
     let mass_scales = settings.cap_mass_table();
     let mut f = vec![0.0; order * order];
     let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
+        let k = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
         let (mass_scale, window) = match windows {
-            Some(windows) => (
-                1.0,
-                windows.cap_scale(direction, ratio, sh::interpolate_cap_mass_scale(&mass_scales, ratio)),
-            ),
-            None => (sh::interpolate_cap_mass_scale(&mass_scales, ratio), 1.0),
+            Some(windows) => (1.0, windows.cap_scale(direction, ratio, k)),
+            None => (k, 1.0),
         };
         if window <= 0.0 {
             return;
