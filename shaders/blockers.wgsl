@@ -143,21 +143,24 @@ struct BlockerWalk {
     next: u32,
     end: u32,
     // The receiver, and the weight of the current group's blockers there:
-    // 1 − stand_in_share (log_visibility's walk; the exact path ignores it).
+    // cluster_weight · (1 − stand_in_share) (log_visibility's walk; the exact path
+    // ignores it), cluster_weight the groups' share against their cluster's stand-in.
     receiver: vec3<f32>,
     weight: f32,
+    cluster_weight: f32,
 };
 
 // No blocker left to walk.
 const WALK_DONE: u32 = 0xffffffffu;
 
 fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, vec3<f32>(0.0), 1.0);
+    return BlockerWalk(first_group, passing, 0u, 0u, vec3<f32>(0.0), 1.0, 1.0);
 }
 
-// A walk that weighs each group's blockers at receiver p.
-fn blocker_walk_at(first_group: u32, passing: u32, p: vec3<f32>) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, p, 1.0);
+// A walk that weighs each group's blockers at receiver p, the groups together weighed
+// cluster_weight.
+fn blocker_walk_at(first_group: u32, passing: u32, p: vec3<f32>, cluster_weight: f32) -> BlockerWalk {
+    return BlockerWalk(first_group, passing, 0u, 0u, p, 1.0, cluster_weight);
 }
 
 // The index of the walk's next blocker, or WALK_DONE.
@@ -170,14 +173,26 @@ fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
         (*walk).passing &= (*walk).passing - 1u;
         (*walk).next = group.first;
         (*walk).end = group.first + group.count;
-        (*walk).weight = 1.0 - stand_in_share(group, (*walk).receiver);
+        (*walk).weight = (*walk).cluster_weight * (1.0 - stand_in_share(group, (*walk).receiver));
     }
     (*walk).next += 1u;
     return (*walk).next - 1u;
 }
 
-// Groups per BlockerWalk (the bits of `passing`).
+// Groups per BlockerWalk (the bits of `passing`): the most groups in one cluster
+// (blocker_groups::CLUSTER_GROUPS).
 const WALK_GROUPS: u32 = 32u;
+
+// The groups of cluster c that a receiver walks: all of them when `visit`, else none
+// (first == end, so the walk's loops take one masked pass).
+struct ClusterGroups {
+    first: u32,
+    end: u32,
+};
+
+fn cluster_groups(cluster: BlockerGroup, visit: bool) -> ClusterGroups {
+    return ClusterGroups(cluster.first, select(cluster.first, cluster.first + cluster.count, visit));
+}
 
 // Conservative group tests (see blocker_groups.rs): every sphere of a group out of reach
 // would be skipped by add_blocker's tests (beyond its influence, or wholly below the
@@ -190,7 +205,8 @@ fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
 
 // How much of a group's shadow at p its stand-in carries (blocker_groups.rs): 0 within
 // half its influence distance, 1 beyond it, smoothly between, where its blockers are
-// weighed 1 − share — so no ring shows where one takes over from the other.
+// weighed 1 − share — so no ring shows where one takes over from the other. Of a
+// cluster, likewise over its hand-over distance.
 fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
     if group.stand_in_radius_m <= 0.0 {
         return 0.0;

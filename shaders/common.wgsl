@@ -111,12 +111,13 @@ struct ShadowParams {
     blocker_count: u32,
     // 1: scale each blocker's log-visibility by r/d (Ren's ratio attenuation).
     ratio_attenuation: u32,
-    // Number of BlockerGroups (src/shading/blocker_groups.rs).
+    // Number of BlockerGroups (src/shading/blocker_groups.rs), after the clusters.
     group_count: u32,
     // Discs in `discs`: open and thin meshes' planar patches, shaded in their own loop.
     disc_count: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // Clusters of groups at the start of `groups` (blocker_groups::BlockerCluster).
+    cluster_count: u32,
+    _pad: u32,
     // k(s) at s = i/31, four to a vec4: the scale of a cap's log-visibility that keeps
     // the light it blocks through the band limit (src/sh/cap_mass.rs; all 1 when off).
     cap_mass_scale: array<vec4<f32>, 8>,
@@ -178,7 +179,9 @@ struct TerrainParams {
 
 // Consecutive blockers first..first + count culled together: every sphere lies within
 // center_extent.w of center_extent.xyz, and a receiver farther than influence_m from the
-// centre is beyond every sphere's influence distance.
+// centre is beyond every sphere's influence distance. A cluster has the same layout: its
+// groups are first..first + count of `groups`, and influence_m is its hand-over distance
+// (beyond it the stand-in alone; src/shading/blocker_groups.rs).
 struct BlockerGroup {
     center_extent: vec4<f32>,
     influence_m: f32,

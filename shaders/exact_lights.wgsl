@@ -166,22 +166,27 @@ fn group_may_cut(batch: ExactBatch, direction: vec3<f32>, distance: f32, extent:
     return any(cos_to_lights(direction, batch) > cos_a * cos_g - sin_a * sin_g);
 }
 
-// The groups chunk..chunk + WALK_GROUPS − 1 (as BlockerWalk bits) with a sphere that may
-// cut one of the batch's discs: in reach (group_in_reach) and meeting some light's cone.
-fn groups_that_may_cut(chunk: u32, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> u32 {
+// Whether a group (or a cluster: its bounds hold its groups') may hold a sphere that cuts
+// one of the batch's discs: in reach (group_in_reach) and meeting some light's cone.
+fn group_in_batch_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> bool {
+    let to_group = group.center_extent.xyz - p;
+    let group_distance = sqrt(dot(to_group, to_group));
+    let direction = to_group / max(group_distance, 1e-30);
+    let extent = group.center_extent.w;
+    var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
+    if EXACT_WIDE {
+        may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
+    }
+    return may_cut && group_in_reach(group, p, n);
+}
+
+// The groups of `walked` (as BlockerWalk bits from walked.first) with a sphere that may
+// cut one of the batch's discs.
+fn groups_that_may_cut(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> u32 {
     var passing = 0u;
-    for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
-        let group = group_at(g);
-        let to_group = group.center_extent.xyz - p;
-        let group_distance = sqrt(dot(to_group, to_group));
-        let direction = to_group / max(group_distance, 1e-30);
-        let extent = group.center_extent.w;
-        var may_cut = group_may_cut(lo, direction, group_distance, extent, half_footprint);
-        if EXACT_WIDE {
-            may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
-        }
-        if may_cut && group_in_reach(group, p, n) {
-            passing |= 1u << (g - chunk);
+    for (var g = walked.first; g < walked.end; g++) {
+        if group_in_batch_reach(group_at(g), p, n, lo, hi, half_footprint) {
+            passing |= 1u << (g - walked.first);
         }
     }
     return passing;
@@ -280,8 +285,10 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
     var covered_lo = vec4<bool>(false);
     var covered_hi = vec4<bool>(false);
     var list = CutList(vec4<u32>(0u), vec4<u32>(0u), 0u, NO_OVERFLOW);
-    for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
-        var walk = blocker_walk(chunk, groups_that_may_cut(chunk, p, n, lo, hi, half_footprint));
+    for (var c = 0u; c < shadow.cluster_count; c++) {
+        let cluster = group_at(c);
+        let walked = cluster_groups(cluster, group_in_batch_reach(cluster, p, n, lo, hi, half_footprint));
+        var walk = blocker_walk(walked.first, groups_that_may_cut(walked, p, n, lo, hi, half_footprint));
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {

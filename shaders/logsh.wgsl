@@ -38,19 +38,25 @@ override EXACT_LIGHT_PATH: bool = true;
 // visibility SH would go unread and are not computed. Set likewise.
 override SH_VISIBILITY: bool = true;
 
-// Σ of the blockers' and the terrain's log-visibility seen from p with normal n: the
-// spheres of the groups in reach (weighed against their group's stand-in), the groups'
-// stand-ins, then every disc. Skipped: spheres that contain p (a sphere-fit artefact on
-// the blocker's own surface), blockers too small in the sky to matter, and blockers
-// wholly below the tangent plane; blockers straddling it are faded by
-// smoothstep(−1, 1, (c − p)·n / h), h their half-extent along n.
+// Σ of the blockers' and the terrain's log-visibility seen from p with normal n: per
+// cluster its stand-in, weighed by its share at p, and, within its hand-over distance,
+// the spheres of its groups in reach (weighed against their group's stand-in) and the
+// groups' stand-ins, all weighed 1 − the cluster's share; then every disc. Skipped:
+// spheres that contain p (a sphere-fit artefact on the blocker's own surface), blockers
+// too small in the sky to matter, and blockers wholly below the tangent plane; blockers
+// straddling it are faded by smoothstep(−1, 1, (c − p)·n / h), h their half-extent
+// along n.
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     if LIGHT_WINDOWS > 0u {
         open_light_windows(p);
     }
     var f = sh_zero();
-    for (var chunk = 0u; chunk < shadow.group_count; chunk += WALK_GROUPS) {
-        var walk = blocker_walk_at(chunk, groups_in_reach(chunk, p, n, &f), p);
+    for (var c = 0u; c < shadow.cluster_count; c++) {
+        let cluster = group_at(c);
+        f = add_stand_in(f, cluster, p, n, 1.0);
+        let groups_weight = 1.0 - stand_in_share(cluster, p);
+        let walked = cluster_groups(cluster, group_in_reach(cluster, p, n) && group_in_windows(cluster, p));
+        var walk = blocker_walk_at(walked.first, groups_in_reach(walked, p, n, groups_weight, &f), p, groups_weight);
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {
@@ -63,24 +69,26 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     return sh_sum(f, terrain_log_visibility(p));
 }
 
-// The groups chunk..chunk + WALK_GROUPS − 1 in reach of p (as BlockerWalk bits). Each
-// group adds its stand-in to *f, weighed by its share at p (add_stand_in).
-fn groups_in_reach(chunk: u32, p: vec3<f32>, n: vec3<f32>, f: ptr<function, Sh>) -> u32 {
+// The groups of `walked` in reach of p (as BlockerWalk bits from walked.first). Each
+// group adds its stand-in to *f, weighed by its share at p (add_stand_in) times
+// `weight`, the groups' share against their cluster's stand-in.
+fn groups_in_reach(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32, f: ptr<function, Sh>) -> u32 {
     var passing = 0u;
-    for (var g = chunk; g < min(chunk + WALK_GROUPS, shadow.group_count); g++) {
+    for (var g = walked.first; g < walked.end; g++) {
         let group = group_at(g);
         if group_in_reach(group, p, n) && group_in_windows(group, p) {
-            passing |= 1u << (g - chunk);
+            passing |= 1u << (g - walked.first);
         }
-        *f = add_stand_in(*f, group, p, n);
+        *f = add_stand_in(*f, group, p, n, weight);
     }
     return passing;
 }
 
-// A group's stand-in, one sphere of its spheres' summed projected area at its centre,
-// weighed by stand_in_share and faded below the tangent plane over the group's extent.
-fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> Sh {
-    let share = stand_in_share(group, p);
+// A group's (or a cluster's) stand-in, one sphere of its spheres' summed projected area
+// at its centre, weighed by stand_in_share times `weight` and faded below the tangent
+// plane over the group's extent.
+fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
+    let share = stand_in_share(group, p) * weight;
     let offset = group.center_extent.xyz - p;
     let distance = sqrt(max(dot(offset, offset), 1e-30));
     let ratio = group.stand_in_radius_m / distance;

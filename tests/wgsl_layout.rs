@@ -171,6 +171,7 @@ fn shadow_params_match_wgsl() {
             ("ratio_attenuation", offset_of!(GpuShadowParams, ratio_attenuation)),
             ("group_count", offset_of!(GpuShadowParams, group_count)),
             ("disc_count", offset_of!(GpuShadowParams, disc_count)),
+            ("cluster_count", offset_of!(GpuShadowParams, cluster_count)),
             ("cap_mass_scale", offset_of!(GpuShadowParams, cap_mass_scale)),
             ("discs", offset_of!(GpuShadowParams, discs)),
         ],

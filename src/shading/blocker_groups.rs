@@ -1,6 +1,8 @@
 //! Culling groups for the shading pass: nearby spheres gathered into groups of at most
-//! [`GROUP_SIZE`] by recursive median splits (a one-level sphere hierarchy), each with a
-//! bounding radius and an influence radius, so a receiver skips a whole group at once.
+//! [`GROUP_SIZE`] by recursive median splits, each with a bounding radius and an influence
+//! radius, so a receiver skips a whole group at once; and the groups into clusters of at
+//! most [`CLUSTER_GROUPS`] (a two-level sphere hierarchy), so a receiver far from a
+//! cluster skips its groups too.
 //!
 //! The group tests are conservative: a group is skipped only when every one of its spheres
 //! would be skipped by the per-sphere tests of logsh.wgsl (beyond its influence distance
@@ -11,13 +13,35 @@
 //! for as long as it is large enough in the sky: many small blockers (a lattice's, a
 //! helix's) keep the far reaches of their soft shadows, each of them alone too small to
 //! count.
+//!
+//! A cluster does the same one level up (Ren et al. 2006 cut their sphere tree where a
+//! node's cap is under about 80°/order, the finest angle the order tells apart): one
+//! sphere of all its spheres' projected area takes over from its groups and their
+//! stand-ins between half its hand-over distance and that distance, the larger of where
+//! the last of its groups' spheres and stand-ins stops counting and twice where its
+//! bounding cap narrows to 80°/order (`BlockerCluster::hand_over_m`). So beyond that
+//! distance a receiver adds one cap for hundreds of spheres, and the walk's cost grows
+//! with the clusters near a receiver, not with every group of the scene.
 
 use glam::Vec3;
 
 use crate::blockers::Sphere;
 
-/// Most spheres in one group.
-pub const GROUP_SIZE: usize = 8;
+/// Most spheres in one group. 16 rather than 8 or 32: the blocker bench's frame
+/// (`cargo bench --bench frame -- frame/sphere-count`) at 600 spheres took 106–111 ms with
+/// 16, 117 with 8 and 130 with 32; at 20,000, 365–380, 507 and 342 ms (docs/performance.md).
+pub const GROUP_SIZE: usize = 16;
+
+/// Most groups in one cluster: the bits of one walk's mask (WGSL `WALK_GROUPS`). With
+/// 16, twice the clusters cost more than the smaller clusters saved (20,000 spheres:
+/// 437 against 365 ms).
+pub const CLUSTER_GROUPS: usize = 32;
+
+/// Ren et al. 2006's cut angle for order n: a node whose cap is narrower than
+/// 80°/n stands in for its children.
+pub fn cut_half_angle_rad(order: usize) -> f32 {
+    80f32.to_radians() / order.max(1) as f32
+}
 
 /// A group of consecutive spheres `first..first + count` of the reordered list.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,22 +61,118 @@ pub struct BlockerGroup {
     pub count: usize,
 }
 
-/// The spheres reordered so that groups are contiguous, and the groups.
-pub fn group_blockers(spheres: &[Sphere], min_cap_ratio: f32) -> (Vec<Sphere>, Vec<BlockerGroup>) {
-    let mut ordered = spheres.to_vec();
-    let mut groups = Vec::new();
-    split(&mut ordered, 0, min_cap_ratio, &mut groups);
-    (ordered, groups)
+/// Consecutive groups `first_group..first_group + group_count`, at most
+/// [`CLUSTER_GROUPS`], with one stand-in for all their spheres far away.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockerCluster {
+    pub center: Vec3,
+    /// Every sphere lies within this distance of `center`.
+    pub extent_m: f32,
+    /// The cluster's stand-in takes over from its groups between half this distance and
+    /// this distance from `center`; a receiver farther away skips the groups. At least
+    /// where every group's spheres and stand-in stop counting (so skipping them there
+    /// changes nothing), and at least twice the distance at which the cluster's bounding
+    /// cap narrows to the cut angle (so the stand-in starts where the order cannot tell
+    /// it from its spheres).
+    pub hand_over_m: f32,
+    /// √Σ rᵢ² over the cluster's spheres.
+    pub stand_in_radius_m: f32,
+    pub first_group: usize,
+    pub group_count: usize,
 }
 
-fn split(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, groups: &mut Vec<BlockerGroup>) {
+/// The spheres reordered so that groups are contiguous, the groups (ordered so that
+/// clusters are contiguous) and the clusters.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GroupedBlockers {
+    pub spheres: Vec<Sphere>,
+    pub groups: Vec<BlockerGroup>,
+    pub clusters: Vec<BlockerCluster>,
+}
+
+/// Groups and clusters `spheres` for a frame whose blockers under `min_cap_ratio` are
+/// skipped and whose SH have `order` bands.
+pub fn group_blockers(spheres: &[Sphere], min_cap_ratio: f32, order: usize) -> GroupedBlockers {
+    let mut grouped = GroupedBlockers {
+        spheres: spheres.to_vec(),
+        ..GroupedBlockers::default()
+    };
+    let mut ordered = std::mem::take(&mut grouped.spheres);
+    let cut_sine = cut_half_angle_rad(order).sin();
+    cluster(&mut ordered, 0, min_cap_ratio, cut_sine, &mut grouped);
+    grouped.spheres = ordered;
+    grouped
+}
+
+/// How many groups `split` makes of `count` spheres.
+fn group_count(count: usize) -> usize {
+    if count <= GROUP_SIZE {
+        1
+    } else {
+        group_count(count / 2) + group_count(count - count / 2)
+    }
+}
+
+fn cluster(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, cut_sine: f32, grouped: &mut GroupedBlockers) {
     if spheres.is_empty() {
         return;
     }
-    if spheres.len() <= GROUP_SIZE {
-        groups.push(bound(spheres, offset, min_cap_ratio));
+    if group_count(spheres.len()) <= CLUSTER_GROUPS {
+        let first_group = grouped.groups.len();
+        split(spheres, offset, min_cap_ratio, &mut grouped.groups);
+        let cluster = bound_cluster(
+            spheres,
+            &grouped.groups[first_group..],
+            first_group,
+            min_cap_ratio,
+            cut_sine,
+        );
+        grouped.clusters.push(cluster);
         return;
     }
+    let middle = split_at_median(spheres);
+    let (left, right) = spheres.split_at_mut(middle);
+    cluster(left, offset, min_cap_ratio, cut_sine, grouped);
+    cluster(right, offset + middle, min_cap_ratio, cut_sine, grouped);
+}
+
+fn bound_cluster(
+    spheres: &[Sphere],
+    groups: &[BlockerGroup],
+    first_group: usize,
+    min_cap_ratio: f32,
+    cut_sine: f32,
+) -> BlockerCluster {
+    let center = spheres.iter().map(|s| s.center).sum::<Vec3>() / spheres.len() as f32;
+    let extent_m = spheres
+        .iter()
+        .map(|s| s.center.distance(center) + s.radius_m)
+        .fold(0.0, f32::max);
+    // Where the last group's spheres or stand-in stops counting.
+    let groups_reach_m = groups
+        .iter()
+        .map(|g| {
+            let stand_in_reach = if min_cap_ratio > 0.0 {
+                g.stand_in_radius_m / min_cap_ratio
+            } else {
+                f32::INFINITY
+            };
+            g.center.distance(center) + g.influence_m.max(stand_in_reach)
+        })
+        .fold(0.0, f32::max);
+    BlockerCluster {
+        center,
+        extent_m,
+        hand_over_m: groups_reach_m.max(2.0 * extent_m / cut_sine.max(1e-6)),
+        stand_in_radius_m: spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt(),
+        first_group,
+        group_count: groups.len(),
+    }
+}
+
+/// Reorders `spheres` about the median of their centres along the axis of widest
+/// spread; returns the split index.
+fn split_at_median(spheres: &mut [Sphere]) -> usize {
     let (lo, hi) = spheres
         .iter()
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), s| {
@@ -68,6 +188,18 @@ fn split(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, groups: &mut
     };
     let middle = spheres.len() / 2;
     spheres.select_nth_unstable_by(middle, |a, b| a.center[axis].total_cmp(&b.center[axis]));
+    middle
+}
+
+fn split(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, groups: &mut Vec<BlockerGroup>) {
+    if spheres.is_empty() {
+        return;
+    }
+    if spheres.len() <= GROUP_SIZE {
+        groups.push(bound(spheres, offset, min_cap_ratio));
+        return;
+    }
+    let middle = split_at_median(spheres);
     let (left, right) = spheres.split_at_mut(middle);
     split(left, offset, min_cap_ratio, groups);
     split(right, offset + middle, min_cap_ratio, groups);
@@ -116,7 +248,11 @@ mod tests {
     #[test]
     fn groups_cover_every_sphere_once_and_bound_them() {
         let input = spheres(203);
-        let (ordered, groups) = group_blockers(&input, 0.03);
+        let GroupedBlockers {
+            spheres: ordered,
+            groups,
+            ..
+        } = group_blockers(&input, 0.03, 4);
         assert_eq!(ordered.len(), input.len());
         assert_eq!(groups.iter().map(|g| g.count).sum::<usize>(), input.len());
         let mut next = 0;
@@ -137,7 +273,62 @@ mod tests {
     }
 
     #[test]
+    fn clusters_cover_every_group_once_and_bound_their_spheres() {
+        let input = spheres(5000);
+        let grouped = group_blockers(&input, 0.03, 4);
+        assert!(grouped.clusters.len() > 1);
+        let cut_sine = cut_half_angle_rad(4).sin();
+        let mut next = 0;
+        for c in &grouped.clusters {
+            assert_eq!(c.first_group, next);
+            assert!(c.group_count <= CLUSTER_GROUPS && c.group_count > 0);
+            next += c.group_count;
+            let mut area = 0.0;
+            for g in &grouped.groups[c.first_group..c.first_group + c.group_count] {
+                // Beyond the hand-over distance no sphere of the cluster and no group
+                // stand-in is large enough in the sky to count.
+                assert!(c.center.distance(g.center) + g.stand_in_radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
+                for s in &grouped.spheres[g.first..g.first + g.count] {
+                    assert!(s.center.distance(c.center) + s.radius_m <= c.extent_m * (1.0 + 1e-5));
+                    assert!(s.center.distance(c.center) + s.radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
+                    area += s.radius_m * s.radius_m;
+                }
+            }
+            assert!((c.stand_in_radius_m - area.sqrt()).abs() <= 1e-4 * area.sqrt());
+            // Where the stand-in starts, the cluster's cap is within the cut angle.
+            assert!(c.extent_m / (0.5 * c.hand_over_m) <= cut_sine * (1.0 + 1e-5));
+        }
+        assert_eq!(next, grouped.groups.len());
+    }
+
+    #[test]
+    fn a_higher_order_hands_over_farther() {
+        let input = spheres(3000);
+        let (low, high) = (group_blockers(&input, 0.03, 2), group_blockers(&input, 0.03, 8));
+        assert_eq!(low.groups, high.groups);
+        for (l, h) in low.clusters.iter().zip(&high.clusters) {
+            assert!(h.hand_over_m >= l.hand_over_m);
+        }
+        assert!(
+            low.clusters
+                .iter()
+                .zip(&high.clusters)
+                .any(|(l, h)| h.hand_over_m > l.hand_over_m)
+        );
+    }
+
+    #[test]
+    fn group_count_is_what_split_makes() {
+        for count in [1, 7, 8, 9, 16, 17, 100, 255, 256, 257, 600, 20_000] {
+            let mut groups = Vec::new();
+            split(&mut spheres(count), 0, 0.03, &mut groups);
+            assert_eq!(groups.len(), group_count(count), "{count} spheres");
+        }
+    }
+
+    #[test]
     fn no_spheres_no_groups() {
-        assert!(group_blockers(&[], 0.03).1.is_empty());
+        let grouped = group_blockers(&[], 0.03, 4);
+        assert!(grouped.groups.is_empty() && grouped.clusters.is_empty());
     }
 }

@@ -38,7 +38,9 @@ pub const UNIFORM_LIGHT_CAPACITY: usize = 682;
 
 /// How many blockers and blocker groups the uniform arrays `blockers` and `groups` of
 /// logsh.wgsl hold (WGSL `UNIFORM_BLOCKER_CAPACITY`); as [`UNIFORM_LIGHT_CAPACITY`], with
-/// `BLOCKER_OVERFLOW`. Groups never outnumber blockers, so one capacity serves both.
+/// `BLOCKER_OVERFLOW`. Groups and clusters together never outnumber blockers (a group holds
+/// at least four spheres once there are nine; with fewer, one group and one cluster),
+/// so one capacity serves both.
 pub const UNIFORM_BLOCKER_CAPACITY: usize = 2048;
 
 /// wgpu's default `max_uniform_buffer_binding_size`.
@@ -301,10 +303,13 @@ pub struct GpuShadowParams {
     pub min_cap_ratio: f32,
     pub blocker_count: u32,
     pub ratio_attenuation: u32,
+    /// Groups in `groups`, after the clusters.
     pub group_count: u32,
     /// Discs in `discs` (open and thin meshes' planar patches, shaded in their own loop).
     pub disc_count: u32,
-    pub _pad: [u32; 2],
+    /// Clusters at the start of `groups` (`blocker_groups::BlockerCluster`).
+    pub cluster_count: u32,
+    pub _pad: u32,
     /// k(s) at s = i/31 (`sh::cap_mass_scales`), four to a vec4; all 1 when the
     /// settings do not preserve the shadow mass.
     pub cap_mass_scale: [[f32; 4]; crate::sh::CAP_MASS_ENTRIES / 4],
@@ -383,6 +388,19 @@ impl GpuBlockerGroup {
             first: group.first as u32,
             count: group.count as u32,
             stand_in_radius_m: group.stand_in_radius_m,
+        }
+    }
+
+    /// A cluster in the same layout, its groups at `first_group_index..` of the array
+    /// (the clusters come first): `influence_m` carries its hand-over distance, which
+    /// the shader's reach test and stand-in share read as a group's influence.
+    pub fn cluster(cluster: &super::blocker_groups::BlockerCluster, first_group_index: usize) -> GpuBlockerGroup {
+        GpuBlockerGroup {
+            center_extent: cluster.center.extend(cluster.extent_m).to_array(),
+            influence_m: cluster.hand_over_m.min(1e18),
+            first: first_group_index as u32,
+            count: cluster.group_count as u32,
+            stand_in_radius_m: cluster.stand_in_radius_m,
         }
     }
 }

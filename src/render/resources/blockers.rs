@@ -16,7 +16,8 @@ use crate::shading::wgsl::slots;
 use crate::terrain::HeightField;
 
 /// Blockers, their culling groups and the shadow parameters on the GPU (bind group 2 of
-/// logsh.wgsl). Groups depend on the influence cut-off, so they are rebuilt with it.
+/// logsh.wgsl). Groups depend on the influence cut-off and clusters on the order too, so
+/// they are rebuilt with either.
 pub struct GpuBlockers {
     params: wgpu::Buffer,
     bind_group_layout: wgpu::BindGroupLayout,
@@ -25,9 +26,11 @@ pub struct GpuBlockers {
     discs: Vec<GpuBlocker>,
     /// The spheres the groups walk.
     walked_count: usize,
+    /// The clusters, then the groups.
     groups: Vec<GpuBlockerGroup>,
-    /// The influence cut-off the groups were built for.
-    grouped_for_min_cap_ratio: f32,
+    cluster_count: usize,
+    /// The influence cut-off and the order the groups and clusters were built for.
+    grouped_for: (f32, usize),
     terrain_field: Option<HeightField>,
     terrain: GpuTerrain,
     /// The uniform and storage copies of the ordered blockers and of the groups.
@@ -54,7 +57,7 @@ impl GpuBlockers {
         });
         // Discs are shaded in their own loop (from the parameters), spheres in the walk.
         let (balls, discs) = crate::blockers::spheres_and_discs(spheres);
-        let (ordered, groups) = gpu_groups(&balls, settings);
+        let (ordered, groups, cluster_count) = gpu_groups(&balls, settings);
         let gpu_terrain = GpuTerrain::upload(device, terrain, settings);
         let [blockers_uniform, blockers_storage] = uniform_and_storage(device, "blockers", &ordered);
         let [groups_uniform, groups_storage] = uniform_and_storage(device, "blocker groups", &groups);
@@ -67,7 +70,8 @@ impl GpuBlockers {
             discs: discs.iter().map(GpuBlocker::new).collect(),
             walked_count: ordered.len(),
             groups,
-            grouped_for_min_cap_ratio: settings.min_cap_ratio,
+            cluster_count,
+            grouped_for: (settings.min_cap_ratio, settings.order),
             terrain_field: terrain.cloned(),
             terrain: gpu_terrain,
             buffers,
@@ -111,11 +115,11 @@ impl GpuBlockers {
         );
     }
 
-    /// Applies new settings; a new influence cut-off regroups the blockers, and a new
-    /// order or terrain sampling rebuilds the terrain's model.
+    /// Applies new settings; a new influence cut-off or order regroups the blockers, and a
+    /// new order or terrain sampling rebuilds the terrain's model.
     pub fn apply_settings(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, settings: &ShadowSettings) {
         let terrain_stale = self.terrain_field.is_some() && self.terrain.is_stale_for(settings);
-        if settings.min_cap_ratio == self.grouped_for_min_cap_ratio && !terrain_stale {
+        if (settings.min_cap_ratio, settings.order) == self.grouped_for && !terrain_stale {
             self.write_params(queue, settings);
         } else {
             let spheres = std::mem::take(&mut self.spheres);
@@ -131,9 +135,10 @@ impl GpuBlockers {
             min_cap_ratio: settings.min_cap_ratio,
             blocker_count: self.walked_count as u32,
             ratio_attenuation: settings.ratio_attenuation as u32,
-            group_count: self.groups.len() as u32,
+            group_count: (self.groups.len() - self.cluster_count) as u32,
             disc_count: self.discs.len() as u32,
-            _pad: [0; 2],
+            cluster_count: self.cluster_count as u32,
+            _pad: 0,
             cap_mass_scale: GpuShadowParams::cap_mass_scale_for(settings),
             discs,
         };
@@ -141,11 +146,21 @@ impl GpuBlockers {
     }
 }
 
-fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>, Vec<GpuBlockerGroup>) {
-    let (ordered, groups) = group_blockers(spheres, settings.min_cap_ratio);
+/// The spheres in walk order, and the clusters followed by the groups (as the shader's
+/// `groups` array holds them), with the number of clusters.
+fn gpu_groups(spheres: &[Sphere], settings: &ShadowSettings) -> (Vec<GpuBlocker>, Vec<GpuBlockerGroup>, usize) {
+    let grouped = group_blockers(spheres, settings.min_cap_ratio, settings.order);
+    let cluster_count = grouped.clusters.len();
+    let clusters = grouped
+        .clusters
+        .iter()
+        .map(|c| GpuBlockerGroup::cluster(c, cluster_count + c.first_group));
     (
-        ordered.iter().map(GpuBlocker::new).collect(),
-        groups.iter().map(GpuBlockerGroup::new).collect(),
+        grouped.spheres.iter().map(GpuBlocker::new).collect(),
+        clusters
+            .chain(grouped.groups.iter().map(GpuBlockerGroup::new))
+            .collect(),
+        cluster_count,
     )
 }
 

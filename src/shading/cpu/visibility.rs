@@ -11,13 +11,15 @@ use super::windows::LightWindows;
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
 use crate::shading::ShadowSettings;
+use crate::shading::blocker_groups::{BlockerGroup, GroupedBlockers, group_blockers};
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT};
 use crate::terrain::TerrainShadow;
 
 /// Log-visibility of `blockers` at `p` with normal `n` (`log_visibility` in logsh.wgsl):
-/// the blockers of the groups in reach of p one by one, weighed 1 − their group's
-/// stand-in share, and each group's stand-in sphere weighed by that share
-/// (`shading::blocker_groups`).
+/// per cluster its stand-in sphere weighed by its share at p and, within its hand-over
+/// distance, the blockers of its groups in reach one by one, weighed 1 − their group's
+/// stand-in share, and each group's stand-in weighed by that share, all weighed 1 − the
+/// cluster's share (`shading::blocker_groups`).
 pub fn log_visibility(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> Vec<f64> {
     log_visibility_within(settings, blockers, p, n, None)
 }
@@ -62,58 +64,43 @@ pub fn log_visibility_within(
             });
         });
     };
-    for_each_cap(blockers, settings.min_cap_ratio, p, n, |direction, ratio, horizon| {
+    for_each_cap(settings, blockers, p, n, |direction, ratio, horizon| {
         add_cap(direction, ratio, horizon)
     });
     f
 }
 
 /// Calls `add_cap(direction, ratio, horizon weight)` for each blocker cap that shadows `p`
-/// with normal `n` as logsh.wgsl's walk takes them: the blockers of the groups in reach of
-/// p one by one, weighed 1 − their group's stand-in share, each group's stand-in sphere
-/// weighed by that share (`shading::blocker_groups`), and the discs. Returns how many
+/// with normal `n` as logsh.wgsl's walk takes them: per cluster, its stand-in weighed by
+/// its share at p and, within its hand-over distance, its groups as [`add_group_caps`]
+/// takes them, weighed 1 − the cluster's share; then the discs. Returns how many
 /// blockers the walk visits (every sphere of a group in reach, every stand-in it weighs,
 /// every disc): the per-pixel work.
 fn for_each_cap(
+    settings: &ShadowSettings,
     blockers: &[Sphere],
-    min_cap_ratio: f32,
     p: DVec3,
     n: DVec3,
     mut add_cap: impl FnMut(DVec3, f64, f64),
 ) -> usize {
-    let smoothstep = |edge0: f64, edge1: f64, x: f64| {
-        let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
-        t * t * (3.0 - 2.0 * t)
-    };
-    let min_ratio = min_cap_ratio as f64;
-    with_groups(blockers, min_cap_ratio, |ordered, groups, discs| {
+    let min_ratio = settings.min_cap_ratio as f64;
+    with_groups(blockers, settings, |grouped, discs| {
         let mut walked = discs.len();
-        for group in groups {
-            let offset = group.center.as_dvec3() - p;
-            let (extent, influence) = (group.extent_m as f64, group.influence_m as f64);
-            let distance = offset.length();
-            // The stand-in's share (`stand_in_share` in logsh.wgsl).
-            let share = if group.stand_in_radius_m > 0.0 {
-                smoothstep(0.5 * influence, influence, distance)
-            } else {
-                0.0
+        for cluster in &grouped.clusters {
+            let bounds = Bounds {
+                center: cluster.center,
+                extent_m: cluster.extent_m,
+                influence_m: cluster.hand_over_m,
+                stand_in_radius_m: cluster.stand_in_radius_m,
             };
-            let in_reach = distance * distance <= influence * influence && offset.dot(n) + extent > 0.0;
-            if in_reach && share < 1.0 {
-                walked += group.count;
-                for cap in ordered[group.first..group.first + group.count]
-                    .iter()
-                    .filter_map(|b| b.cap_from(p, n, min_ratio))
-                {
-                    add_cap(cap.direction, cap.ratio, cap.horizon * (1.0 - share));
+            let share = bounds.stand_in_share(p);
+            if bounds.in_reach(p, n) && share < 1.0 {
+                let groups = &grouped.groups[cluster.first_group..cluster.first_group + cluster.group_count];
+                for group in groups {
+                    walked += add_group_caps(group, &grouped.spheres, min_ratio, 1.0 - share, p, n, &mut add_cap);
                 }
             }
-            let ratio = group.stand_in_radius_m as f64 / distance.max(1e-300);
-            let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / extent.max(1e-30));
-            if share > 0.0 && ratio >= min_ratio && horizon > 0.0 {
-                walked += 1;
-                add_cap(offset / distance, ratio, horizon * share);
-            }
+            walked += bounds.add_stand_in(min_ratio, 1.0, p, n, &mut add_cap);
         }
         // The discs, at every receiver (`add_discs`).
         for cap in discs.iter().filter_map(|b| b.cap_from(p, n, min_ratio)) {
@@ -121,6 +108,94 @@ fn for_each_cap(
         }
         walked
     })
+}
+
+/// A group's caps at p (logsh.wgsl's `groups_in_reach` and walk): in reach, its spheres
+/// weighed 1 − its stand-in's share, then the stand-in weighed by that share, all times
+/// `weight`. Returns the blockers visited.
+fn add_group_caps(
+    group: &BlockerGroup,
+    spheres: &[Sphere],
+    min_ratio: f64,
+    weight: f64,
+    p: DVec3,
+    n: DVec3,
+    add_cap: &mut impl FnMut(DVec3, f64, f64),
+) -> usize {
+    let bounds = Bounds {
+        center: group.center,
+        extent_m: group.extent_m,
+        influence_m: group.influence_m,
+        stand_in_radius_m: group.stand_in_radius_m,
+    };
+    let share = bounds.stand_in_share(p);
+    let mut walked = 0;
+    if bounds.in_reach(p, n) && share < 1.0 {
+        walked += group.count;
+        for cap in spheres[group.first..group.first + group.count]
+            .iter()
+            .filter_map(|b| b.cap_from(p, n, min_ratio))
+        {
+            add_cap(cap.direction, cap.ratio, cap.horizon * (1.0 - share) * weight);
+        }
+    }
+    walked + bounds.add_stand_in(min_ratio, weight, p, n, add_cap)
+}
+
+/// A group's or a cluster's bounds and stand-in (WGSL `BlockerGroup`).
+struct Bounds {
+    center: glam::Vec3,
+    extent_m: f32,
+    influence_m: f32,
+    stand_in_radius_m: f32,
+}
+
+impl Bounds {
+    /// `stand_in_share` in blockers.wgsl: 0 within half the influence distance, 1
+    /// beyond it, smoothstep between.
+    fn stand_in_share(&self, p: DVec3) -> f64 {
+        if self.stand_in_radius_m <= 0.0 {
+            return 0.0;
+        }
+        let influence = self.influence_m as f64;
+        smoothstep(0.5 * influence, influence, self.center.as_dvec3().distance(p))
+    }
+
+    /// `group_in_reach`: within the influence distance and not wholly below the
+    /// tangent plane.
+    fn in_reach(&self, p: DVec3, n: DVec3) -> bool {
+        let offset = self.center.as_dvec3() - p;
+        let influence = self.influence_m as f64;
+        offset.length_squared() <= influence * influence && offset.dot(n) + self.extent_m as f64 > 0.0
+    }
+
+    /// `add_stand_in`: the stand-in's cap weighed by its share times `weight`, faded
+    /// below the tangent plane over the extent. Returns 1 if it was added.
+    fn add_stand_in(
+        &self,
+        min_ratio: f64,
+        weight: f64,
+        p: DVec3,
+        n: DVec3,
+        add_cap: &mut impl FnMut(DVec3, f64, f64),
+    ) -> usize {
+        let share = self.stand_in_share(p) * weight;
+        let offset = self.center.as_dvec3() - p;
+        let distance = offset.length();
+        let ratio = self.stand_in_radius_m as f64 / distance.max(1e-300);
+        let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / (self.extent_m as f64).max(1e-30));
+        if share > 0.0 && ratio >= min_ratio && horizon > 0.0 {
+            add_cap(offset / distance, ratio, horizon * share);
+            1
+        } else {
+            0
+        }
+    }
+}
+
+fn smoothstep(edge0: f64, edge1: f64, x: f64) -> f64 {
+    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
 }
 
 /// What the SH walk of `blockers` costs a receiver at `p` with normal `n`, and what it
@@ -135,33 +210,34 @@ pub struct BlockersInReach {
 
 pub fn blockers_in_reach(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> BlockersInReach {
     let mut shadowing = 0;
-    let walked = for_each_cap(blockers, settings.min_cap_ratio, p, n, |_, _, _| shadowing += 1);
+    let walked = for_each_cap(settings, blockers, p, n, |_, _, _| shadowing += 1);
     BlockersInReach { walked, shadowing }
 }
 
-/// Calls `f` with the spheres of `blockers` grouped as the GPU groups them
-/// (`group_blockers`) and the discs (at most `MAX_DISCS`, shaded apart), the split of the
-/// last blocker list kept per thread: the twin shades pixel after pixel with one list.
+/// Calls `f` with the spheres of `blockers` grouped and clustered as the GPU groups them
+/// (`group_blockers`, for the settings' influence cut-off and order) and the discs (at
+/// most `MAX_DISCS`, shaded apart), the split of the last blocker list kept per thread:
+/// the twin shades pixel after pixel with one list.
 fn with_groups<R>(
     blockers: &[Sphere],
-    min_cap_ratio: f32,
-    f: impl FnOnce(&[Sphere], &[crate::shading::blocker_groups::BlockerGroup], &[Sphere]) -> R,
+    settings: &ShadowSettings,
+    f: impl FnOnce(&GroupedBlockers, &[Sphere]) -> R,
 ) -> R {
-    use crate::shading::blocker_groups::{BlockerGroup, group_blockers};
-    type Grouped = (Vec<Sphere>, u32, Vec<Sphere>, Vec<BlockerGroup>, Vec<Sphere>);
+    type Key = (Vec<Sphere>, u32, usize);
     thread_local! {
-        static LAST: std::cell::RefCell<Option<Grouped>> = const { std::cell::RefCell::new(None) };
+        static LAST: std::cell::RefCell<Option<(Key, GroupedBlockers, Vec<Sphere>)>> = const { std::cell::RefCell::new(None) };
     }
     LAST.with(|last| {
         let mut last = last.borrow_mut();
-        let fresh = !matches!(&*last, Some((input, ratio, ..)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits());
+        let (min_cap_ratio, order) = (settings.min_cap_ratio, settings.order);
+        let fresh = !matches!(&*last, Some(((input, ratio, o), ..)) if input.as_slice() == blockers && *ratio == min_cap_ratio.to_bits() && *o == order);
         if fresh {
             let (spheres, discs) = crate::blockers::spheres_and_discs(blockers);
-            let (ordered, groups) = group_blockers(&spheres, min_cap_ratio);
-            *last = Some((blockers.to_vec(), min_cap_ratio.to_bits(), ordered, groups, discs));
+            let grouped = group_blockers(&spheres, min_cap_ratio, order);
+            *last = Some(((blockers.to_vec(), min_cap_ratio.to_bits(), order), grouped, discs));
         }
-        let (_, _, ordered, groups, discs) = last.as_ref().expect("just grouped");
-        f(ordered, groups, discs)
+        let (_, grouped, discs) = last.as_ref().expect("just grouped");
+        f(grouped, discs)
     })
 }
 
@@ -255,13 +331,13 @@ pub fn exact_visibility(
         };
         let min_cap_ratio = settings.min_cap_ratio as f64;
         // The spheres in the GPU's order: their union is taken in order (penumbra::union).
-        with_groups(blockers, settings.min_cap_ratio, |spheres, _, discs| {
+        with_groups(blockers, settings, |grouped, discs| {
             above_terrain
                 * crate::penumbra::light_visibility(
                     s.position,
                     s.normal,
                     &light,
-                    spheres,
+                    &grouped.spheres,
                     discs,
                     min_cap_ratio,
                     pixel_footprint_m,
