@@ -8,10 +8,11 @@
 //! - `frame/shading-downsample`: the studio with its fitted spheres, one shaded pixel
 //!   per d × d for d = 1 to 4;
 //! - `frame/sphere-count`: the blocker bench scene (`samples::blocker_bench`: thin casters
-//!   of about 45,000 triangles over a floor under one rect light) with none, 600, 5,000
-//!   and 20,000 spheres spread over the casters, at the shipped defaults (one pixel in
-//!   3 × 3 shaded) with the light on the SH path: how the frame grows with the sphere
-//!   count (none: what the frame costs without a blocker walk);
+//!   of about 45,000 triangles over a floor under one rect light) with none, 600, 2,000,
+//!   5,000, 10,000 and 20,000 spheres spread over the casters, at the shipped defaults
+//!   (one pixel in 3 × 3 shaded) with the light on the SH path: how the frame grows with
+//!   the sphere count (none: what the frame costs without a blocker walk;
+//!   `cargo run --release --example sphere_count_plot` draws the curve);
 //! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
 //!
 //! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
@@ -176,7 +177,7 @@ fn frames(c: &mut Criterion) {
     };
     let mut group = c.benchmark_group("frame/sphere-count");
     group.sample_size(10).measurement_time(Duration::from_secs(10));
-    for count in [0, 600, 5000, 20_000] {
+    for count in [0, 600, 2000, 5000, 10_000, 20_000] {
         let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&set.scene, count);
         let frame = set.frame(&shipped, &spheres);
         time_frame(&mut group, BenchmarkId::new("thin-casters", count), &gpu, &frame);

@@ -1,5 +1,5 @@
 //! Culling groups for the shading pass: nearby spheres gathered into groups of at most
-//! [`GROUP_SIZE`] by recursive median splits, each with a bounding radius and an influence
+//! [`group_size`] by recursive median splits, each with a bounding radius and an influence
 //! radius, so a receiver skips a whole group at once; and the groups into clusters of at
 //! most [`CLUSTER_GROUPS`] (a two-level sphere hierarchy), so a receiver far from a
 //! cluster skips its groups too.
@@ -27,10 +27,14 @@ use glam::Vec3;
 
 use crate::blockers::Sphere;
 
-/// Most spheres in one group. 16 rather than 8 or 32: the blocker bench's frame
-/// (`cargo bench --bench frame -- frame/sphere-count`) at 600 spheres took 106–111 ms with
-/// 16, 117 with 8 and 130 with 32; at 20,000, 365–380, 507 and 342 ms (docs/performance.md).
-pub const GROUP_SIZE: usize = 16;
+/// Most spheres in one group: 8 while all the groups fit one cluster (up to 256 spheres),
+/// 16 above. The blocker bench's frame (`cargo bench --bench frame -- frame/sphere-count`)
+/// at 600 spheres took 106–111 ms with 16, 117 with 8 and 130 with 32; at 20,000, 365–380,
+/// 507 and 342 ms; the studio's 51 spheres shade fastest in groups of 8
+/// (docs/performance.md).
+pub fn group_size(sphere_count: usize) -> usize {
+    if sphere_count <= 8 * CLUSTER_GROUPS { 8 } else { 16 }
+}
 
 /// Most groups in one cluster: the bits of one walk's mask (WGSL `WALK_GROUPS`). With
 /// 16, twice the clusters cost more than the smaller clusters saved (20,000 spheres:
@@ -98,51 +102,77 @@ pub fn group_blockers(spheres: &[Sphere], min_cap_ratio: f32, order: usize) -> G
         ..GroupedBlockers::default()
     };
     let mut ordered = std::mem::take(&mut grouped.spheres);
-    let cut_sine = cut_half_angle_rad(order).sin();
-    cluster(&mut ordered, 0, min_cap_ratio, cut_sine, &mut grouped);
+    let grouping = Grouping {
+        group_size: group_size(spheres.len()),
+        min_cap_ratio,
+        cut_sine: cut_half_angle_rad(order).sin(),
+    };
+    grouping.cluster(&mut ordered, 0, &mut grouped);
     grouped.spheres = ordered;
     grouped
 }
 
-/// How many groups `split` makes of `count` spheres.
-fn group_count(count: usize) -> usize {
-    if count <= GROUP_SIZE {
-        1
-    } else {
-        group_count(count / 2) + group_count(count - count / 2)
-    }
+/// How one set of spheres is split: the most spheres in a group, the influence cut-off
+/// and the sine of the cut angle.
+struct Grouping {
+    group_size: usize,
+    min_cap_ratio: f32,
+    cut_sine: f32,
 }
 
-fn cluster(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, cut_sine: f32, grouped: &mut GroupedBlockers) {
-    if spheres.is_empty() {
-        return;
+impl Grouping {
+    /// How many groups `split` makes of `count` spheres.
+    fn group_count(&self, count: usize) -> usize {
+        if count <= self.group_size {
+            1
+        } else {
+            self.group_count(count / 2) + self.group_count(count - count / 2)
+        }
     }
-    if group_count(spheres.len()) <= CLUSTER_GROUPS {
-        let first_group = grouped.groups.len();
-        split(spheres, offset, min_cap_ratio, &mut grouped.groups);
-        let cluster = bound_cluster(
-            spheres,
-            &grouped.groups[first_group..],
-            first_group,
-            min_cap_ratio,
-            cut_sine,
-        );
-        grouped.clusters.push(cluster);
-        return;
+
+    fn cluster(&self, spheres: &mut [Sphere], offset: usize, grouped: &mut GroupedBlockers) {
+        if spheres.is_empty() {
+            return;
+        }
+        if self.group_count(spheres.len()) <= CLUSTER_GROUPS {
+            let first_group = grouped.groups.len();
+            self.split(spheres, offset, &mut grouped.groups);
+            let cluster = bound_cluster(spheres, &grouped.groups[first_group..], first_group, self);
+            grouped.clusters.push(cluster);
+            return;
+        }
+        let middle = split_at_median(spheres);
+        let (left, right) = spheres.split_at_mut(middle);
+        self.cluster(left, offset, grouped);
+        self.cluster(right, offset + middle, grouped);
     }
-    let middle = split_at_median(spheres);
-    let (left, right) = spheres.split_at_mut(middle);
-    cluster(left, offset, min_cap_ratio, cut_sine, grouped);
-    cluster(right, offset + middle, min_cap_ratio, cut_sine, grouped);
+
+    fn split(&self, spheres: &mut [Sphere], offset: usize, groups: &mut Vec<BlockerGroup>) {
+        if spheres.is_empty() {
+            return;
+        }
+        if spheres.len() <= self.group_size {
+            groups.push(bound(spheres, offset, self.min_cap_ratio));
+            return;
+        }
+        let middle = split_at_median(spheres);
+        let (left, right) = spheres.split_at_mut(middle);
+        self.split(left, offset, groups);
+        self.split(right, offset + middle, groups);
+    }
 }
 
 fn bound_cluster(
     spheres: &[Sphere],
     groups: &[BlockerGroup],
     first_group: usize,
-    min_cap_ratio: f32,
-    cut_sine: f32,
+    grouping: &Grouping,
 ) -> BlockerCluster {
+    let Grouping {
+        min_cap_ratio,
+        cut_sine,
+        ..
+    } = *grouping;
     let center = spheres.iter().map(|s| s.center).sum::<Vec3>() / spheres.len() as f32;
     let extent_m = spheres
         .iter()
@@ -189,20 +219,6 @@ fn split_at_median(spheres: &mut [Sphere]) -> usize {
     let middle = spheres.len() / 2;
     spheres.select_nth_unstable_by(middle, |a, b| a.center[axis].total_cmp(&b.center[axis]));
     middle
-}
-
-fn split(spheres: &mut [Sphere], offset: usize, min_cap_ratio: f32, groups: &mut Vec<BlockerGroup>) {
-    if spheres.is_empty() {
-        return;
-    }
-    if spheres.len() <= GROUP_SIZE {
-        groups.push(bound(spheres, offset, min_cap_ratio));
-        return;
-    }
-    let middle = split_at_median(spheres);
-    let (left, right) = spheres.split_at_mut(middle);
-    split(left, offset, min_cap_ratio, groups);
-    split(right, offset + middle, min_cap_ratio, groups);
 }
 
 fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32) -> BlockerGroup {
@@ -258,7 +274,7 @@ mod tests {
         let mut next = 0;
         for g in &groups {
             assert_eq!(g.first, next);
-            assert!(g.count <= GROUP_SIZE && g.count > 0);
+            assert!(g.count <= group_size(input.len()) && g.count > 0);
             next += g.count;
             for s in &ordered[g.first..g.first + g.count] {
                 assert!(s.center.distance(g.center) + s.radius_m <= g.extent_m + 1e-5);
@@ -320,9 +336,17 @@ mod tests {
     #[test]
     fn group_count_is_what_split_makes() {
         for count in [1, 7, 8, 9, 16, 17, 100, 255, 256, 257, 600, 20_000] {
-            let mut groups = Vec::new();
-            split(&mut spheres(count), 0, 0.03, &mut groups);
-            assert_eq!(groups.len(), group_count(count), "{count} spheres");
+            for group_size in [8, 16] {
+                let grouping = Grouping {
+                    group_size,
+                    min_cap_ratio: 0.03,
+                    cut_sine: 0.3,
+                };
+                let mut groups = Vec::new();
+                grouping.split(&mut spheres(count), 0, &mut groups);
+                assert_eq!(groups.len(), grouping.group_count(count), "{count} spheres");
+                assert!(groups.iter().all(|g| g.count <= group_size));
+            }
         }
     }
 
