@@ -90,6 +90,8 @@ fn draw_into(estimates: &[Estimate], pixels: &mut [u8]) -> Result<(), String> {
         .configure_mesh()
         .x_desc("spheres")
         .y_desc("ms per frame (criterion mean)")
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|y| format!("{y:.0}"))
         .draw()
         .map_err(|e| e.to_string())?;
     let points: Vec<(f64, f64)> = estimates.iter().map(|e| (e.spheres as f64, e.mean_ms)).collect();
