@@ -135,11 +135,14 @@ fn group_at(g: u32) -> BlockerGroup {
 // The blockers of chosen groups, one per call of walk_next, so that one flat loop visits
 // them: lavapipe runs a loop's body at least once even when no pixel enters it, so a
 // loop over the blockers nested in a loop over the groups pays one blocker's work for
-// every group a receiver skips. `passing` holds bit k for group first_group + k (groups
-// with at least one blocker).
+// every group a receiver skips. Bit k of `blockers` and `stand_ins` stands for group
+// first_group + k: its blockers are walked (a group with at least one blocker), and its
+// stand-in comes after them as one more step (WALK_STAND_IN; log_visibility's walk), so
+// that a group whose stand-in weighs nothing at p costs no cap.
 struct BlockerWalk {
     first_group: u32,
-    passing: u32,
+    blockers: u32,
+    stand_ins: u32,
     next: u32,
     end: u32,
     // The receiver, and the weight of the current group's blockers there:
@@ -148,32 +151,81 @@ struct BlockerWalk {
     receiver: vec3<f32>,
     weight: f32,
     cluster_weight: f32,
+    // The current group's stand-in, when it is still to come: its sphere (centre, radius),
+    // the extent it fades below the tangent plane over, and its weight,
+    // cluster_weight · stand_in_share.
+    stand_in_pending: bool,
+    stand_in: vec4<f32>,
+    stand_in_extent: f32,
+    stand_in_weight: f32,
 };
 
 // No blocker left to walk.
 const WALK_DONE: u32 = 0xffffffffu;
+// The current group's stand-in (walk.stand_in) is the next step.
+const WALK_STAND_IN: u32 = 0xfffffffeu;
 
 fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, vec3<f32>(0.0), 1.0, 1.0);
+    return BlockerWalk(first_group, passing, 0u, 0u, 0u, vec3<f32>(0.0), 1.0, 1.0, false, vec4<f32>(0.0), 0.0, 0.0);
 }
 
-// A walk that weighs each group's blockers at receiver p, the groups together weighed
-// cluster_weight.
-fn blocker_walk_at(first_group: u32, passing: u32, p: vec3<f32>, cluster_weight: f32) -> BlockerWalk {
-    return BlockerWalk(first_group, passing, 0u, 0u, p, 1.0, cluster_weight);
+// A walk of a cluster's groups that weighs each group's blockers and stand-in at
+// receiver p, the groups together weighed 1 − the cluster's stand-in share; the
+// cluster's own stand-in is its first step when `cluster_stand_in` (it takes the one
+// pass lavapipe runs of a walk with nothing else to visit).
+fn cluster_walk(cluster: BlockerGroup, passing: GroupsToWalk, p: vec3<f32>, cluster_stand_in: bool) -> BlockerWalk {
+    let share = stand_in_share(cluster, p);
+    return BlockerWalk(
+        cluster.first,
+        passing.blockers,
+        passing.stand_ins,
+        0u,
+        0u,
+        p,
+        1.0,
+        1.0 - share,
+        cluster_stand_in,
+        vec4<f32>(cluster.center_extent.xyz, cluster.stand_in_radius_m),
+        cluster.center_extent.w,
+        share,
+    );
 }
 
-// The index of the walk's next blocker, or WALK_DONE.
+// The groups of a cluster a walk visits: bit k for group first + k.
+struct GroupsToWalk {
+    blockers: u32,
+    stand_ins: u32,
+};
+
+// The index of the walk's next blocker, WALK_STAND_IN, or WALK_DONE.
 fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
     if (*walk).next == (*walk).end {
-        if (*walk).passing == 0u {
+        if (*walk).stand_in_pending {
+            (*walk).stand_in_pending = false;
+            return WALK_STAND_IN;
+        }
+        let passing = (*walk).blockers | (*walk).stand_ins;
+        if passing == 0u {
             return WALK_DONE;
         }
-        let group = group_at((*walk).first_group + firstTrailingBit((*walk).passing));
-        (*walk).passing &= (*walk).passing - 1u;
+        let bit = 1u << firstTrailingBit(passing);
+        let group = group_at((*walk).first_group + firstTrailingBit(passing));
+        let walks_blockers = ((*walk).blockers & bit) != 0u;
+        (*walk).blockers &= ~bit;
         (*walk).next = group.first;
-        (*walk).end = group.first + group.count;
-        (*walk).weight = (*walk).cluster_weight * (1.0 - stand_in_share(group, (*walk).receiver));
+        (*walk).end = select(group.first, group.first + group.count, walks_blockers);
+        let share = stand_in_share(group, (*walk).receiver);
+        (*walk).weight = (*walk).cluster_weight * (1.0 - share);
+        (*walk).stand_in_pending = ((*walk).stand_ins & bit) != 0u;
+        (*walk).stand_ins &= ~bit;
+        (*walk).stand_in = vec4<f32>(group.center_extent.xyz, group.stand_in_radius_m);
+        (*walk).stand_in_extent = group.center_extent.w;
+        (*walk).stand_in_weight = (*walk).cluster_weight * share;
+        if !walks_blockers {
+            // Only the stand-in: it is this step.
+            (*walk).stand_in_pending = false;
+            return WALK_STAND_IN;
+        }
     }
     (*walk).next += 1u;
     return (*walk).next - 1u;
@@ -194,8 +246,19 @@ fn cluster_groups(cluster: BlockerGroup, visit: bool) -> ClusterGroups {
     return ClusterGroups(cluster.first, select(cluster.first, cluster.first + cluster.count, visit));
 }
 
+// Whether a group's (or a cluster's) stand-in weighs anything at p: its share there times
+// `weight` above 0, as large in the sky as min_cap_ratio, not wholly below the tangent
+// plane (add_walked's tests before its cap).
+fn stand_in_weighs(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32) -> bool {
+    let offset = group.center_extent.xyz - p;
+    let ratio_reached = group.stand_in_radius_m * group.stand_in_radius_m
+        >= shadow.min_cap_ratio * shadow.min_cap_ratio * dot(offset, offset);
+    let above = dot(offset, n) > -group.center_extent.w;
+    return stand_in_share(group, p) * weight > 0.0 && ratio_reached && above && group.count > 0u;
+}
+
 // Conservative group tests (see blocker_groups.rs): every sphere of a group out of reach
-// would be skipped by add_blocker's tests (beyond its influence, or wholly below the
+// would be skipped by add_walked's tests (beyond its influence, or wholly below the
 // tangent plane). Empty groups are out of reach too.
 fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
     let to_group = group.center_extent.xyz - p;

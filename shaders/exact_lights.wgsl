@@ -31,7 +31,7 @@ struct BlockerCap {
     ratio: f32,
     // √(1 − ratio²), the cosine of the cap's angular radius.
     cos_b: f32,
-    // smoothstep fade below the tangent plane (as in add_blocker).
+    // smoothstep fade below the tangent plane (as in add_walked).
     horizon: f32,
     // false: skipped for every light (contains p, too small, or below the horizon).
     counts: bool,

@@ -41,7 +41,10 @@ override SH_VISIBILITY: bool = true;
 // Σ of the blockers' and the terrain's log-visibility seen from p with normal n: per
 // cluster its stand-in, weighed by its share at p, and, within its hand-over distance,
 // the spheres of its groups in reach (weighed against their group's stand-in) and the
-// groups' stand-ins, all weighed 1 − the cluster's share; then every disc. Skipped:
+// groups' stand-ins, all weighed 1 − the cluster's share; then every disc. Each
+// cluster's caps come in one flat walk (cluster_walk, walk_next), a step per cap that
+// can weigh anything at p, so that the far groups' and clusters' stand-ins, which
+// weigh nothing outside the light windows, cost no cap there. Skipped:
 // spheres that contain p (a sphere-fit artefact on the blocker's own surface), blockers
 // too small in the sky to matter, and blockers wholly below the tangent plane; blockers
 // straddling it are faded by smoothstep(−1, 1, (c − p)·n / h), h their half-extent
@@ -53,50 +56,69 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     var f = sh_zero();
     for (var c = 0u; c < shadow.cluster_count; c++) {
         let cluster = group_at(c);
-        f = add_stand_in(f, cluster, p, n, 1.0);
+        let in_windows = group_in_windows(cluster, p);
+        let walked = cluster_groups(cluster, group_in_reach(cluster, p, n) && in_windows);
         let groups_weight = 1.0 - stand_in_share(cluster, p);
-        let walked = cluster_groups(cluster, group_in_reach(cluster, p, n) && group_in_windows(cluster, p));
-        var walk = blocker_walk_at(walked.first, groups_in_reach(walked, p, n, groups_weight, &f), p, groups_weight);
+        let passing = groups_to_walk(walked, p, n, groups_weight);
+        var walk = cluster_walk(cluster, passing, p, in_windows && stand_in_weighs(cluster, p, n, 1.0));
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {
                 break;
             }
-            f = add_blocker(f, blocker_at(i), p, n, walk.weight);
+            f = add_walked(f, &walk, i, p, n);
         }
     }
     f = add_discs(f, p, n);
     return sh_sum(f, terrain_log_visibility(p));
 }
 
-// The groups of `walked` in reach of p (as BlockerWalk bits from walked.first). Each
-// group adds its stand-in to *f, weighed by its share at p (add_stand_in) times
-// `weight`, the groups' share against their cluster's stand-in.
-fn groups_in_reach(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32, f: ptr<function, Sh>) -> u32 {
-    var passing = 0u;
+// The groups of `walked` whose blockers p walks (in reach, short of their stand-in's
+// whole share, and within a light window) and whose stand-in weighs anything at p (its
+// share times `weight`, the groups' share against their cluster's stand-in, above 0,
+// as large in the sky as min_cap_ratio, not wholly below the tangent plane, within a
+// window): their blockers and stand-ins then come in the walk, and a group with neither
+// costs no cap.
+fn groups_to_walk(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32) -> GroupsToWalk {
+    var passing = GroupsToWalk(0u, 0u);
     for (var g = walked.first; g < walked.end; g++) {
         let group = group_at(g);
-        if group_in_reach(group, p, n) && group_in_windows(group, p) {
-            passing |= 1u << (g - walked.first);
+        let bit = 1u << (g - walked.first);
+        let in_windows = group_in_windows(group, p);
+        if group_in_reach(group, p, n) && stand_in_share(group, p) < 1.0 && in_windows {
+            passing.blockers |= bit;
         }
-        *f = add_stand_in(*f, group, p, n, weight);
+        if in_windows && stand_in_weighs(group, p, n, weight) {
+            passing.stand_ins |= bit;
+        }
     }
     return passing;
 }
 
-// A group's (or a cluster's) stand-in, one sphere of its spheres' summed projected area
-// at its centre, weighed by stand_in_share times `weight` and faded below the tangent
-// plane over the group's extent.
-fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
-    let share = stand_in_share(group, p) * weight;
-    let offset = group.center_extent.xyz - p;
-    let distance = sqrt(max(dot(offset, offset), 1e-30));
-    let ratio = group.stand_in_radius_m / distance;
-    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / max(group.center_extent.w, 1e-30));
-    if share <= 0.0 || ratio < shadow.min_cap_ratio || horizon <= 0.0 || group.count == 0u {
+// The walk's step i — blocker i, or the current group's stand-in (WALK_STAND_IN) — added
+// to f with one cap (lavapipe runs both sides of a branch, so the two share one add_cap):
+// a blocker weighed walk.weight, skipped when it contains p (a sphere-fit artefact on
+// the blocker's own surface) and faded below the tangent plane over its radius (so a
+// sphere straddling the surface it approximates does not darken its own receivers in
+// blotches where they leave it); a stand-in — one sphere of its group's (or cluster's)
+// spheres' summed projected area at its centre — weighed walk.stand_in_weight and faded
+// over the group's extent.
+fn add_walked(f: Sh, walk: ptr<function, BlockerWalk>, i: u32, p: vec3<f32>, n: vec3<f32>) -> Sh {
+    let is_stand_in = i == WALK_STAND_IN;
+    let b = blocker_at(select(i, 0u, is_stand_in));
+    let sphere = select(b.center_radius, (*walk).stand_in, is_stand_in);
+    let fade_m = select(b.center_radius.w, (*walk).stand_in_extent, is_stand_in);
+    let weight = select((*walk).weight, (*walk).stand_in_weight, is_stand_in);
+    let offset = sphere.xyz - p;
+    let distance2 = dot(offset, offset);
+    let distance = sqrt(max(distance2, 1e-30));
+    let inside = !is_stand_in && distance2 <= sphere.w * sphere.w;
+    let ratio = sphere.w / distance;
+    let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / max(fade_m, 1e-30));
+    if inside || ratio < shadow.min_cap_ratio || horizon <= 0.0 || weight <= 0.0 {
         return f;
     }
-    return add_cap(f, offset / distance, ratio, horizon * share);
+    return add_cap(f, offset / distance, ratio, horizon * weight);
 }
 
 // k(s): the scale of a cap's log-visibility that keeps the light it blocks through the
@@ -107,19 +129,6 @@ fn cap_mass_scale(s: f32) -> f32 {
     let a = t - f32(i);
     let j = i + 1u;
     return mix(shadow.cap_mass_scale[i / 4u][i % 4u], shadow.cap_mass_scale[j / 4u][j % 4u], a);
-}
-
-// Blocker b's log-visibility at p, times `weight` (its group's 1 − stand_in_share).
-fn add_blocker(f: Sh, b: Blocker, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
-    // The fade out below the tangent plane keeps a sphere straddling the surface it
-    // approximates from darkening its own receivers in blotches where they leave it.
-    let seen = blocker_seen(b, p, n);
-    let ratio = seen.x;
-    let horizon = seen.y;
-    if ratio < shadow.min_cap_ratio || horizon <= 0.0 || weight <= 0.0 {
-        return f;
-    }
-    return add_cap(f, (b.center_radius.xyz - p) / seen.z, ratio, horizon * weight);
 }
 
 // A blocker's cap of sine `ratio` toward unit `direction`, weighed by `weight` (its fade
@@ -217,23 +226,25 @@ fn open_light_windows(p: vec3<f32>) {
     }
 }
 
-// Whether a group's blockers can have any weight in the windows: its bounding sphere
-// (every blocker within it) seen under half-angle γ, its centre θ from a window of
-// half-angle α, holds none beyond it unless θ < α + 3γ/2 (a blocker's cap of half-angle
-// β ≤ γ inside the group's reaches the window's ramp only within α + 3β/2 of it; 1e-3
-// rad more for rounding). Its
-// blockers skipped, the walk costs the windows nothing where no light can be hidden;
-// their weights were 0 (the twin, which walks them all, adds nothing for them).
+// Whether a group's blockers or its stand-in can have any weight in the windows: a
+// sphere bounding them all (the group's extent or the stand-in's radius, the larger)
+// seen under half-angle γ, its centre θ from a window of half-angle α, holds none beyond
+// it unless θ < α + 3γ/2 (a cap of half-angle β ≤ γ inside it reaches the window's ramp
+// only within α + 3β/2 of it; 1e-3 rad more for rounding). Those skipped, the walk costs
+// the windows nothing where no light can be hidden; their weights were 0 (the twin,
+// which walks them all, adds nothing for them). Of a cluster, likewise for its groups.
 fn group_in_windows(group: BlockerGroup, p: vec3<f32>) -> bool {
     if LIGHT_WINDOWS == 0u || !windows_open {
         return true;
     }
     let to_group = group.center_extent.xyz - p;
     let distance = length(to_group);
-    if distance <= group.center_extent.w {
+    // The bounding sphere holds the stand-in's too.
+    let bound_m = max(group.center_extent.w, group.stand_in_radius_m);
+    if distance <= bound_m {
         return true;
     }
-    let reaches = window_half_angles + vec4<f32>(1.5 * asin(group.center_extent.w / distance) + 1e-3);
+    let reaches = window_half_angles + vec4<f32>(1.5 * asin(bound_m / distance) + 1e-3);
     let direction = to_group / distance;
     var inside = angle_between(direction, window_0.xyz) < reaches.x;
     if LIGHT_WINDOWS >= 2u {

@@ -110,7 +110,7 @@ fn for_each_cap(
     })
 }
 
-/// A group's caps at p (logsh.wgsl's `groups_in_reach` and walk): in reach, its spheres
+/// A group's caps at p (logsh.wgsl's `groups_to_walk` and walk): in reach, its spheres
 /// weighed 1 − its stand-in's share, then the stand-in weighed by that share, all times
 /// `weight`. Returns the blockers visited.
 fn add_group_caps(
@@ -169,7 +169,8 @@ impl Bounds {
         offset.length_squared() <= influence * influence && offset.dot(n) + self.extent_m as f64 > 0.0
     }
 
-    /// `add_stand_in`: the stand-in's cap weighed by its share times `weight`, faded
+    /// A stand-in's step of logsh.wgsl's walk (`stand_in_weighs`, `add_walked`): the
+    /// stand-in's cap weighed by its share times `weight`, faded
     /// below the tangent plane over the extent. Returns 1 if it was added.
     fn add_stand_in(
         &self,
