@@ -27,13 +27,14 @@ use glam::Vec3;
 
 use crate::blockers::Sphere;
 
-/// Most spheres in one group: 8 while all the groups fit one cluster (up to 256 spheres),
-/// 16 above. The blocker bench's frame (`cargo bench --bench frame -- frame/sphere-count`)
-/// at 600 spheres took 106–111 ms with 16, 117 with 8 and 130 with 32; at 20,000, 365–380,
-/// 507 and 342 ms; the studio's 51 spheres shade fastest in groups of 8
-/// (docs/performance.md).
+/// Most spheres in one group: 8 up to 1,024 spheres, 16 above. Measured at the walk of
+/// 2c4ec7e (docs/performance.md): the blocker bench's frame (`cargo bench --bench frame
+/// -- frame/sphere-count`) at 20,000 spheres took 365–380 ms with 16, 507 with 8 and 342
+/// with 32, at 600 spheres 106–111, 117 and 130 ms; but the large sample's 576 spheres
+/// shade faster in groups of 8 (`render --time-frames`: its low-resolution shading 52.9
+/// against 57.0 ms, its pixels shaded in full 119 against 133 ms), as do the studio's 51.
 pub fn group_size(sphere_count: usize) -> usize {
-    if sphere_count <= 8 * CLUSTER_GROUPS { 8 } else { 16 }
+    if sphere_count <= 1024 { 8 } else { 16 }
 }
 
 /// Most groups in one cluster: the bits of one walk's mask (WGSL `WALK_GROUPS`). With
