@@ -11,7 +11,7 @@ use super::windows::LightWindows;
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
 use crate::shading::ShadowSettings;
-use crate::shading::blocker_groups::{BlockerGroup, GroupedBlockers, group_blockers};
+use crate::shading::blocker_groups::{BlockerCluster, BlockerGroup, GroupedBlockers, group_blockers};
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT};
 use crate::terrain::TerrainShadow;
 
@@ -87,12 +87,7 @@ fn for_each_cap(
     with_groups(blockers, settings, |grouped, discs| {
         let mut walked = discs.len();
         for cluster in &grouped.clusters {
-            let bounds = Bounds {
-                center: cluster.center,
-                extent_m: cluster.extent_m,
-                influence_m: cluster.hand_over_m,
-                stand_in_radius_m: cluster.stand_in_radius_m,
-            };
+            let bounds = Bounds::of_cluster(cluster);
             let share = bounds.stand_in_share(p);
             if bounds.in_reach(p, n) && share < 1.0 {
                 let groups = &grouped.groups[cluster.first_group..cluster.first_group + cluster.group_count];
@@ -122,12 +117,7 @@ fn add_group_caps(
     n: DVec3,
     add_cap: &mut impl FnMut(DVec3, f64, f64),
 ) -> usize {
-    let bounds = Bounds {
-        center: group.center,
-        extent_m: group.extent_m,
-        influence_m: group.influence_m,
-        stand_in_radius_m: group.stand_in_radius_m,
-    };
+    let bounds = Bounds::of_group(group);
     let share = bounds.stand_in_share(p);
     let mut walked = 0;
     if bounds.in_reach(p, n) && share < 1.0 {
@@ -151,6 +141,26 @@ struct Bounds {
 }
 
 impl Bounds {
+    fn of_group(group: &BlockerGroup) -> Bounds {
+        Bounds {
+            center: group.center,
+            extent_m: group.extent_m,
+            influence_m: group.influence_m,
+            stand_in_radius_m: group.stand_in_radius_m,
+        }
+    }
+
+    /// A cluster read as a group whose influence is its hand-over distance (as the
+    /// shader's `groups` array holds it, `GpuBlockerGroup::cluster`).
+    fn of_cluster(cluster: &BlockerCluster) -> Bounds {
+        Bounds {
+            center: cluster.center,
+            extent_m: cluster.extent_m,
+            influence_m: cluster.hand_over_m,
+            stand_in_radius_m: cluster.stand_in_radius_m,
+        }
+    }
+
     /// `stand_in_share` in blockers.wgsl: 0 within half the influence distance, 1
     /// beyond it, smoothstep between.
     fn stand_in_share(&self, p: DVec3) -> f64 {
