@@ -71,7 +71,8 @@ pub struct BlockerGroup {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BlockerCluster {
     pub center: Vec3,
-    /// Every sphere lies within this distance of `center`.
+    /// Every sphere, and every group's stand-in sphere, lies within this distance of
+    /// `center`.
     pub extent_m: f32,
     /// The cluster's stand-in takes over from its groups between half this distance and
     /// this distance from `center`; a receiver farther away skips the groups. At least
@@ -175,9 +176,12 @@ fn bound_cluster(
         ..
     } = *grouping;
     let center = spheres.iter().map(|s| s.center).sum::<Vec3>() / spheres.len() as f32;
+    // Every sphere and every group's stand-in lies within it: the shader's window test
+    // of a cluster stands for its groups' stand-ins too.
     let extent_m = spheres
         .iter()
         .map(|s| s.center.distance(center) + s.radius_m)
+        .chain(groups.iter().map(|g| g.center.distance(center) + g.stand_in_radius_m))
         .fold(0.0, f32::max);
     // Where the last group's spheres or stand-in stops counting.
     let groups_reach_m = groups
@@ -305,6 +309,7 @@ mod tests {
                 // Beyond the hand-over distance no sphere of the cluster and no group
                 // stand-in is large enough in the sky to count.
                 assert!(c.center.distance(g.center) + g.stand_in_radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
+                assert!(c.center.distance(g.center) + g.stand_in_radius_m <= c.extent_m * (1.0 + 1e-5));
                 for s in &grouped.spheres[g.first..g.first + g.count] {
                     assert!(s.center.distance(c.center) + s.radius_m <= c.extent_m * (1.0 + 1e-5));
                     assert!(s.center.distance(c.center) + s.radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
