@@ -170,11 +170,11 @@ fn blocker_walk(first_group: u32, passing: u32) -> BlockerWalk {
 }
 
 // A walk of a cluster's groups that weighs each group's blockers and stand-in at
-// receiver p, the groups together weighed 1 − the cluster's stand-in share; the
+// receiver p, the groups together weighed 1 − `share`, the cluster's stand-in share
+// there (stand_in_share); the
 // cluster's own stand-in is its first step when `cluster_stand_in` (it takes the one
 // pass lavapipe runs of a walk with nothing else to visit).
-fn cluster_walk(cluster: BlockerGroup, passing: GroupsToWalk, p: vec3<f32>, cluster_stand_in: bool) -> BlockerWalk {
-    let share = stand_in_share(cluster, p);
+fn cluster_walk(cluster: BlockerGroup, share: f32, passing: GroupsToWalk, p: vec3<f32>, cluster_stand_in: bool) -> BlockerWalk {
     return BlockerWalk(
         cluster.first,
         passing.blockers,

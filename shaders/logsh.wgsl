@@ -58,13 +58,13 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
         let cluster = group_at(c);
         let in_windows = group_in_windows(cluster, p);
         let walked = cluster_groups(cluster, group_in_reach(cluster, p, n) && in_windows);
-        let groups_weight = 1.0 - stand_in_share(cluster, p);
-        let passing = groups_to_walk(walked, p, n, groups_weight, &f);
+        let share = stand_in_share(cluster, p);
+        let passing = groups_to_walk(walked, p, n, 1.0 - share, &f);
         if !stand_ins_walked() {
             f = add_stand_in(f, cluster, p, n, 1.0);
         }
         let cluster_stand_in = stand_ins_walked() && in_windows && stand_in_weighs(cluster, p, n, 1.0);
-        var walk = cluster_walk(cluster, passing, p, cluster_stand_in);
+        var walk = cluster_walk(cluster, share, passing, p, cluster_stand_in);
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {
