@@ -119,17 +119,24 @@ fn disc_cap_seen(b: Blocker, p: vec3<f32>, n: vec3<f32>) -> SeenDisc {
     return SeenDisc(seen.xyz, ratio, horizon, length(offset));
 }
 
-// Blocker group g.
+// Blocker group g, unpacked.
 fn group_at(g: u32) -> BlockerGroup {
-    if BLOCKER_OVERFLOW {
-        if g >= UNIFORM_BLOCKER_CAPACITY {
-            return every_group[g];
-        }
+    var packed: PackedBlockerGroup;
+    if BLOCKER_OVERFLOW && g >= UNIFORM_BLOCKER_CAPACITY {
+        packed = every_group[g];
+    } else {
+        packed = groups[min(g, UNIFORM_BLOCKER_CAPACITY - 1u)];
+        // Empty past the capacity.
+        packed.first_count = select(packed.first_count, 0u, g >= UNIFORM_BLOCKER_CAPACITY);
     }
-    var group = groups[min(g, UNIFORM_BLOCKER_CAPACITY - 1u)];
-    // Empty past the capacity.
-    group.count = select(group.count, 0u, g >= UNIFORM_BLOCKER_CAPACITY);
-    return group;
+    return BlockerGroup(
+        packed.center_extent,
+        packed.hand_over_m,
+        packed.first_count & ((1u << GROUP_FIRST_BITS) - 1u),
+        packed.first_count >> GROUP_FIRST_BITS,
+        packed.stand_in_radius_m,
+        packed.stand_in_depth,
+    );
 }
 
 // The blockers of chosen groups, one per call of walk_next, so that one flat loop visits
@@ -153,7 +160,7 @@ struct BlockerWalk {
     cluster_weight: f32,
     // The current group's stand-in, when it is still to come: its sphere (centre, radius),
     // the extent it fades below the tangent plane over, and its weight,
-    // cluster_weight · stand_in_share.
+    // cluster_weight · stand_in_share · stand_in_depth.
     stand_in_pending: bool,
     stand_in: vec4<f32>,
     stand_in_extent: f32,
@@ -187,7 +194,7 @@ fn cluster_walk(cluster: BlockerGroup, share: f32, passing: GroupsToWalk, p: vec
         cluster_stand_in,
         vec4<f32>(cluster.center_extent.xyz, cluster.stand_in_radius_m),
         cluster.center_extent.w,
-        share,
+        share * cluster.stand_in_depth,
     );
 }
 
@@ -220,7 +227,7 @@ fn walk_next(walk: ptr<function, BlockerWalk>) -> u32 {
         (*walk).stand_ins &= ~bit;
         (*walk).stand_in = vec4<f32>(group.center_extent.xyz, group.stand_in_radius_m);
         (*walk).stand_in_extent = group.center_extent.w;
-        (*walk).stand_in_weight = (*walk).cluster_weight * share;
+        (*walk).stand_in_weight = (*walk).cluster_weight * share * group.stand_in_depth;
         if !walks_blockers {
             // Only the stand-in: it is this step.
             (*walk).stand_in_pending = false;
@@ -257,22 +264,34 @@ fn stand_in_weighs(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32)
     return stand_in_share(group, p) * weight > 0.0 && ratio_reached && above && group.count > 0u;
 }
 
-// Conservative group tests (see blocker_groups.rs): every sphere of a group out of reach
-// would be skipped by add_walked's tests (beyond its influence, or wholly below the
-// tangent plane). Empty groups are out of reach too.
+// Whether the SH walk takes a group's (or a cluster's) blockers at p: within its
+// hand-over distance (beyond it the stand-in alone), not wholly below the tangent plane
+// (every sphere there would be skipped by add_walked's tests), and not empty.
 fn group_in_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
     let to_group = group.center_extent.xyz - p;
-    return dot(to_group, to_group) <= group.influence_m * group.influence_m
+    return dot(to_group, to_group) <= group.hand_over_m * group.hand_over_m
         && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
 }
 
-// How much of a group's shadow at p its stand-in carries (blocker_groups.rs): 0 within
-// half its influence distance, 1 beyond it, smoothly between, where its blockers are
-// weighed 1 − share — so no ring shows where one takes over from the other. Of a
-// cluster, likewise over its hand-over distance.
+// Whether any sphere of a group (or a cluster) can count at p on the exact path, which
+// has no stand-ins (conservative, as blocker_groups.rs's tests check): each sphere i lies
+// within |cᵢ − c| + rᵢ ≤ extent of the centre and counts out to rᵢ / min_cap_ratio, and
+// rᵢ ≤ stand_in_radius_m (at least the largest sphere's radius: src/shading/stand_in.rs);
+// not wholly below the tangent plane, not empty.
+fn group_in_influence(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
+    let to_group = group.center_extent.xyz - p;
+    let influence_m = group.center_extent.w + group.stand_in_radius_m / max(shadow.min_cap_ratio, 1e-30);
+    return dot(to_group, to_group) <= influence_m * influence_m
+        && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
+}
+
+// How much of a group's (or a cluster's) shadow at p its stand-in carries
+// (blocker_groups.rs): 0 within half its hand-over distance, 1 beyond it, smoothly
+// between, where its blockers are weighed 1 − share — so no ring shows where one takes
+// over from the other.
 fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
     if group.stand_in_radius_m <= 0.0 {
         return 0.0;
     }
-    return smoothstep(0.5 * group.influence_m, group.influence_m, distance(group.center_extent.xyz, p));
+    return smoothstep(0.5 * group.hand_over_m, group.hand_over_m, distance(group.center_extent.xyz, p));
 }

@@ -178,19 +178,31 @@ struct TerrainParams {
 };
 
 // Consecutive blockers first..first + count culled together: every sphere lies within
-// center_extent.w of center_extent.xyz, and a receiver farther than influence_m from the
-// centre is beyond every sphere's influence distance. A cluster has the same layout: its
-// groups are first..first + count of `groups`, and influence_m is its hand-over distance
-// (beyond it the stand-in alone; src/shading/blocker_groups.rs).
+// center_extent.w of center_extent.xyz, and one sphere at the centre (radius
+// stand_in_radius_m: the area the spheres cover together; its log-visibility weighed
+// stand_in_depth, Σ r² over its radius squared) stands in for them between half
+// hand_over_m and hand_over_m, and alone beyond it. A cluster has the same layout: its
+// groups are first..first + count of `groups` (src/shading/blocker_groups.rs). As stored
+// (PackedBlockerGroup), first and count share one u32: first in the low GROUP_FIRST_BITS
+// bits; group_at unpacks it.
 struct BlockerGroup {
     center_extent: vec4<f32>,
-    influence_m: f32,
+    hand_over_m: f32,
     first: u32,
     count: u32,
-    // One sphere of the group's spheres' summed projected area, standing in for them
-    // beyond influence_m (src/shading/blocker_groups.rs).
     stand_in_radius_m: f32,
+    stand_in_depth: f32,
 };
+
+struct PackedBlockerGroup {
+    center_extent: vec4<f32>,
+    hand_over_m: f32,
+    first_count: u32,
+    stand_in_radius_m: f32,
+    stand_in_depth: f32,
+};
+
+const GROUP_FIRST_BITS: u32 = 26u;
 
 // A blocker: xyz = centre (world, metres), w = radius in metres; a sphere, or a flat disc
 // facing disc_normal.xyz when that is not zero (src/blockers/surface.rs).

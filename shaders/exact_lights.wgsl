@@ -167,7 +167,7 @@ fn group_may_cut(batch: ExactBatch, direction: vec3<f32>, distance: f32, extent:
 }
 
 // Whether a group (or a cluster: its bounds hold its groups') may hold a sphere that cuts
-// one of the batch's discs: in reach (group_in_reach) and meeting some light's cone.
+// one of the batch's discs: in reach (group_in_influence) and meeting some light's cone.
 fn group_in_batch_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, half_footprint: f32) -> bool {
     let to_group = group.center_extent.xyz - p;
     let group_distance = sqrt(dot(to_group, to_group));
@@ -177,7 +177,7 @@ fn group_in_batch_reach(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, lo: Exa
     if EXACT_WIDE {
         may_cut = may_cut || group_may_cut(hi, direction, group_distance, extent, half_footprint);
     }
-    return may_cut && group_in_reach(group, p, n);
+    return may_cut && group_in_influence(group, p, n);
 }
 
 // The groups of `walked` (as BlockerWalk bits from walked.first) with a sphere that may

@@ -86,9 +86,10 @@ fn stand_ins_walked() -> bool {
     return LIGHT_WINDOWS > 0u;
 }
 
-// A group's (or a cluster's) stand-in, one sphere of its spheres' summed projected area
-// at its centre, weighed by stand_in_share times `weight` and faded below the tangent
-// plane over the group's extent (when the walk does not take it: stand_ins_walked).
+// A group's (or a cluster's) stand-in, one sphere at its centre covering the area its
+// spheres cover, weighed by stand_in_share times `weight` times its depth (so it keeps
+// their summed log-visibility) and faded below the tangent plane over the group's extent
+// (when the walk does not take it: stand_ins_walked).
 fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
     if !stand_in_weighs(group, p, n, weight) {
         return f;
@@ -97,7 +98,7 @@ fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: 
     let distance = sqrt(max(dot(offset, offset), 1e-30));
     let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / max(group.center_extent.w, 1e-30));
     let share = stand_in_share(group, p) * weight;
-    return add_cap(f, offset / distance, group.stand_in_radius_m / distance, horizon * share);
+    return add_cap(f, offset / distance, group.stand_in_radius_m / distance, horizon * share * group.stand_in_depth);
 }
 
 // The groups of `walked` whose blockers p walks (in reach, short of their stand-in's
@@ -132,7 +133,7 @@ fn groups_to_walk(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32
 // the blocker's own surface) and faded below the tangent plane over its radius (so a
 // sphere straddling the surface it approximates does not darken its own receivers in
 // blotches where they leave it); a stand-in — one sphere of its group's (or cluster's)
-// spheres' summed projected area at its centre — weighed walk.stand_in_weight and faded
+// spheres' covered area at its centre — weighed walk.stand_in_weight and faded
 // over the group's extent.
 fn add_walked(f: Sh, walk: ptr<function, BlockerWalk>, i: u32, p: vec3<f32>, n: vec3<f32>) -> Sh {
     let is_stand_in = stand_ins_walked() && i == WALK_STAND_IN;

@@ -8,13 +8,13 @@
 // UNIFORM_BLOCKER_CAPACITY from uniform arrays, the rest (when there are more) from
 // every_blocker and every_group (see `lights` in scene.wgsl for why).
 @group(SHADOW_GROUP) @binding(BLOCKERS_BINDING) var<uniform> blockers: array<Blocker, UNIFORM_BLOCKER_CAPACITY>;
-@group(SHADOW_GROUP) @binding(GROUPS_BINDING) var<uniform> groups: array<BlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
+@group(SHADOW_GROUP) @binding(GROUPS_BINDING) var<uniform> groups: array<PackedBlockerGroup, UNIFORM_BLOCKER_CAPACITY>;
 @group(SHADOW_GROUP) @binding(TERRAIN_BINDING) var<uniform> terrain: TerrainParams;
 // Every pyramid level's heights (world y, metres), row-major, level after level, then the
 // surface cache (terrain.surface_first on): the marched sum at every finest sample.
 @group(SHADOW_GROUP) @binding(TERRAIN_HEIGHTS_BINDING) var<storage, read> terrain_heights: array<f32>;
 @group(SHADOW_GROUP) @binding(EVERY_BLOCKER_BINDING) var<storage, read> every_blocker: array<Blocker>;
-@group(SHADOW_GROUP) @binding(EVERY_GROUP_BINDING) var<storage, read> every_group: array<BlockerGroup>;
+@group(SHADOW_GROUP) @binding(EVERY_GROUP_BINDING) var<storage, read> every_group: array<PackedBlockerGroup>;
 
 // The shadow maps of the lights on the shadow-map path: each view a depth layer or a quadrant of one (shading::shadow_atlas; depth
 // reversed: 1 nearest the light), read with a comparison sampler (linear: each read filters the 2 × 2 texels around) or, for

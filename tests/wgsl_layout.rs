@@ -149,10 +149,11 @@ fn light_kind_tags_match_wgsl() {
 
 #[test]
 fn uniform_array_capacities_match_wgsl() {
-    use lightpaint::shading::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
+    use lightpaint::shading::gpu_types::{GROUP_FIRST_BITS, UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     for (name, value) in [
         ("UNIFORM_LIGHT_CAPACITY", UNIFORM_LIGHT_CAPACITY),
         ("UNIFORM_BLOCKER_CAPACITY", UNIFORM_BLOCKER_CAPACITY),
+        ("GROUP_FIRST_BITS", GROUP_FIRST_BITS as usize),
     ] {
         let line = format!("const {name}: u32 = {value}u;");
         assert!(wgsl::COMMON.contains(&line), "common.wgsl lacks `{line}`");
@@ -231,14 +232,14 @@ fn blocker_matches_wgsl() {
 #[test]
 fn blocker_group_matches_wgsl() {
     assert_twin(
-        "BlockerGroup",
+        "PackedBlockerGroup",
         size_of::<GpuBlockerGroup>(),
         &[
             ("center_extent", offset_of!(GpuBlockerGroup, center_extent)),
-            ("influence_m", offset_of!(GpuBlockerGroup, influence_m)),
-            ("first", offset_of!(GpuBlockerGroup, first)),
-            ("count", offset_of!(GpuBlockerGroup, count)),
+            ("hand_over_m", offset_of!(GpuBlockerGroup, hand_over_m)),
+            ("first_count", offset_of!(GpuBlockerGroup, first_count)),
             ("stand_in_radius_m", offset_of!(GpuBlockerGroup, stand_in_radius_m)),
+            ("stand_in_depth", offset_of!(GpuBlockerGroup, stand_in_depth)),
         ],
     );
 }

@@ -7,16 +7,19 @@
 //! The group tests are conservative: a group is skipped only when every one of its spheres
 //! would be skipped by the per-sphere tests of logsh.wgsl (beyond its influence distance
 //! r/min_cap_ratio, or wholly below the tangent plane), so culling never changes a pixel.
-//! Far from a group its spheres are not simply dropped: one sphere of their summed
-//! projected area stands in for them (`stand_in_radius_m`), taking over smoothly between
-//! half the influence distance and the influence distance (no ring shows where it does),
-//! for as long as it is large enough in the sky: many small blockers (a lattice's, a
-//! helix's) keep the far reaches of their soft shadows, each of them alone too small to
-//! count.
+//! Far from a group its spheres are not simply dropped: one sphere at their centre stands
+//! in for them (`stand_in_radius_m`, the area their projections cover together:
+//! `shading::stand_in`), taking over smoothly between half its hand-over distance and
+//! that distance (no ring shows where it does), for as long as it is large enough in the
+//! sky: many small blockers (a lattice's, a helix's) keep the far reaches of their soft
+//! shadows, each of them alone too small to count. The hand-over comes where each sphere
+//! alone stops counting, or sooner, at [`GROUP_HAND_OVER_CUTS`] times the distance at
+//! which the group's bounding cap narrows to the cut angle below, where the order can no
+//! longer tell its spheres apart.
 //!
 //! A cluster does the same one level up (Ren et al. 2006 cut their sphere tree where a
 //! node's cap is under about 80°/order, the finest angle the order tells apart): one
-//! sphere of all its spheres' projected area takes over from its groups and their
+//! sphere of its groups' stand-ins' summed area takes over from its groups and their
 //! stand-ins between half its hand-over distance and that distance, the larger of where
 //! the last of its groups' spheres and stand-ins stops counting and twice where its
 //! bounding cap narrows to 80°/order (`BlockerCluster::hand_over_m`). So beyond that
@@ -25,6 +28,7 @@
 
 use glam::Vec3;
 
+use super::stand_in::{joined_stand_in_radius_m, stand_in_depth, stand_in_radius_m};
 use crate::blockers::Sphere;
 
 /// Most spheres in one group: 8 up to 1,024 spheres, 16 above. Measured at the walk of
@@ -42,6 +46,10 @@ pub fn group_size(sphere_count: usize) -> usize {
 /// 437 against 365 ms).
 pub const CLUSTER_GROUPS: usize = 32;
 
+/// A group's stand-in has taken over wholly at this many times the distance at which
+/// its bounding cap narrows to the cut angle (it starts at half of it).
+pub const GROUP_HAND_OVER_CUTS: f32 = 2.0;
+
 /// Ren et al. 2006's cut angle for order n: a node whose cap is narrower than
 /// 80°/n stands in for its children.
 pub fn cut_half_angle_rad(order: usize) -> f32 {
@@ -57,11 +65,20 @@ pub struct BlockerGroup {
     /// A receiver farther than this from `center` is beyond every sphere's influence
     /// distance: max |cᵢ − c| + rᵢ / min_cap_ratio.
     pub influence_m: f32,
-    /// √Σ rᵢ²: the radius of one sphere at `center` with the projected area of the
-    /// group's spheres, which takes over from them between half the influence distance
-    /// and `influence_m` (where each alone is too small to count). Groups hold spheres
-    /// only: discs are shaded apart (`blockers::spheres_and_discs`).
+    /// The group's stand-in takes over from its spheres between half this distance and
+    /// this distance from `center`: the nearer of `influence_m` (where each sphere alone
+    /// is too small to count) and [`GROUP_HAND_OVER_CUTS`] times the distance at which
+    /// the group's bounding cap narrows to the cut angle.
+    pub hand_over_m: f32,
+    /// The radius of one sphere at `center` that stands in for the group's spheres far
+    /// away: the area their projections cover together (`stand_in::stand_in_radius_m`;
+    /// √Σ rᵢ² where none overlap). Groups hold spheres only: discs are shaded apart
+    /// (`blockers::spheres_and_discs`).
     pub stand_in_radius_m: f32,
+    /// Σ rᵢ² / R², R the stand-in's radius (≥ 1): how deep the spheres lie over each
+    /// other on average, by which the stand-in's log-visibility is weighed, so that it
+    /// keeps their summed log-visibility on the area they cover (`stand_in`).
+    pub stand_in_depth: f32,
     pub first: usize,
     pub count: usize,
 }
@@ -81,8 +98,10 @@ pub struct BlockerCluster {
     /// cap narrows to the cut angle (so the stand-in starts where the order cannot tell
     /// it from its spheres).
     pub hand_over_m: f32,
-    /// √Σ rᵢ² over the cluster's spheres.
+    /// √Σ Rᵢ² over its groups' stand-in radii.
     pub stand_in_radius_m: f32,
+    /// Σ rᵢ² / R² over its spheres, as a group's.
+    pub stand_in_depth: f32,
     pub first_group: usize,
     pub group_count: usize,
 }
@@ -154,7 +173,7 @@ impl Grouping {
             return;
         }
         if spheres.len() <= self.group_size {
-            groups.push(bound(spheres, offset, self.min_cap_ratio));
+            groups.push(bound(spheres, offset, self.min_cap_ratio, self.cut_sine));
             return;
         }
         let middle = split_at_median(spheres);
@@ -192,14 +211,16 @@ fn bound_cluster(
             } else {
                 f32::INFINITY
             };
-            g.center.distance(center) + g.influence_m.max(stand_in_reach)
+            g.center.distance(center) + g.hand_over_m.max(stand_in_reach)
         })
         .fold(0.0, f32::max);
+    let stand_in_radius_m = joined_stand_in_radius_m(groups.iter().map(|g| g.stand_in_radius_m));
     BlockerCluster {
         center,
         extent_m,
         hand_over_m: groups_reach_m.max(2.0 * extent_m / cut_sine.max(1e-6)),
-        stand_in_radius_m: spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt(),
+        stand_in_radius_m,
+        stand_in_depth: stand_in_depth(spheres, stand_in_radius_m),
         first_group,
         group_count: groups.len(),
     }
@@ -226,7 +247,7 @@ fn split_at_median(spheres: &mut [Sphere]) -> usize {
     middle
 }
 
-fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32) -> BlockerGroup {
+fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32, cut_sine: f32) -> BlockerGroup {
     let center = spheres.iter().map(|s| s.center).sum::<Vec3>() / spheres.len() as f32;
     let reach = |s: &Sphere, radius: f32| s.center.distance(center) + radius;
     let extent_m = spheres.iter().map(|s| reach(s, s.radius_m)).fold(0.0, f32::max);
@@ -238,12 +259,19 @@ fn bound(spheres: &[Sphere], first: usize, min_cap_ratio: f32) -> BlockerGroup {
     } else {
         f32::INFINITY
     };
-    let stand_in_radius_m = spheres.iter().map(|s| s.radius_m * s.radius_m).sum::<f32>().sqrt();
+    let stand_in_radius_m = stand_in_radius_m(spheres);
     BlockerGroup {
         center,
         extent_m,
         influence_m,
+        hand_over_m: if spheres.len() > 1 {
+            influence_m.min(GROUP_HAND_OVER_CUTS * extent_m / cut_sine.max(1e-6))
+        } else {
+            // One sphere is its own stand-in: nothing to hand over.
+            influence_m
+        },
         stand_in_radius_m,
+        stand_in_depth: stand_in_depth(spheres, stand_in_radius_m),
         first,
         count: spheres.len(),
     }
@@ -284,7 +312,13 @@ mod tests {
             for s in &ordered[g.first..g.first + g.count] {
                 assert!(s.center.distance(g.center) + s.radius_m <= g.extent_m + 1e-5);
                 assert!(s.center.distance(g.center) + s.radius_m / 0.03 <= g.influence_m + 1e-3);
+                assert!(s.radius_m <= g.stand_in_radius_m);
             }
+            // The stand-in has taken over where the spheres stop counting, or where the
+            // group's cap is GROUP_HAND_OVER_CUTS times narrower than at the cut angle.
+            let cut_sine = cut_half_angle_rad(4).sin();
+            assert!(g.hand_over_m <= g.influence_m);
+            assert!(g.hand_over_m <= GROUP_HAND_OVER_CUTS * g.extent_m / cut_sine * (1.0 + 1e-5));
         }
         let mut a: Vec<String> = input.iter().map(|s| format!("{s:?}")).collect();
         let mut b: Vec<String> = ordered.iter().map(|s| format!("{s:?}")).collect();
@@ -306,15 +340,16 @@ mod tests {
             next += c.group_count;
             let mut area = 0.0;
             for g in &grouped.groups[c.first_group..c.first_group + c.group_count] {
-                // Beyond the hand-over distance no sphere of the cluster and no group
-                // stand-in is large enough in the sky to count.
+                // Beyond the hand-over distance no group's spheres are walked (its own
+                // stand-in has taken over) and no group stand-in is large enough in the
+                // sky to count.
                 assert!(c.center.distance(g.center) + g.stand_in_radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
+                assert!(c.center.distance(g.center) + g.hand_over_m <= c.hand_over_m * (1.0 + 1e-5));
                 assert!(c.center.distance(g.center) + g.stand_in_radius_m <= c.extent_m * (1.0 + 1e-5));
                 for s in &grouped.spheres[g.first..g.first + g.count] {
                     assert!(s.center.distance(c.center) + s.radius_m <= c.extent_m * (1.0 + 1e-5));
-                    assert!(s.center.distance(c.center) + s.radius_m / 0.03 <= c.hand_over_m * (1.0 + 1e-5));
-                    area += s.radius_m * s.radius_m;
                 }
+                area += g.stand_in_radius_m * g.stand_in_radius_m;
             }
             assert!((c.stand_in_radius_m - area.sqrt()).abs() <= 1e-4 * area.sqrt());
             // Where the stand-in starts, the cluster's cap is within the cut angle.

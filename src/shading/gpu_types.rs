@@ -368,15 +368,28 @@ pub struct GpuTerrainParams {
     pub wedge: [[f32; 4]; 256],
 }
 
-/// WGSL `BlockerGroup` (see `blocker_groups`).
+/// WGSL `PackedBlockerGroup` (see `blocker_groups`), which blockers.wgsl's `group_at`
+/// unpacks into a `BlockerGroup`: `first_count` holds the first blocker (or, for a
+/// cluster, group) in its low [`GROUP_FIRST_BITS`] bits and the count above them (at
+/// most 32 groups or 16 spheres; the layout has room for no more 4-byte fields at
+/// [`UNIFORM_BLOCKER_CAPACITY`] groups).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuBlockerGroup {
     pub center_extent: [f32; 4],
-    pub influence_m: f32,
-    pub first: u32,
-    pub count: u32,
+    pub hand_over_m: f32,
+    pub first_count: u32,
     pub stand_in_radius_m: f32,
+    pub stand_in_depth: f32,
+}
+
+/// Bits of `GpuBlockerGroup::first_count` that hold the first index (WGSL
+/// `GROUP_FIRST_BITS`): 67 million blockers, far past what a frame can hold.
+pub const GROUP_FIRST_BITS: u32 = 26;
+
+fn first_count(first: usize, count: usize) -> u32 {
+    debug_assert!(first < 1 << GROUP_FIRST_BITS && count < 1 << (32 - GROUP_FIRST_BITS));
+    (first as u32 & ((1 << GROUP_FIRST_BITS) - 1)) | ((count as u32) << GROUP_FIRST_BITS)
 }
 
 impl GpuBlockerGroup {
@@ -384,23 +397,22 @@ impl GpuBlockerGroup {
         GpuBlockerGroup {
             center_extent: group.center.extend(group.extent_m).to_array(),
             // f32::MAX rather than infinity: squared in the shader, it still compares.
-            influence_m: group.influence_m.min(1e18),
-            first: group.first as u32,
-            count: group.count as u32,
+            hand_over_m: group.hand_over_m.min(1e18),
+            first_count: first_count(group.first, group.count),
             stand_in_radius_m: group.stand_in_radius_m,
+            stand_in_depth: group.stand_in_depth,
         }
     }
 
     /// A cluster in the same layout, its groups at `first_group_index..` of the array
-    /// (the clusters come first): `influence_m` carries its hand-over distance, which
-    /// the shader's reach test and stand-in share read as a group's influence.
+    /// (the clusters come first).
     pub fn cluster(cluster: &super::blocker_groups::BlockerCluster, first_group_index: usize) -> GpuBlockerGroup {
         GpuBlockerGroup {
             center_extent: cluster.center.extend(cluster.extent_m).to_array(),
-            influence_m: cluster.hand_over_m.min(1e18),
-            first: first_group_index as u32,
-            count: cluster.group_count as u32,
+            hand_over_m: cluster.hand_over_m.min(1e18),
+            first_count: first_count(first_group_index, cluster.group_count),
             stand_in_radius_m: cluster.stand_in_radius_m,
+            stand_in_depth: cluster.stand_in_depth,
         }
     }
 }

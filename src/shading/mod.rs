@@ -22,6 +22,7 @@ pub mod shadow_atlas;
 pub mod shadow_maps;
 mod shadow_path;
 pub mod sphere_casters;
+pub mod stand_in;
 pub mod terrain;
 pub mod wgsl;
 

@@ -136,8 +136,9 @@ fn add_group_caps(
 struct Bounds {
     center: glam::Vec3,
     extent_m: f32,
-    influence_m: f32,
+    hand_over_m: f32,
     stand_in_radius_m: f32,
+    stand_in_depth: f32,
 }
 
 impl Bounds {
@@ -145,38 +146,40 @@ impl Bounds {
         Bounds {
             center: group.center,
             extent_m: group.extent_m,
-            influence_m: group.influence_m,
+            hand_over_m: group.hand_over_m,
             stand_in_radius_m: group.stand_in_radius_m,
+            stand_in_depth: group.stand_in_depth,
         }
     }
 
-    /// A cluster read as a group whose influence is its hand-over distance (as the
-    /// shader's `groups` array holds it, `GpuBlockerGroup::cluster`).
+    /// A cluster read as a group (as the shader's `groups` array holds it,
+    /// `GpuBlockerGroup::cluster`).
     fn of_cluster(cluster: &BlockerCluster) -> Bounds {
         Bounds {
             center: cluster.center,
             extent_m: cluster.extent_m,
-            influence_m: cluster.hand_over_m,
+            hand_over_m: cluster.hand_over_m,
             stand_in_radius_m: cluster.stand_in_radius_m,
+            stand_in_depth: cluster.stand_in_depth,
         }
     }
 
-    /// `stand_in_share` in blockers.wgsl: 0 within half the influence distance, 1
+    /// `stand_in_share` in blockers.wgsl: 0 within half the hand-over distance, 1
     /// beyond it, smoothstep between.
     fn stand_in_share(&self, p: DVec3) -> f64 {
         if self.stand_in_radius_m <= 0.0 {
             return 0.0;
         }
-        let influence = self.influence_m as f64;
-        smoothstep(0.5 * influence, influence, self.center.as_dvec3().distance(p))
+        let hand_over = self.hand_over_m as f64;
+        smoothstep(0.5 * hand_over, hand_over, self.center.as_dvec3().distance(p))
     }
 
-    /// `group_in_reach`: within the influence distance and not wholly below the
+    /// `group_in_reach`: within the hand-over distance and not wholly below the
     /// tangent plane.
     fn in_reach(&self, p: DVec3, n: DVec3) -> bool {
         let offset = self.center.as_dvec3() - p;
-        let influence = self.influence_m as f64;
-        offset.length_squared() <= influence * influence && offset.dot(n) + self.extent_m as f64 > 0.0
+        let hand_over = self.hand_over_m as f64;
+        offset.length_squared() <= hand_over * hand_over && offset.dot(n) + self.extent_m as f64 > 0.0
     }
 
     /// A stand-in's step of logsh.wgsl's walk (`stand_in_weighs`, `add_walked`): the
@@ -196,7 +199,7 @@ impl Bounds {
         let ratio = self.stand_in_radius_m as f64 / distance.max(1e-300);
         let horizon = smoothstep(-1.0, 1.0, offset.dot(n) / (self.extent_m as f64).max(1e-30));
         if share > 0.0 && ratio >= min_ratio && horizon > 0.0 {
-            add_cap(offset / distance, ratio, horizon * share);
+            add_cap(offset / distance, ratio, horizon * share * self.stand_in_depth as f64);
             1
         } else {
             0
