@@ -12,7 +12,8 @@
 //!   5,000, 10,000 and 20,000 spheres spread over the casters, at the shipped defaults
 //!   (one pixel in 3 × 3 shaded) with the light on the SH path: how the frame grows with
 //!   the sphere count (none: what the frame costs without a blocker walk;
-//!   `cargo run --release --example sphere_count_plot` draws the curve);
+//!   `cargo run --release --example sphere_count_plot` draws the curve), and per vertex
+//!   (`thin-casters-per-vertex`) with 600 and 20,000;
 //! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
 //!
 //! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
@@ -181,6 +182,21 @@ fn frames(c: &mut Criterion) {
         let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&set.scene, count);
         let frame = set.frame(&shipped, &spheres);
         time_frame(&mut group, BenchmarkId::new("thin-casters", count), &gpu, &frame);
+    }
+    // Per vertex: the visibility exponentiated at the casters' and the floor's vertices.
+    let per_vertex = ShadowSettings {
+        per_vertex: true,
+        ..shipped
+    };
+    for count in [600, 20_000] {
+        let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&set.scene, count);
+        let frame = set.frame(&per_vertex, &spheres);
+        time_frame(
+            &mut group,
+            BenchmarkId::new("thin-casters-per-vertex", count),
+            &gpu,
+            &frame,
+        );
     }
     group.finish();
 
