@@ -223,11 +223,13 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     }
     let (no_blockers, summary) = render_with_summary("no-blockers.png", &["--blockers", "0"]);
     assert!(summary.contains(", 0 blockers"), "{summary}");
-    // Every mesh without spheres is named, with the reason.
+    // Every mesh without spheres is named (the sample has fewer than the eight a reason
+    // names), the reason once after them.
     assert!(
-        summary.contains("no soft shadows from:") && summary.contains("Floor ("),
+        summary.contains("no soft shadows from:") && summary.contains("Floor") && !summary.contains(" more ("),
         "{summary}"
     );
+    assert_eq!(summary.matches("a budget of 0").count(), 1, "{summary}");
     assert!(
         differing(&no_blockers, &defaults) > pixels / 100,
         "--blockers 0 shadows as before"

@@ -75,18 +75,18 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             log::info!("blockers: {line}");
         }
         // No mesh is left out silently: say which cast no soft (SH) shadow, and why.
-        let without: Vec<String> = fit
+        let without: Vec<(String, String)> = fit
             .per_object
             .iter()
             .zip(&document.scene.objects)
             .enumerate()
             .filter(|(index, _)| !document.hidden_objects.contains(index))
-            .filter_map(|(_, (set, object))| set.skipped.as_ref().map(|why| format!("{} ({why})", object.name)))
+            .filter_map(|(_, (set, object))| set.skipped.as_ref().map(|why| (object.name.clone(), why.clone())))
             .collect();
         if !without.is_empty() {
             say!(
                 "no sphere blockers, so no soft shadows from: {}{}",
-                without.join("; "),
+                objects_by_reason(&without),
                 if shadows.shadow_map_size > 0 {
                     " — their shadows of the lights on shadow maps (points, spots, the sun, small sphere and area lights) come from those"
                 } else {
@@ -338,4 +338,54 @@ fn describe(frame: &ShadowFrame, hidden: &std::collections::BTreeSet<usize>) -> 
         shadows.light_paths,
         shadows.brdf.name()
     )
+}
+
+/// Objects named with why they have no spheres, `(name, why)`, as one line: each reason
+/// once, after the names it holds for ("A, B (why); C (other)"), at most
+/// [`NAMES_PER_REASON`] names a reason and then how many more — a scene of hundreds of
+/// meshes fitted with a budget of 0 gets one short line, not hundreds of clauses.
+fn objects_by_reason(without: &[(String, String)]) -> String {
+    let mut reasons: Vec<(&str, Vec<&str>)> = Vec::new();
+    for (name, why) in without {
+        match reasons.iter_mut().find(|(reason, _)| reason == why) {
+            Some((_, names)) => names.push(name),
+            None => reasons.push((why, vec![name])),
+        }
+    }
+    reasons
+        .iter()
+        .map(|(why, names)| {
+            let shown = names
+                .iter()
+                .take(NAMES_PER_REASON)
+                .copied()
+                .collect::<Vec<_>>()
+                .join(", ");
+            match names.len().saturating_sub(NAMES_PER_REASON) {
+                0 => format!("{shown} ({why})"),
+                more => format!("{shown} and {more} more ({why})"),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The most objects `objects_by_reason` names for one reason.
+const NAMES_PER_REASON: usize = 8;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn objects_without_spheres_are_grouped_by_reason_and_counted_past_eight() {
+        let mut without = vec![("Floor".to_string(), "open".to_string())];
+        without.extend((0..20).map(|i| (format!("Object {i}"), "a budget of 0".to_string())));
+        without.push(("Card".to_string(), "open".to_string()));
+        assert_eq!(
+            objects_by_reason(&without),
+            "Floor, Card (open); Object 0, Object 1, Object 2, Object 3, Object 4, Object 5, \
+             Object 6, Object 7 and 12 more (a budget of 0)"
+        );
+    }
 }
