@@ -4,10 +4,11 @@
 //! most [`CLUSTER_GROUPS`] (a two-level sphere hierarchy), so a receiver far from a
 //! cluster skips its groups too.
 //!
-//! The group tests are conservative: a group is skipped only when every one of its spheres
-//! would be skipped by the per-sphere tests of logsh.wgsl (beyond its influence distance
-//! r/min_cap_ratio, or wholly below the tangent plane), so culling never changes a pixel.
-//! Far from a group its spheres are not simply dropped: one sphere at their centre stands
+//! The exact path's group tests are conservative: a group is skipped only when every one
+//! of its spheres would be (beyond its influence distance r/min_cap_ratio, or wholly below
+//! the tangent plane), so culling never changes a pixel there. On the SH path a group's
+//! spheres are skipped beyond its hand-over distance too, where its stand-in has taken
+//! over. Far from a group its spheres are not simply dropped: one sphere at their centre stands
 //! in for them (`stand_in_radius_m`, the area their projections cover together:
 //! `shading::stand_in`), taking over smoothly between half its hand-over distance and
 //! that distance (no ring shows where it does), for as long as it is large enough in the
@@ -21,7 +22,7 @@
 //! node's cap is under about 80°/order, the finest angle the order tells apart): one
 //! sphere of its groups' stand-ins' summed area takes over from its groups and their
 //! stand-ins between half its hand-over distance and that distance, the larger of where
-//! the last of its groups' spheres and stand-ins stops counting and twice where its
+//! the last of its groups' spheres is walked or stand-ins stops counting and twice where its
 //! bounding cap narrows to 80°/order (`BlockerCluster::hand_over_m`). So beyond that
 //! distance a receiver adds one cap for hundreds of spheres, and the walk's cost grows
 //! with the clusters near a receiver, not with every group of the scene.
@@ -314,6 +315,13 @@ mod tests {
                 assert!(s.center.distance(g.center) + s.radius_m / 0.03 <= g.influence_m + 1e-3);
                 assert!(s.radius_m <= g.stand_in_radius_m);
             }
+            // The stand-in keeps the spheres' summed log-visibility: R² · depth = Σ r².
+            let summed: f32 = ordered[g.first..g.first + g.count]
+                .iter()
+                .map(|s| s.radius_m * s.radius_m)
+                .sum();
+            let kept = g.stand_in_radius_m * g.stand_in_radius_m * g.stand_in_depth;
+            assert!((kept - summed).abs() <= 1e-5 * summed, "{kept} against {summed}");
             // The stand-in has taken over where the spheres stop counting, or where the
             // group's cap is GROUP_HAND_OVER_CUTS times narrower than at the cut angle.
             let cut_sine = cut_half_angle_rad(4).sin();

@@ -9,30 +9,28 @@
 //! overlaps twice: a stand-in that large hides more of a light than its spheres do, and
 //! darkens penumbrae where it takes over. So the areas are summed less each pair's
 //! overlap (inclusion–exclusion to pairs, the lens of two discs), never under the largest
-//! sphere's, in each of 13 directions (the axes and the diagonals of a cube), and the
-//! radius is that of a disc of their mean.
+//! sphere's, in each of 16 directions spread over a hemisphere, and the radius is that of
+//! a disc of their mean.
 
 use glam::DVec3;
 
 use crate::blockers::Sphere;
 
-/// The axes, the face diagonals and the body diagonals of a cube: 13 directions, one of
-/// each opposite pair (a projection is the same from both sides).
-const DIRECTIONS: [[f64; 3]; 13] = [
-    [1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, 0.0, 1.0],
-    [1.0, 1.0, 0.0],
-    [1.0, -1.0, 0.0],
-    [1.0, 0.0, 1.0],
-    [1.0, 0.0, -1.0],
-    [0.0, 1.0, 1.0],
-    [0.0, 1.0, -1.0],
-    [1.0, 1.0, 1.0],
-    [1.0, 1.0, -1.0],
-    [1.0, -1.0, 1.0],
-    [-1.0, 1.0, 1.0],
-];
+/// How many directions the covered area is averaged over.
+const DIRECTION_COUNT: usize = 16;
+
+/// Direction i of [`DIRECTION_COUNT`] spread evenly over a hemisphere (a projection is
+/// the same from both sides): a Fibonacci spiral, z = (i + ½)/n (equal areas) and
+/// azimuth (i + ½) times the golden angle. None lies along an axis or a diagonal, along which the
+/// spheres of a grid or a straight row line up and hide each other: from such a
+/// direction they overlap whole, which the mean over all directions hardly sees.
+fn direction(i: usize) -> DVec3 {
+    let z = (i as f64 + 0.5) / DIRECTION_COUNT as f64;
+    let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let (sin, cos) = ((i as f64 + 0.5) * golden_angle).sin_cos();
+    let r = (1.0 - z * z).sqrt();
+    DVec3::new(r * cos, r * sin, z)
+}
 
 /// The radius of the stand-in of `spheres` (see the module): √(Ā/π), Ā the mean over the
 /// directions of the area their projections cover, Σ πrᵢ² less the pairs' lenses and at
@@ -41,8 +39,7 @@ pub fn stand_in_radius_m(spheres: &[Sphere]) -> f32 {
     let summed = spheres.iter().map(|s| f64::from(s.radius_m).powi(2)).sum::<f64>();
     let largest = spheres.iter().map(|s| f64::from(s.radius_m)).fold(0.0, f64::max);
     let mut overlap_sum = 0.0;
-    for direction in DIRECTIONS {
-        let direction = DVec3::from(direction).normalize();
+    for direction in (0..DIRECTION_COUNT).map(direction) {
         let mut overlap = 0.0;
         for (i, a) in spheres.iter().enumerate() {
             for b in &spheres[i + 1..] {
@@ -54,7 +51,7 @@ pub fn stand_in_radius_m(spheres: &[Sphere]) -> f32 {
         // In units of π, as `summed`: never under the largest sphere's area.
         overlap_sum += (summed - overlap / std::f64::consts::PI).max(largest * largest);
     }
-    (overlap_sum / DIRECTIONS.len() as f64).sqrt() as f32
+    (overlap_sum / DIRECTION_COUNT as f64).sqrt() as f32
 }
 
 /// The stand-in of several groups together, from their own stand-ins' radii: √Σ Rᵢ² (the
@@ -144,25 +141,38 @@ mod tests {
 
     #[test]
     fn apart_spheres_keep_their_summed_area_and_one_sphere_is_itself() {
+        // Small for their distances: no direction of the set sees two of them overlap.
         let apart = [
-            sphere(0.0, 0.0, 0.0, 0.3),
-            sphere(5.0, 1.0, -2.0, 0.4),
-            sphere(-4.0, 3.0, 6.0, 0.2),
+            sphere(0.0, 0.0, 0.0, 0.03),
+            sphere(5.0, 1.0, -2.0, 0.04),
+            sphere(-4.0, 3.0, 6.0, 0.02),
         ];
-        let expected = (0.09f32 + 0.16 + 0.04).sqrt();
-        assert!((stand_in_radius_m(&apart) - expected).abs() < 1e-6);
-        assert!((stand_in_radius_m(&apart[1..2]) - 0.4).abs() < 1e-7);
+        let expected = (0.0009f32 + 0.0016 + 0.0004).sqrt();
+        assert!((stand_in_radius_m(&apart) - expected).abs() < 1e-7);
+        assert!((stand_in_radius_m(&apart[1..2]) - 0.04).abs() < 1e-8);
         assert_eq!(stand_in_radius_m(&[]), 0.0);
     }
 
     #[test]
-    fn coincident_spheres_stand_in_as_one() {
+    fn coincident_spheres_stand_in_as_one_four_deep() {
         let same = [sphere(1.0, 2.0, 3.0, 0.5); 4];
-        assert!(
-            (stand_in_radius_m(&same) - 0.5).abs() < 1e-6,
-            "{}",
-            stand_in_radius_m(&same)
-        );
+        let radius = stand_in_radius_m(&same);
+        assert!((radius - 0.5).abs() < 1e-6, "{radius}");
+        assert!((stand_in_depth(&same, radius) - 4.0).abs() < 1e-5);
+        // Apart from every direction of the set.
+        let apart = [sphere(0.0, 0.0, 0.0, 0.05), sphere(9.0, 0.0, 0.0, 0.05)];
+        assert!((stand_in_depth(&apart, stand_in_radius_m(&apart)) - 1.0).abs() < 1e-6);
+        assert_eq!(stand_in_depth(&[], 0.0), 1.0);
+    }
+
+    #[test]
+    fn a_row_of_spheres_apart_is_not_taken_for_one() {
+        // Eight spheres of radius 0.1 a metre apart along x (a grid's row): they hide each
+        // other only within about 6° of the axis, so nearly their whole summed area counts.
+        let row: Vec<Sphere> = (0..8).map(|i| sphere(i as f32, 0.0, 0.0, 0.1)).collect();
+        let summed = (8f32 * 0.01).sqrt();
+        let radius = stand_in_radius_m(&row);
+        assert!(radius >= 0.99 * summed, "{radius} against {summed}");
     }
 
     #[test]
@@ -171,8 +181,7 @@ mod tests {
         // formula, the area their projections cover counted on a grid in each direction.
         let tube: Vec<Sphere> = (0..8).map(|i| sphere(0.1 * i as f32, 0.0, 0.0, 0.1)).collect();
         let mut covered = 0.0;
-        for direction in DIRECTIONS {
-            let d = DVec3::from(direction).normalize();
+        for d in (0..DIRECTION_COUNT).map(direction) {
             let u = d.any_orthonormal_vector();
             let v = d.cross(u);
             let projected: Vec<(f64, f64)> = tube
@@ -195,7 +204,7 @@ mod tests {
             }
             covered += inside as f64 * cell * cell;
         }
-        let radius_covering = (covered / DIRECTIONS.len() as f64 / PI).sqrt();
+        let radius_covering = (covered / DIRECTION_COUNT as f64 / PI).sqrt();
         let radius = f64::from(stand_in_radius_m(&tube));
         // Pairs only: where three discs meet, the lenses are taken once too often, so
         // the stand-in may come out a little under what the spheres cover.
