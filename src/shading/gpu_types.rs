@@ -384,7 +384,8 @@ pub struct GpuBlockerGroup {
 }
 
 /// Bits of `GpuBlockerGroup::first_count` that hold the first index (WGSL
-/// `GROUP_FIRST_BITS`): 67 million blockers, far past what a frame can hold.
+/// `GROUP_FIRST_BITS`): 67 million, where the sphere budget stops at 100,000
+/// (`blockers::SphereBudget`, `--blockers`); the count (≤ 32) takes the other 6.
 pub const GROUP_FIRST_BITS: u32 = 26;
 
 fn first_count(first: usize, count: usize) -> u32 {
