@@ -21,9 +21,9 @@ const DIRECTION_COUNT: usize = 16;
 
 /// Direction i of [`DIRECTION_COUNT`] spread evenly over a hemisphere (a projection is
 /// the same from both sides): a Fibonacci spiral, z = (i + ½)/n (equal areas) and
-/// azimuth (i + ½) times the golden angle. None lies along an axis or a diagonal, along which the
-/// spheres of a grid or a straight row line up and hide each other: from such a
-/// direction they overlap whole, which the mean over all directions hardly sees.
+/// azimuth (i + ½) times the golden angle. None lies along an axis or a diagonal, along
+/// which the spheres of a grid or a straight row line up and hide each other: from such
+/// a direction they overlap whole, which the mean over all directions hardly sees.
 fn direction(i: usize) -> DVec3 {
     let z = (i as f64 + 0.5) / DIRECTION_COUNT as f64;
     let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
@@ -38,7 +38,8 @@ fn direction(i: usize) -> DVec3 {
 pub fn stand_in_radius_m(spheres: &[Sphere]) -> f32 {
     let summed = spheres.iter().map(|s| f64::from(s.radius_m).powi(2)).sum::<f64>();
     let largest = spheres.iter().map(|s| f64::from(s.radius_m)).fold(0.0, f64::max);
-    let mut overlap_sum = 0.0;
+    // Σ over the directions of the area covered, in units of π.
+    let mut covered_sum = 0.0;
     for direction in (0..DIRECTION_COUNT).map(direction) {
         let mut overlap = 0.0;
         for (i, a) in spheres.iter().enumerate() {
@@ -49,9 +50,9 @@ pub fn stand_in_radius_m(spheres: &[Sphere]) -> f32 {
             }
         }
         // In units of π, as `summed`: never under the largest sphere's area.
-        overlap_sum += (summed - overlap / std::f64::consts::PI).max(largest * largest);
+        covered_sum += (summed - overlap / std::f64::consts::PI).max(largest * largest);
     }
-    (overlap_sum / DIRECTION_COUNT as f64).sqrt() as f32
+    (covered_sum / DIRECTION_COUNT as f64).sqrt() as f32
 }
 
 /// The stand-in of several groups together, from their own stand-ins' radii: √Σ Rᵢ² (the
