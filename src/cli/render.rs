@@ -215,6 +215,16 @@ fn render_reference_png(
 fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
     let mut renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
     renderer.draw_and_wait(Redraw::Everything)?;
+    let (in_view, shown) = renderer.triangles_in_view();
+    say!("triangles drawn from the camera: {in_view} of {shown} (objects outside its view culled)");
+    if let Some(listed) = renderer.listed_pixels() {
+        let listed = listed?;
+        say!(
+            "pixels the upsampling left: {} to the soft layer (two levels), {} shaded in full",
+            listed.from_soft_layer,
+            listed.in_full
+        );
+    }
     let batches = [
         (Redraw::Everything, ""),
         (Redraw::AfterLightEdit, " after a light edit (same view)"),

@@ -23,6 +23,7 @@ pub use offscreen::{
     RasterRenderer, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces, filter_edges, render_cpu_image,
     render_image, render_logsh_image, shade_surfaces,
 };
+pub use passes::ListedPixels;
 pub use passes::raster::ScenePipeline;
 pub use readback::read_target_image;
 pub use renderer::{Compilation, FrameQuality, SceneRenderer};

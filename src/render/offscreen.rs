@@ -6,6 +6,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::descriptors::SAMPLE_COUNT;
+use super::passes::ListedPixels;
 use super::passes::logsh::{SURFACE_FORMAT, surface_pipelines};
 use super::passes::raster::ScenePipeline;
 use super::readback::{read_target_image, read_texture};
@@ -65,7 +66,7 @@ impl<'a> RasterRenderer<'a> {
     ) -> Result<RasterRenderer<'a>, RenderError> {
         check_size(gpu, width, height)?;
         let pipeline = ScenePipeline::with_samples(&gpu.device, samples);
-        let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
+        let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
         let target = RenderTarget::with_samples(&gpu.device, width, height, samples);
         gpu_scene.write_frame(&gpu.queue, camera, [width, height], settings.exposure_ev);
         Ok(RasterRenderer {
@@ -254,6 +255,16 @@ impl<'a> ShadowRenderer<'a> {
     /// Mean GPU milliseconds per frame of each pass timed so far.
     pub fn pass_times_ms(&self) -> Vec<(&'static str, f64)> {
         self.renderer.pass_times_ms()
+    }
+
+    /// See [`SceneRenderer::listed_pixels`].
+    pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {
+        self.renderer.listed_pixels()
+    }
+
+    /// See [`SceneRenderer::triangles_in_view`].
+    pub fn triangles_in_view(&self) -> (u64, u64) {
+        self.renderer.triangles_in_view()
     }
 }
 

@@ -9,10 +9,12 @@
 //! colours ([`FullResolutionImages`]) to the frame size's reduced-shading targets.
 
 use super::surface_buffer::image_extent;
+use crate::render::RenderError;
 use crate::render::descriptors::{
     buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry, texture_entry,
 };
 use crate::render::pass_timer::TimedEncoder;
+use crate::render::readback::read_buffer;
 use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 use wgpu::util::DeviceExt;
@@ -247,6 +249,33 @@ pub(crate) struct FullResolutionImages {
     pub(crate) colours_group: wgpu::BindGroup,
 }
 
+impl FullResolutionImages {
+    /// How many pixels the last frame listed: those the upsampling left to the soft
+    /// layer and the sharp lights (two-level shading), and those shaded in full.
+    pub(crate) fn listed_pixels(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<ListedPixels, RenderError> {
+        let bytes = read_buffer(device, queue, &self.counts, 8)?;
+        let count = |k: usize| u32::from_le_bytes([bytes[4 * k], bytes[4 * k + 1], bytes[4 * k + 2], bytes[4 * k + 3]]);
+        Ok(ListedPixels {
+            from_soft_layer: count(0),
+            in_full: count(1),
+        })
+    }
+}
+
+/// How many pixels a frame's upsampling left to be shaded another way
+/// ([`crate::render::SceneRenderer::listed_pixels`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ListedPixels {
+    /// Listed by the upsampling for the soft layer and the sharp lights (0 in one level).
+    pub from_soft_layer: u32,
+    /// Shaded in full: left by the upsampling in one level, by the soft layer in two.
+    pub in_full: u32,
+}
+
 /// Samples as a reader finds them: their image and the reader's upsampling parameters.
 pub(crate) type SampleReader<'a> = (&'a wgpu::TextureView, GpuUpsampleParams);
 
@@ -270,7 +299,11 @@ impl FullResolutionImages {
             })
         };
         let storage = wgpu::BufferUsages::STORAGE;
-        let counts = buffer("listed pixels' counts", 8, storage | wgpu::BufferUsages::COPY_DST);
+        let counts = buffer(
+            "listed pixels' counts",
+            8,
+            storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        );
         let dispatch_args = buffer(
             "listed pixels' dispatch arguments",
             24,

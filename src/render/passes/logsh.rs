@@ -196,6 +196,7 @@ impl LogShPipeline {
             compute.run(
                 frame.encoder,
                 [&scene.frame_bind_group, &blockers.bind_group],
+                scene,
                 visibility,
             );
             frame.mark("per-vertex visibility");
@@ -225,7 +226,7 @@ impl LogShPipeline {
             (Some((visibility, (_, shade))), _) => {
                 pass.set_pipeline(shade);
                 for (object, buffer) in scene.objects.iter().zip(&visibility.buffers) {
-                    if object.hidden {
+                    if !object.drawn_in_view() {
                         continue;
                     }
                     pass.set_vertex_buffer(1, buffer.slice(..));

@@ -11,4 +11,6 @@ pub mod per_vertex;
 pub mod raster;
 pub mod reduced_shading;
 mod scene_pipeline;
+
+pub use full_resolution::ListedPixels;
 mod surface_buffer;

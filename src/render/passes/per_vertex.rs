@@ -72,13 +72,15 @@ impl PerVertexCompute {
         }
     }
 
-    /// Computes every vertex's visibility into `visibility` (bind group 2 = the blockers).
-    /// Writes every vertex's visibility SH, the frame's group `frame` and the blockers'
-    /// `blockers` bound.
+    /// Computes the visibility of the vertices of `scene`'s objects drawn from the camera
+    /// ([`crate::render::resources::GpuObject::drawn_in_view`]) into `visibility`, the
+    /// frame's group `frame` and the blockers' `blockers` bound (the other objects' keep
+    /// what they held: nothing reads them this frame).
     pub fn run(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         [frame, blockers]: [&wgpu::BindGroup; 2],
+        scene: &GpuScene,
         visibility: &VertexVisibility,
     ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -89,7 +91,11 @@ impl PerVertexCompute {
         pass.set_bind_group(slots::FRAME_GROUP, frame, &[]);
         pass.set_bind_group(slots::MATERIAL_GROUP, &self.empty_group, &[]);
         pass.set_bind_group(slots::SHADOW_GROUP, blockers, &[]);
-        for (bind_group, vertex_count) in visibility.bind_groups.iter().zip(&visibility.vertex_counts) {
+        let objects = visibility.bind_groups.iter().zip(&visibility.vertex_counts);
+        for ((bind_group, vertex_count), object) in objects.zip(&scene.objects) {
+            if !object.drawn_in_view() {
+                continue;
+            }
             pass.set_bind_group(slots::PASS_GROUP, bind_group, &[]);
             pass.dispatch_workgroups(vertex_count.div_ceil(64), 1, 1);
         }

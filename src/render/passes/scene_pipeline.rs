@@ -28,7 +28,11 @@ impl ByTexture {
     pub(super) fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
         for textured in [true, false] {
             pass.set_pipeline(if textured { &self.textured } else { &self.untextured });
-            for object in scene.objects.iter().filter(|o| !o.hidden && o.textured == textured) {
+            for object in scene
+                .objects
+                .iter()
+                .filter(|o| o.drawn_in_view() && o.textured == textured)
+            {
                 draw_object(pass, scene, object);
             }
         }

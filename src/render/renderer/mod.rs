@@ -13,6 +13,8 @@ use std::cell::RefCell;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
+mod inspect;
+
 pub use pipeline_cache::{Compilation, PipelineKey};
 
 use super::pass_timer::{self, PassTimer, TimedEncoder};
@@ -282,12 +284,6 @@ impl SceneRenderer {
         self.maps_stale = false;
     }
 
-    /// The shadow maps' views and memory in words (`ShadowAtlas::in_words`), None when no
-    /// light takes a map.
-    pub fn shadow_maps_in_words(&self) -> Option<String> {
-        (!self.map_views.views.is_empty()).then(|| self.map_views.atlas.in_words())
-    }
-
     /// Whether some shadow maps were last drawn as drafts: the next frame drawn without
     /// `FrameQuality::draft_moved_maps` draws them in full.
     pub fn maps_drafted(&self) -> bool {
@@ -529,41 +525,6 @@ impl SceneRenderer {
     /// camera, though nothing they show changed (timings of whole frames).
     pub fn forget_surfaces(&mut self) {
         self.surfaces_forgotten = true;
-    }
-
-    /// From now on, times each pass of every frame on the GPU, if the device has
-    /// timestamps (false: it has not).
-    pub fn time_passes(&mut self) -> bool {
-        self.pass_timer = PassTimer::new(&self.device);
-        self.pass_timer.is_some()
-    }
-
-    /// Waits for the frames drawn so far and adds their passes' times up (nothing unless
-    /// [`Self::time_passes`]).
-    pub fn collect_pass_times(&mut self) -> Result<(), super::RenderError> {
-        match &mut self.pass_timer {
-            Some(timer) => timer
-                .collect(&self.device, &self.queue)
-                .map_err(|e| super::RenderError::Readback(e.to_string())),
-            None => Ok(()),
-        }
-    }
-
-    /// Mean GPU milliseconds per frame of each pass timed so far, in the order they run.
-    pub fn pass_times_ms(&self) -> Vec<(&'static str, f64)> {
-        self.pass_timer.as_ref().map(PassTimer::mean_ms).unwrap_or_default()
-    }
-
-    /// The last frame, read back from the GPU (None before the first frame).
-    pub fn read_image(&self) -> Option<Result<image::RgbaImage, super::RenderError>> {
-        let target = self.target.as_ref()?;
-        let encoder = self.device.create_command_encoder(&Default::default());
-        Some(super::readback::read_target_image(
-            &self.device,
-            &self.queue,
-            encoder,
-            target,
-        ))
     }
 }
 

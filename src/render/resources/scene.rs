@@ -6,7 +6,7 @@ use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
 use crate::render::descriptors::slot_entries;
-use crate::scene::{Camera, Environment, Scene, TextureImage};
+use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
     GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance,
@@ -28,6 +28,18 @@ pub struct GpuObject {
     pub source: usize,
     /// Hidden in the viewport: not drawn (see [`GpuScene::set_hidden`]).
     pub hidden: bool,
+    /// World-space bounds of its vertices.
+    pub bounds: Aabb,
+    /// Whether the last camera written ([`GpuScene::write_frame`]) may see it: the
+    /// camera's passes draw only such objects (the shadow maps draw every one shown).
+    pub in_view: bool,
+}
+
+impl GpuObject {
+    /// Drawn by the passes seen from the camera: shown and within its frustum.
+    pub fn drawn_in_view(&self) -> bool {
+        !self.hidden && self.in_view
+    }
 }
 
 pub struct GpuScene {
@@ -50,6 +62,9 @@ pub struct GpuScene {
     /// The lights on the shadow-map path as uploaded, with their intensities zeroed: what
     /// their visibility depends on (`mapped_light_geometry`).
     mapped_light_geometry: Vec<GpuLight>,
+    /// Whether objects outside the camera's frustum are left out of its passes (on unless
+    /// a test compares frames without it: [`GpuScene::set_view_culling`]).
+    view_culling: bool,
     /// Changes whenever what the surfaces pass draws may change (a new upload, objects
     /// hidden or shown, new baked indirect light); unique among every scene uploaded.
     surfaces_generation: u64,
@@ -109,6 +124,8 @@ impl GpuScene {
                     first_vertex: object_first_vertex,
                     source,
                     hidden: false,
+                    bounds: object.bounds(),
+                    in_view: true,
                 }
             })
             .collect();
@@ -182,6 +199,7 @@ impl GpuScene {
             light_count: 0,
             first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
+            view_culling: true,
             surfaces_generation: next_surfaces_generation(),
             harmonic_lights: Vec::new(),
             mapped_light_geometry: Vec::new(),
@@ -268,8 +286,9 @@ impl GpuScene {
         }
     }
 
-    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height).
-    pub fn write_frame(&self, queue: &wgpu::Queue, camera: &Camera, size_px: [u32; 2], exposure_ev: f32) {
+    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height)
+    /// and marks the objects its frustum may see (the rest are not drawn from it).
+    pub fn write_frame(&mut self, queue: &wgpu::Queue, camera: &Camera, size_px: [u32; 2], exposure_ev: f32) {
         let frame = GpuFrame::new(
             camera,
             size_px,
@@ -279,6 +298,28 @@ impl GpuScene {
             self.environment_irradiance,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+        let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
+        for object in &mut self.objects {
+            object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
+        }
+    }
+
+    /// Leaves objects outside the camera's frustum out of its passes (the default) or
+    /// draws every one shown, from the next [`Self::write_frame`] on: the frames must be
+    /// the same either way (tests/view_culling.rs).
+    pub fn set_view_culling(&mut self, enabled: bool) {
+        self.view_culling = enabled;
+    }
+
+    /// The triangles of the objects the last camera written may see, and of every
+    /// object shown (for `render`'s summary).
+    pub fn triangles_in_view(&self) -> (u64, u64) {
+        let shown = self.objects.iter().filter(|o| !o.hidden);
+        let triangles = |o: &GpuObject| o.index_count as u64 / 3;
+        (
+            shown.clone().filter(|o| o.in_view).map(triangles).sum(),
+            shown.map(triangles).sum(),
+        )
     }
 
     /// Replaces the baked indirect light (None: none): per object of the [`Scene`] it was
@@ -410,7 +451,7 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureI
 
 /// Draws every shown object of `scene` into `pass` (pipeline and group 0 set).
 pub fn draw_objects(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
-    for object in scene.objects.iter().filter(|o| !o.hidden) {
+    for object in scene.objects.iter().filter(|o| o.drawn_in_view()) {
         draw_object(pass, scene, object);
     }
 }

@@ -1,0 +1,68 @@
+//! The blocker bench's frame (`samples::blocker_bench`, as `cargo bench --bench frame --
+//! frame/sphere-count` draws it) pass by pass: where its time goes at a sphere count.
+//!
+//! `cargo run --release --example bench_passes [SPHERES] [per-vertex] [FRAMES]`: 960 × 540,
+//! the shipped defaults with the light on the SH path (per vertex if asked), SPHERES
+//! spheres on the casters (600 by default); prints the mean wall-clock frame and each
+//! pass's mean GPU time over FRAMES frames (6) drawn anew after a warm-up, and how many
+//! pixels the upsampling left to be shaded otherwise.
+
+use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
+use lightpaint::samples::blocker_bench;
+use lightpaint::shading::{LightPaths, RenderSettings, ShadowSettings};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let spheres_wanted: usize = args.first().map(|a| a.parse()).transpose()?.unwrap_or(600);
+    let per_vertex = args.iter().any(|a| a == "per-vertex");
+    let frames: u32 = args.get(2).map(|a| a.parse()).transpose()?.unwrap_or(6);
+    let gpu = GpuContext::headless()?;
+    let scene = blocker_bench::thin_casters_scene();
+    let camera = blocker_bench::thin_casters_camera();
+    let settings = RenderSettings::default();
+    let shadows = ShadowSettings {
+        light_paths: LightPaths::Harmonics,
+        per_vertex,
+        ..ShadowSettings::default()
+    };
+    let spheres = blocker_bench::spheres_on_casters(&scene, spheres_wanted);
+    let frame = ShadowFrame {
+        baked_indirect: None,
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &spheres,
+        width: 960,
+        height: 540,
+    };
+    let mut renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::default())?;
+    renderer.draw_and_wait(Redraw::Everything)?;
+    let timed = renderer.time_passes();
+    let started = std::time::Instant::now();
+    for _ in 0..frames {
+        renderer.draw_and_wait(Redraw::Everything)?;
+    }
+    let mean_ms = started.elapsed().as_secs_f64() * 1000.0 / frames.max(1) as f64;
+    println!(
+        "{} spheres{}: mean {mean_ms:.1} ms over {frames} frames",
+        spheres.len(),
+        if per_vertex { ", per vertex" } else { "" }
+    );
+    if let Some(listed) = renderer.listed_pixels() {
+        let listed = listed?;
+        println!(
+            "pixels the upsampling left: {} to the soft layer, {} shaded in full",
+            listed.from_soft_layer, listed.in_full
+        );
+    }
+    if timed {
+        let passes: Vec<String> = renderer
+            .pass_times_ms()
+            .iter()
+            .map(|(pass, ms)| format!("{pass} {ms:.1} ms"))
+            .collect();
+        println!("GPU time per pass: {}", passes.join(", "));
+    }
+    Ok(())
+}

@@ -1,0 +1,70 @@
+//! What a [`SceneRenderer`] can tell about its frames without changing them: the shadow
+//! maps' views, the objects drawn from the camera, the pixels the upsampling left, each
+//! pass's GPU time, the last frame's image.
+
+use super::SceneRenderer;
+use crate::render::RenderError;
+use crate::render::pass_timer::PassTimer;
+use crate::render::passes::ListedPixels;
+
+impl SceneRenderer {
+    /// The shadow maps' views and memory in words (`ShadowAtlas::in_words`), None when no
+    /// light takes a map.
+    pub fn shadow_maps_in_words(&self) -> Option<String> {
+        (!self.map_views.views.is_empty()).then(|| self.map_views.atlas.in_words())
+    }
+
+    /// See [`GpuScene::set_view_culling`].
+    pub fn set_view_culling(&mut self, enabled: bool) {
+        self.gpu_scene.set_view_culling(enabled);
+    }
+
+    /// The triangles of the objects the last frame's camera may see (the rest were not
+    /// drawn from it), and of every object shown.
+    pub fn triangles_in_view(&self) -> (u64, u64) {
+        self.gpu_scene.triangles_in_view()
+    }
+
+    /// How many pixels the last frame's upsampling left to the soft layer and shaded in
+    /// full (None where the frame was not drawn deferred at full resolution).
+    pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {
+        let low = self.shadows.low_resolution.as_ref()?;
+        let images = low.full_resolution.as_ref()?;
+        Some(images.listed_pixels(&self.device, &self.queue))
+    }
+
+    /// From now on, times each pass of every frame on the GPU, if the device has
+    /// timestamps (false: it has not).
+    pub fn time_passes(&mut self) -> bool {
+        self.pass_timer = PassTimer::new(&self.device);
+        self.pass_timer.is_some()
+    }
+
+    /// Waits for the frames drawn so far and adds their passes' times up (nothing unless
+    /// [`Self::time_passes`]).
+    pub fn collect_pass_times(&mut self) -> Result<(), RenderError> {
+        match &mut self.pass_timer {
+            Some(timer) => timer
+                .collect(&self.device, &self.queue)
+                .map_err(|e| RenderError::Readback(e.to_string())),
+            None => Ok(()),
+        }
+    }
+
+    /// Mean GPU milliseconds per frame of each pass timed so far, in the order they run.
+    pub fn pass_times_ms(&self) -> Vec<(&'static str, f64)> {
+        self.pass_timer.as_ref().map(PassTimer::mean_ms).unwrap_or_default()
+    }
+
+    /// The last frame, read back from the GPU (None before the first frame).
+    pub fn read_image(&self) -> Option<Result<image::RgbaImage, RenderError>> {
+        let target = self.target.as_ref()?;
+        let encoder = self.device.create_command_encoder(&Default::default());
+        Some(crate::render::readback::read_target_image(
+            &self.device,
+            &self.queue,
+            encoder,
+            target,
+        ))
+    }
+}
