@@ -40,8 +40,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     renderer.draw_and_wait(Redraw::Everything)?;
     let timed = renderer.time_passes();
     let started = std::time::Instant::now();
+    let redraw = if args.iter().any(|a| a == "after-edit") {
+        Redraw::AfterLightEdit
+    } else {
+        Redraw::Everything
+    };
     for _ in 0..frames {
-        renderer.draw_and_wait(Redraw::Everything)?;
+        renderer.draw_and_wait(redraw)?;
     }
     let mean_ms = started.elapsed().as_secs_f64() * 1000.0 / frames.max(1) as f64;
     println!(

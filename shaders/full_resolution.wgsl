@@ -11,7 +11,10 @@
 //    upsampled to it plus the sharp lights shaded at the pixel; where the soft layer does
 //    not match or disagrees, it goes on a second list. With one level every listed pixel
 //    goes straight to the second list.
-// 3. cs_shade_listed_full: the pixels on the second list shaded in full.
+// 3. cs_shade_listed_full: the pixels on the second list shaded in full; the light of
+//    the SH path at such a pixel is kept (kept_harmonic_light) and read again by the
+//    next frames while their surfaces and that light's inputs are the same (a stroke on
+//    lights of the other paths), as the soft layer is.
 // 4. fs_frame_colour: a full-screen pass copies the colours into the frame wherever the
 //    surface buffer has a surface (its depth, tested read-only).
 //
@@ -42,6 +45,15 @@ struct ListCounts {
 // frame), written by the passes above; read by fs_frame_colour.
 @group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<rgba32float, write>;
 @group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<f32>;
+// The exposed light of the SH path (the environment and the SH lights through the
+// blockers) at the pixels shaded in full, as pack_lighting's two words, and the generation of the inputs it was shaded with (0: none): a pixel
+// whose stamp is kept_harmonic_generation.x reads it instead of walking the blockers.
+// The generation changes whenever the surfaces or the soft light's inputs do
+// (reduced_shading.rs, FrameInputs); its images are as large as the frame.
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_X_BINDING) var kept_harmonic_x: texture_storage_2d<r32uint, read_write>;
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_Y_BINDING) var kept_harmonic_y: texture_storage_2d<r32uint, read_write>;
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_STAMP_BINDING) var kept_harmonic_stamp: texture_storage_2d<r32uint, read_write>;
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_GENERATION_BINDING) var<uniform> kept_harmonic_generation: vec4<u32>;
 // The workgroup counts of the two shading passes' indirect dispatches: sharp xyz, full xyz.
 @group(PASS_GROUP) @binding(DISPATCH_ARGS_BINDING) var<storage, read_write> dispatch_args: array<u32, 6>;
 
@@ -214,7 +226,25 @@ fn cs_shade_listed_full(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(lo
     }
     let pixel = listed_pixel(full_pixels, entry);
     let s = buffered_surface(pixel).s;
-    textureStore(frame_colours, pixel, vec4<f32>(tonemap_aces_fit(frame.exposure * shadowed_radiance(s)), 1.0));
+    let others = s.emissive + exact_path_radiance(s) + mapped_lights_radiance(s);
+    let colour = tonemap_aces_fit(frame.exposure * others + kept_harmonic_light(pixel, s));
+    textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+}
+
+// The exposed light of the SH path at `pixel` (surface s): kept from an earlier frame of
+// this generation, else shaded (harmonic_radiance: the blocker walk) and kept. Always
+// through pack_lighting's 13-bit mantissas (non-negative, clamped where the tone curve
+// is long saturated), so that a frame reading it is the frame shading it anew.
+fn kept_harmonic_light(pixel: vec2<i32>, s: Surface) -> vec3<f32> {
+    let generation = kept_harmonic_generation.x;
+    if textureLoad(kept_harmonic_stamp, pixel).x == generation {
+        return unpack_lighting(vec2<u32>(textureLoad(kept_harmonic_x, pixel).x, textureLoad(kept_harmonic_y, pixel).x));
+    }
+    let packed = pack_lighting(min(frame.exposure * harmonic_radiance(s), vec3<f32>(MAX_LIGHTING)));
+    textureStore(kept_harmonic_x, pixel, vec4<u32>(packed.x));
+    textureStore(kept_harmonic_y, pixel, vec4<u32>(packed.y));
+    textureStore(kept_harmonic_stamp, pixel, vec4<u32>(generation));
+    return unpack_lighting(packed);
 }
 
 // The colours into the frame, at the pixels where the surface buffer has a surface (the

@@ -1,6 +1,7 @@
 //! A frame after an edit of the lights keeps the surfaces the last frame rasterised (and
 //! the shadow maps of the lights that did not move), and
-//! the soft layer when the edit leaves the SH path's light alone
+//! the soft layer and the SH path's light at the pixels shaded in full when the edit
+//! leaves the SH path's light alone
 //! (`render::passes::reduced_shading::FrameInputs`, on lavapipe in CI). Whatever it
 //! keeps, the frame must be the one a renderer drawing everything anew gives for the same
 //! lights, view, visible objects, environment, blockers and exposure: these tests compare
@@ -215,6 +216,18 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
         assert_same(&after, &anew, what);
         last = after;
     };
+
+    // The light on the maps alone: the soft layer, and the SH path's light kept at the
+    // pixels shaded in full (full_resolution.wgsl's kept_harmonic_light), are read again.
+    scene.lights[0].intensity *= 3.0;
+    kept.set_lights(&scene.lights);
+    check(
+        "an edit of a light on the maps alone",
+        &mut kept,
+        &scene,
+        &blockers,
+        settings,
+    );
 
     scene.lights = edited(&scene.lights);
     kept.set_lights(&scene.lights);

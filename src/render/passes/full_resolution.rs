@@ -25,6 +25,9 @@ const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Flo
 
 /// The lists' entries: a pixel's x | y << 16.
 const LIST_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+/// The images of the SH path's light kept at the pixels shaded in full (read and written
+/// by one pass: a format every device reads and writes in place).
+const KEPT_HARMONIC_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// The upsampling's workgroups: BLOCK_WORKGROUP_SIDE² invocations, each a block of d × d
 /// pixels (override constants of full_resolution.wgsl).
@@ -43,7 +46,7 @@ pub struct FullResolutionLayouts {
     /// The shading from the soft layer: the soft layer read at full resolution, the sharp
     /// list read, the full list written, the colours.
     pub sharp: wgpu::BindGroupLayout,
-    /// The shading in full: the full list read, the colours.
+    /// The shading in full: the full list read, the colours, the SH path's light kept.
     pub full: wgpu::BindGroupLayout,
     /// The full-screen pass that draws the colours.
     pub colours: wgpu::BindGroupLayout,
@@ -60,6 +63,17 @@ impl FullResolutionLayouts {
                 wgpu::BindingType::StorageTexture {
                     access: wgpu::StorageTextureAccess::WriteOnly,
                     format,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                },
+            )
+        };
+        let kept = |slot| {
+            layout_entry(
+                slot,
+                compute,
+                wgpu::BindingType::StorageTexture {
+                    access: wgpu::StorageTextureAccess::ReadWrite,
+                    format: KEPT_HARMONIC_FORMAT,
                     view_dimension: wgpu::TextureViewDimension::D2,
                 },
             )
@@ -102,7 +116,19 @@ impl FullResolutionLayouts {
             ),
             full: layout(
                 "listed pixels shaded in full",
-                &[counts, uint_texture(slots::FULL_PIXELS), colours],
+                &[
+                    counts,
+                    uint_texture(slots::FULL_PIXELS),
+                    colours,
+                    kept(slots::KEPT_HARMONIC_X),
+                    kept(slots::KEPT_HARMONIC_Y),
+                    kept(slots::KEPT_HARMONIC_STAMP),
+                    layout_entry(
+                        slots::KEPT_HARMONIC_GENERATION,
+                        compute,
+                        buffer_type(wgpu::BufferBindingType::Uniform),
+                    ),
+                ],
             ),
             colours: layout(
                 "frame colours",
@@ -240,6 +266,8 @@ pub(crate) struct FullResolutionImages {
     blocks: [u32; 2],
     counts: wgpu::Buffer,
     dispatch_args: wgpu::Buffer,
+    /// The generation of the SH path's light the next frames shade with (a uniform).
+    kept_generation: wgpu::Buffer,
     upsampling_group: wgpu::BindGroup,
     dispatch_args_group: wgpu::BindGroup,
     /// Present with a soft layer.
@@ -250,6 +278,12 @@ pub(crate) struct FullResolutionImages {
 }
 
 impl FullResolutionImages {
+    /// Sets the generation of the SH path's light of the next frames (never 0): pixels
+    /// shaded in full with this generation before read their light kept then.
+    pub(crate) fn set_kept_generation(&self, queue: &wgpu::Queue, generation: u32) {
+        queue.write_buffer(&self.kept_generation, 0, bytemuck::bytes_of(&[generation, 0, 0, 0]));
+    }
+
     /// How many pixels the last frame listed: those the upsampling left to the soft
     /// layer and the sharp lights (two-level shading), and those shaded in full.
     pub(crate) fn listed_pixels(
@@ -324,6 +358,15 @@ impl FullResolutionImages {
         let sharp_pixels = image("pixels to shade from the soft layer", LIST_FORMAT);
         let full_pixels = image("pixels to shade in full", LIST_FORMAT);
         let colours = image("frame colours", FRAME_COLOURS_FORMAT);
+        // Zeros at first: stamp 0, which no generation is.
+        let kept_x = image("SH path's light kept: first word", KEPT_HARMONIC_FORMAT);
+        let kept_y = image("SH path's light kept: second word", KEPT_HARMONIC_FORMAT);
+        let kept_stamp = image("SH path's light kept: generation", KEPT_HARMONIC_FORMAT);
+        let kept_generation = buffer(
+            "SH path's light kept: this frame's generation",
+            16,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
         let view = wgpu::BindingResource::TextureView;
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -385,6 +428,10 @@ impl FullResolutionImages {
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::FULL_PIXELS, view(&full_pixels)),
                     (slots::FRAME_COLOURS, view(&colours)),
+                    (slots::KEPT_HARMONIC_X, view(&kept_x)),
+                    (slots::KEPT_HARMONIC_Y, view(&kept_y)),
+                    (slots::KEPT_HARMONIC_STAMP, view(&kept_stamp)),
+                    (slots::KEPT_HARMONIC_GENERATION, kept_generation.as_entire_binding()),
                 ]),
             ),
             colours_group: group(
@@ -394,6 +441,7 @@ impl FullResolutionImages {
             ),
             counts,
             dispatch_args,
+            kept_generation,
         }
     }
 }

@@ -155,6 +155,12 @@ pub struct LowResolutionTargets {
     soft_layer_current: bool,
     /// The kept visibility of the mapped lights is the next frame's.
     mapped_factors_current: bool,
+    /// The generation of the SH path's light at the pixels shaded in full (never 0): a
+    /// new one whenever the soft layer is not current, so that light, kept at those pixels
+    /// by full_resolution.wgsl, is read again only while the surfaces and the soft light's
+    /// inputs stay those it was shaded with. (After 2³² − 1 generations it wraps to 1,
+    /// which pixels of generation 1 not shaded in full since would read as kept.)
+    kept_harmonic_generation: u32,
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
@@ -336,6 +342,7 @@ impl LowResolutionTargets {
             surfaces_current: false,
             soft_layer_current: false,
             mapped_factors_current: false,
+            kept_harmonic_generation: 0,
             low_depth: low_depth_texture.create_view(&Default::default()),
             low_depth_texture,
             marked_samples: depth_texture(device, "marked samples", size, copied),
@@ -367,6 +374,12 @@ impl LowResolutionTargets {
         self.surfaces_current = matches!((&inputs, &last), (Some(i), Some(l)) if i.surfaces == l.surfaces);
         self.soft_layer_current =
             self.surfaces_current && matches!((&inputs, &last), (Some(i), Some(l)) if i.soft_layer == l.soft_layer);
+        if !self.soft_layer_current {
+            self.kept_harmonic_generation = self.kept_harmonic_generation.wrapping_add(1).max(1);
+        }
+        if let Some(images) = &self.full_resolution {
+            images.set_kept_generation(queue, self.kept_harmonic_generation);
+        }
         let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
         // Every light anew where the buffer or the surfaces are new; else those whose
         // geometry or maps changed.

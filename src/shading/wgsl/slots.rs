@@ -73,13 +73,17 @@ pub const FULL_PIXELS_OUT: Slot = slot(PASS_GROUP, 10, "full_pixels_out");
 pub const FRAME_COLOURS: Slot = slot(PASS_GROUP, 11, "frame_colours");
 pub const FRAME_COLOURS_READ: Slot = slot(PASS_GROUP, 12, "frame_colours_read");
 pub const DISPATCH_ARGS: Slot = slot(PASS_GROUP, 13, "dispatch_args");
+pub const KEPT_HARMONIC_X: Slot = slot(PASS_GROUP, 14, "kept_harmonic_x");
+pub const KEPT_HARMONIC_Y: Slot = slot(PASS_GROUP, 15, "kept_harmonic_y");
+pub const KEPT_HARMONIC_STAMP: Slot = slot(PASS_GROUP, 16, "kept_harmonic_stamp");
+pub const KEPT_HARMONIC_GENERATION: Slot = slot(PASS_GROUP, 17, "kept_harmonic_generation");
 
 pub const FRAME_IMAGE: Slot = slot(IMAGE_GROUP, 0, "frame_image");
 pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 37] = [
+pub const ALL: [Slot; 41] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -114,6 +118,10 @@ pub const ALL: [Slot; 37] = [
     FRAME_COLOURS,
     FRAME_COLOURS_READ,
     DISPATCH_ARGS,
+    KEPT_HARMONIC_X,
+    KEPT_HARMONIC_Y,
+    KEPT_HARMONIC_STAMP,
+    KEPT_HARMONIC_GENERATION,
     FRAME_IMAGE,
     FRAME_SAMPLER,
     SHADOW_VIEW,
