@@ -8,6 +8,7 @@
 //! The pipelines ([`FullResolutionCompute`]) belong to a scene pipeline; the lists and the
 //! colours ([`FullResolutionImages`]) to the frame size's reduced-shading targets.
 
+use super::kept_harmonic::{self, KeptHarmonicImages};
 use super::surface_buffer::image_extent;
 use crate::render::RenderError;
 use crate::render::descriptors::{
@@ -25,9 +26,6 @@ const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Flo
 
 /// The lists' entries: a pixel's x | y << 16.
 const LIST_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-/// The images of the SH path's light kept at the pixels shaded in full (read and written
-/// by one pass: a format every device reads and writes in place).
-const KEPT_HARMONIC_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// The upsampling's workgroups: BLOCK_WORKGROUP_SIDE² invocations, each a block of d × d
 /// pixels (override constants of full_resolution.wgsl).
@@ -63,17 +61,6 @@ impl FullResolutionLayouts {
                 wgpu::BindingType::StorageTexture {
                     access: wgpu::StorageTextureAccess::WriteOnly,
                     format,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                },
-            )
-        };
-        let kept = |slot| {
-            layout_entry(
-                slot,
-                compute,
-                wgpu::BindingType::StorageTexture {
-                    access: wgpu::StorageTextureAccess::ReadWrite,
-                    format: KEPT_HARMONIC_FORMAT,
                     view_dimension: wgpu::TextureViewDimension::D2,
                 },
             )
@@ -117,18 +104,10 @@ impl FullResolutionLayouts {
             full: layout(
                 "listed pixels shaded in full",
                 &[
-                    counts,
-                    uint_texture(slots::FULL_PIXELS),
-                    colours,
-                    kept(slots::KEPT_HARMONIC_X),
-                    kept(slots::KEPT_HARMONIC_Y),
-                    kept(slots::KEPT_HARMONIC_STAMP),
-                    layout_entry(
-                        slots::KEPT_HARMONIC_GENERATION,
-                        compute,
-                        buffer_type(wgpu::BufferBindingType::Uniform),
-                    ),
-                ],
+                    [counts, uint_texture(slots::FULL_PIXELS), colours].as_slice(),
+                    &kept_harmonic::layout_entries(compute),
+                ]
+                .concat(),
             ),
             colours: layout(
                 "frame colours",
@@ -266,8 +245,6 @@ pub(crate) struct FullResolutionImages {
     blocks: [u32; 2],
     counts: wgpu::Buffer,
     dispatch_args: wgpu::Buffer,
-    /// The generation of the SH path's light the next frames shade with (a uniform).
-    kept_generation: wgpu::Buffer,
     upsampling_group: wgpu::BindGroup,
     dispatch_args_group: wgpu::BindGroup,
     /// Present with a soft layer.
@@ -278,12 +255,6 @@ pub(crate) struct FullResolutionImages {
 }
 
 impl FullResolutionImages {
-    /// Sets the generation of the SH path's light of the next frames (never 0): pixels
-    /// shaded in full with this generation before read their light kept then.
-    pub(crate) fn set_kept_generation(&self, queue: &wgpu::Queue, generation: u32) {
-        queue.write_buffer(&self.kept_generation, 0, bytemuck::bytes_of(&[generation, 0, 0, 0]));
-    }
-
     /// How many pixels the last frame listed: those the upsampling left to the soft
     /// layer and the sharp lights (two-level shading), and those shaded in full.
     pub(crate) fn listed_pixels(
@@ -316,13 +287,14 @@ pub(crate) type SampleReader<'a> = (&'a wgpu::TextureView, GpuUpsampleParams);
 impl FullResolutionImages {
     /// Lists and colours for frames of `size` upsampled from `samples`, spaced
     /// `downsample` pixels apart; `soft_layer`: with two-level shading, the soft layer the
-    /// listed pixels upsample.
+    /// listed pixels upsample; `kept_generation`: the generation of the SH path's light
+    /// kept at the pixels shaded in full (`kept_harmonic`).
     pub fn new(
         device: &wgpu::Device,
         layouts: &FullResolutionLayouts,
         (size, downsample): ([u32; 2], u32),
-        samples: SampleReader<'_>,
-        soft_layer: Option<SampleReader<'_>>,
+        (samples, soft_layer): (SampleReader<'_>, Option<SampleReader<'_>>),
+        kept_generation: &wgpu::Buffer,
     ) -> FullResolutionImages {
         let buffer = |label, bytes: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -358,15 +330,8 @@ impl FullResolutionImages {
         let sharp_pixels = image("pixels to shade from the soft layer", LIST_FORMAT);
         let full_pixels = image("pixels to shade in full", LIST_FORMAT);
         let colours = image("frame colours", FRAME_COLOURS_FORMAT);
-        // Zeros at first: stamp 0, which no generation is.
-        let kept_x = image("SH path's light kept: first word", KEPT_HARMONIC_FORMAT);
-        let kept_y = image("SH path's light kept: second word", KEPT_HARMONIC_FORMAT);
-        let kept_stamp = image("SH path's light kept: generation", KEPT_HARMONIC_FORMAT);
-        let kept_generation = buffer(
-            "SH path's light kept: this frame's generation",
-            16,
-            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        );
+        let kept = KeptHarmonicImages::new(device, size);
+        let [kept_x, kept_y, kept_stamp, kept_generation] = kept.entries(kept_generation);
         let view = wgpu::BindingResource::TextureView;
         let group = |label, layout, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -428,10 +393,10 @@ impl FullResolutionImages {
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::FULL_PIXELS, view(&full_pixels)),
                     (slots::FRAME_COLOURS, view(&colours)),
-                    (slots::KEPT_HARMONIC_X, view(&kept_x)),
-                    (slots::KEPT_HARMONIC_Y, view(&kept_y)),
-                    (slots::KEPT_HARMONIC_STAMP, view(&kept_stamp)),
-                    (slots::KEPT_HARMONIC_GENERATION, kept_generation.as_entire_binding()),
+                    kept_x,
+                    kept_y,
+                    kept_stamp,
+                    kept_generation,
                 ]),
             ),
             colours_group: group(
@@ -441,7 +406,6 @@ impl FullResolutionImages {
             ),
             counts,
             dispatch_args,
-            kept_generation,
         }
     }
 }

@@ -5,6 +5,7 @@
 
 mod full_resolution;
 pub mod heat_map;
+mod kept_harmonic;
 pub mod logsh;
 mod low_resolution;
 pub mod per_vertex;

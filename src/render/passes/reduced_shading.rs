@@ -38,6 +38,7 @@
 use wgpu::util::DeviceExt;
 
 use super::full_resolution::{FullResolutionImages, FullResolutionLayouts};
+use super::kept_harmonic;
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
     MAPPED_FACTORS_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
@@ -161,6 +162,8 @@ pub struct LowResolutionTargets {
     /// inputs stay those it was shaded with. (After 2³² − 1 generations it wraps to 1,
     /// which pixels of generation 1 not shaded in full since would read as kept.)
     kept_harmonic_generation: u32,
+    /// That generation, for the shaders.
+    kept_generation: wgpu::Buffer,
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
@@ -316,6 +319,7 @@ impl LowResolutionTargets {
                 ),
             )
         });
+        let kept_generation = kept_harmonic::generation_buffer(device);
         let full_resolution = deferred_frame.then(|| {
             let reader = (&samples.view, full_resolution_reader);
             // The listed pixels upsample the soft layer read at full resolution.
@@ -327,7 +331,13 @@ impl LowResolutionTargets {
                 );
                 (&soft.view, params)
             });
-            FullResolutionImages::new(device, full_layouts, (full_size, downsample), reader, soft_layer)
+            FullResolutionImages::new(
+                device,
+                full_layouts,
+                (full_size, downsample),
+                (reader, soft_layer),
+                &kept_generation,
+            )
         });
         let copied = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
         let low_depth_texture = depth_texture(device, "low-resolution depth", size, copied);
@@ -343,6 +353,7 @@ impl LowResolutionTargets {
             soft_layer_current: false,
             mapped_factors_current: false,
             kept_harmonic_generation: 0,
+            kept_generation,
             low_depth: low_depth_texture.create_view(&Default::default()),
             low_depth_texture,
             marked_samples: depth_texture(device, "marked samples", size, copied),
@@ -377,9 +388,7 @@ impl LowResolutionTargets {
         if !self.soft_layer_current {
             self.kept_harmonic_generation = self.kept_harmonic_generation.wrapping_add(1).max(1);
         }
-        if let Some(images) = &self.full_resolution {
-            images.set_kept_generation(queue, self.kept_harmonic_generation);
-        }
+        kept_harmonic::set_generation(queue, &self.kept_generation, self.kept_harmonic_generation);
         let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
         // Every light anew where the buffer or the surfaces are new; else those whose
         // geometry or maps changed.
