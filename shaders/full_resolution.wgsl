@@ -47,13 +47,13 @@ struct ListCounts {
 @group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<f32>;
 // The exposed light of the SH path (the environment and the SH lights through the
 // blockers) at the pixels shaded in full, as pack_lighting's two words, and the generation of the inputs it was shaded with (0: none): a pixel
-// whose stamp is kept_harmonic_generation.x reads it instead of walking the blockers.
+// whose stamp is kept_harmonic_generation.x (low_resolution.wgsl) reads it instead of
+// walking the blockers.
 // The generation changes whenever the surfaces or the soft light's inputs do
 // (render/passes/kept_harmonic.rs); its images are as large as the frame.
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_X_BINDING) var kept_harmonic_x: texture_storage_2d<r32uint, read_write>;
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_Y_BINDING) var kept_harmonic_y: texture_storage_2d<r32uint, read_write>;
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_STAMP_BINDING) var kept_harmonic_stamp: texture_storage_2d<r32uint, read_write>;
-@group(PASS_GROUP) @binding(KEPT_HARMONIC_GENERATION_BINDING) var<uniform> kept_harmonic_generation: vec4<u32>;
 // The workgroup counts of the two shading passes' indirect dispatches: sharp xyz, full xyz.
 @group(PASS_GROUP) @binding(DISPATCH_ARGS_BINDING) var<storage, read_write> dispatch_args: array<u32, 6>;
 

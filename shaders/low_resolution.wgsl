@@ -215,12 +215,41 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
     return 0.0;
 }
 
-// A low-resolution sample shaded in full.
+// x: the generation of the SH path's light kept where it was shaded in full (never 0),
+// which changes whenever the surfaces or the soft light's inputs do (render/passes/
+// kept_harmonic.rs), so light kept with this generation is this frame's; y: 1 where the
+// last frame had this generation too, so the samples fs_shade_low shades now are those it
+// shaded then (they depend on the surfaces and the soft layer alone) and their light
+// kept then is this frame's.
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_GENERATION_BINDING) var<uniform> kept_harmonic_generation: vec4<u32>;
+// The SH path's light at the samples fs_shade_low shaded in the last frame:
+// pack_lighting's words of the exposed light. fs_shade_low reads last frame's image and
+// writes the other (a fragment shader writing storage would run before its depth test:
+// every sample, not only those left, would pay).
+@group(PASS_GROUP) @binding(KEPT_HARMONIC_READ_BINDING) var kept_harmonic_read: texture_2d<u32>;
+
+// A sample shaded in full, and the SH path's light at it, kept for the next frames.
+struct ShadedLowSample {
+    @location(0) texel: vec4<u32>,
+    @location(1) kept_harmonic: vec4<u32>,
+};
+
+// A low-resolution sample shaded in full; the SH path's light (the blocker walk) read
+// from the last frame's kept image where that frame had this one's generation. Always
+// through pack_lighting, so that a frame reading it is the frame shading it anew.
 @fragment
-fn fs_shade_low(in: FullScreen) -> @location(0) vec4<u32> {
-    let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
-    let radiance = soft_shadowed_radiance(s) + kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy));
-    return low_sample_texel(s, frame.exposure * (radiance - s.emissive) / reflectance(s));
+fn fs_shade_low(in: FullScreen) -> ShadedLowSample {
+    let texel = vec2<i32>(in.clip.xy);
+    let s = sample_surface(texel, LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
+    var harmonic = textureLoad(kept_harmonic_read, texel, 0).xy;
+    // The same for every sample (a condition per sample would not spare lavapipe the
+    // walk: it runs a branch for a block of samples, those the depth test left out too).
+    if kept_harmonic_generation.y == 0u {
+        harmonic = pack_lighting(min(frame.exposure * harmonic_radiance(s), vec3<f32>(MAX_LIGHTING)));
+    }
+    let others = exact_path_radiance(s) + kept_mapped_lights_radiance(s, texel);
+    let lighting = (frame.exposure * others + unpack_lighting(harmonic)) / reflectance(s);
+    return ShadedLowSample(low_sample_texel(s, lighting), vec4<u32>(harmonic, 0u, 0u));
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the

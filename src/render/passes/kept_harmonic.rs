@@ -1,22 +1,31 @@
-//! The light of the SH path kept at the full-resolution pixels shaded in full
-//! (full_resolution.wgsl's kept_harmonic_light, in cs_shade_listed_full): the exposed
-//! light as pack_lighting's two words and the generation of the inputs it was shaded
-//! with; a frame of the same generation reads it instead of walking the blockers. The
-//! generation (never 0, which the images hold at first) changes whenever the surfaces or
-//! the soft light's inputs do (`LowResolutionTargets::expect_inputs`), as the soft layer
-//! is kept.
+//! The light of the SH path kept where it was shaded in full: the exposed light as
+//! pack_lighting's two words and the generation of the inputs it was shaded with; a frame
+//! of the same generation reads it instead of walking the blockers. The generation (never
+//! 0, which the images hold at first) changes whenever the surfaces or the soft light's
+//! inputs do (`LowResolutionTargets::expect_inputs`), as the soft layer is kept.
 //!
-//! Not at the low-resolution samples fs_shade_low shades in full: a fragment shader that
-//! writes storage runs before its depth test unless it is marked for early tests (a
-//! capability wgpu has only as a native feature), so every sample, not only those left,
-//! paid for the walk (docs/performance.md).
+//! - At the full-resolution pixels cs_shade_listed_full shades (full_resolution.wgsl's
+//!   kept_harmonic_light): three r32uint images read and written in place
+//!   ([`KeptHarmonicImages`]).
+//! - At the low-resolution samples fs_shade_low shades: one image read and another
+//!   written as a second colour target, swapped every frame ([`KeptAtSamples`]). The
+//!   samples it shades depend on the surfaces and the soft layer alone, so a frame of the
+//!   last frame's generation shades the same ones and reads them all: one flag for the
+//!   whole pass (lavapipe runs a branch for a block of fragments, those the depth test
+//!   left out too, so a stamp per sample kept the walk). (Storage written by a fragment
+//!   shader runs it before its depth test unless it is marked for early tests, a
+//!   capability wgpu has only as a native feature: every sample, not only those left,
+//!   paid for the walk.)
 
 use super::surface_buffer::image_extent;
-use crate::render::descriptors::{buffer_type, frame_texture, layout_entry};
+use crate::render::descriptors::{buffer_type, frame_texture, layout_entry, slot_entries, texture_entry};
 use crate::shading::wgsl::slots::{self, Slot};
 
-/// The images' format: one that every device reads and writes in place.
+/// The full-resolution images' format: one that every device reads and writes in place.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
+/// The samples' kept light: the two words (z, w unused).
+pub(super) const SAMPLES_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// The layout entries of the kept light, for a pass run in `stage`: its three images
 /// read and written, the generation read.
@@ -54,9 +63,14 @@ pub(super) fn generation_buffer(device: &wgpu::Device) -> wgpu::Buffer {
     })
 }
 
-/// Sets `buffer` (from [`generation_buffer`]) to `generation`.
-pub(super) fn set_generation(queue: &wgpu::Queue, buffer: &wgpu::Buffer, generation: u32) {
-    queue.write_buffer(buffer, 0, bytemuck::bytes_of(&[generation, 0, 0, 0]));
+/// Sets `buffer` (from [`generation_buffer`]) to `generation`, and whether the samples'
+/// kept light read this frame is of that generation (`samples_current`).
+pub(super) fn set_generation(queue: &wgpu::Queue, buffer: &wgpu::Buffer, generation: u32, samples_current: bool) {
+    queue.write_buffer(
+        buffer,
+        0,
+        bytemuck::bytes_of(&[generation, u32::from(samples_current), 0, 0]),
+    );
 }
 
 /// The kept light of an image of one size (zeros at first: no pixel kept).
@@ -98,5 +112,100 @@ impl KeptHarmonicImages {
             ),
             (slots::KEPT_HARMONIC_GENERATION, generation.as_entire_binding()),
         ]
+    }
+}
+
+/// The layout of fs_shade_low's group 3: the last frame's kept light read, the generation.
+pub(super) fn samples_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("SH path's light kept at the samples"),
+        entries: &[
+            texture_entry(slots::KEPT_HARMONIC_READ, fragment, wgpu::TextureSampleType::Uint),
+            layout_entry(
+                slots::KEPT_HARMONIC_GENERATION,
+                fragment,
+                buffer_type(wgpu::BufferBindingType::Uniform),
+            ),
+        ],
+    })
+}
+
+/// The samples' kept light: two images, one read and one written by each frame.
+pub(super) struct KeptAtSamples {
+    images: [wgpu::TextureView; 2],
+    /// Group k reads image k (the other is written).
+    groups: [wgpu::BindGroup; 2],
+    /// The image the next frame reads.
+    read: usize,
+    /// The generation of the light the image written last holds, if one was written.
+    written_generation: Option<u32>,
+}
+
+impl KeptAtSamples {
+    pub(super) fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        size: [u32; 2],
+        generation: &wgpu::Buffer,
+    ) -> KeptAtSamples {
+        let images: [wgpu::TextureView; 2] = std::array::from_fn(|_| {
+            frame_texture(
+                device,
+                "SH path's light kept at the samples",
+                image_extent(size),
+                SAMPLES_FORMAT,
+                1,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                &[],
+            )
+            .create_view(&Default::default())
+        });
+        let groups = std::array::from_fn(|k| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("SH path's light kept at the samples"),
+                layout,
+                entries: &slot_entries([
+                    (
+                        slots::KEPT_HARMONIC_READ,
+                        wgpu::BindingResource::TextureView(&images[k]),
+                    ),
+                    (slots::KEPT_HARMONIC_GENERATION, generation.as_entire_binding()),
+                ]),
+            })
+        });
+        KeptAtSamples {
+            images,
+            groups,
+            read: 0,
+            written_generation: None,
+        }
+    }
+
+    /// Swaps the images for a frame of `generation`, which reads what the last frame
+    /// wrote; true when that is of this generation.
+    pub(super) fn next_frame(&mut self, generation: u32) -> bool {
+        self.read = 1 - self.read;
+        let current = self.written_generation == Some(generation);
+        self.written_generation = Some(generation);
+        current
+    }
+
+    /// fs_shade_low's group 3 this frame.
+    pub(super) fn read_group(&self) -> &wgpu::BindGroup {
+        &self.groups[self.read]
+    }
+
+    /// The colour target fs_shade_low writes this frame, its texels not written kept.
+    pub(super) fn written(&self) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+        Some(wgpu::RenderPassColorAttachment {
+            view: &self.images[1 - self.read],
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })
     }
 }

@@ -154,6 +154,7 @@ impl LogShPipeline {
                         &reduced.low_resolution_layout,
                         &reduced.surface_buffer_layout,
                         &reduced.mapped_factors_writer_layout,
+                        &reduced.kept_samples_layout,
                     ],
                     &reduced.full_resolution_layouts,
                 ),

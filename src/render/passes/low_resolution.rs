@@ -7,6 +7,7 @@
 //! is one, in full where it does not serve), in compute passes (`full_resolution`).
 
 use super::full_resolution::{FullResolutionCompute, FullResolutionLayouts};
+use super::kept_harmonic;
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, mapped_factors_writer_layout,
     surface_buffer_layout,
@@ -25,6 +26,8 @@ pub(super) struct ReducedShadingPipelines {
     pub low_resolution_layout: wgpu::BindGroupLayout,
     pub surface_buffer_layout: wgpu::BindGroupLayout,
     pub mapped_factors_writer_layout: wgpu::BindGroupLayout,
+    /// Group 3 of fs_shade_low: the SH path's light the last frame kept at the samples.
+    pub kept_samples_layout: wgpu::BindGroupLayout,
     pub full_resolution_layouts: FullResolutionLayouts,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
@@ -86,22 +89,27 @@ impl ReducedShadingPipelines {
         let surface_buffer_layout = surface_buffer_layout(device);
         let mapped_factors_writer_layout = mapped_factors_writer_layout(device);
         let full_resolution_layouts = FullResolutionLayouts::new(device);
+        let kept_samples_layout = kept_harmonic::samples_layout(device);
         let surface_variant = Variant { samples: 1, ..variant };
-        let full_screen = |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth| {
-            full_screen_pipeline(
-                device,
-                [&layouts.frame, &surface_buffer_layout, shadow_layout],
-                module,
-                FullScreenPass {
-                    entry_point,
-                    samples,
-                    depth,
-                    format,
-                    stride_px,
-                },
-                paths,
-            )
-        };
+        let full_screen_keeping =
+            |entry_point, (format, stride_px): (Option<wgpu::TextureFormat>, u32), samples, depth, kept| {
+                full_screen_pipeline(
+                    device,
+                    [&layouts.frame, &surface_buffer_layout, shadow_layout],
+                    module,
+                    FullScreenPass {
+                        entry_point,
+                        samples,
+                        depth,
+                        format,
+                        stride_px,
+                        kept,
+                    },
+                    paths,
+                )
+            };
+        let full_screen =
+            |entry_point, target, samples, depth| full_screen_keeping(entry_point, target, samples, depth, None);
         let low_samples = Some(LOW_RESOLUTION_FORMATS[0]);
         ReducedShadingPipelines {
             downsample,
@@ -126,11 +134,12 @@ impl ReducedShadingPipelines {
                     FullScreenDepth::MarkSurfaces,
                 )
             }),
-            shade_low: full_screen(
+            shade_low: full_screen_keeping(
                 "fs_shade_low",
                 (low_samples, downsample),
-                None,
+                Some(&kept_samples_layout),
                 FullScreenDepth::Unmarked,
+                Some(wgpu::ColorWrites::ALL),
             ),
             soft_layer: two_level(paths).then(|| SoftLayerPipelines {
                 shade_soft: full_screen(
@@ -139,11 +148,13 @@ impl ReducedShadingPipelines {
                     None,
                     FullScreenDepth::None,
                 ),
-                shade_sharp: full_screen(
+                // In fs_shade_low's pass, whose second target it leaves alone.
+                shade_sharp: full_screen_keeping(
                     "fs_shade_sharp_marking",
                     (low_samples, downsample),
                     Some(&low_resolution_layout),
                     FullScreenDepth::Marking,
+                    Some(wgpu::ColorWrites::empty()),
                 ),
             }),
             full_resolution: if shades_unmatched_exactly(variant.samples) {
@@ -180,6 +191,7 @@ impl ReducedShadingPipelines {
             low_resolution_layout,
             surface_buffer_layout,
             mapped_factors_writer_layout,
+            kept_samples_layout,
             full_resolution_layouts,
         }
     }
@@ -253,7 +265,10 @@ pub(super) fn shade_low_resolution(
         }
         None => low.restore_marked_samples(frame.encoder),
     }
-    let samples = low.samples.color_attachments();
+    // The samples, and the SH path's light fs_shade_low keeps at those it shades.
+    let [sample_target] = low.samples.color_attachments();
+    let samples = [sample_target, low.kept_at_samples.written()];
+    let kept = Some(low.kept_at_samples.read_group());
     match (&pipelines.soft_layer, &low.soft) {
         (Some(soft_pipelines), Some(soft)) => {
             // A frame after an edit of lights off the SH path sees the last soft layer.
@@ -273,7 +288,7 @@ pub(super) fn shade_low_resolution(
                 (&samples, Some(low.low_depth_attachment(false))),
                 &[
                     (&soft_pipelines.shade_sharp, Some(&soft.bind_group)),
-                    (&pipelines.shade_low, None),
+                    (&pipelines.shade_low, kept),
                 ],
             );
         }
@@ -281,7 +296,7 @@ pub(super) fn shade_low_resolution(
             frame,
             "low-resolution shading",
             (&samples, Some(low.low_depth_attachment(false))),
-            &[(&pipelines.shade_low, None)],
+            &[(&pipelines.shade_low, kept)],
         ),
     }
 }
@@ -421,6 +436,9 @@ struct FullScreenPass<'a> {
     /// The coarser samples it reads (group 3), if any.
     samples: Option<&'a wgpu::BindGroupLayout>,
     depth: FullScreenDepth,
+    /// A second target, the samples' kept light (`kept_harmonic`), written with these
+    /// writes: the passes of fs_shade_low's render pass have it.
+    kept: Option<wgpu::ColorWrites>,
 }
 
 /// A pipeline drawing vs_full_screen's triangle into one target with `pass.entry_point`, bind groups `groups` (frame, surface buffer, shadow)
@@ -449,11 +467,19 @@ fn full_screen_pipeline(
     };
     let mut constants = path_constants(paths);
     constants.push(("LEVEL_STRIDE_PX", f64::from(pass.stride_px)));
-    let targets = [pass.format.map(|format| wgpu::ColorTargetState {
-        format,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    })];
+    let target = |format, write_mask| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask,
+        })
+    };
+    let targets: Vec<Option<wgpu::ColorTargetState>> = pass
+        .format
+        .map(|format| target(format, wgpu::ColorWrites::ALL))
+        .into_iter()
+        .chain(pass.kept.map(|writes| target(kept_harmonic::SAMPLES_FORMAT, writes)))
+        .collect();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(pass.entry_point),
         layout: Some(&layout),
@@ -473,7 +499,7 @@ fn full_screen_pipeline(
                 constants: &constants,
                 ..Default::default()
             },
-            targets: if pass.format.is_some() { &targets } else { &[] },
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -38,7 +38,7 @@
 use wgpu::util::DeviceExt;
 
 use super::full_resolution::{FullResolutionImages, FullResolutionLayouts};
-use super::kept_harmonic;
+use super::kept_harmonic::{self, KeptAtSamples};
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
     MAPPED_FACTORS_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
@@ -164,6 +164,8 @@ pub struct LowResolutionTargets {
     kept_harmonic_generation: u32,
     /// That generation, for the shaders.
     kept_generation: wgpu::Buffer,
+    /// The SH path's light kept at the samples shaded in full (fs_shade_low).
+    pub(super) kept_at_samples: KeptAtSamples,
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
@@ -297,7 +299,10 @@ impl LowResolutionTargets {
     /// full-resolution frame is deferred too (its passes start from the buffer's depth).
     pub fn new(
         device: &wgpu::Device,
-        ([layout, surface_layout, writer_layout], full_layouts): ([&wgpu::BindGroupLayout; 3], &FullResolutionLayouts),
+        ([layout, surface_layout, writer_layout, kept_layout], full_layouts): (
+            [&wgpu::BindGroupLayout; 4],
+            &FullResolutionLayouts,
+        ),
         full_size: [u32; 2],
         downsample: u32,
         [soft_layer, deferred_frame]: [bool; 2],
@@ -353,6 +358,7 @@ impl LowResolutionTargets {
             soft_layer_current: false,
             mapped_factors_current: false,
             kept_harmonic_generation: 0,
+            kept_at_samples: KeptAtSamples::new(device, kept_layout, size, &kept_generation),
             kept_generation,
             low_depth: low_depth_texture.create_view(&Default::default()),
             low_depth_texture,
@@ -388,7 +394,13 @@ impl LowResolutionTargets {
         if !self.soft_layer_current {
             self.kept_harmonic_generation = self.kept_harmonic_generation.wrapping_add(1).max(1);
         }
-        kept_harmonic::set_generation(queue, &self.kept_generation, self.kept_harmonic_generation);
+        let samples_current = self.kept_at_samples.next_frame(self.kept_harmonic_generation);
+        kept_harmonic::set_generation(
+            queue,
+            &self.kept_generation,
+            self.kept_harmonic_generation,
+            samples_current,
+        );
         let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
         // Every light anew where the buffer or the surfaces are new; else those whose
         // geometry or maps changed.

@@ -77,13 +77,14 @@ pub const KEPT_HARMONIC_X: Slot = slot(PASS_GROUP, 14, "kept_harmonic_x");
 pub const KEPT_HARMONIC_Y: Slot = slot(PASS_GROUP, 15, "kept_harmonic_y");
 pub const KEPT_HARMONIC_STAMP: Slot = slot(PASS_GROUP, 16, "kept_harmonic_stamp");
 pub const KEPT_HARMONIC_GENERATION: Slot = slot(PASS_GROUP, 17, "kept_harmonic_generation");
+pub const KEPT_HARMONIC_READ: Slot = slot(PASS_GROUP, 18, "kept_harmonic_read");
 
 pub const FRAME_IMAGE: Slot = slot(IMAGE_GROUP, 0, "frame_image");
 pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 41] = [
+pub const ALL: [Slot; 42] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -122,6 +123,7 @@ pub const ALL: [Slot; 41] = [
     KEPT_HARMONIC_Y,
     KEPT_HARMONIC_STAMP,
     KEPT_HARMONIC_GENERATION,
+    KEPT_HARMONIC_READ,
     FRAME_IMAGE,
     FRAME_SAMPLER,
     SHADOW_VIEW,
