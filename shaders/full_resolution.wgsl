@@ -46,11 +46,11 @@ struct ListCounts {
 @group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<rgba32float, write>;
 @group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<f32>;
 // The exposed light of the SH path (the environment and the SH lights through the
-// blockers) at the pixels shaded in full, as pack_lighting's two words, and the generation of the inputs it was shaded with (0: none): a pixel
-// whose stamp is kept_harmonic_generation.x (low_resolution.wgsl) reads it instead of
-// walking the blockers.
-// The generation changes whenever the surfaces or the soft light's inputs do
-// (render/passes/kept_harmonic.rs); its images are as large as the frame.
+// blockers) at the pixels shaded in full, as pack_lighting's two words, and the
+// generation of the inputs it was shaded with (0: none): a pixel whose stamp is
+// kept_harmonic_generation.x (low_resolution.wgsl) reads it instead of walking the
+// blockers. The generation changes whenever the surfaces or the soft light's inputs do
+// (render/passes/kept_harmonic.rs); these images are as large as the frame.
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_X_BINDING) var kept_harmonic_x: texture_storage_2d<r32uint, read_write>;
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_Y_BINDING) var kept_harmonic_y: texture_storage_2d<r32uint, read_write>;
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_STAMP_BINDING) var kept_harmonic_stamp: texture_storage_2d<r32uint, read_write>;

@@ -14,7 +14,7 @@ impl SceneRenderer {
         (!self.map_views.views.is_empty()).then(|| self.map_views.atlas.in_words())
     }
 
-    /// See [`GpuScene::set_view_culling`].
+    /// See [`crate::render::GpuScene::set_view_culling`].
     pub fn set_view_culling(&mut self, enabled: bool) {
         self.gpu_scene.set_view_culling(enabled);
     }
