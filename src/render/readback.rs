@@ -55,28 +55,13 @@ pub fn read_texture(
         },
     );
     queue.submit([encoder.finish()]);
-
-    let (sender, receiver) = std::sync::mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |result| {
-        let _ = sender.send(result);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let mapped = buffer
-        .get_mapped_range(..)
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let mut bytes = Vec::with_capacity((row_bytes * height) as usize);
-    for row in mapped.chunks_exact(padded_row_bytes as usize) {
-        bytes.extend_from_slice(&row[..row_bytes as usize]);
-    }
-    drop(mapped);
-    buffer.unmap();
-    Ok(bytes)
+    read_mapped(device, &buffer, |mapped| {
+        let mut bytes = Vec::with_capacity((row_bytes * height) as usize);
+        for row in mapped.chunks_exact(padded_row_bytes as usize) {
+            bytes.extend_from_slice(&row[..row_bytes as usize]);
+        }
+        bytes
+    })
 }
 
 /// Copies the first `bytes` of `buffer` (made with `COPY_SRC`) to the CPU and returns them,
@@ -96,8 +81,18 @@ pub fn read_buffer(
     let mut encoder = device.create_command_encoder(&Default::default());
     encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
     queue.submit([encoder.finish()]);
+    read_mapped(device, &staging, <[u8]>::to_vec)
+}
+
+/// Maps `buffer` (`MAP_READ`, its copies submitted) once the GPU is done with them and
+/// returns what `read` takes from its bytes.
+fn read_mapped<T>(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, RenderError> {
     let (sender, receiver) = std::sync::mpsc::channel();
-    staging.map_async(wgpu::MapMode::Read, .., move |result| {
+    buffer.map_async(wgpu::MapMode::Read, .., move |result| {
         let _ = sender.send(result);
     });
     device
@@ -107,10 +102,11 @@ pub fn read_buffer(
         .recv()
         .map_err(|e| RenderError::Readback(e.to_string()))?
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let bytes = staging
+    let mapped = buffer
         .get_mapped_range(..)
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .to_vec();
-    staging.unmap();
-    Ok(bytes)
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let value = read(&mapped);
+    drop(mapped);
+    buffer.unmap();
+    Ok(value)
 }
