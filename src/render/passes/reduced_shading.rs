@@ -156,11 +156,12 @@ pub struct LowResolutionTargets {
     soft_layer_current: bool,
     /// The kept visibility of the mapped lights is the next frame's.
     mapped_factors_current: bool,
-    /// The generation of the SH path's light at the pixels shaded in full (never 0): a
-    /// new one whenever the soft layer is not current, so that light, kept at those pixels
-    /// by full_resolution.wgsl, is read again only while the surfaces and the soft light's
-    /// inputs stay those it was shaded with. (After 2³² − 1 generations it wraps to 1,
-    /// which pixels of generation 1 not shaded in full since would read as kept.)
+    /// The generation of the SH path's light where it was shaded in full (never 0): a
+    /// new one whenever the soft layer is not current, so that light, kept at the pixels
+    /// and samples shaded in full (`kept_harmonic`), is read again only while the surfaces
+    /// and the soft light's inputs stay those it was shaded with. (After 2³² − 1
+    /// generations it wraps to 1, which pixels of generation 1 not shaded in full since
+    /// would read as kept.)
     kept_harmonic_generation: u32,
     /// That generation, for the shaders.
     kept_generation: wgpu::Buffer,
