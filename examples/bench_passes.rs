@@ -1,11 +1,13 @@
 //! The blocker bench's frame (`samples::blocker_bench`, as `cargo bench --bench frame --
 //! frame/sphere-count` draws it) pass by pass: where its time goes at a sphere count.
 //!
-//! `cargo run --release --example bench_passes [SPHERES] [per-vertex] [FRAMES]`: 960 × 540,
-//! the shipped defaults with the light on the SH path (per vertex if asked), SPHERES
-//! spheres on the casters (600 by default); prints the mean wall-clock frame and each
-//! pass's mean GPU time over FRAMES frames (6) drawn anew after a warm-up, and how many
-//! pixels the upsampling left to be shaded otherwise.
+//! `cargo run --release --example bench_passes [SPHERES] [MODE] [FRAMES]`: 960 × 540,
+//! the shipped defaults with the light on the SH path, SPHERES spheres on the casters
+//! (600 by default); MODE `anew` (the default: every frame drawn anew), `per-vertex` (the
+//! same, shaded per vertex) or `after-edit` (each frame after the lights were set again,
+//! the view kept); prints the mean wall-clock frame and each pass's mean GPU time over
+//! FRAMES frames (6) after a warm-up, and how many pixels the upsampling left to be
+//! shaded otherwise.
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -14,7 +16,12 @@ use lightpaint::shading::{LightPaths, RenderSettings, ShadowSettings};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let spheres_wanted: usize = args.first().map(|a| a.parse()).transpose()?.unwrap_or(600);
-    let per_vertex = args.iter().any(|a| a == "per-vertex");
+    let (per_vertex, redraw) = match args.get(1).map(String::as_str) {
+        None | Some("anew") => (false, Redraw::Everything),
+        Some("per-vertex") => (true, Redraw::Everything),
+        Some("after-edit") => (false, Redraw::AfterLightEdit),
+        Some(other) => return Err(format!("unknown MODE {other:?}: anew, per-vertex or after-edit").into()),
+    };
     let frames: u32 = args.get(2).map(|a| a.parse()).transpose()?.unwrap_or(6);
     let gpu = GpuContext::headless()?;
     let scene = blocker_bench::thin_casters_scene();
@@ -40,11 +47,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     renderer.draw_and_wait(Redraw::Everything)?;
     let timed = renderer.time_passes();
     let started = std::time::Instant::now();
-    let redraw = if args.iter().any(|a| a == "after-edit") {
-        Redraw::AfterLightEdit
-    } else {
-        Redraw::Everything
-    };
     for _ in 0..frames {
         renderer.draw_and_wait(redraw)?;
     }
