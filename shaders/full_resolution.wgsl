@@ -41,10 +41,14 @@ struct ListCounts {
 @group(PASS_GROUP) @binding(SHARP_PIXELS_BINDING) var sharp_pixels: texture_2d<u32>;
 @group(PASS_GROUP) @binding(FULL_PIXELS_OUT_BINDING) var full_pixels_out: texture_storage_2d<r32uint, write>;
 @group(PASS_GROUP) @binding(FULL_PIXELS_BINDING) var full_pixels: texture_2d<u32>;
-// Every surface pixel's colour, tone-mapped (what a fragment shader would write to the
-// frame), written by the passes above; read by fs_frame_colour.
-@group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<rgba32float, write>;
-@group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<f32>;
+// Every surface pixel's colour, tone-mapped and sRGB-encoded in 8 bits per channel (the
+// bytes a fragment shader's output would leave in the frame's sRGB target; packed by
+// store_colour), written by the passes above; read by fs_frame_colour. One word a pixel:
+// lavapipe stores an rgba32float texel at several times the cost (the studio's upsampling
+// took 18.8 ms with them, 12.9 with words; docs/performance.md). Rounded to nearest here,
+// where lavapipe's own encoding approximates: up to 1/255 apart.
+@group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<r32uint, write>;
+@group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<u32>;
 // The exposed light of the SH path (the environment and the SH lights through the
 // blockers) at the pixels shaded in full, as pack_lighting's two words, and the
 // generation of the inputs it was shaded with (0: none): a pixel whose stamp is
@@ -70,6 +74,21 @@ const LISTED_WORKGROUPS_PER_ROW: u32 = 128u;
 override BLOCK_PX: u32;
 override BLOCK_WORKGROUP_SIDE: u32;
 override LIST_FOR_SHARP: bool;
+
+// The sRGB transfer function (IEC 61966-2-1) and its inverse, per channel on [0, 1].
+fn srgb_from_linear(linear: vec3<f32>) -> vec3<f32> {
+    let c = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
+    return select(1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3<f32>(0.0031308));
+}
+
+fn linear_from_srgb(encoded: vec3<f32>) -> vec3<f32> {
+    return select(pow((encoded + 0.055) / 1.055, vec3<f32>(2.4)), encoded / 12.92, encoded <= vec3<f32>(0.04045));
+}
+
+// A pixel's tone-mapped colour into frame_colours, as the sRGB target would store it.
+fn store_colour(pixel: vec2<i32>, colour: vec3<f32>) {
+    textureStore(frame_colours, pixel, vec4<u32>(pack4x8unorm(vec4<f32>(srgb_from_linear(colour), 1.0))));
+}
 
 fn packed_pixel(pixel: vec2<u32>) -> u32 {
     return pixel.x | (pixel.y << 16u);
@@ -152,7 +171,7 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(loc
                 if buffered.drawn {
                     if up.matches {
                         let colour = tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting);
-                        textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+                        store_colour(pixel, colour);
                     } else {
                         listed |= 1u << k;
                     }
@@ -205,7 +224,7 @@ fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(l
         if soft.matches {
             let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
             let colour = tonemap_aces_fit(frame.exposure * (s.emissive + sharp) + reflectance(s) * soft.lighting);
-            textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+            store_colour(pixel, colour);
         } else {
             to_full = true;
         }
@@ -228,7 +247,7 @@ fn cs_shade_listed_full(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(lo
     let s = buffered_surface(pixel).s;
     let others = s.emissive + exact_path_radiance(s) + mapped_lights_radiance(s);
     let colour = tonemap_aces_fit(frame.exposure * others + kept_harmonic_light(pixel, s));
-    textureStore(frame_colours, pixel, vec4<f32>(colour, 1.0));
+    store_colour(pixel, colour);
 }
 
 // The exposed light of the SH path at `pixel` (surface s): kept from an earlier frame of
@@ -251,5 +270,5 @@ fn kept_harmonic_light(pixel: vec2<i32>, s: Surface) -> vec3<f32> {
 // full-screen triangle at depth 1 passes the test "greater" only there).
 @fragment
 fn fs_frame_colour(in: FullScreen) -> @location(0) vec4<f32> {
-    return textureLoad(frame_colours_read, vec2<i32>(in.clip.xy), 0);
+    return vec4<f32>(linear_from_srgb(unpack4x8unorm(textureLoad(frame_colours_read, vec2<i32>(in.clip.xy), 0).x).rgb), 1.0);
 }

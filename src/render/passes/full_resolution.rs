@@ -20,9 +20,10 @@ use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 use wgpu::util::DeviceExt;
 
-/// Where the frame's colours wait to be drawn: full f32, so a pixel's colour reaches the
-/// frame exactly as a fragment shader would have written it.
-const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Where the frame's colours wait to be drawn: the sRGB-encoded bytes the frame's target
+/// stores, packed in one word (full_resolution.wgsl's store_colour; the pass drawing them
+/// decodes them, and the target encodes them back to the same bytes).
+const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// The lists' entries: a pixel's x | y << 16.
 const LIST_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
@@ -114,7 +115,7 @@ impl FullResolutionLayouts {
                 &[texture_entry(
                     slots::FRAME_COLOURS_READ,
                     wgpu::ShaderStages::FRAGMENT,
-                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureSampleType::Uint,
                 )],
             ),
         }
