@@ -1,13 +1,15 @@
 //! The blocker bench's frame (`samples::blocker_bench`, as `cargo bench --bench frame --
 //! frame/sphere-count` draws it) pass by pass: where its time goes at a sphere count.
 //!
-//! `cargo run --release --example bench_passes [SPHERES] [MODE] [FRAMES]`: 960 × 540,
+//! `cargo run --release --example bench_passes [SPHERES] [MODE] [FRAMES] [PNG]
+//! [DOWNSAMPLE]`: 960 × 540,
 //! the shipped defaults with the light on the SH path, SPHERES spheres on the casters
 //! (600 by default); MODE `anew` (the default: every frame drawn anew), `per-vertex` (the
 //! same, shaded per vertex) or `after-edit` (each frame after the lights were set again,
 //! the view kept); prints the mean wall-clock frame and each pass's mean GPU time over
 //! FRAMES frames (6) after a warm-up, and how many pixels the upsampling left to be
-//! shaded otherwise.
+//! shaded otherwise; PNG: also writes the last frame there; DOWNSAMPLE: shades one pixel
+//! in that many squared (1: every pixel, to compare frames with).
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -26,11 +28,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let gpu = GpuContext::headless()?;
     let scene = blocker_bench::thin_casters_scene();
     let camera = blocker_bench::thin_casters_camera();
+    let png = args.get(3).filter(|path| !path.is_empty());
     let settings = RenderSettings::default();
+    let defaults = ShadowSettings::default();
+    let shading_downsample: u32 = args
+        .get(4)
+        .map(|a| a.parse())
+        .transpose()?
+        .unwrap_or(defaults.shading_downsample);
     let shadows = ShadowSettings {
         light_paths: LightPaths::Harmonics,
         per_vertex,
-        ..ShadowSettings::default()
+        shading_downsample,
+        ..defaults
     };
     let spheres = blocker_bench::spheres_on_casters(&scene, spheres_wanted);
     let frame = ShadowFrame {
@@ -62,6 +72,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "pixels the upsampling left: {} to the soft layer, {} shaded in full",
             listed.from_soft_layer, listed.in_full
         );
+    }
+    if let Some(path) = png {
+        renderer.read_image()?.save(path)?;
     }
     if timed {
         let passes: Vec<String> = renderer
