@@ -41,7 +41,8 @@ struct Frame {
     first_exact_light: u32,
     // Lights from this index to first_exact_light are shadowed by their shadow maps.
     first_mapped_light: u32,
-    _pad0: u32,
+    // The background as the sRGB target stores it (bytes r, g, b, 255 from the low end).
+    background_srgb8: u32,
     _pad1: u32,
     _pad2: u32,
     // The camera's ray through normalised device coordinates (x, y) is view_ray[2] +

@@ -5,8 +5,8 @@
 //    nearest samples (d the samples' spacing), reads and unpacks those four samples once
 //    and blends them for each of its pixels (reduced_shading.wgsl's quad_lighting, as a
 //    fragment would for itself: the same pixel gets the same colour). Pixels the samples
-//    match are written to the frame's colours; those they do not match, or where they
-//    disagree, go on a list.
+//    match are written to the frame's colours, and those without a surface the
+//    background; those they do not match, or where they disagree, go on a list.
 // 2. cs_shade_listed_sharp (two-level shading): a listed pixel takes the soft layer
 //    upsampled to it plus the sharp lights shaded at the pixel; where the soft layer does
 //    not match or disagrees, it goes on a second list. With one level every listed pixel
@@ -15,8 +15,8 @@
 //    the SH path at such a pixel is kept (kept_harmonic_light) and read again by the
 //    next frames while their surfaces and that light's inputs are the same (a stroke on
 //    lights of the other paths), as the soft layer is.
-// 4. fs_frame_colour: a full-screen pass copies the colours into the frame wherever the
-//    surface buffer has a surface (its depth, tested read-only).
+// 4. The colours are copied into the frame's image (full_resolution.rs): every pixel
+//    of it has been written.
 //
 // Why: a fragment pass reads the four samples for every pixel (a fetch and an unpack
 // each, nine pixels reading the same four at the default spacing), and the pixels the
@@ -41,14 +41,15 @@ struct ListCounts {
 @group(PASS_GROUP) @binding(SHARP_PIXELS_BINDING) var sharp_pixels: texture_2d<u32>;
 @group(PASS_GROUP) @binding(FULL_PIXELS_OUT_BINDING) var full_pixels_out: texture_storage_2d<r32uint, write>;
 @group(PASS_GROUP) @binding(FULL_PIXELS_BINDING) var full_pixels: texture_2d<u32>;
-// Every surface pixel's colour, tone-mapped and sRGB-encoded in 8 bits per channel (the
-// bytes a fragment shader's output would leave in the frame's sRGB target; packed by
-// store_colour), written by the passes above; read by fs_frame_colour. One word a pixel:
-// lavapipe stores an rgba32float texel at several times the cost (the studio's upsampling
-// took 18.8 ms with them, 12.9 with words; docs/performance.md). Rounded to nearest here,
-// where lavapipe's own encoding approximates: up to 1/255 apart.
+// Every pixel's colour, tone-mapped and sRGB-encoded in 8 bits per channel (the bytes a
+// fragment shader's output would leave in the frame's sRGB target; packed by
+// store_colour) or the background, copied into the frame's image after the passes above
+// (through a buffer: full_resolution.rs). One word a pixel: lavapipe stored an
+// rgba32float texel at several times the cost (the studio's upsampling took 18.8 ms with
+// them, 12.9 with words), and the full-screen pass that drew such an image into the
+// frame took 4–5 ms where the copies take a fraction (docs/performance.md). Rounded to
+// nearest here, where lavapipe's own encoding approximates: up to 1/255 apart.
 @group(PASS_GROUP) @binding(FRAME_COLOURS_BINDING) var frame_colours: texture_storage_2d<r32uint, write>;
-@group(PASS_GROUP) @binding(FRAME_COLOURS_READ_BINDING) var frame_colours_read: texture_2d<u32>;
 // The exposed light of the SH path (the environment and the SH lights through the
 // blockers) at the pixels shaded in full, as pack_lighting's two words, and the
 // generation of the inputs it was shaded with (0: none): a pixel whose stamp is
@@ -75,19 +76,24 @@ override BLOCK_PX: u32;
 override BLOCK_WORKGROUP_SIDE: u32;
 override LIST_FOR_SHARP: bool;
 
-// The sRGB transfer function (IEC 61966-2-1) and its inverse, per channel on [0, 1].
+// The sRGB transfer function (IEC 61966-2-1), per channel on [0, 1].
 fn srgb_from_linear(linear: vec3<f32>) -> vec3<f32> {
     let c = clamp(linear, vec3<f32>(0.0), vec3<f32>(1.0));
     return select(1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055, 12.92 * c, c <= vec3<f32>(0.0031308));
 }
 
-fn linear_from_srgb(encoded: vec3<f32>) -> vec3<f32> {
-    return select(pow((encoded + 0.055) / 1.055, vec3<f32>(2.4)), encoded / 12.92, encoded <= vec3<f32>(0.04045));
+// A tone-mapped colour as the sRGB target would store it, in one word.
+fn colour_word(colour: vec3<f32>) -> u32 {
+    return pack4x8unorm(vec4<f32>(srgb_from_linear(colour), 1.0));
 }
 
-// A pixel's tone-mapped colour into frame_colours, as the sRGB target would store it.
+// A pixel's tone-mapped colour into frame_colours.
 fn store_colour(pixel: vec2<i32>, colour: vec3<f32>) {
-    textureStore(frame_colours, pixel, vec4<u32>(pack4x8unorm(vec4<f32>(srgb_from_linear(colour), 1.0))));
+    store_word(pixel, colour_word(colour));
+}
+
+fn store_word(pixel: vec2<i32>, word: u32) {
+    textureStore(frame_colours, pixel, vec4<u32>(word));
 }
 
 fn packed_pixel(pixel: vec2<u32>) -> u32 {
@@ -168,13 +174,14 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(loc
                 // its centre, from the block's corner.
                 let at = sample_coordinates(vec2<f32>(pixel) + vec2<f32>(0.5));
                 let up = quad_lighting(quad, at - vec2<f32>(corner), s);
-                if buffered.drawn {
-                    if up.matches {
-                        let colour = tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting);
-                        store_colour(pixel, colour);
-                    } else {
-                        listed |= 1u << k;
-                    }
+                // One store for the background and the upsampled colour (lavapipe runs
+                // both sides of a branch, a store on each side twice).
+                let colour = tonemap_aces_fit(frame.exposure * s.emissive + reflectance(s) * up.lighting);
+                let word = select(frame.background_srgb8, colour_word(colour), buffered.drawn);
+                if !buffered.drawn || up.matches {
+                    store_word(pixel, word);
+                } else {
+                    listed |= 1u << k;
                 }
             }
         }
@@ -264,11 +271,4 @@ fn kept_harmonic_light(pixel: vec2<i32>, s: Surface) -> vec3<f32> {
     textureStore(kept_harmonic_y, pixel, vec4<u32>(packed.y));
     textureStore(kept_harmonic_stamp, pixel, vec4<u32>(generation));
     return unpack_lighting(packed);
-}
-
-// The colours into the frame, at the pixels where the surface buffer has a surface (the
-// full-screen triangle at depth 1 passes the test "greater" only there).
-@fragment
-fn fs_frame_colour(in: FullScreen) -> @location(0) vec4<f32> {
-    return vec4<f32>(linear_from_srgb(unpack4x8unorm(textureLoad(frame_colours_read, vec2<i32>(in.clip.xy), 0).x).rgb), 1.0);
 }

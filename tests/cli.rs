@@ -151,7 +151,7 @@ fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
         "low-resolution shading",
         "surfaces",
         "upsampling",
-        "frame colours drawn",
+        "frame colours copied",
     ] {
         let ms = number_after(passes, pass);
         assert!(ms > 0.0, "{passes}");

@@ -57,6 +57,7 @@ fn frame_matches_wgsl() {
             ("pixel_angle_rad", offset_of!(GpuFrame, pixel_angle_rad)),
             ("first_exact_light", offset_of!(GpuFrame, first_exact_light)),
             ("first_mapped_light", offset_of!(GpuFrame, first_mapped_light)),
+            ("background_srgb8", offset_of!(GpuFrame, background_srgb8)),
             ("view_ray", offset_of!(GpuFrame, view_ray)),
             ("environment_irradiance", offset_of!(GpuFrame, environment_irradiance)),
         ],

@@ -68,7 +68,12 @@ impl<'a> RasterRenderer<'a> {
         let pipeline = ScenePipeline::with_samples(&gpu.device, samples);
         let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &pipeline.layouts, scene);
         let target = RenderTarget::with_samples(&gpu.device, width, height, samples);
-        gpu_scene.write_frame(&gpu.queue, camera, [width, height], settings.exposure_ev);
+        gpu_scene.write_frame(
+            &gpu.queue,
+            camera,
+            [width, height],
+            (settings.exposure_ev, settings.background_linear()),
+        );
         Ok(RasterRenderer {
             gpu,
             pipeline,
@@ -283,7 +288,7 @@ pub fn capture_surfaces(
     let layouts = SceneLayouts::new(&gpu.device);
     let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
-    gpu_scene.write_frame(&gpu.queue, camera, [width, height], 0.0);
+    gpu_scene.write_frame(&gpu.queue, camera, [width, height], (0.0, [0.0; 3]));
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
     let no_maps = ShadowMaps::new(&gpu.device);

@@ -74,7 +74,10 @@ pub struct GpuFrame {
     pub first_exact_light: u32,
     /// Lights from this index to `first_exact_light` are shadowed by their shadow maps.
     pub first_mapped_light: u32,
-    pub _pad: [u32; 3],
+    /// The frame's background as the sRGB target stores it: r | g << 8 | b << 16 |
+    /// 255 << 24 ([`srgb8_word`]; the deferred frame writes it where there is no surface).
+    pub background_srgb8: u32,
+    pub _pad: [u32; 2],
     /// The camera's ray through a point of normalised device coordinates (x, y) is
     /// `view_ray[2] + x·view_ray[0] + y·view_ray[1]` (xyz; w unused): the forward axis plus
     /// the right and up axes scaled by the tangents of the half fields of view, so the
@@ -104,7 +107,8 @@ impl GpuFrame {
             pixel_angle_rad: pixel_angle_rad(camera, size_px[1]) as f32,
             first_exact_light: first_exact_light.min(light_count) as u32,
             first_mapped_light: first_mapped_light.min(first_exact_light).min(light_count) as u32,
-            _pad: [0; 3],
+            background_srgb8: srgb8_word([0.0; 3]),
+            _pad: [0; 2],
             view_ray: view_ray(camera, width / height),
             environment_irradiance,
         }
@@ -113,6 +117,13 @@ impl GpuFrame {
     pub fn view_projection(&self) -> Mat4 {
         Mat4::from_cols_array_2d(&self.view_proj)
     }
+}
+
+/// Linear RGB `linear` (clamped to [0, 1]) as the four bytes an sRGB target stores for it,
+/// opaque, in one little-endian word: each channel encoded (IEC 61966-2-1) and rounded.
+pub fn srgb8_word(linear: [f64; 3]) -> u32 {
+    let [r, g, b] = linear.map(|c| (crate::scene::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u32);
+    r | (g << 8) | (b << 16) | (255 << 24)
 }
 
 /// `lights` in the order the shaders take them: those on the SH path first, then those

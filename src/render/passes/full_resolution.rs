@@ -2,8 +2,9 @@
 //! compute passes (see shaders/full_resolution.wgsl for why): the upsampling, a d × d
 //! block of pixels per invocation, writes the pixels the samples match to an image of the
 //! frame's colours and lists the rest; compute passes shade each list 64 pixels at a time
-//! (dispatched indirectly, as many workgroups as a list holds) into the same image; a
-//! full-screen pass copies it into the frame where the surface buffer has a surface.
+//! (dispatched indirectly, as many workgroups as a list holds) into the same image, which
+//! (the background written where there is no surface) is then copied into the frame's
+//! image through a buffer.
 //!
 //! The pipelines ([`FullResolutionCompute`]) belong to a scene pipeline; the lists and the
 //! colours ([`FullResolutionImages`]) to the frame size's reduced-shading targets.
@@ -20,10 +21,14 @@ use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 use wgpu::util::DeviceExt;
 
-/// Where the frame's colours wait to be drawn: the sRGB-encoded bytes the frame's target
-/// stores, packed in one word (full_resolution.wgsl's store_colour; the pass drawing them
-/// decodes them, and the target encodes them back to the same bytes).
+/// Where the frame's colours wait to be copied into it: the sRGB-encoded bytes the
+/// frame's target stores, packed in one word (full_resolution.wgsl's store_colour).
 const FRAME_COLOURS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+
+/// The most bytes the buffer between the colours and the frame holds: the copy goes by
+/// bands of rows where a frame needs more (16 MiB holds 4 million pixels: a 2560 × 1440
+/// frame in one band, within every device's buffer limits).
+const MAX_COPY_BAND_BYTES: u64 = 16 << 20;
 
 /// The lists' entries: a pixel's x | y << 16.
 const LIST_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
@@ -47,8 +52,6 @@ pub struct FullResolutionLayouts {
     pub sharp: wgpu::BindGroupLayout,
     /// The shading in full: the full list read, the colours, the SH path's light kept.
     pub full: wgpu::BindGroupLayout,
-    /// The full-screen pass that draws the colours.
-    pub colours: wgpu::BindGroupLayout,
 }
 
 impl FullResolutionLayouts {
@@ -110,20 +113,11 @@ impl FullResolutionLayouts {
                 ]
                 .concat(),
             ),
-            colours: layout(
-                "frame colours",
-                &[texture_entry(
-                    slots::FRAME_COLOURS_READ,
-                    wgpu::ShaderStages::FRAGMENT,
-                    wgpu::TextureSampleType::Uint,
-                )],
-            ),
         }
     }
 }
 
-/// The compute pipelines of the full-resolution frame (the full-screen pass that draws its
-/// colours is built with the other full-screen passes).
+/// The compute pipelines of the full-resolution frame.
 pub(super) struct FullResolutionCompute {
     upsample: wgpu::ComputePipeline,
     dispatch_args: wgpu::ComputePipeline,
@@ -251,8 +245,10 @@ pub(crate) struct FullResolutionImages {
     /// Present with a soft layer.
     sharp_group: Option<wgpu::BindGroup>,
     full_group: wgpu::BindGroup,
-    /// Group 3 of the pass that draws the colours into the frame.
-    pub(crate) colours_group: wgpu::BindGroup,
+    /// Every pixel's colour (full_resolution.wgsl's frame_colours).
+    colours: wgpu::Texture,
+    /// Between the colours and the frame's image: a band of rows of 256-byte multiples.
+    copy_band: wgpu::Buffer,
 }
 
 impl FullResolutionImages {
@@ -330,7 +326,21 @@ impl FullResolutionImages {
         };
         let sharp_pixels = image("pixels to shade from the soft layer", LIST_FORMAT);
         let full_pixels = image("pixels to shade in full", LIST_FORMAT);
-        let colours = image("frame colours", FRAME_COLOURS_FORMAT);
+        let colours = frame_texture(
+            device,
+            "frame colours",
+            image_extent(size),
+            FRAME_COLOURS_FORMAT,
+            1,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            &[],
+        );
+        let copy_band = buffer(
+            "frame colours' copy",
+            copy_band_rows(size) as u64 * row_bytes(size[0]),
+            wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        );
+        let colours_view = colours.create_view(&Default::default());
         let kept = KeptHarmonicImages::new(device, size);
         let [kept_x, kept_y, kept_stamp, kept_generation] = kept.entries(kept_generation);
         let view = wgpu::BindingResource::TextureView;
@@ -360,7 +370,7 @@ impl FullResolutionImages {
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::SHARP_PIXELS, view(&sharp_pixels)),
                     (slots::FULL_PIXELS_OUT, view(&full_pixels)),
-                    (slots::FRAME_COLOURS, view(&colours)),
+                    (slots::FRAME_COLOURS, view(&colours_view)),
                 ]),
             )
         });
@@ -375,7 +385,7 @@ impl FullResolutionImages {
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::SHARP_PIXELS_OUT, view(&sharp_pixels)),
                     (slots::FULL_PIXELS_OUT, view(&full_pixels)),
-                    (slots::FRAME_COLOURS, view(&colours)),
+                    (slots::FRAME_COLOURS, view(&colours_view)),
                 ]),
             ),
             dispatch_args_group: group(
@@ -393,20 +403,80 @@ impl FullResolutionImages {
                 &slot_entries([
                     (slots::LIST_COUNTS, counts.as_entire_binding()),
                     (slots::FULL_PIXELS, view(&full_pixels)),
-                    (slots::FRAME_COLOURS, view(&colours)),
+                    (slots::FRAME_COLOURS, view(&colours_view)),
                     kept_x,
                     kept_y,
                     kept_stamp,
                     kept_generation,
                 ]),
             ),
-            colours_group: group(
-                "frame colours",
-                &layouts.colours,
-                &slot_entries([(slots::FRAME_COLOURS_READ, view(&colours))]),
-            ),
+            colours,
+            copy_band,
             counts,
             dispatch_args,
+        }
+    }
+}
+
+/// Bytes per row of the copy between the colours and the frame: 4 a pixel, rounded up
+/// to 256 (what a copy between a buffer and an image takes).
+fn row_bytes(width: u32) -> u64 {
+    (4 * u64::from(width.max(1))).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT))
+}
+
+/// Rows of a frame of `size` per band of the copy.
+fn copy_band_rows(size: [u32; 2]) -> u32 {
+    let rows = (MAX_COPY_BAND_BYTES / row_bytes(size[0])).max(1);
+    u32::try_from(rows).unwrap_or(u32::MAX).min(size[1].max(1))
+}
+
+impl FullResolutionImages {
+    /// Copies every pixel's colour into `image` (the frame's single-sampled image,
+    /// `Rgba8Unorm` bytes, of the colours' size), a band of rows at a time through the
+    /// copy buffer: the bytes are the ones a fragment shader would have left there.
+    pub(crate) fn copy_colours(&self, encoder: &mut wgpu::CommandEncoder, image: &wgpu::Texture) {
+        let size = self.colours.size();
+        let band_rows = copy_band_rows([size.width, size.height]);
+        let layout = wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(row_bytes(size.width) as u32),
+            rows_per_image: Some(band_rows),
+        };
+        let mut first_row = 0;
+        while first_row < size.height {
+            let rows = band_rows.min(size.height - first_row);
+            let origin = wgpu::Origin3d {
+                x: 0,
+                y: first_row,
+                z: 0,
+            };
+            let extent = wgpu::Extent3d {
+                width: size.width,
+                height: rows,
+                depth_or_array_layers: 1,
+            };
+            let band = wgpu::TexelCopyBufferInfo {
+                buffer: &self.copy_band,
+                layout,
+            };
+            let source = wgpu::TexelCopyTextureInfo {
+                origin,
+                ..self.colours.as_image_copy()
+            };
+            encoder.copy_texture_to_buffer(source, band, extent);
+            let destination = wgpu::TexelCopyTextureInfo {
+                origin,
+                ..image.as_image_copy()
+            };
+            encoder.copy_buffer_to_texture(
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &self.copy_band,
+                    layout,
+                },
+                destination,
+                extent,
+            );
+            first_row += rows;
         }
     }
 }
@@ -419,6 +489,17 @@ mod tests {
     /// d·k + ⌊d/2⌋ (exact arithmetic: (p − ⌊d/2⌋) / d rounded down).
     fn nearest_corner(p: i64, d: i64) -> i64 {
         (p - d / 2).div_euclid(d)
+    }
+
+    #[test]
+    fn the_copy_bands_cover_every_row_within_their_buffer() {
+        for size in [[1, 1], [960, 540], [2560, 1440], [16384, 16384], [17, 100_000]] {
+            let rows = copy_band_rows(size);
+            assert!(rows >= 1 && rows <= size[1]);
+            assert!(u64::from(rows) * row_bytes(size[0]) <= MAX_COPY_BAND_BYTES.max(row_bytes(size[0])));
+            assert_eq!(row_bytes(size[0]) % 256, 0);
+            assert!(row_bytes(size[0]) >= 4 * u64::from(size[0]));
+        }
     }
 
     #[test]

@@ -204,8 +204,7 @@ impl LogShPipeline {
         }
         if let Some((low, pipelines)) = reduced {
             shade_low_resolution(frame, pipelines, low, (scene, blockers));
-            let drawn = (target, background_linear);
-            if draw_full_resolution(frame, pipelines, low, drawn, scene, blockers) {
+            if draw_full_resolution(frame, pipelines, low, target, scene, blockers) {
                 finish(frame, target);
                 return;
             }

@@ -13,7 +13,7 @@ use super::reduced_shading::{
     surface_buffer_layout,
 };
 use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
-use crate::render::descriptors::{COLOR_FORMAT, depth_test};
+use crate::render::descriptors::depth_test;
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
 use crate::render::target::RenderTarget;
@@ -66,11 +66,10 @@ pub(super) struct SoftLayerPipelines {
 }
 
 /// The full-resolution frame from the surface buffer: the upsampling and the shading of
-/// the pixels it leaves in compute passes (`full_resolution`), then their colours drawn
-/// into the frame, full-screen (fs_frame_colour).
+/// the pixels it leaves in compute passes (`full_resolution`), whose colours are then
+/// copied into the frame.
 pub(super) struct FullResolutionPipelines {
     compute: FullResolutionCompute,
-    draw_colours: wgpu::RenderPipeline,
 }
 
 impl ReducedShadingPipelines {
@@ -168,12 +167,6 @@ impl ReducedShadingPipelines {
                         ),
                         &path_constants(paths),
                         (downsample, two_level(paths)),
-                    ),
-                    draw_colours: full_screen(
-                        "fs_frame_colour",
-                        (Some(COLOR_FORMAT), 1),
-                        Some(&full_resolution_layouts.colours),
-                        FullScreenDepth::Unmarked,
                     ),
                 })
             } else {
@@ -329,19 +322,22 @@ fn draw_surfaces(
 
 /// The full-resolution frame deferred: from the surface buffer and the samples
 /// `shade_low_resolution` drew, the compute passes (`full_resolution`), then their
-/// colours drawn into `target` (cleared to `background_linear`) where the buffer has a
-/// surface. False, drawing nothing, where `pipelines` have no deferred full-resolution
-/// frame.
+/// colours (the frame's background where the buffer has no surface: the frame uniform's)
+/// copied into `target`'s image. False, drawing nothing, where `pipelines` have no
+/// deferred full-resolution frame or `target` is multisampled.
 pub(super) fn draw_full_resolution(
     frame: &mut TimedEncoder,
     pipelines: &ReducedShadingPipelines,
     low: &LowResolutionTargets,
-    (target, background_linear): (&RenderTarget, [f64; 3]),
+    target: &RenderTarget,
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) -> bool {
-    let (FullResolution::Deferred(full), Some(images)) = (&pipelines.full_resolution, low.full_resolution.as_ref())
-    else {
+    let (FullResolution::Deferred(full), Some(images), Some(image)) = (
+        &pipelines.full_resolution,
+        low.full_resolution.as_ref(),
+        target.single_sampled_image(),
+    ) else {
         return false;
     };
     full.compute.draw(
@@ -349,20 +345,8 @@ pub(super) fn draw_full_resolution(
         images,
         [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
     );
-    Bound {
-        scene,
-        blockers,
-        surface: &low.surface.bind_group,
-    }
-    .full_screen(
-        frame,
-        "frame colours drawn",
-        (
-            &[Some(target.color_attachment(background_linear))],
-            Some(low.surface.depth_tested()),
-        ),
-        &[(&full.draw_colours, Some(&images.colours_group))],
-    );
+    images.copy_colours(frame.encoder, image);
+    frame.mark("frame colours copied");
     true
 }
 

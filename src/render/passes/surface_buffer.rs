@@ -159,12 +159,6 @@ impl SurfaceBuffer {
     pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         depth_attachment(&self.depth_view, Some(1.0), true)
     }
-
-    /// The buffer's depth as it was drawn, for a pass that only tests it (its pipeline
-    /// writes no depth), kept for later frames.
-    pub(crate) fn depth_tested(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        depth_attachment(&self.depth_view, None, true)
-    }
 }
 
 fn mapped_factors_buffer(device: &wgpu::Device, bytes: u64) -> wgpu::Buffer {

@@ -9,7 +9,7 @@ use crate::render::descriptors::slot_entries;
 use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
-    GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance,
+    GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance, srgb8_word,
 };
 use crate::shading::wgsl::slots;
 
@@ -288,8 +288,14 @@ impl GpuScene {
 
     /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height)
     /// and marks the objects its frustum may see (the rest are not drawn from it).
-    pub fn write_frame(&mut self, queue: &wgpu::Queue, camera: &Camera, size_px: [u32; 2], exposure_ev: f32) {
-        let frame = GpuFrame::new(
+    pub fn write_frame(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        size_px: [u32; 2],
+        (exposure_ev, background_linear): (f32, [f64; 3]),
+    ) {
+        let mut frame = GpuFrame::new(
             camera,
             size_px,
             exposure_ev,
@@ -297,6 +303,7 @@ impl GpuScene {
             self.first_light_on,
             self.environment_irradiance,
         );
+        frame.background_srgb8 = srgb8_word(background_linear);
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
         for object in &mut self.objects {

@@ -109,7 +109,10 @@ impl RenderTarget {
             "colour",
             DISPLAY_FORMAT,
             1,
-            attachment | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
+            attachment
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::TEXTURE_BINDING,
             &[COLOR_FORMAT],
         );
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
@@ -148,6 +151,17 @@ impl RenderTarget {
                 load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
                 store,
             },
+        }
+    }
+
+    /// The single-sampled image behind [`Self::color_attachment`] (`Rgba8Unorm` bytes,
+    /// sRGB-encoded): the edge filter's input, or the colour texture itself; None when
+    /// multisampled. A frame may be copied into it in place of passes drawing it.
+    pub fn single_sampled_image(&self) -> Option<&wgpu::Texture> {
+        match (&self.msaa_view, &self.edge_filter) {
+            (Some(_), _) => None,
+            (None, Some(filter)) => Some(&filter.image),
+            (None, None) => Some(&self.color),
         }
     }
 

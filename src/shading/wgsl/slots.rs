@@ -71,7 +71,6 @@ pub const SHARP_PIXELS_OUT: Slot = slot(PASS_GROUP, 8, "sharp_pixels_out");
 pub const FULL_PIXELS: Slot = slot(PASS_GROUP, 9, "full_pixels");
 pub const FULL_PIXELS_OUT: Slot = slot(PASS_GROUP, 10, "full_pixels_out");
 pub const FRAME_COLOURS: Slot = slot(PASS_GROUP, 11, "frame_colours");
-pub const FRAME_COLOURS_READ: Slot = slot(PASS_GROUP, 12, "frame_colours_read");
 pub const DISPATCH_ARGS: Slot = slot(PASS_GROUP, 13, "dispatch_args");
 pub const KEPT_HARMONIC_X: Slot = slot(PASS_GROUP, 14, "kept_harmonic_x");
 pub const KEPT_HARMONIC_Y: Slot = slot(PASS_GROUP, 15, "kept_harmonic_y");
@@ -84,7 +83,7 @@ pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 42] = [
+pub const ALL: [Slot; 41] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -117,7 +116,6 @@ pub const ALL: [Slot; 42] = [
     FULL_PIXELS,
     FULL_PIXELS_OUT,
     FRAME_COLOURS,
-    FRAME_COLOURS_READ,
     DISPATCH_ARGS,
     KEPT_HARMONIC_X,
     KEPT_HARMONIC_Y,
