@@ -20,7 +20,7 @@
 //! compute passes (`full_resolution`: the upsampling by blocks of pixels, the pixels it
 //! leaves listed and shaded densely — two levels: the soft layer upsampled plus the sharp
 //! lights, and in full where the soft layer does not match or disagrees; one level: in
-//! full — and their colours drawn into the frame). Multisampled targets draw the
+//! full — and their colours copied into the frame). Multisampled targets draw the
 //! full-resolution frame rasterised instead: a depth pre-pass, fs_upsample and nothing
 //! shaded in full.
 //!
