@@ -316,3 +316,39 @@ fn every_pixel_a_full_size_frame_leaves_to_its_lists_is_shaded() {
     // with the dispatch's second row of workgroups dropped, 6,896.
     assert!(far_off <= 60, "{far_off} pixels far off shading every pixel");
 }
+
+/// A frame whose colours take more than one band of the copy into the frame's image
+/// (full_resolution.rs: bands of 16 MiB, 2,048 rows at 2,048 pixels wide; this frame has
+/// 2,112 rows, so its last 64 rows go in a second band) is whole: a band copied to the
+/// wrong rows, or not at all, would leave thousands of pixels far from shading every
+/// pixel (the lowest rows hold the studio's floor, not its background).
+#[test]
+fn a_frame_taller_than_one_copy_band_is_copied_whole() {
+    let Some(gpu) = common::gpu() else { return };
+    let document = Document::open(&common::repo_path("projects/studio/studio.lightpaint")).expect("studio opens");
+    let camera = document
+        .camera
+        .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
+    let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
+    let (full, reduced) = full_and_reduced(
+        &gpu,
+        &document.scene,
+        &camera,
+        &document.settings,
+        &blockers,
+        3,
+        1,
+        [2048, 2112],
+    );
+    let far_off_in_rows = |rows: std::ops::Range<u32>| {
+        rows.flat_map(|y| (0..full.width()).map(move |x| (x, y)))
+            .filter(|&(x, y)| (0..3).any(|c| reduced.get_pixel(x, y)[c].abs_diff(full.get_pixel(x, y)[c]) > 64))
+            .count()
+    };
+    let (first_band, second_band) = (far_off_in_rows(0..2048), far_off_in_rows(2048..2112));
+    eprintln!(
+        "pixels more than 64/255 off shading every pixel: {first_band} in the first band, {second_band} in the second"
+    );
+    assert!(first_band <= 200, "{first_band} pixels far off in the first band");
+    assert!(second_band <= 20, "{second_band} pixels far off in the second band");
+}
