@@ -452,6 +452,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn every_srgb_byte_decoded_comes_back_as_itself_in_the_background_word() {
+        for byte in 0..=255u32 {
+            let linear = crate::scene::srgb_to_linear(f64::from(byte) / 255.0);
+            assert_eq!(srgb8_word([linear; 3]), byte | (byte << 8) | (byte << 16) | (255 << 24));
+        }
+        // Out of range and NaN: clamped, NaN to black, always opaque.
+        assert_eq!(srgb8_word([f64::NAN, 2.0, -1.0]), 0xff00_ff00);
+    }
+
+    #[test]
     fn a_point_is_rebuilt_from_its_device_coordinates_and_view_depth() {
         // What the upsampling does with each low-resolution sample: the point the
         // projection puts at (x, y), at its depth along the forward axis.
