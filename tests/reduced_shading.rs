@@ -284,6 +284,17 @@ fn hard_shadow_edges_stay_where_shading_every_pixel_puts_them() {
     );
 }
 
+/// The studio at `size` with every pixel shaded and with its settings (one pixel in 3 × 3
+/// shaded, single-sampled).
+fn studio_every_pixel_and_defaults(gpu: &GpuContext, size: [u32; 2]) -> (image::RgbaImage, image::RgbaImage) {
+    let document = Document::open(&common::repo_path("projects/studio/studio.lightpaint")).expect("studio opens");
+    let camera = document
+        .camera
+        .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
+    let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
+    full_and_reduced(gpu, &document.scene, &camera, &document.settings, &blockers, 3, 1, size)
+}
+
 /// At 960 × 540 the studio's frame leaves more pixels to its listed passes than one row
 /// of their dispatches holds (full_resolution.wgsl, LISTED_WORKGROUPS_PER_ROW): every one
 /// must still be shaded. A listed pixel left unshaded keeps the background's colour,
@@ -291,21 +302,7 @@ fn hard_shadow_edges_stay_where_shading_every_pixel_puts_them() {
 #[test]
 fn every_pixel_a_full_size_frame_leaves_to_its_lists_is_shaded() {
     let Some(gpu) = common::gpu() else { return };
-    let document = Document::open(&common::repo_path("projects/studio/studio.lightpaint")).expect("studio opens");
-    let camera = document
-        .camera
-        .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
-    let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
-    let (full, reduced) = full_and_reduced(
-        &gpu,
-        &document.scene,
-        &camera,
-        &document.settings,
-        &blockers,
-        3,
-        1,
-        [960, 540],
-    );
+    let (full, reduced) = studio_every_pixel_and_defaults(&gpu, [960, 540]);
     let far_off = reduced
         .pixels()
         .zip(full.pixels())
@@ -325,21 +322,7 @@ fn every_pixel_a_full_size_frame_leaves_to_its_lists_is_shaded() {
 #[test]
 fn a_frame_taller_than_one_copy_band_is_copied_whole() {
     let Some(gpu) = common::gpu() else { return };
-    let document = Document::open(&common::repo_path("projects/studio/studio.lightpaint")).expect("studio opens");
-    let camera = document
-        .camera
-        .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
-    let blockers = fit_scene(&document.scene, &document.settings.blockers).spheres();
-    let (full, reduced) = full_and_reduced(
-        &gpu,
-        &document.scene,
-        &camera,
-        &document.settings,
-        &blockers,
-        3,
-        1,
-        [2048, 2112],
-    );
+    let (full, reduced) = studio_every_pixel_and_defaults(&gpu, [2048, 2112]);
     let far_off_in_rows = |rows: std::ops::Range<u32>| {
         rows.flat_map(|y| (0..full.width()).map(move |x| (x, y)))
             .filter(|&(x, y)| (0..3).any(|c| reduced.get_pixel(x, y)[c].abs_diff(full.get_pixel(x, y)[c]) > 64))
