@@ -19,6 +19,12 @@ pub fn read_target_image(
         .ok_or_else(|| RenderError::Readback("image size mismatch".into()))
 }
 
+/// `row_bytes` rounded up to wgpu's alignment of rows in copies between buffers and
+/// images (256 bytes).
+pub(crate) fn padded_row_bytes(row_bytes: u32) -> u32 {
+    row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
 /// Submits `encoder` plus a copy of `texture` to the CPU (rows padded to wgpu's 256-byte
 /// alignment on the way, unpadded here) and returns its bytes.
 pub fn read_texture(
@@ -31,7 +37,7 @@ pub fn read_texture(
     height: u32,
 ) -> Result<Vec<u8>, RenderError> {
     let row_bytes = bytes_per_pixel * width;
-    let padded_row_bytes = row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let padded_row_bytes = padded_row_bytes(row_bytes);
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: (padded_row_bytes * height) as u64,

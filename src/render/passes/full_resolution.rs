@@ -16,7 +16,7 @@ use crate::render::descriptors::{
     buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry, texture_entry,
 };
 use crate::render::pass_timer::TimedEncoder;
-use crate::render::readback::read_buffer;
+use crate::render::readback::{padded_row_bytes, read_buffer};
 use crate::shading::gpu_types::GpuUpsampleParams;
 use crate::shading::wgsl::slots;
 use wgpu::util::DeviceExt;
@@ -421,7 +421,7 @@ impl FullResolutionImages {
 /// Bytes per row of the copy between the colours and the frame: 4 a pixel, rounded up
 /// to 256 (what a copy between a buffer and an image takes).
 fn row_bytes(width: u32) -> u64 {
-    (4 * u64::from(width.max(1))).next_multiple_of(u64::from(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT))
+    u64::from(padded_row_bytes(4 * width.max(1)))
 }
 
 /// Rows of a frame of `size` per band of the copy.
