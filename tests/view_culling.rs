@@ -2,6 +2,8 @@
 //! (`scene::Frustum`, `GpuScene::write_frame`), on lavapipe: the frame must be byte for
 //! byte the one drawn with every object, in the default (deferred) mode and per vertex,
 //! and the culling must have left something out for the comparison to mean anything.
+//! Each shadow-map view culls the same way against its own frustum, and the maps' frame
+//! must be the same too.
 
 mod common;
 
@@ -83,4 +85,79 @@ fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
             "per vertex {per_vertex}: the culled frame differs from the whole one at {differing} pixels"
         );
     }
+}
+
+/// Each shadow-map view leaves out the objects outside its frustum (`ShadowMaps::draw`):
+/// a point light among a ring of posts and cards on a floor, and a spot aimed at one post,
+/// cast the same shadows with and without the culling — the frames byte for byte alike
+/// — while the cube's faces, each seeing a quarter of the ring or less, and the spot's
+/// narrow cone draw well under every object into each view.
+#[test]
+fn shadow_maps_culled_per_view_cast_the_same_shadows() {
+    use common::scenes::white_light;
+    use glam::{Affine3A, Vec3};
+    use lightpaint::scene::{LightKind, Scene, shapes};
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = Scene::default();
+    scene.materials.push(lightpaint::scene::Material::default());
+    scene.objects.push(shapes::plane(12.0, 24, 1.0).into_object("floor"));
+    for k in 0..12 {
+        let angle = k as f32 * std::f32::consts::TAU / 12.0;
+        let at = Vec3::new(3.0 * angle.cos(), 0.0, 3.0 * angle.sin());
+        let shape = if k % 2 == 0 {
+            shapes::cylinder(0.15, 1.8, 24)
+        } else {
+            // An open card: one quad, two triangles each side.
+            shapes::plane(0.8, 1, 1.0).transformed(Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2))
+        };
+        let placed = shape.transformed(Affine3A::from_translation(at + Vec3::Y * 0.9 * (k % 2) as f32));
+        scene.objects.push(placed.into_object(&format!("prop {k}")));
+    }
+    scene
+        .lights
+        .push(white_light(LightKind::Point, Vec3::new(0.0, 1.2, 0.0), 8.0));
+    let spot = LightKind::Spot {
+        inner_cone_rad: 0.15,
+        outer_cone_rad: 0.25,
+    };
+    let mut aimed = white_light(spot, Vec3::new(-4.5, 3.0, 0.5), 30.0);
+    aimed.direction = (Vec3::new(3.0, 0.9, 0.0) - aimed.position).normalize();
+    scene.lights.push(aimed);
+    let settings = RenderSettings::default();
+    let camera = Camera::looking_at(Vec3::new(0.0, 6.0, 7.5), Vec3::ZERO, 50f32.to_radians(), 0.05);
+    let blockers = fit_scene(&scene, &settings.blockers).spheres();
+    let draw = |culling: bool| {
+        let mut renderer = SceneRenderer::new(
+            &gpu.device,
+            &gpu.queue,
+            &scene,
+            &blockers,
+            &settings.shadows,
+            AntiAliasing::default(),
+            Compilation::Blocking,
+        );
+        renderer.set_view_culling(culling);
+        renderer.render(&camera, SIZE, &settings, FrameQuality::default());
+        let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+        (image, renderer.shadow_map_triangles(), renderer.triangles_in_view().1)
+    };
+    let (culled, (views, culled_triangles), shown) = draw(true);
+    let (whole, (whole_views, whole_triangles), _) = draw(false);
+    assert_eq!(views, 7, "the point light's six faces and the spot's view");
+    assert_eq!(whole_views, views);
+    assert_eq!(
+        whole_triangles,
+        views * shown,
+        "without culling every view draws every object"
+    );
+    assert!(
+        culled_triangles * 2 < whole_triangles,
+        "the views drew {culled_triangles} of {whole_triangles} triangles"
+    );
+    let differing = culled.pixels().zip(whole.pixels()).filter(|(a, b)| a != b).count();
+    assert_eq!(
+        differing, 0,
+        "the culled maps' frame differs from the whole one at {differing} pixels"
+    );
+    common::thin_casters::save_for_review("shadow-maps-culled-per-view", &culled);
 }

@@ -217,6 +217,13 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
     renderer.draw_and_wait(Redraw::Everything)?;
     let (in_view, shown) = renderer.triangles_in_view();
     say!("triangles drawn from the camera: {in_view} of {shown} (objects outside its view culled)");
+    let (map_views, map_triangles) = renderer.shadow_map_triangles();
+    if map_views > 0 {
+        say!(
+            "triangles drawn into the shadow maps: {map_triangles} in {map_views} views, {:.1} % of every shown one in each (objects outside a view culled)",
+            100.0 * map_triangles as f64 / (map_views * shown.max(1)) as f64
+        );
+    }
     if let Some(listed) = renderer.listed_pixels() {
         let listed = listed?;
         say!(

@@ -271,6 +271,11 @@ impl<'a> ShadowRenderer<'a> {
     pub fn triangles_in_view(&self) -> (u64, u64) {
         self.renderer.triangles_in_view()
     }
+
+    /// See [`SceneRenderer::shadow_map_triangles`].
+    pub fn shadow_map_triangles(&self) -> (u64, u64) {
+        self.renderer.shadow_map_triangles()
+    }
 }
 
 /// The visible surface point of every pixel (row-major; None where no geometry is seen),

@@ -25,6 +25,13 @@ impl SceneRenderer {
         self.gpu_scene.triangles_in_view()
     }
 
+    /// The shadow-map views the last redraw of the maps drew and the triangles it drew
+    /// into them (each view leaves out the objects outside its frustum, unless view
+    /// culling is off).
+    pub fn shadow_map_triangles(&self) -> (u64, u64) {
+        self.shadow_maps.last_drawn()
+    }
+
     /// How many pixels the last frame's upsampling left to the soft layer and shaded in
     /// full (None where the frame was not drawn deferred at full resolution).
     pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {

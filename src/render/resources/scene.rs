@@ -318,6 +318,12 @@ impl GpuScene {
         self.view_culling = enabled;
     }
 
+    /// Whether views leave out the objects outside their frustum: the camera's from the
+    /// next [`Self::write_frame`] on, the shadow maps' from their next draw.
+    pub fn view_culling(&self) -> bool {
+        self.view_culling
+    }
+
     /// The triangles of the objects the last camera written may see, and of every
     /// object shown (for `render`'s summary).
     pub fn triangles_in_view(&self) -> (u64, u64) {

@@ -6,13 +6,17 @@
 //! (bindings 7–9 of the shadow group). The maps are drawn only when asked
 //! ([`ShadowMaps::draw`]): the scene holds still while the artist paints, so the
 //! renderer redraws them when a light, an object's visibility or the map size changes —
-//! of a moved light, only its own views.
+//! of a moved light, only its own views. Each view draws only the objects whose bounds
+//! its frustum may see (`scene::Frustum`, as the camera's passes do): a cube face of a
+//! point light among props sees about a quarter of them, and the maps are the same
+//! (tests/view_culling.rs).
 
 use wgpu::util::DeviceExt;
 
 use super::layouts::vertex_layout;
 use super::scene::GpuScene;
 use crate::render::descriptors::{DEPTH_FORMAT, create_module, depth_attachment};
+use crate::scene::Frustum;
 use crate::shading::gpu_types::{GpuShadowView, MAX_SHADOW_VIEWS};
 use crate::shading::shadow_maps::ShadowViews;
 use crate::shading::wgsl::{self, slots};
@@ -45,6 +49,9 @@ pub struct ShadowMaps {
     /// or all of them when the scene did (objects hidden or shown).
     drawn: Vec<GpuShadowView>,
     drawn_from: Option<u64>,
+    /// Views the last [`Self::draw`] redrew, and the triangles it drew into them.
+    views_drawn: u64,
+    triangles_drawn: u64,
 }
 
 impl ShadowMaps {
@@ -97,7 +104,14 @@ impl ShadowMaps {
             pipeline,
             drawn: Vec::new(),
             drawn_from: None,
+            views_drawn: 0,
+            triangles_drawn: 0,
         }
+    }
+
+    /// The views the last [`Self::draw`] redrew and the triangles it drew into them.
+    pub fn last_drawn(&self) -> (u64, u64) {
+        (self.views_drawn, self.triangles_drawn)
     }
 
     /// The views the layers hold, as last drawn.
@@ -151,6 +165,7 @@ impl ShadowMaps {
             }
         }
         let mut encoder = device.create_command_encoder(&Default::default());
+        (self.views_drawn, self.triangles_drawn) = (0, 0);
         for layer in (0..self.layers).filter(|&layer| stale[layer as usize]) {
             let target = layer_view(&self.texture, layer);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -172,7 +187,11 @@ impl ShadowMaps {
                 pass.set_viewport(x, y, width, width, 0.0, 1.0);
                 pass.set_scissor_rect(x as u32, y as u32, width as u32, width as u32);
                 pass.set_bind_group(slots::IMAGE_GROUP, &self.draw_group, &[(k as u64 * DRAW_STRIDE) as u32]);
-                for object in scene.objects.iter().filter(|o| !o.hidden) {
+                self.views_drawn += 1;
+                let frustum = Frustum::from_view_projection(glam::Mat4::from_cols_array_2d(&view.view_proj));
+                let seen = |o: &&super::scene::GpuObject| !scene.view_culling() || frustum.may_see(&o.bounds);
+                for object in scene.objects.iter().filter(|o| !o.hidden).filter(seen) {
+                    self.triangles_drawn += object.index_count as u64 / 3;
                     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
                     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
                     pass.draw_indexed(0..object.index_count, 0, 0..1);
