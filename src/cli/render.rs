@@ -257,6 +257,10 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
                 .collect();
             say!("GPU time per pass: {}", passes.join(", "));
         }
+        if matches!(redraw, Redraw::AfterLightMove | Redraw::AfterLightMoveDrafted) {
+            let (views, triangles) = renderer.shadow_map_triangles();
+            say!("shadow maps redrawn each frame: {views} views, {triangles} triangles");
+        }
     }
     Ok(())
 }
