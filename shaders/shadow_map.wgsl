@@ -1,6 +1,7 @@
 // The depth of the scene's triangles seen from one shadow-map view (src/render/resources/
 // shadow_maps.rs draws every view of every light on the shadow-map path; logsh.wgsl's
-// shadow_map_visibility reads them). Depth only: no fragment stage; both faces are
+// shadow_map_visibility reads them), and the far depth over one view's square, which
+// clears it alone. Depth only: no fragment stage; both faces are
 // drawn, so open and single-sided meshes cast too.
 // #import common slots
 
@@ -9,4 +10,11 @@
 @vertex
 fn vs_shadow_map(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {
     return shadow_view.view_proj * vec4<f32>(position, 1.0);
+}
+
+// A triangle over the whole viewport at depth 0, the far plane of the reversed depth.
+@vertex
+fn vs_clear_view(@builtin(vertex_index) corner: u32) -> @builtin(position) vec4<f32> {
+    let xy = vec2<f32>(f32((corner << 1u) & 2u), f32(corner & 2u)) * 2.0 - 1.0;
+    return vec4<f32>(xy, 0.0, 1.0);
 }

@@ -265,6 +265,45 @@ fn a_frame_after_a_light_moved_is_the_frame_drawn_anew() {
 }
 
 #[test]
+fn a_moved_point_light_redraws_its_own_faces_alone() {
+    // Two point lights' twelve cube faces fill three layers of four quadrants, and the
+    // middle layer holds two faces of each: moving one light redraws its six faces, each
+    // quadrant cleared alone, and keeps the other light's two beside them. The frame
+    // must be the one drawn anew.
+    use common::scenes::{ring_camera, ring_of_posts_and_cards, white_light};
+    use lightpaint::scene::LightKind;
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = ring_of_posts_and_cards();
+    scene
+        .lights
+        .push(white_light(LightKind::Point, glam::Vec3::new(0.0, 1.2, 0.0), 8.0));
+    scene
+        .lights
+        .push(white_light(LightKind::Point, glam::Vec3::new(1.2, 1.6, 1.0), 6.0));
+    let settings = RenderSettings::default();
+    let blockers = fit_scene(&scene, &settings.blockers).spheres();
+    let camera = ring_camera();
+    let mut kept = renderer_of(&gpu, &scene, &blockers, &settings);
+    let before = draw(&mut kept, &camera, &settings);
+    assert_eq!(kept.shadow_map_triangles().0, 12, "both lights' cubes drawn");
+    let mut moved = scene.clone();
+    moved.lights[1].position += glam::Vec3::new(0.5, 0.0, -0.4);
+    kept.set_lights(&moved.lights);
+    let after = draw(&mut kept, &camera, &settings);
+    assert_eq!(
+        kept.shadow_map_triangles().0,
+        6,
+        "the moved light's faces alone redrawn"
+    );
+    let anew = scene_drawn_anew(&gpu, &moved, &blockers, &settings, &camera);
+    assert!(
+        differing_pixels(&before, &anew) > 1000,
+        "the move must change the shadows to test anything"
+    );
+    assert_same(&after, &anew, "the second point light's move");
+}
+
+#[test]
 fn a_dragged_lights_drafted_map_is_drawn_in_full_once_the_drag_ends() {
     // While the key spot is dragged its map is drawn at half resolution (a draft); the
     // first frame drawn without drafting must be the frame drawn anew, and the drafted

@@ -95,24 +95,10 @@ fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
 #[test]
 fn shadow_maps_culled_per_view_cast_the_same_shadows() {
     use common::scenes::white_light;
-    use glam::{Affine3A, Vec3};
-    use lightpaint::scene::{LightKind, Scene, shapes};
+    use glam::Vec3;
+    use lightpaint::scene::LightKind;
     let Some(gpu) = common::gpu() else { return };
-    let mut scene = Scene::default();
-    scene.materials.push(lightpaint::scene::Material::default());
-    scene.objects.push(shapes::plane(12.0, 24, 1.0).into_object("floor"));
-    for k in 0..12 {
-        let angle = k as f32 * std::f32::consts::TAU / 12.0;
-        let at = Vec3::new(3.0 * angle.cos(), 0.0, 3.0 * angle.sin());
-        let shape = if k % 2 == 0 {
-            shapes::cylinder(0.15, 1.8, 24)
-        } else {
-            // An open card: one quad, two triangles each side.
-            shapes::plane(0.8, 1, 1.0).transformed(Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2))
-        };
-        let placed = shape.transformed(Affine3A::from_translation(at + Vec3::Y * 0.9 * (k % 2) as f32));
-        scene.objects.push(placed.into_object(&format!("prop {k}")));
-    }
+    let mut scene = common::scenes::ring_of_posts_and_cards();
     scene
         .lights
         .push(white_light(LightKind::Point, Vec3::new(0.0, 1.2, 0.0), 8.0));
@@ -124,7 +110,7 @@ fn shadow_maps_culled_per_view_cast_the_same_shadows() {
     aimed.direction = (Vec3::new(3.0, 0.9, 0.0) - aimed.position).normalize();
     scene.lights.push(aimed);
     let settings = RenderSettings::default();
-    let camera = Camera::looking_at(Vec3::new(0.0, 6.0, 7.5), Vec3::ZERO, 50f32.to_radians(), 0.05);
+    let camera = common::scenes::ring_camera();
     let blockers = fit_scene(&scene, &settings.blockers).spheres();
     let draw = |culling: bool| {
         let mut renderer = SceneRenderer::new(

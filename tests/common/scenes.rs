@@ -97,3 +97,29 @@ pub fn white_light(kind: lightpaint::scene::LightKind, position: Vec3, intensity
         locked: false,
     }
 }
+
+/// A 12 m floor with a ring of twelve props 3 m from its centre, posts and open cards
+/// (one quad, both sides) in turn, and no light: what a light among props shadows.
+pub fn ring_of_posts_and_cards() -> lightpaint::scene::Scene {
+    use glam::Affine3A;
+    let mut scene = lightpaint::scene::Scene::default();
+    scene.materials.push(lightpaint::scene::Material::default());
+    scene.objects.push(shapes::plane(12.0, 24, 1.0).into_object("floor"));
+    for k in 0..12 {
+        let angle = k as f32 * std::f32::consts::TAU / 12.0;
+        let at = Vec3::new(3.0 * angle.cos(), 0.0, 3.0 * angle.sin());
+        let shape = if k % 2 == 0 {
+            shapes::cylinder(0.15, 1.8, 24)
+        } else {
+            shapes::plane(0.8, 1, 1.0).transformed(Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2))
+        };
+        let placed = shape.transformed(Affine3A::from_translation(at + Vec3::Y * 0.9 * (k % 2) as f32));
+        scene.objects.push(placed.into_object(&format!("prop {k}")));
+    }
+    scene
+}
+
+/// A camera above [`ring_of_posts_and_cards`], seeing the whole ring.
+pub fn ring_camera() -> lightpaint::scene::Camera {
+    lightpaint::scene::Camera::looking_at(Vec3::new(0.0, 6.0, 7.5), Vec3::ZERO, 50f32.to_radians(), 0.05)
+}

@@ -6,7 +6,8 @@
 //! (bindings 7–9 of the shadow group). The maps are drawn only when asked
 //! ([`ShadowMaps::draw`]): the scene holds still while the artist paints, so the
 //! renderer redraws them when a light, an object's visibility or the map size changes —
-//! of a moved light, only its own views. Each view draws only the objects whose bounds
+//! of a moved light, only its own views, each cleared alone where it shares a layer with
+//! views that are kept. Each view draws only the objects whose bounds
 //! its frustum may see (`scene::Frustum`, as the camera's passes do): a cube face of a
 //! point light among props sees about a quarter of them, and the maps are the same
 //! (tests/view_culling.rs).
@@ -44,6 +45,9 @@ pub struct ShadowMaps {
     draw_group: wgpu::BindGroup,
     draw_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
+    /// Writes the far depth over a viewport's square (one view's quadrant cleared while
+    /// the rest of its layer is kept).
+    clear_pipeline: wgpu::RenderPipeline,
     /// The views each layer holds, and the scene's surfaces generation they were drawn
     /// from: a later draw redraws only the layers whose view changed (a light that moved),
     /// or all of them when the scene did (objects hidden or shown).
@@ -70,7 +74,7 @@ impl ShadowMaps {
                 count: None,
             }],
         });
-        let pipeline = depth_pipeline(device, &draw_layout);
+        let [pipeline, clear_pipeline] = depth_pipelines(device, &draw_layout);
         let views = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("shadow views"),
             contents: bytemuck::cast_slice(&[<GpuShadowView as bytemuck::Zeroable>::zeroed(); MAX_SHADOW_VIEWS]),
@@ -102,6 +106,7 @@ impl ShadowMaps {
             draw_group,
             draw_layout,
             pipeline,
+            clear_pipeline,
             drawn: Vec::new(),
             drawn_from: None,
             views_drawn: 0,
@@ -124,9 +129,10 @@ impl ShadowMaps {
     }
 
     /// Draws `views` of `scene` into the array their atlas describes, submitting the
-    /// work — only the layers holding a view that differs from the one drawn there last
-    /// (a layer's clear wipes its other quadrants, so they are drawn again with it), unless
-    /// the layers or the scene's visible objects are new; true when the layers were
+    /// work — only the views that differ from the one drawn in their slot last, each
+    /// square cleared alone when other views of its layer are kept (a moved point light's
+    /// six faces share layers with other lights' faces), unless the layers or the scene's
+    /// visible objects are new; true when the layers were
     /// allocated anew (the bind groups that read them must be made again from
     /// [`Self::binding`]).
     pub fn draw(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &GpuScene, views: &ShadowViews) -> bool {
@@ -153,39 +159,45 @@ impl ShadowMaps {
         queue.write_buffer(&self.draw_views, 0, &padded);
         queue.write_buffer(&self.binding.views, 0, bytemuck::cast_slice(views));
         let everything = reallocated || self.drawn_from != Some(scene.surfaces_generation());
-        let mut stale = vec![everything; self.layers as usize];
-        for k in 0..views.len().max(self.drawn.len()) {
-            let (now, before) = (views.get(k), self.drawn.get(k));
-            if now != before {
-                for view in [now, before].into_iter().flatten().filter(|view| placed(view)) {
-                    if let Some(layer) = stale.get_mut(view.atlas[3] as usize) {
-                        *layer = true;
-                    }
-                }
-            }
-        }
+        // A view is drawn again when it differs from the one its slot held (a light moved,
+        // or the atlas placed it elsewhere); the views beside it in its layer are kept.
+        let stale: Vec<bool> = (0..views.len())
+            .map(|k| everything || views.get(k) != self.drawn.get(k))
+            .collect();
         let mut encoder = device.create_command_encoder(&Default::default());
         (self.views_drawn, self.triangles_drawn) = (0, 0);
-        for layer in (0..self.layers).filter(|&layer| stale[layer as usize]) {
+        for layer in 0..self.layers {
+            let in_layer: Vec<usize> = (0..views.len())
+                .filter(|&k| placed(&views[k]) && views[k].atlas[3] as u32 == layer)
+                .collect();
+            let redrawn: Vec<usize> = in_layer.iter().copied().filter(|&k| stale[k]).collect();
+            if redrawn.is_empty() {
+                continue;
+            }
+            // Every view of the layer drawn: cleared whole; else each redrawn view's square
+            // is cleared alone, by a triangle at the far depth.
+            let whole = redrawn.len() == in_layer.len();
             let target = layer_view(&self.texture, layer);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
                 color_attachments: &[],
                 // Reversed depth: cleared to the far plane, 0.
-                depth_stencil_attachment: Some(depth_attachment(&target, Some(0.0), true)),
+                depth_stencil_attachment: Some(depth_attachment(&target, whole.then_some(0.0), true)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.pipeline);
-            for (k, view) in views.iter().enumerate() {
-                if !placed(view) || view.atlas[3] as u32 != layer {
-                    continue;
-                }
+            for k in redrawn {
+                let view = &views[k];
                 let [u, v, side, _] = view.atlas;
                 let (x, y, width) = (u * size as f32, v * size as f32, side * size as f32);
                 pass.set_viewport(x, y, width, width, 0.0, 1.0);
                 pass.set_scissor_rect(x as u32, y as u32, width as u32, width as u32);
+                if !whole {
+                    pass.set_pipeline(&self.clear_pipeline);
+                    pass.draw(0..3, 0..1);
+                }
+                pass.set_pipeline(&self.pipeline);
                 pass.set_bind_group(slots::IMAGE_GROUP, &self.draw_group, &[(k as u64 * DRAW_STRIDE) as u32]);
                 self.views_drawn += 1;
                 let frustum = Frustum::from_view_projection(glam::Mat4::from_cols_array_2d(&view.view_proj));
@@ -269,43 +281,68 @@ fn draw_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buffer: &wg
     })
 }
 
-/// The depth-only pipeline drawing a view: both faces (open and single-sided meshes cast
-/// shadows too).
-fn depth_pipeline(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> wgpu::RenderPipeline {
+/// The depth-only pipeline drawing a view — both faces (open and single-sided meshes cast
+/// shadows too) — and the one clearing a view's square to the far depth (reversed: 0),
+/// whatever it held.
+fn depth_pipelines(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> [wgpu::RenderPipeline; 2] {
     let module = create_module(device, "shadow map", &wgsl::shadow_map_source());
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+    let draw_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("shadow map"),
         bind_group_layouts: &[Some(layout)],
         immediate_size: 0,
     });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("shadow map"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_shadow_map"),
-            compilation_options: Default::default(),
-            buffers: &[Some(vertex_layout())],
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Greater),
-            stencil: Default::default(),
-            // No rasterised bias: a slope-scaled one pushed the side faces of thin bars,
-            // seen edge-on from the light, beyond the floor, and their shadows came out
-            // narrower than the ray casts'; receivers are offset along their normal and
-            // toward the light when they read the map instead (logsh.wgsl).
-            bias: wgpu::DepthBiasState::default(),
-        }),
-        multisample: Default::default(),
-        fragment: None,
-        multiview_mask: None,
-        cache: None,
-    })
+    let clear_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("shadow map clear"),
+        bind_group_layouts: &[],
+        immediate_size: 0,
+    });
+    let vertex_buffers = [Some(vertex_layout())];
+    let pipeline = |label, layout, entry_point, buffers, depth_compare| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(depth_compare),
+                stencil: Default::default(),
+                // No rasterised bias: a slope-scaled one pushed the side faces of thin bars,
+                // seen edge-on from the light, beyond the floor, and their shadows came out
+                // narrower than the ray casts'; receivers are offset along their normal and
+                // toward the light when they read the map instead (logsh.wgsl).
+                bias: wgpu::DepthBiasState::default(),
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        })
+    };
+    [
+        pipeline(
+            "shadow map",
+            &draw_layout,
+            "vs_shadow_map",
+            &vertex_buffers[..],
+            wgpu::CompareFunction::Greater,
+        ),
+        pipeline(
+            "shadow map clear",
+            &clear_layout,
+            "vs_clear_view",
+            &[],
+            wgpu::CompareFunction::Always,
+        ),
+    ]
 }
