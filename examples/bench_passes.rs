@@ -5,8 +5,10 @@
 //! [DOWNSAMPLE]`: 960 × 540,
 //! the shipped defaults with the light on the SH path, SPHERES spheres on the casters
 //! (600 by default); MODE `anew` (the default: every frame drawn anew), `per-vertex` (the
-//! same, shaded per vertex) or `after-edit` (each frame after the lights were set again,
-//! the view kept); prints the mean wall-clock frame and each pass's mean GPU time over
+//! same, shaded per vertex: the vertices' visibility, computed for the warm-up frame, is
+//! kept), `per-vertex-moved` (per vertex, each frame after the light moved a centimetre,
+//! which computes the visibility again) or `after-edit` (each frame after the lights were
+//! set again, the view kept); prints the mean wall-clock frame and each pass's mean GPU time over
 //! FRAMES frames (6) after a warm-up, and how many pixels the upsampling left to be
 //! shaded otherwise; PNG: also writes the last frame there; DOWNSAMPLE: shades one pixel
 //! in that many squared (1: every pixel, to compare frames with).
@@ -21,8 +23,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (per_vertex, redraw) = match args.get(1).map(String::as_str) {
         None | Some("anew") => (false, Redraw::Everything),
         Some("per-vertex") => (true, Redraw::Everything),
+        Some("per-vertex-moved") => (true, Redraw::AfterLightMove),
         Some("after-edit") => (false, Redraw::AfterLightEdit),
-        Some(other) => return Err(format!("unknown MODE {other:?}: anew, per-vertex or after-edit").into()),
+        Some(other) => {
+            return Err(format!("unknown MODE {other:?}: anew, per-vertex, per-vertex-moved or after-edit").into());
+        }
     };
     let frames: u32 = args.get(2).map(|a| a.parse()).transpose()?.unwrap_or(6);
     let gpu = GpuContext::headless()?;
@@ -66,6 +71,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         spheres.len(),
         if per_vertex { ", per vertex" } else { "" }
     );
+    if per_vertex {
+        println!(
+            "vertices whose visibility the last frame computed: {}",
+            renderer.vertices_computed()
+        );
+    }
     if let Some(listed) = renderer.listed_pixels() {
         let listed = listed?;
         println!(

@@ -40,15 +40,13 @@ fn frame(
     (image, renderer.triangles_in_view())
 }
 
-#[test]
-fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
-    let Some(gpu) = common::gpu() else { return };
-    let document = Document::open(&common::repo_path("projects/sample/sample.lightpaint")).expect("sample opens");
+/// The sample's whole view, and one close to its smallest object, from the side the
+/// sample's camera sees it from, turned 50° to the side: some objects leave the view, the
+/// floor and the wall stay.
+fn whole_and_close_views(document: &Document) -> (Camera, Camera) {
     let whole = document
         .camera
         .map_or_else(|| document.scene.initial_camera(), |o| o.camera());
-    // Close to the smallest object, from the side the sample's camera sees it from,
-    // turned 50° to the side: some objects leave the view, the floor and the wall stay.
     let smallest = document
         .scene
         .objects
@@ -65,6 +63,14 @@ fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
         whole.yfov_rad,
         whole.znear,
     );
+    (whole, close)
+}
+
+#[test]
+fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
+    let Some(gpu) = common::gpu() else { return };
+    let document = Document::open(&common::repo_path("projects/sample/sample.lightpaint")).expect("sample opens");
+    let (_, close) = whole_and_close_views(&document);
     for per_vertex in [false, true] {
         let mut settings = document.settings;
         settings.shadows.per_vertex = per_vertex;
@@ -146,4 +152,98 @@ fn shadow_maps_culled_per_view_cast_the_same_shadows() {
         "the culled maps' frame differs from the whole one at {differing} pixels"
     );
     common::thin_casters::save_for_review("shadow-maps-culled-per-view", &culled);
+}
+
+/// Per vertex, each object's visibility is computed when it first comes into view and kept
+/// while the blockers, settings and — where their windows on the blockers apply — the SH
+/// path's lights hold: a frame of the close view computes the objects it sees, the whole
+/// view then only those the close one culled, the same view again none, and under the
+/// sample's environment (no windows) a moved light none; without the environment the
+/// windows apply and a moved light computes every object in view again. Each frame must
+/// be byte for byte the one a new renderer draws.
+#[test]
+fn per_vertex_visibility_is_computed_once_per_object_in_view() {
+    let Some(gpu) = common::gpu() else { return };
+    let document = Document::open(&common::repo_path("projects/sample/sample.lightpaint")).expect("sample opens");
+    assert!(document.scene.environment.is_some(), "the sample has an environment");
+    let (whole, close) = whole_and_close_views(&document);
+    let mut settings = document.settings;
+    settings.shadows.per_vertex = true;
+    // Every light on the SH path, so that without the environment their windows apply.
+    settings.shadows.light_paths = lightpaint::shading::LightPaths::Harmonics;
+    let blockers = fit_scene(&document.scene, &settings.blockers).spheres();
+    let new_renderer = |scene: &lightpaint::scene::Scene| {
+        SceneRenderer::new(
+            &gpu.device,
+            &gpu.queue,
+            scene,
+            &blockers,
+            &settings.shadows,
+            AntiAliasing::default(),
+            Compilation::Blocking,
+        )
+    };
+    let draw = |renderer: &mut SceneRenderer, camera: &Camera| {
+        renderer.render(camera, SIZE, &settings, FrameQuality::default());
+        let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+        (image, renderer.vertices_computed())
+    };
+    let drawn_anew = |scene: &lightpaint::scene::Scene, camera: &Camera| draw(&mut new_renderer(scene), camera);
+    let all_vertices: u64 = document.scene.objects.iter().map(|o| o.positions.len() as u64).sum();
+    let mut kept = new_renderer(&document.scene);
+
+    let (_, close_vertices) = draw(&mut kept, &close);
+    assert!(
+        close_vertices > 0 && close_vertices < all_vertices,
+        "the close view computes what it sees: {close_vertices} of {all_vertices} vertices"
+    );
+    let (whole_frame, whole_vertices) = draw(&mut kept, &whole);
+    let (anew, anew_vertices) = drawn_anew(&document.scene, &whole);
+    assert_eq!(differing(&whole_frame, &anew), 0, "the whole view after the close one");
+    assert_eq!(
+        whole_vertices,
+        anew_vertices - close_vertices,
+        "the whole view computes only what the close one did not"
+    );
+    let (again, again_vertices) = draw(&mut kept, &whole);
+    assert_eq!(differing(&again, &anew), 0, "the whole view drawn again");
+    assert_eq!(again_vertices, 0, "the same view again computes nothing");
+
+    let moved_light = |scene: &lightpaint::scene::Scene| {
+        let mut moved = scene.clone();
+        moved.lights[0].position += glam::Vec3::new(0.8, 0.3, -0.5);
+        moved
+    };
+    let moved = moved_light(&document.scene);
+    kept.set_lights(&moved.lights);
+    let (after_move, move_vertices) = draw(&mut kept, &whole);
+    let (move_anew, _) = drawn_anew(&moved, &whole);
+    assert!(differing(&anew, &move_anew) > 1000, "the light's move must show");
+    assert_eq!(differing(&after_move, &move_anew), 0, "the view after a light moved");
+    assert_eq!(
+        move_vertices, 0,
+        "under the environment no light is read: nothing computed"
+    );
+
+    let mut unlit = document.scene.clone();
+    unlit.environment = None;
+    let mut kept = new_renderer(&unlit);
+    let (_, first_vertices) = draw(&mut kept, &whole);
+    let moved = moved_light(&unlit);
+    kept.set_lights(&moved.lights);
+    let (after_move, move_vertices) = draw(&mut kept, &whole);
+    let (move_anew, _) = drawn_anew(&moved, &whole);
+    assert_eq!(
+        differing(&after_move, &move_anew),
+        0,
+        "the view after a windowed light moved"
+    );
+    assert_eq!(
+        move_vertices, first_vertices,
+        "a moved light whose window applies computes every vertex in view again"
+    );
+}
+
+fn differing(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
 }

@@ -272,6 +272,11 @@ impl<'a> ShadowRenderer<'a> {
         self.renderer.triangles_in_view()
     }
 
+    /// See [`SceneRenderer::vertices_computed`].
+    pub fn vertices_computed(&self) -> u64 {
+        self.renderer.vertices_computed()
+    }
+
     /// See [`SceneRenderer::shadow_map_triangles`].
     pub fn shadow_map_triangles(&self) -> (u64, u64) {
         self.renderer.shadow_map_triangles()

@@ -1,6 +1,9 @@
 //! Plumbing of per-vertex log-SH shading (shaders/logsh_per_vertex.wgsl): a compute pass
 //! writes each vertex's visibility SH into a buffer per object, which the shading pass
-//! binds as a second vertex buffer.
+//! binds as a second vertex buffer. The visibility is a function of where the vertex is,
+//! not of the view: each object's is computed when it first comes into view and kept
+//! until what it is computed from changes ([`VisibilityInputs`]), so frames of a moving
+//! camera walk no blockers for objects they saw before.
 
 use crate::render::descriptors::{slot_entries, storage_buffer_entry};
 use crate::render::resources::GpuScene;
@@ -72,10 +75,11 @@ impl PerVertexCompute {
         }
     }
 
-    /// Computes the visibility of the vertices of `scene`'s objects drawn from the camera
-    /// ([`crate::render::resources::GpuObject::drawn_in_view`]) into `visibility`, the
-    /// frame's group `frame` and the blockers' `blockers` bound (the other objects' keep
-    /// what they held: nothing reads them this frame).
+    /// Computes the visibility of the vertices of the objects `visibility` plans
+    /// ([`VertexVisibility::plan`]; all of them before the first plan) among those of
+    /// `scene` drawn from the camera ([`crate::render::resources::GpuObject::drawn_in_view`]),
+    /// the frame's group `frame` and the blockers' `blockers` bound (the other objects'
+    /// keep what they held).
     pub fn run(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -92,8 +96,8 @@ impl PerVertexCompute {
         pass.set_bind_group(slots::MATERIAL_GROUP, &self.empty_group, &[]);
         pass.set_bind_group(slots::SHADOW_GROUP, blockers, &[]);
         let objects = visibility.bind_groups.iter().zip(&visibility.vertex_counts);
-        for ((bind_group, vertex_count), object) in objects.zip(&scene.objects) {
-            if !object.drawn_in_view() {
+        for (((bind_group, vertex_count), object), planned) in objects.zip(&scene.objects).zip(&visibility.to_compute) {
+            if !object.drawn_in_view() || !planned {
                 continue;
             }
             pass.set_bind_group(slots::PASS_GROUP, bind_group, &[]);
@@ -113,11 +117,47 @@ impl PerVertexCompute {
     }
 }
 
-/// The visibility SH of every vertex of a [`GpuScene`], one buffer per object.
+/// What the per-vertex visibility is computed from besides the vertices: the SH path's
+/// lights where their windows on the blockers apply (`shading::light_windows`: without
+/// them the walk reads no light), the environment, the shadow settings, the blockers and
+/// the scene's upload (new geometry, objects hidden or shown).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VisibilityInputs {
+    windowed_lights: Option<Vec<crate::shading::gpu_types::GpuLight>>,
+    environment_irradiance: [[f32; 4]; 9],
+    settings: crate::shading::ShadowSettings,
+    blockers_generation: u64,
+    scene_generation: u64,
+}
+
+impl VisibilityInputs {
+    pub fn new(
+        lighting: crate::render::resources::HarmonicLighting,
+        settings: crate::shading::ShadowSettings,
+        blockers_generation: u64,
+        scene_generation: u64,
+    ) -> VisibilityInputs {
+        let windows = crate::shading::light_windows::windows_apply(&lighting.environment_irradiance, &lighting.lights);
+        VisibilityInputs {
+            windowed_lights: windows.then_some(lighting.lights),
+            environment_irradiance: lighting.environment_irradiance,
+            settings,
+            blockers_generation,
+            scene_generation,
+        }
+    }
+}
+
+/// The visibility SH of every vertex of a [`GpuScene`], one buffer per object, and which
+/// objects' buffers hold it for the inputs of the last plan.
 pub struct VertexVisibility {
     pub buffers: Vec<wgpu::Buffer>,
     bind_groups: Vec<wgpu::BindGroup>,
     vertex_counts: Vec<u32>,
+    computed_from: Option<VisibilityInputs>,
+    computed: Vec<bool>,
+    /// The objects the next [`PerVertexCompute::run`] computes.
+    to_compute: Vec<bool>,
 }
 
 impl VertexVisibility {
@@ -143,10 +183,31 @@ impl VertexVisibility {
             buffers.push(buffer);
             vertex_counts.push(object.vertex_count);
         }
+        let objects = vertex_counts.len();
         VertexVisibility {
             buffers,
             bind_groups,
             vertex_counts,
+            computed_from: None,
+            computed: vec![false; objects],
+            to_compute: vec![true; objects],
         }
+    }
+
+    /// Plans the next run for a frame whose visibility is computed from `inputs`: the
+    /// objects drawn from its camera whose buffers do not hold it yet (every one of them
+    /// when the inputs changed). Returns how many vertices it will compute.
+    pub fn plan(&mut self, inputs: VisibilityInputs, scene: &GpuScene) -> u64 {
+        if self.computed_from.as_ref() != Some(&inputs) {
+            self.computed.fill(false);
+            self.computed_from = Some(inputs);
+        }
+        let mut vertices = 0;
+        for (k, object) in scene.objects.iter().enumerate().take(self.computed.len()) {
+            self.to_compute[k] = object.drawn_in_view() && !self.computed[k];
+            self.computed[k] |= self.to_compute[k];
+            vertices += u64::from(self.to_compute[k]) * u64::from(self.vertex_counts[k]);
+        }
+        vertices
     }
 }

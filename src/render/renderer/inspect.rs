@@ -32,6 +32,13 @@ impl SceneRenderer {
         self.shadow_maps.last_drawn()
     }
 
+    /// The vertices whose visibility the last frame computed per vertex: those of the
+    /// objects it saw first since the lights, blockers, settings or scene changed (0 when
+    /// it was not shaded per vertex).
+    pub fn vertices_computed(&self) -> u64 {
+        self.vertices_computed
+    }
+
     /// How many pixels the last frame's upsampling left to the soft layer and shaded in
     /// full (None where the frame was not drawn deferred at full resolution).
     pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {

@@ -20,7 +20,7 @@ pub use pipeline_cache::{Compilation, PipelineKey};
 use super::pass_timer::{self, PassTimer, TimedEncoder};
 use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
-use super::passes::per_vertex::VertexVisibility;
+use super::passes::per_vertex::{VertexVisibility, VisibilityInputs};
 use super::passes::raster::ScenePipeline;
 use super::passes::reduced_shading::{
     FrameInputs, LowResolutionTargets, MappedLightKey, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
@@ -112,6 +112,8 @@ pub struct SceneRenderer {
     /// The next frame draws its surfaces anew even if the view and scene are unchanged
     /// ([`Self::forget_surfaces`]).
     surfaces_forgotten: bool,
+    /// Vertices whose visibility the last frame computed (per vertex; 0 otherwise).
+    vertices_computed: u64,
     /// Changes with every [`Self::set_blockers`] (what the soft layer shows depends on it).
     blockers_generation: u64,
 }
@@ -189,6 +191,7 @@ impl SceneRenderer {
             target: None,
             pass_timer: None,
             surfaces_forgotten: false,
+            vertices_computed: 0,
             blockers_generation: 0,
         };
         renderer.write_lights();
@@ -476,10 +479,20 @@ impl SceneRenderer {
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
         {
             let shadows = &mut self.shadows;
-            let per_vertex = shadows
-                .visibility
-                .as_ref()
-                .filter(|_| quality.per_vertex_preview || shadows.settings.per_vertex);
+            let wants_per_vertex = quality.per_vertex_preview || shadows.settings.per_vertex;
+            self.vertices_computed = match &mut shadows.visibility {
+                Some(visibility) if wants_per_vertex => visibility.plan(
+                    VisibilityInputs::new(
+                        self.gpu_scene.harmonic_lighting(),
+                        shadows.settings,
+                        self.blockers_generation,
+                        self.gpu_scene.surfaces_generation(),
+                    ),
+                    &self.gpu_scene,
+                ),
+                _ => 0,
+            };
+            let per_vertex = shadows.visibility.as_ref().filter(|_| wants_per_vertex);
             if per_vertex.is_none() {
                 shadows.low_resolution =
                     shadows
