@@ -121,7 +121,7 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
         // A sphere light: its cap has sin(half-angle) = radius / distance.
         result.cap_ratio = min(light.source_size * inverseSqrt(distance2), 1.0);
     }
-    if AREA_LIGHTS && light.kind == LIGHT_AREA {
+    if (RECT_LIGHTS || DISK_LIGHTS) && light.kind == LIGHT_AREA {
         let cos_emitter = max(dot(-result.to_light, light.direction_range.xyz), 0.0);
         // The cap of the same solid angle Ω = A·cos θ/d²: 1 − cos(half-angle) = Ω/(2π).
         let u = min(light.source_size * cos_emitter / distance2 / (2.0 * PI), 1.0);
@@ -143,14 +143,17 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     return result;
 }
 
-// false: no light of the frame is a rect or a disk, and their vector irradiance is left
-// out (shading::compiled_paths; lavapipe pays for a branch's body whether or not a pixel
-// takes it).
-override AREA_LIGHTS: bool = true;
+// false: no light of the frame is a rect (a disk), and the vector irradiance of its
+// polygon is left out (shading::compiled_paths; lavapipe pays for a branch's body whether
+// or not a pixel takes it).
+override RECT_LIGHTS: bool = true;
+override DISK_LIGHTS: bool = true;
 
 // Sides of the regular polygon of equal area a disk light is taken as
 // (shading::cpu::area::DISK_LIGHT_SIDES).
 const DISK_LIGHT_SIDES: u32 = 8u;
+// area_vector_irradiance writes the eight corners out.
+const_assert DISK_LIGHT_SIDES == 8u;
 
 // The emitting plane's unit width axis for an emitting normal: reference × normal, the
 // reference +y, or +z within 8° of ±y (shading::cpu::area::area_frame).
@@ -199,31 +202,37 @@ fn area_vector_irradiance(light: Light, p: vec3<f32>) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
-    var u: vec3<f32>;
-    var v: vec3<f32>;
-    var sides = 4u;
-    var first_angle = 0.25 * PI;
-    if dot(half_width, half_width) > 0.0 {
-        let half_height = light.source_size / (4.0 * length(half_width));
-        u = half_width * sqrt(2.0);
-        v = normalize(cross(normal, half_width)) * (half_height * sqrt(2.0));
-    } else {
+    let rect = dot(half_width, half_width) > 0.0;
+    // The polygons' edges written out, corners without a sine or cosine: a loop over
+    // them, with a sine and a cosine a corner, cost lavapipe about twice as much.
+    var sum = vec3<f32>(0.0);
+    if RECT_LIGHTS && rect {
+        // Corners at 45° + k·90° on the ellipse of semi-axes √2·(half extents).
+        let half_height = normalize(cross(normal, half_width)) * (light.source_size / (4.0 * length(half_width)));
+        let c0 = centre + half_width + half_height;
+        let c1 = centre - half_width + half_height;
+        let c2 = centre - half_width - half_height;
+        let c3 = centre + half_width - half_height;
+        sum = edge_form_factor(c0, c1) + edge_form_factor(c1, c2) + edge_form_factor(c2, c3) + edge_form_factor(c3, c0);
+    }
+    if DISK_LIGHTS && !rect {
+        // DISK_LIGHT_SIDES (8) corners at k·45° on the circle of the circumradius.
         let n = f32(DISK_LIGHT_SIDES);
         let circumradius = sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
         let width = area_width_axis(normal);
-        u = width * circumradius;
-        v = cross(normal, width) * circumradius;
-        sides = DISK_LIGHT_SIDES;
-        first_angle = 0.0;
-    }
-    var sum = vec3<f32>(0.0);
-    let step = 2.0 * PI / f32(sides);
-    var a = centre + u * cos(first_angle) + v * sin(first_angle);
-    for (var k = 1u; k <= sides; k++) {
-        let angle = first_angle + step * f32(k);
-        let b = centre + u * cos(angle) + v * sin(angle);
-        sum += edge_form_factor(a, b);
-        a = b;
+        let u = width * circumradius;
+        let v = cross(normal, width) * circumradius;
+        let r = 0.70710678;
+        let c0 = centre + u;
+        let c1 = centre + r * (u + v);
+        let c2 = centre + v;
+        let c3 = centre + r * (v - u);
+        let c4 = centre - u;
+        let c5 = centre - r * (u + v);
+        let c6 = centre - v;
+        let c7 = centre + r * (u - v);
+        sum = edge_form_factor(c0, c1) + edge_form_factor(c1, c2) + edge_form_factor(c2, c3) + edge_form_factor(c3, c4)
+            + edge_form_factor(c4, c5) + edge_form_factor(c5, c6) + edge_form_factor(c6, c7) + edge_form_factor(c7, c0);
     }
     let phi = 0.5 * sum;
     return select(phi, -phi, dot(phi, centre) < 0.0);

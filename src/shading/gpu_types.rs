@@ -217,6 +217,12 @@ pub struct GpuLight {
 }
 
 impl GpuLight {
+    /// An area light whose polygon is a rect (its half width is not zero), as the shaders
+    /// tell it; the other area lights are disks.
+    pub fn is_rect(&self) -> bool {
+        self.area_half_width_m.iter().map(|c| c * c).sum::<f32>() > 0.0
+    }
+
     pub fn new(light: &Light) -> GpuLight {
         // A sphere lights like a point at its centre (exact for unshadowed receivers it is
         // wholly above the horizon of); an area light carries L·A, its shape (area and

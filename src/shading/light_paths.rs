@@ -47,10 +47,13 @@ pub struct CompiledPaths {
     pub harmonics: bool,
     /// The scene has a terrain (TERRAIN_SHADOWS).
     pub terrain: bool,
-    /// Some light is a rect or a disk: their exact vector irradiance is compiled in
-    /// (AREA_LIGHTS; on lavapipe its loop over the polygon's edges cost the studio, which
-    /// has none, 5–7 ms a frame when it was always there).
-    pub area_lights: bool,
+    /// Some light is a rect (RECT_LIGHTS), or a disk (DISK_LIGHTS): the exact vector
+    /// irradiance of that polygon is compiled in, its edges written out (on lavapipe a
+    /// loop over the polygon's edges cost the studio, which has neither, 5–7 ms a frame
+    /// when it was always there, and the blocker bench's rect shaded per vertex 10–20 ms
+    /// more than the rect's four edges alone, which also leave the disk's eight out).
+    pub rect_lights: bool,
+    pub disk_lights: bool,
     /// More lights than the shaders' uniform array holds: the rest are read from a storage
     /// buffer (LIGHT_OVERFLOW; [`UNIFORM_LIGHT_CAPACITY`]).
     pub light_overflow: bool,
@@ -77,7 +80,8 @@ impl CompiledPaths {
         exact_wide: true,
         harmonics: true,
         terrain: true,
-        area_lights: true,
+        rect_lights: true,
+        disk_lights: true,
         light_overflow: true,
         blocker_overflow: true,
         light_windows: super::light_windows::MAX_WINDOW_LIGHTS as u32,
@@ -92,7 +96,8 @@ impl CompiledPaths {
         exact_wide: false,
         harmonics: false,
         terrain: false,
-        area_lights: false,
+        rect_lights: false,
+        disk_lights: false,
         light_overflow: false,
         blocker_overflow: false,
         light_windows: 0,
@@ -141,7 +146,12 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
         terrain: lighting.has_terrain,
-        area_lights: shaded.iter().any(|light| light.kind == super::gpu_types::LIGHT_AREA),
+        rect_lights: shaded
+            .iter()
+            .any(|light| light.kind == super::gpu_types::LIGHT_AREA && light.is_rect()),
+        disk_lights: shaded
+            .iter()
+            .any(|light| light.kind == super::gpu_types::LIGHT_AREA && !light.is_rect()),
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
         light_windows: super::light_windows::compiled_windows(lighting.has_environment, shaded),
@@ -391,6 +401,27 @@ mod tests {
         };
         assert!(compiled_paths(&[], single_sided, 0).cull_back_faces);
         assert!(!compiled_paths(&[], terrain, 0).cull_back_faces);
+        // A rect's polygon and a disk's are compiled in apart, each only for its lights.
+        let area = |kind| {
+            GpuLight::new(&Light {
+                kind,
+                ..points[0].clone()
+            })
+        };
+        let rect = area(LightKind::Rect {
+            width_m: 0.6,
+            height_m: 0.4,
+            turn_rad: 0.0,
+        });
+        let disk = area(LightKind::Disk { radius_m: 0.3 });
+        let area_paths = |lights: &[GpuLight]| {
+            let paths = compiled_paths(lights, terrain, 0);
+            (paths.rect_lights, paths.disk_lights)
+        };
+        assert_eq!(area_paths(&[rect]), (true, false));
+        assert_eq!(area_paths(&[disk]), (false, true));
+        assert_eq!(area_paths(&[rect, disk]), (true, true));
+        assert_eq!(area_paths(&[GpuLight::new(&points[0])]), (false, false));
     }
 
     /// Twelve point lights, the last the dimmest, then a sun: the sun's one view comes
