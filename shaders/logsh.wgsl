@@ -423,6 +423,10 @@ fn light_through(s: Surface, lobes: LobeVisibility, inc: Incidence) -> vec3<f32>
     return inc.irradiance * (s.k_d * clamp(diffuse_mean, 0.0, direct.x) + s.k_s * specular);
 }
 
+// false: no environment lights the frame (shading::compiled_paths), and its light through
+// the visibility — a product of SH at every point shaded — is left out.
+override ENVIRONMENT_LIGHT: bool = true;
+
 // The environment's diffuse light at s through the lobes' SH, ⟨V · cos⁺/π, L_env⟩: the
 // visibility weighted by where the environment is bright. (Scaling the unshadowed light
 // by the cosine-weighted mean of V, as the separate BRDF does for each light, dimmed a
@@ -430,6 +434,9 @@ fn light_through(s: Surface, lobes: LobeVisibility, inc: Incidence) -> vec3<f32>
 // brighter above than below: the floor hides the dim half.) Clamped to the unshadowed
 // light, which it equals where nothing blocks.
 fn environment_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
+    if !ENVIRONMENT_LIGHT {
+        return vec3<f32>(0.0);
+    }
     let unshadowed = environment_irradiance_at(s) / PI;
     if BRDF_SHADING == BRDF_SEPARATE {
         return s.k_d * clamp(sh_environment_through_cosine(lobes.diffuse, s.normal), vec3<f32>(0.0), unshadowed);

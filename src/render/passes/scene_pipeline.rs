@@ -85,6 +85,7 @@ pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("SHADOW_MAPS", flag(paths.maps)),
         ("SOFT_SHADOW_MAPS", flag(paths.soft_maps)),
         ("SH_VISIBILITY", flag(paths.harmonics)),
+        ("ENVIRONMENT_LIGHT", flag(paths.environment)),
         ("TERRAIN_SHADOWS", flag(paths.terrain)),
         ("RECT_LIGHTS", flag(paths.rect_lights)),
         ("DISK_LIGHTS", flag(paths.disk_lights)),
