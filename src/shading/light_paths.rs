@@ -1,4 +1,5 @@
-//! Which shadow path each light takes, and which shading code a frame's pipelines carry.
+//! Which shadow path each light takes (`super::compiled_paths` says which shading code a
+//! frame's pipelines carry for it).
 //!
 //! One choice per light for the whole frame (no receiver shows a seam where a light
 //! would change path), the same in the editor, the CLI, the CPU reference and painting:
@@ -17,155 +18,12 @@
 //! blocker cuts the light's disc (a light no blocker shadows gains nothing from the
 //! exact path); the others take the SH.
 
+pub use super::compiled_paths::{CompiledPaths, SceneLighting, compiled_paths};
 pub use super::light_path_context::LightPathContext;
 
-use super::gpu_types::{
-    GpuLight, MAX_SHADOW_VIEWS, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH, UNIFORM_BLOCKER_CAPACITY,
-    UNIFORM_LIGHT_CAPACITY,
-};
+use super::gpu_types::{GpuLight, MAX_SHADOW_VIEWS, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
 use super::{LightPaths, ShadowSettings};
-use crate::scene::{Light, Scene};
-
-/// Which shading code a log-SH pipeline compiles in (the override constants
-/// EXACT_LIGHT_PATH, EXACT_WIDE, SHADOW_MAPS, SOFT_SHADOW_MAPS, SH_VISIBILITY,
-/// ENVIRONMENT_LIGHT, TERRAIN_SHADOWS, RECT_LIGHTS, DISK_LIGHTS, LIGHT_OVERFLOW,
-/// BLOCKER_OVERFLOW and LIGHT_WINDOWS): lavapipe runs the code of both sides of a branch
-/// at every pixel whether taken or not, so code that the frame does not need is left out.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct CompiledPaths {
-    /// Some light is on the exact path (EXACT_LIGHT_PATH).
-    pub exact: bool,
-    /// Some light is shadowed by its shadow map (SHADOW_MAPS).
-    pub maps: bool,
-    /// Some of those has a size: its maps' penumbra filter is compiled in
-    /// (SOFT_SHADOW_MAPS).
-    pub soft_maps: bool,
-    /// More than four lights are: the exact path takes them eight at a time rather than
-    /// four (EXACT_WIDE).
-    pub exact_wide: bool,
-    /// The visibility SH are read: some light is on the SH path, or an environment lights
-    /// the scene (SH_VISIBILITY).
-    pub harmonics: bool,
-    /// An environment lights the scene (ENVIRONMENT_LIGHT): its light through the
-    /// visibility, a product of SH at every point shaded, is compiled in (without it the
-    /// blocker bench's per-vertex pass took about 15 % less).
-    pub environment: bool,
-    /// The scene has a terrain (TERRAIN_SHADOWS).
-    pub terrain: bool,
-    /// Some light is a rect (RECT_LIGHTS), or a disk (DISK_LIGHTS): the exact vector
-    /// irradiance of that polygon is compiled in, its edges written out (on lavapipe a
-    /// loop over the polygon's edges cost the studio, which has neither, 5–7 ms a frame
-    /// when it was always there, and the blocker bench's rect shaded per vertex 10–20 ms
-    /// more than the rect's four edges alone, which also leave the disk's eight out).
-    pub rect_lights: bool,
-    pub disk_lights: bool,
-    /// More lights than the shaders' uniform array holds: the rest are read from a storage
-    /// buffer (LIGHT_OVERFLOW; [`UNIFORM_LIGHT_CAPACITY`]).
-    pub light_overflow: bool,
-    /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
-    pub blocker_overflow: bool,
-    /// How many windows of SH-path lights on the blockers the code holds (LIGHT_WINDOWS;
-    /// `shading::light_windows`): the SH lights' count when no environment lights the
-    /// frame and 1 to 4 lights are on the SH path, else 0 (the shaders check
-    /// `windows_apply` per frame too; lavapipe pays for every window compiled in).
-    pub light_windows: u32,
-    /// Back faces are culled: every material of the scene is single-sided. Not code but
-    /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent
-    /// a tenth of the studio's default frame on the back faces it rasterised only for
-    /// the depth test to reject them.
-    pub cull_back_faces: bool,
-}
-
-impl CompiledPaths {
-    /// Every path (a pipeline any frame can be drawn with).
-    pub const ALL: CompiledPaths = CompiledPaths {
-        exact: true,
-        maps: true,
-        soft_maps: true,
-        exact_wide: true,
-        harmonics: true,
-        environment: true,
-        terrain: true,
-        rect_lights: true,
-        disk_lights: true,
-        light_overflow: true,
-        blocker_overflow: true,
-        light_windows: super::light_windows::MAX_WINDOW_LIGHTS as u32,
-        cull_back_faces: false,
-    };
-
-    /// No optional path (a pipeline that shades no light).
-    pub const NONE: CompiledPaths = CompiledPaths {
-        exact: false,
-        maps: false,
-        soft_maps: false,
-        exact_wide: false,
-        harmonics: false,
-        environment: false,
-        terrain: false,
-        rect_lights: false,
-        disk_lights: false,
-        light_overflow: false,
-        blocker_overflow: false,
-        light_windows: 0,
-        cull_back_faces: false,
-    };
-}
-
-/// What a frame lights a scene with, besides its lights.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct SceneLighting {
-    pub has_environment: bool,
-    pub has_terrain: bool,
-    /// Every material is single-sided: back faces are culled
-    /// ([`Scene::every_material_single_sided`]).
-    pub single_sided: bool,
-}
-
-impl SceneLighting {
-    pub fn of(scene: &Scene) -> SceneLighting {
-        SceneLighting {
-            has_environment: super::gpu_types::environment_lights(scene.environment.as_ref()),
-            has_terrain: scene.terrain.is_some(),
-            single_sided: scene.every_material_single_sided(),
-        }
-    }
-}
-
-/// Exact-path lights per half of the shaders' eight-light batch: one `vec4` lane each
-/// (`ExactBatch` in exact_lights.wgsl). A frame with more needs the wide batch
-/// (EXACT_WIDE).
-const EXACT_LIGHTS_PER_HALF_BATCH: usize = 4;
-
-/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
-/// and `blocker_count` blockers.
-pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
-    let exact_count = shaded
-        .iter()
-        .filter(|light| light.shadow_path == SHADOW_PATH_EXACT)
-        .count();
-    CompiledPaths {
-        exact: exact_count > 0,
-        maps: shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_MAP),
-        soft_maps: shaded
-            .iter()
-            .any(|light| light.shadow_path == SHADOW_PATH_MAP && light.source_size > 0.0),
-        exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
-        harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
-        environment: lighting.has_environment,
-        terrain: lighting.has_terrain,
-        rect_lights: shaded
-            .iter()
-            .any(|light| light.kind == super::gpu_types::LIGHT_AREA && light.is_rect()),
-        disk_lights: shaded
-            .iter()
-            .any(|light| light.kind == super::gpu_types::LIGHT_AREA && !light.is_rect()),
-        light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
-        blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
-        light_windows: super::light_windows::compiled_windows(lighting.has_environment, shaded),
-        cull_back_faces: lighting.single_sided,
-    }
-}
+use crate::scene::Light;
 
 /// The lights as the shaders and the CPU reference take them, each on the shadow path
 /// `settings` give it (`GpuLight::shadow_path`, and `first_shadow_view` for the lights with
@@ -292,6 +150,8 @@ fn auto_exact(
 mod tests {
     use super::*;
     use crate::blockers::Sphere;
+    use crate::scene::Scene;
+    use crate::shading::gpu_types::{UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY};
     use glam::Vec3;
 
     fn light(kind: crate::scene::LightKind, intensity: f32) -> crate::scene::Light {

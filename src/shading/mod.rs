@@ -10,6 +10,7 @@ mod baked_indirect;
 pub mod blocker_groups;
 pub mod blocker_reach;
 mod color;
+mod compiled_paths;
 pub mod cpu;
 pub mod frame_transfer;
 pub mod gpu_types;
