@@ -117,7 +117,7 @@ impl SceneLighting {
 /// (EXACT_WIDE).
 const EXACT_LIGHTS_PER_HALF_BATCH: usize = 4;
 
-/// The paths a frame needs for its lights as [`shading_lights`] put them on their paths,
+/// The paths a frame needs for its lights as [`shading_lights`](super::shading_lights) put them on their paths,
 /// and `blocker_count` blockers.
 pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_count: usize) -> CompiledPaths {
     let exact_count = shaded
