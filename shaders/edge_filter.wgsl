@@ -11,7 +11,7 @@
 // on those (its depth test rejects the marked ones before the shader). On a software GPU,
 // which runs both sides of a branch at every pixel, a single draw would pay the edge
 // search at every pixel.
-// #import slots
+// #import slots full_screen
 
 // The frame as drawn, read raw (sRGB-encoded values).
 @group(IMAGE_GROUP) @binding(FRAME_IMAGE_BINDING) var frame_image: texture_2d<f32>;
@@ -35,8 +35,7 @@ fn edge_search_step_px(i: u32) -> f32 {
 // A triangle covering the viewport at depth 0: no overdraw, no vertex buffer.
 @vertex
 fn vs_full_screen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(full_screen_corner(index) * 2.0 - 1.0, 0.0, 1.0);
 }
 
 fn luma(color: vec3<f32>) -> f32 {

@@ -17,7 +17,7 @@
 //   b: xy the emission — the material's own and the baked indirect light —
 //      (pack_lighting), z k_s (three unorm10), w the Phong exponent (f32 bits).
 // The samples carry the light of the lights alone; each pixel adds its own emission.
-// #import reduced_shading logsh shadow_lookup slots
+// #import reduced_shading logsh shadow_lookup slots full_screen
 
 @group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_A_BINDING) var surface_buffer_a: texture_2d<u32>;
 @group(MATERIAL_GROUP) @binding(SURFACE_BUFFER_B_BINDING) var surface_buffer_b: texture_2d<u32>;
@@ -174,8 +174,7 @@ struct FullScreen {
 
 @vertex
 fn vs_full_screen(@builtin(vertex_index) index: u32) -> FullScreen {
-    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return FullScreen(vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 1.0, 1.0));
+    return FullScreen(vec4<f32>(full_screen_corner(index) * 2.0 - vec2<f32>(1.0), 1.0, 1.0));
 }
 
 // Marks the low-resolution samples that lie on a surface: depth 0 there (the low

@@ -3,7 +3,7 @@
 // shadow_map_visibility reads them), and the far depth over one view's square, which
 // clears it alone. Depth only: no fragment stage; both faces are
 // drawn, so open and single-sided meshes cast too.
-// #import common slots
+// #import common slots full_screen
 
 @group(IMAGE_GROUP) @binding(SHADOW_VIEW_BINDING) var<uniform> shadow_view: ShadowView;
 
@@ -14,7 +14,6 @@ fn vs_shadow_map(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f3
 
 // A triangle over the whole viewport at depth 0, the far plane of the reversed depth.
 @vertex
-fn vs_clear_view(@builtin(vertex_index) corner: u32) -> @builtin(position) vec4<f32> {
-    let xy = vec2<f32>(f32((corner << 1u) & 2u), f32(corner & 2u)) * 2.0 - 1.0;
-    return vec4<f32>(xy, 0.0, 1.0);
+fn vs_clear_view(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    return vec4<f32>(full_screen_corner(index) * 2.0 - 1.0, 0.0, 1.0);
 }

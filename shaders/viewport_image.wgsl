@@ -3,7 +3,7 @@
 // frame's texel. egui's own image shader costs lavapipe about 14 ms for a 960 × 540
 // image (it carries a second, bilinear path of four texel loads and wrap arithmetic that
 // a software GPU runs beside the first); this one fetches one texel. Standalone.
-// #import slots
+// #import slots full_screen
 
 @group(IMAGE_GROUP) @binding(FRAME_IMAGE_BINDING) var frame_image: texture_2d<f32>;
 @group(IMAGE_GROUP) @binding(FRAME_SAMPLER_BINDING) var frame_sampler: sampler;
@@ -20,7 +20,7 @@ struct Covering {
 
 @vertex
 fn vs_viewport(@builtin(vertex_index) index: u32) -> Covering {
-    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    let corner = full_screen_corner(index);
     return Covering(vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 0.0, 1.0), vec2<f32>(corner.x, 1.0 - corner.y));
 }
 

@@ -468,14 +468,7 @@ impl FullResolutionImages {
                 origin,
                 ..image.as_image_copy()
             };
-            encoder.copy_buffer_to_texture(
-                wgpu::TexelCopyBufferInfo {
-                    buffer: &self.copy_band,
-                    layout,
-                },
-                destination,
-                extent,
-            );
+            encoder.copy_buffer_to_texture(band, destination, extent);
             first_row += rows;
         }
     }

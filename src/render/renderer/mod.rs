@@ -462,15 +462,11 @@ impl SceneRenderer {
         }
         self.refresh_shadow_maps(quality.draft_moved_maps);
         let Some(target) = &self.target else { return resized };
-        self.gpu_scene.write_frame(
-            &self.queue,
-            camera,
-            size,
-            (settings.exposure_ev, settings.background_linear()),
-        );
+        let background = settings.background_linear();
+        self.gpu_scene
+            .write_frame(&self.queue, camera, size, (settings.exposure_ev, background));
         let mut encoder = self.device.create_command_encoder(&Default::default());
         pass_timer::mark(&mut self.pass_timer, &mut encoder, "frame start");
-        let background = settings.background_linear();
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {
             // The heat map replaces the shading.
             pass_timer::mark(&mut self.pass_timer, &mut encoder, "heat map");

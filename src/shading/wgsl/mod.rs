@@ -38,9 +38,11 @@ pub const SHADOW_LOOKUP: &str = include_str!("../../../shaders/shadow_lookup.wgs
 pub const EDGE_FILTER: &str = include_str!("../../../shaders/edge_filter.wgsl");
 /// The editor's viewport image drawn into egui's frame.
 pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.wgsl");
+/// The full-screen triangle's corners, for every full-screen pass.
+pub const FULL_SCREEN: &str = include_str!("../../../shaders/full_screen.wgsl");
 
 /// Every file under `shaders/`, by the name modules import it by (its file stem).
-pub const FILES: [WgslModule<'static>; 17] = [
+pub const FILES: [WgslModule<'static>; 18] = [
     WgslModule {
         name: "common",
         source: COMMON,
@@ -108,6 +110,10 @@ pub const FILES: [WgslModule<'static>; 17] = [
     WgslModule {
         name: "viewport_image",
         source: VIEWPORT_IMAGE,
+    },
+    WgslModule {
+        name: "full_screen",
+        source: FULL_SCREEN,
     },
 ];
 
