@@ -93,16 +93,11 @@ fn scene_drawn_anew(
 
 /// Fails unless the frame drawn `after` a change is byte for byte the one drawn anew.
 fn assert_same(after: &image::RgbaImage, anew: &image::RgbaImage, what: &str) {
-    let differing = differing_pixels(after, anew);
+    let differing = common::differing_pixels(after, anew);
     assert_eq!(
         differing, 0,
         "the frame after {what} differs from the frame drawn anew at {differing} pixels"
     );
-}
-
-/// Pixels whose bytes differ.
-fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
-    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
 }
 
 /// The lights with the first one three times as bright and the last one off.
@@ -130,7 +125,7 @@ fn check_a_light_edit(what: &str, min_changed_share: f64, edit: impl FnOnce(&mut
     kept.set_lights(&lights);
     let after = draw(&mut kept, &studio.camera, settings);
     let anew = drawn_anew(&gpu, &studio, &lights, &BTreeSet::new(), &studio.camera);
-    let changed = differing_pixels(&before, &anew) as f64 / f64::from(SIZE[0] * SIZE[1]);
+    let changed = common::differing_pixels(&before, &anew) as f64 / f64::from(SIZE[0] * SIZE[1]);
     assert!(
         changed > min_changed_share,
         "{what} must change the frame to test anything ({changed:.3} of it changed)"
@@ -174,7 +169,10 @@ fn a_camera_move_or_a_hidden_object_draws_the_surfaces_again() {
     kept.set_hidden(&hidden);
     let after_hiding = draw(&mut kept, &moved, settings);
     let anew = drawn_anew(&gpu, &studio, &lights, &hidden, &moved);
-    assert!(differing_pixels(&after_move, &anew) > 0, "hiding must change the frame");
+    assert!(
+        common::differing_pixels(&after_move, &anew) > 0,
+        "hiding must change the frame"
+    );
     assert_same(&after_hiding, &anew, "hiding an object");
 }
 
@@ -212,7 +210,10 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
                      settings: &RenderSettings| {
         let after = draw(kept, camera, settings);
         let anew = scene_drawn_anew(&gpu, scene, blockers, settings, camera);
-        assert!(differing_pixels(&last, &anew) > 0, "{what} must change the frame");
+        assert!(
+            common::differing_pixels(&last, &anew) > 0,
+            "{what} must change the frame"
+        );
         assert_same(&after, &anew, what);
         last = after;
     };
@@ -297,7 +298,7 @@ fn a_moved_point_light_redraws_its_own_faces_alone() {
     );
     let anew = scene_drawn_anew(&gpu, &moved, &blockers, &settings, &camera);
     assert!(
-        differing_pixels(&before, &anew) > 1000,
+        common::differing_pixels(&before, &anew) > 1000,
         "the move must change the shadows to test anything"
     );
     assert_same(&after, &anew, "the second point light's move");
@@ -331,7 +332,7 @@ fn a_dragged_lights_drafted_map_is_drawn_in_full_once_the_drag_ends() {
     let drafted = kept.read_image().expect("a frame was drawn").expect("readback");
     let anew = drawn_anew(&gpu, &studio, &lights, &BTreeSet::new(), &studio.camera);
     assert!(
-        differing_pixels(&drafted, &anew) > 0,
+        common::differing_pixels(&drafted, &anew) > 0,
         "a half-resolution map must change some shadow edge"
     );
     let released = draw(&mut kept, &studio.camera, settings);
@@ -370,7 +371,7 @@ fn without_room_for_the_kept_visibility_the_frames_read_the_maps_alike() {
     let (kept_anew, kept_after) = frames(&gpu);
     let (read_anew, read_after) = frames(&small);
     assert!(
-        differing_pixels(&kept_anew, &kept_after) > 1000,
+        common::differing_pixels(&kept_anew, &kept_after) > 1000,
         "the edit changes the frame"
     );
     assert_same(&read_anew, &kept_anew, "drawing anew without the kept visibility");

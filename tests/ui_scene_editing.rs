@@ -594,7 +594,7 @@ fn the_editor_and_render_draw_the_same_pixels() {
         let viewport = image::open(&exported).expect("the viewport was exported").to_rgba8();
         let rendered = rendered_by_cli(&project, &dir.path().join("render.png"), viewport.dimensions());
         assert_eq!(rendered.dimensions(), viewport.dimensions());
-        let differing = viewport.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
+        let differing = common::differing_pixels(&viewport, &rendered);
         assert_eq!(
             differing, 0,
             "{sample:?}: {differing} pixels differ between the editor and render"
@@ -650,7 +650,7 @@ fn an_export_at_any_size_is_the_frame_render_draws() {
     let exported = image::open(&exported).expect("exported").to_rgba8();
     assert_eq!(exported.dimensions(), (width, height));
     let rendered = rendered_by_cli(&project, &dir.path().join("render.png"), (width, height));
-    let differing = exported.pixels().zip(rendered.pixels()).filter(|(a, b)| a != b).count();
+    let differing = common::differing_pixels(&exported, &rendered);
     assert_eq!(differing, 0, "{differing} pixels differ between the export and render");
 
     // The viewport draws at its own size again.

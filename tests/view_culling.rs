@@ -81,11 +81,7 @@ fn culling_what_the_camera_cannot_see_leaves_the_frame_unchanged() {
             "the close view must cull something ({in_view} of {shown} triangles)"
         );
         assert_eq!(all_drawn, shown, "without culling every shown triangle is drawn");
-        let differing = culled
-            .pixels()
-            .zip(every_object.pixels())
-            .filter(|(a, b)| a != b)
-            .count();
+        let differing = common::differing_pixels(&culled, &every_object);
         assert_eq!(
             differing, 0,
             "per vertex {per_vertex}: the culled frame differs from the whole one at {differing} pixels"
@@ -146,7 +142,7 @@ fn shadow_maps_culled_per_view_cast_the_same_shadows() {
         culled_triangles * 2 < whole_triangles,
         "the views drew {culled_triangles} of {whole_triangles} triangles"
     );
-    let differing = culled.pixels().zip(whole.pixels()).filter(|(a, b)| a != b).count();
+    let differing = common::differing_pixels(&culled, &whole);
     assert_eq!(
         differing, 0,
         "the culled maps' frame differs from the whole one at {differing} pixels"
@@ -199,14 +195,18 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     );
     let (whole_frame, whole_vertices) = draw(&mut kept, &whole);
     let (anew, anew_vertices) = drawn_anew(&document.scene, &whole);
-    assert_eq!(differing(&whole_frame, &anew), 0, "the whole view after the close one");
+    assert_eq!(
+        common::differing_pixels(&whole_frame, &anew),
+        0,
+        "the whole view after the close one"
+    );
     assert_eq!(
         whole_vertices,
         anew_vertices - close_vertices,
         "the whole view computes only what the close one did not"
     );
     let (again, again_vertices) = draw(&mut kept, &whole);
-    assert_eq!(differing(&again, &anew), 0, "the whole view drawn again");
+    assert_eq!(common::differing_pixels(&again, &anew), 0, "the whole view drawn again");
     assert_eq!(again_vertices, 0, "the same view again computes nothing");
 
     let moved_light = |scene: &lightpaint::scene::Scene| {
@@ -218,8 +218,15 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     kept.set_lights(&moved.lights);
     let (after_move, move_vertices) = draw(&mut kept, &whole);
     let (move_anew, _) = drawn_anew(&moved, &whole);
-    assert!(differing(&anew, &move_anew) > 1000, "the light's move must show");
-    assert_eq!(differing(&after_move, &move_anew), 0, "the view after a light moved");
+    assert!(
+        common::differing_pixels(&anew, &move_anew) > 1000,
+        "the light's move must show"
+    );
+    assert_eq!(
+        common::differing_pixels(&after_move, &move_anew),
+        0,
+        "the view after a light moved"
+    );
     assert_eq!(
         move_vertices, 0,
         "under the environment no light is read: nothing computed"
@@ -234,7 +241,7 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     let (after_move, move_vertices) = draw(&mut kept, &whole);
     let (move_anew, _) = drawn_anew(&moved, &whole);
     assert_eq!(
-        differing(&after_move, &move_anew),
+        common::differing_pixels(&after_move, &move_anew),
         0,
         "the view after a windowed light moved"
     );
@@ -242,8 +249,4 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
         move_vertices, first_vertices,
         "a moved light whose window applies computes every vertex in view again"
     );
-}
-
-fn differing(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
-    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
 }

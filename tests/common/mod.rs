@@ -32,6 +32,11 @@ pub fn no_gpu_wanted() -> bool {
     std::env::var(NO_GPU_ENV).is_ok_and(|v| v == "1")
 }
 
+/// Pixels whose bytes differ between two images of one size.
+pub fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
+}
+
 pub fn repo_path(relative: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
 }
