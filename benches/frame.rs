@@ -14,6 +14,10 @@
 //!   the sphere count (none: what the frame costs without a blocker walk;
 //!   `cargo run --release --example sphere_count_plot` draws the curve), and per vertex
 //!   (`thin-casters-per-vertex`) with 600 and 20,000;
+//! - `frame/lamp-count`: the same set with 600 spheres and none, 64 or 256 lamps with a
+//!   range (`blocker_bench::add_lamps`), at the shipped defaults: each point walks the
+//!   lamps of its box of the lights' grid (`thin-casters-lamps`) or every lamp
+//!   (`thin-casters-lamps-every-light`);
 //! - `cpu-reference`: the f64 CPU shading of the same studio frame (all cores).
 //!
 //! Throughput is pixels × blockers per frame: the receiver-blocker pairs a renderer
@@ -197,6 +201,33 @@ fn frames(c: &mut Criterion) {
             &gpu,
             &frame,
         );
+    }
+    group.finish();
+
+    // The lamps' count: the same set with 600 spheres and that many lamps with a range,
+    // on the paths the shipped defaults choose (the maps' views hold 15 of them, the rest
+    // take the SH path); each point walks the lamps of its box of the lights' grid, or
+    // (`-every-light`) every lamp.
+    let mut group = c.benchmark_group("frame/lamp-count");
+    group.sample_size(10).measurement_time(Duration::from_secs(10));
+    let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&set.scene, 600);
+    let shadows = ShadowSettings::default();
+    for count in [0, 64, 256] {
+        let mut lit = Sample {
+            scene: set.scene.clone(),
+            camera: set.camera.clone(),
+            settings: set.settings,
+        };
+        lightpaint::samples::blocker_bench::add_lamps(&mut lit.scene, count);
+        let frame = lit.frame(&shadows, &spheres);
+        for (name, grid) in [("thin-casters-lamps", true), ("thin-casters-lamps-every-light", false)] {
+            let mut renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::default()).expect("renderer");
+            renderer.set_light_grid(grid);
+            renderer.draw_and_wait(Redraw::Everything).expect("warm-up frame");
+            group.bench_function(BenchmarkId::new(name, count), |b| {
+                b.iter(|| renderer.draw_and_wait(Redraw::Everything).expect("frame"))
+            });
+        }
     }
     group.finish();
 

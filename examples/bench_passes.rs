@@ -2,7 +2,7 @@
 //! frame/sphere-count` draws it) pass by pass: where its time goes at a sphere count.
 //!
 //! `cargo run --release --example bench_passes [SPHERES] [MODE] [FRAMES] [PNG]
-//! [DOWNSAMPLE]`: 960 × 540,
+//! [DOWNSAMPLE] [LAMPS] [every-light]`: 960 × 540,
 //! the shipped defaults with the light on the SH path, SPHERES spheres on the casters
 //! (600 by default); MODE `anew` (the default: every frame drawn anew), `per-vertex` (the
 //! same, shaded per vertex: the vertices' visibility, computed for the warm-up frame, is
@@ -11,7 +11,11 @@
 //! set again, the view kept); prints the mean wall-clock frame and each pass's mean GPU time over
 //! FRAMES frames (6) after a warm-up, and how many pixels the upsampling left to be
 //! shaded otherwise; PNG: also writes the last frame there; DOWNSAMPLE: shades one pixel
-//! in that many squared (1: every pixel, to compare frames with).
+//! in that many squared (1: every pixel, to compare frames with); LAMPS: that many lamps
+//! with a range added (`blocker_bench::add_lamps`, the light paths then chosen as the
+//! shipped defaults do: as many as the maps' views hold on shadow maps, the rest on the SH
+//! path); `every-light`: every point
+//! walks every light instead of those of its box of the lights' grid.
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -31,7 +35,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let frames: u32 = args.get(2).map(|a| a.parse()).transpose()?.unwrap_or(6);
     let gpu = GpuContext::headless()?;
-    let scene = blocker_bench::thin_casters_scene();
+    let mut scene = blocker_bench::thin_casters_scene();
+    let lamps: usize = args.get(5).map(|a| a.parse()).transpose()?.unwrap_or(0);
+    blocker_bench::add_lamps(&mut scene, lamps);
+    let every_light = args.get(6).is_some_and(|a| a == "every-light");
     let camera = blocker_bench::thin_casters_camera();
     let png = args.get(3).filter(|path| !path.is_empty());
     let settings = RenderSettings::default();
@@ -42,7 +49,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .transpose()?
         .unwrap_or(defaults.shading_downsample);
     let shadows = ShadowSettings {
-        light_paths: LightPaths::Harmonics,
+        light_paths: if lamps > 0 {
+            LightPaths::Auto
+        } else {
+            LightPaths::Harmonics
+        },
         per_vertex,
         shading_downsample,
         ..defaults
@@ -59,6 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         height: 540,
     };
     let mut renderer = ShadowRenderer::new(&gpu, &frame, AntiAliasing::default())?;
+    renderer.set_light_grid(!every_light);
     renderer.draw_and_wait(Redraw::Everything)?;
     let timed = renderer.time_passes();
     let started = std::time::Instant::now();

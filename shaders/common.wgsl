@@ -52,6 +52,11 @@ struct Frame {
     // Order-3 SH of the environment's irradiance E(n) = ∫ L max(n·ω, 0) dω (rgb), world
     // axes, polar axis +z (shading-model.md §3).
     environment_irradiance: array<vec4<f32>, 9>,
+    // The lights' grid (shading::light_grid): xyz its first box's corner (world,
+    // metres), w one over a box's side (1/metres).
+    light_grid_origin: vec4<f32>,
+    // Boxes along x, y, z; w their count, the index of the outside box.
+    light_grid_boxes: vec4<u32>,
 };
 
 // One light. Units: point/spot radiant intensity in candela, directional illuminance in lux

@@ -455,8 +455,9 @@ fn radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 fn mapped_lights_radiance(s: Surface) -> vec3<f32> {
     var radiance = vec3<f32>(0.0);
     if SHADOW_MAPS {
-        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
-            let light = light_at(i);
+        let run = mapped_lights_at(s.position);
+        for (var k = run.first; k < run.end; k++) {
+            let light = light_at(run_light(k));
             radiance += mapped_light_radiance(light.intensity_rgb.rgb, s, mapped_light_factors(light, s));
         }
     }
@@ -491,8 +492,9 @@ fn soft_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 // frame.first_mapped_light.
 fn harmonic_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
     var radiance = environment_through(s, lobes);
-    for (var i = 0u; i < frame.first_mapped_light; i++) {
-        radiance += light_through(s, lobes, incidence(light_at(i), s.position));
+    let run = harmonic_lights_at(s.position);
+    for (var k = run.first; k < run.end; k++) {
+        radiance += light_through(s, lobes, incidence(light_at(run_light(k)), s.position));
     }
     return radiance;
 }

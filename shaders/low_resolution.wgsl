@@ -59,10 +59,11 @@ fn kept_mapped_lights_radiance(s: Surface, texel: vec2<i32>) -> vec3<f32> {
         if !holds_mapped_lights(arrayLength(&kept_mapped_factors), at.x) {
             return mapped_lights_radiance(s);
         }
-        var entry = at.y;
-        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
+        let run = mapped_lights_at(s.position);
+        for (var k = run.first; k < run.end; k++) {
+            let i = run_light(k);
+            let entry = at.y + (i - frame.first_mapped_light) * at.x;
             radiance += mapped_light_radiance(light_at(i).intensity_rgb.rgb, s, kept_mapped_factors[entry]);
-            entry += at.x;
         }
     }
     return radiance;
@@ -201,14 +202,15 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
     }
     let at = sample_count_and_index(texel);
     if SHADOW_MAPS && holds_mapped_lights(arrayLength(&mapped_factors_out), at.x) {
-        var entry = at.y;
-        for (var i = frame.first_mapped_light; i < frame.first_exact_light; i++) {
+        // Only the lights that may reach the sample (the others' entries go unread).
+        let run = mapped_lights_at(buffered.s.position);
+        for (var e = run.first; e < run.end; e++) {
+            let i = run_light(e);
             let k = i - frame.first_mapped_light;
             if k >= arrayLength(&stale_lights) || stale_lights[k] != 0u {
                 let light = light_at(i);
-                mapped_factors_out[entry] = mapped_light_factors(light, buffered.s);
+                mapped_factors_out[at.y + k * at.x] = mapped_light_factors(light, buffered.s);
             }
-            entry += at.x;
         }
     }
     return 0.0;

@@ -17,6 +17,10 @@
 // one object after another; zeros when there is none. A draw's first instance is its
 // object's first vertex here (render::gpu_scene).
 @group(FRAME_GROUP) @binding(BAKED_INDIRECT_BINDING) var<storage, read> baked_indirect: array<f32>;
+// The lights on the SH and shadow-map paths that can reach each box of a grid over the
+// scene (shading::light_grid has the layout): per box three words — its SH-path lights'
+// first entry, its mapped lights' first, the end — then the entries, light indices.
+@group(FRAME_GROUP) @binding(LIGHT_GRID_BINDING) var<storage, read> light_grid: array<u32>;
 
 @group(MATERIAL_GROUP) @binding(MATERIAL_BINDING) var<uniform> material: Material;
 @group(MATERIAL_GROUP) @binding(BASE_COLOR_TEXTURE_BINDING) var base_color_texture: texture_2d<f32>;
@@ -37,6 +41,58 @@ fn light_at(i: u32) -> Light {
     var light = lights[min(i, UNIFORM_LIGHT_CAPACITY - 1u)];
     light.intensity_rgb *= select(1.0, 0.0, i >= UNIFORM_LIGHT_CAPACITY);
     return light;
+}
+
+// true: a point walks the lights of its box of the grid (light_grid) on the SH and
+// shadow-map paths, false: every one of them (shading::compiled_paths decides, for frames
+// with enough lights whose reach ends; lavapipe pays for every light of a loop whether
+// it adds anything or not). The same frame either way: a light left out of a box adds
+// exactly 0 there.
+override LIGHT_GRID: bool = false;
+
+// The lights a point walks on one path: entries first..end of light_grid (LIGHT_GRID),
+// or the light indices first..end; run_light gives entry k's light.
+struct LightRun {
+    first: u32,
+    end: u32,
+};
+
+// The box of the grid holding p, or the outside box (frame.light_grid_boxes.w) for a
+// point beyond it (shading::light_grid::LightGrid::box_of is the twin).
+fn light_box(p: vec3<f32>) -> u32 {
+    let q = (p - frame.light_grid_origin.xyz) * frame.light_grid_origin.w;
+    let boxes = frame.light_grid_boxes;
+    if !(all(q >= vec3<f32>(0.0)) && all(q < vec3<f32>(boxes.xyz))) {
+        return boxes.w;
+    }
+    let c = min(vec3<u32>(q), boxes.xyz - vec3<u32>(1u));
+    return c.x + boxes.x * (c.y + boxes.y * c.z);
+}
+
+// The lights on the SH path that may reach p.
+fn harmonic_lights_at(p: vec3<f32>) -> LightRun {
+    if !LIGHT_GRID {
+        return LightRun(0u, frame.first_mapped_light);
+    }
+    let header = 3u * light_box(p);
+    return LightRun(light_grid[header], light_grid[header + 1u]);
+}
+
+// The lights on the shadow-map path that may reach p.
+fn mapped_lights_at(p: vec3<f32>) -> LightRun {
+    if !LIGHT_GRID {
+        return LightRun(frame.first_mapped_light, frame.first_exact_light);
+    }
+    let header = 3u * light_box(p);
+    return LightRun(light_grid[header + 1u], light_grid[header + 2u]);
+}
+
+// The light of entry k of a LightRun.
+fn run_light(k: u32) -> u32 {
+    if LIGHT_GRID {
+        return light_grid[k];
+    }
+    return k;
 }
 
 struct VertexIn {

@@ -60,6 +60,8 @@ fn frame_matches_wgsl() {
             ("background_srgb8", offset_of!(GpuFrame, background_srgb8)),
             ("view_ray", offset_of!(GpuFrame, view_ray)),
             ("environment_irradiance", offset_of!(GpuFrame, environment_irradiance)),
+            ("light_grid_origin", offset_of!(GpuFrame, light_grid_origin)),
+            ("light_grid_boxes", offset_of!(GpuFrame, light_grid_boxes)),
         ],
     );
 }

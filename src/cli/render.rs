@@ -215,6 +215,9 @@ fn render_reference_png(
 fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing: AntiAliasing) -> Result<(), CliError> {
     let mut renderer = ShadowRenderer::new(gpu, frame, anti_aliasing)?;
     renderer.draw_and_wait(Redraw::Everything)?;
+    if let Some(grid) = renderer.light_grid_in_words() {
+        say!("lights' grid: {grid} (each point walks its box's lights on the SH and shadow-map paths)");
+    }
     let (in_view, shown) = renderer.triangles_in_view();
     say!("triangles drawn from the camera: {in_view} of {shown} (objects outside its view culled)");
     let (map_views, map_triangles) = renderer.shadow_map_triangles();

@@ -240,6 +240,11 @@ impl<'a> ShadowRenderer<'a> {
             .unwrap_or_else(|| Err(RenderError::Readback("no frame was drawn".into())))
     }
 
+    /// See [`SceneRenderer::set_light_grid`] (benchmarks time frames both ways).
+    pub fn set_light_grid(&mut self, enabled: bool) {
+        self.renderer.set_light_grid(enabled);
+    }
+
     /// Draws one frame, as much of it anew as `redraw` says, and waits until the GPU has
     /// finished it.
     pub fn draw_and_wait(&mut self, redraw: Redraw) -> Result<(), RenderError> {
@@ -265,6 +270,11 @@ impl<'a> ShadowRenderer<'a> {
     /// See [`SceneRenderer::listed_pixels`].
     pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {
         self.renderer.listed_pixels()
+    }
+
+    /// See [`SceneRenderer::light_grid_in_words`].
+    pub fn light_grid_in_words(&self) -> Option<String> {
+        self.renderer.light_grid_in_words()
     }
 
     /// See [`SceneRenderer::triangles_in_view`].

@@ -2,7 +2,8 @@
 //! group `frame/sphere-count`): thin casters — a lattice ball of thin rings, a double
 //! helix of thin tubes and a torus-like ring, about 45,000 triangles with the floor —
 //! under one rect light, and any number of sphere blockers spread over the casters'
-//! surfaces (600, 5,000 and 20,000 in the bench). The casters are our own, built from
+//! surfaces (600, 5,000 and 20,000 in the bench), and any number of lamps with a range
+//! (`add_lamps`). The casters are our own, built from
 //! `scene::shapes`; the sphere count is the knob, so the frame's cost can be read against
 //! it.
 
@@ -47,6 +48,27 @@ pub fn thin_casters_scene() -> Scene {
         locked: false,
     });
     scene
+}
+
+/// `count` lamps with a range added to the set (`frame/lamp-count`: a frame's cost against
+/// its lights' count): warm point lights 0.4 m over the floor in a square grid over its
+/// middle 7 m, each of 0.1 cd and 1 m range, so that each lights a patch of floor and
+/// the casters near it. Past the shadow maps' views (96: 16 cubes) they take the SH path.
+pub fn add_lamps(scene: &mut Scene, count: usize) {
+    let side = (count as f32).sqrt().ceil().max(1.0) as usize;
+    let at = |t: usize| -3.5 + 7.0 * (t as f32 + 0.5) / side as f32;
+    for k in 0..count {
+        scene.lights.push(Light {
+            name: format!("lamp {k}"),
+            kind: LightKind::Point,
+            color: Vec3::new(1.0, 0.8, 0.6),
+            intensity: 0.1,
+            position: Vec3::new(at(k % side), 0.4, at(k / side)),
+            direction: Vec3::NEG_Y,
+            range: Some(1.0),
+            locked: false,
+        });
+    }
 }
 
 /// The camera the bench frames the set with.

@@ -9,7 +9,7 @@ use crate::scene::Scene;
 /// Which shading code a log-SH pipeline compiles in (the override constants
 /// EXACT_LIGHT_PATH, EXACT_WIDE, SHADOW_MAPS, SOFT_SHADOW_MAPS, SH_VISIBILITY,
 /// ENVIRONMENT_LIGHT, TERRAIN_SHADOWS, RECT_LIGHTS, DISK_LIGHTS, LIGHT_OVERFLOW,
-/// BLOCKER_OVERFLOW and LIGHT_WINDOWS): lavapipe runs the code of both sides of a branch
+/// BLOCKER_OVERFLOW, LIGHT_WINDOWS and LIGHT_GRID): lavapipe runs the code of both sides of a branch
 /// at every pixel whether taken or not, so code that the frame does not need is left out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct CompiledPaths {
@@ -49,6 +49,10 @@ pub struct CompiledPaths {
     /// frame and 1 to 4 lights are on the SH path, else 0 (the shaders check
     /// `windows_apply` per frame too; lavapipe pays for every window compiled in).
     pub light_windows: u32,
+    /// A point walks the lights of its box of the lights' grid on the SH and shadow-map
+    /// paths rather than all of them (LIGHT_GRID; `super::light_grid`): frames with at
+    /// least `LIGHT_GRID_MIN_LIGHTS` of those lights whose reach ends somewhere.
+    pub light_grid: bool,
     /// Back faces are culled: every material of the scene is single-sided. Not code but
     /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent
     /// a tenth of the studio's default frame on the back faces it rasterised only for
@@ -71,6 +75,7 @@ impl CompiledPaths {
         light_overflow: true,
         blocker_overflow: true,
         light_windows: super::light_windows::MAX_WINDOW_LIGHTS as u32,
+        light_grid: true,
         cull_back_faces: false,
     };
 
@@ -88,6 +93,7 @@ impl CompiledPaths {
         light_overflow: false,
         blocker_overflow: false,
         light_windows: 0,
+        light_grid: false,
         cull_back_faces: false,
     };
 }
@@ -143,6 +149,7 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
         light_windows: super::light_windows::compiled_windows(lighting.has_environment, shaded),
+        light_grid: super::light_grid::grid_worth_it(shaded),
         cull_back_faces: lighting.single_sided,
     }
 }

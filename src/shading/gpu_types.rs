@@ -86,6 +86,11 @@ pub struct GpuFrame {
     pub view_ray: [[f32; 4]; 3],
     /// Order-3 SH of the environment's irradiance (rgb; a unused), world axes.
     pub environment_irradiance: [[f32; 4]; 9],
+    /// The lights' grid ([`super::light_grid::LightGrid`]): its first box's corner (xyz,
+    /// world metres) and one over a box's side (w, 1/metres).
+    pub light_grid_origin: [f32; 4],
+    /// Boxes along x, y and z, and their count (w: the outside box's index).
+    pub light_grid_boxes: [u32; 4],
 }
 
 impl GpuFrame {
@@ -111,6 +116,8 @@ impl GpuFrame {
             _pad: [0; 2],
             view_ray: view_ray(camera, width / height),
             environment_irradiance,
+            light_grid_origin: [0.0; 4],
+            light_grid_boxes: [0; 4],
         }
     }
 

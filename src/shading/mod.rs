@@ -14,6 +14,7 @@ mod compiled_paths;
 pub mod cpu;
 pub mod frame_transfer;
 pub mod gpu_types;
+pub mod light_grid;
 mod light_path_context;
 mod light_paths;
 pub mod light_windows;

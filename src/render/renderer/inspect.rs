@@ -19,6 +19,28 @@ impl SceneRenderer {
         self.gpu_scene.set_view_culling(enabled);
     }
 
+    /// The lights' grid's boxes and how many lights a box lists on average, when the
+    /// frames walk it.
+    pub fn light_grid_in_words(&self) -> Option<String> {
+        self.walks_light_grid().then(|| {
+            let grid = self.gpu_scene.light_grid();
+            format!(
+                "{} × {} × {} boxes of {:.2} m, {:.1} lights listed a box on average",
+                grid.boxes.x,
+                grid.boxes.y,
+                grid.boxes.z,
+                grid.box_side_m,
+                grid.mean_listed()
+            )
+        })
+    }
+
+    /// Whether the pipeline drawing the frames walks the lights' grid (LIGHT_GRID; see
+    /// [`Self::set_light_grid`]).
+    pub fn walks_light_grid(&self) -> bool {
+        self.shadows.key.paths.light_grid
+    }
+
     /// The triangles of the objects the last frame's camera may see (the rest were not
     /// drawn from it), and of every object shown.
     pub fn triangles_in_view(&self) -> (u64, u64) {

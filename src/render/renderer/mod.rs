@@ -116,6 +116,9 @@ pub struct SceneRenderer {
     vertices_computed: u64,
     /// Changes with every [`Self::set_blockers`] (what the soft layer shows depends on it).
     blockers_generation: u64,
+    /// Whether frames worth it walk the lights' grid (on unless a test compares frames
+    /// without it: [`Self::set_light_grid`]).
+    light_grid: bool,
 }
 
 impl SceneRenderer {
@@ -193,6 +196,7 @@ impl SceneRenderer {
             surfaces_forgotten: false,
             vertices_computed: 0,
             blockers_generation: 0,
+            light_grid: true,
         };
         renderer.write_lights();
         renderer
@@ -303,11 +307,23 @@ impl SceneRenderer {
 
     /// The paths `settings` need for the renderer's lights and environment.
     fn paths_for(&self, settings: &ShadowSettings) -> CompiledPaths {
-        compiled_paths(
+        let paths = compiled_paths(
             &self.shaded_lights(&self.lights, settings),
             self.lighting,
             self.path_context.blockers.len(),
-        )
+        );
+        CompiledPaths {
+            light_grid: paths.light_grid && self.light_grid,
+            ..paths
+        }
+    }
+
+    /// Lets frames with enough lights whose reach ends walk the lights of the point's box
+    /// of the lights' grid (the default), or makes every frame walk every light: the
+    /// frames must be the same either way (tests/light_grid.rs).
+    pub fn set_light_grid(&mut self, enabled: bool) {
+        self.light_grid = enabled;
+        self.recompile_if_paths_changed();
     }
 
     fn key_for(&self, settings: &ShadowSettings) -> PipelineKey {

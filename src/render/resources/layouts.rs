@@ -42,6 +42,7 @@ impl SceneLayouts {
                 layout_entry(slots::LIGHTS, shading, uniform),
                 layout_entry(slots::BAKED_INDIRECT, wgpu::ShaderStages::VERTEX, storage),
                 layout_entry(slots::EVERY_LIGHT, shading, storage),
+                layout_entry(slots::LIGHT_GRID, shading, storage),
             ],
         });
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

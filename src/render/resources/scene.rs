@@ -11,6 +11,7 @@ use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
     GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance, srgb8_word,
 };
+use crate::shading::light_grid::LightGrid;
 use crate::shading::wgsl::slots;
 
 pub struct GpuObject {
@@ -62,6 +63,12 @@ pub struct GpuScene {
     /// The lights on the shadow-map path as uploaded, with their intensities zeroed: what
     /// their visibility depends on (`mapped_light_geometry`).
     mapped_light_geometry: Vec<GpuLight>,
+    /// The scene's bounds, which the lights' grid covers.
+    bounds: Aabb,
+    /// The lights' grid of the uploaded lights (`shading::light_grid`), and those lights
+    /// without their intensities: what it depends on (a stroke leaves it as it is).
+    light_grid: LightGrid,
+    light_grid_key: Vec<GpuLight>,
     /// Whether objects outside the camera's frustum are left out of its passes (on unless
     /// a test compares frames without it: [`GpuScene::set_view_culling`]).
     view_culling: bool,
@@ -203,6 +210,9 @@ impl GpuScene {
             surfaces_generation: next_surfaces_generation(),
             harmonic_lights: Vec::new(),
             mapped_light_geometry: Vec::new(),
+            bounds: scene.bounds(),
+            light_grid: LightGrid::build(&[], [0, 0], scene.bounds()),
+            light_grid_key: Vec::new(),
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
         gpu_scene.update_lights(device, queue, layouts, &lights);
@@ -257,6 +267,23 @@ impl GpuScene {
         }
         let (ordered, first_light_on) = crate::shading::gpu_types::order_by_shadow_path(lights);
         self.lights.write(queue, &ordered);
+        let grid_key: Vec<GpuLight> = ordered
+            .iter()
+            .map(|light| GpuLight {
+                intensity_rgb: [0.0; 4],
+                ..*light
+            })
+            .collect();
+        if grid_key != self.light_grid_key || self.light_grid_key.is_empty() {
+            // Built whether or not this frame's pipelines walk it: a pipeline compiled
+            // for earlier lights may draw a frame or two while the next one compiles.
+            self.light_grid = LightGrid::build(&ordered, first_light_on, self.bounds);
+            if self.lights.write_grid(device, queue, &self.light_grid.words) {
+                self.frame_bind_group =
+                    frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, &self.indirect_buffer);
+            }
+            self.light_grid_key = grid_key;
+        }
         self.light_count = ordered.len();
         self.first_light_on = first_light_on;
         self.harmonic_lights = ordered[..first_light_on[0].min(ordered.len())].to_vec();
@@ -304,11 +331,19 @@ impl GpuScene {
             self.environment_irradiance,
         );
         frame.background_srgb8 = srgb8_word(background_linear);
+        let grid = &self.light_grid;
+        frame.light_grid_origin = grid.origin.extend(1.0 / grid.box_side_m).to_array();
+        frame.light_grid_boxes = grid.boxes.extend(grid.box_count() as u32).to_array();
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
         }
+    }
+
+    /// The lights' grid of the uploaded lights (`shading::light_grid`).
+    pub fn light_grid(&self) -> &LightGrid {
+        &self.light_grid
     }
 
     /// Leaves objects outside the camera's frustum out of its passes (the default) or
@@ -369,6 +404,9 @@ struct LightBuffers {
     every: wgpu::Buffer,
     /// Lights `every` holds.
     every_capacity: usize,
+    /// The lights' grid's words (`shading::light_grid`), and how many it holds.
+    grid: wgpu::Buffer,
+    grid_capacity: usize,
 }
 
 impl LightBuffers {
@@ -386,7 +424,21 @@ impl LightBuffers {
             uniform: buffer("lights", UNIFORM_LIGHT_CAPACITY, wgpu::BufferUsages::UNIFORM),
             every: buffer("every light", every_capacity, wgpu::BufferUsages::STORAGE),
             every_capacity,
+            grid: grid_buffer(device, GRID_WORDS_AT_FIRST),
+            grid_capacity: GRID_WORDS_AT_FIRST,
         }
+    }
+
+    /// Writes the grid's `words`, in a larger buffer when they do not fit (true: the
+    /// frame's bind group must be made again).
+    fn write_grid(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> bool {
+        let grown = words.len() > self.grid_capacity;
+        if grown {
+            self.grid_capacity = words.len().next_power_of_two();
+            self.grid = grid_buffer(device, self.grid_capacity);
+        }
+        queue.write_buffer(&self.grid, 0, bytemuck::cast_slice(words));
+        grown
     }
 
     /// Writes `lights` (at most the capacity `every` was made with).
@@ -398,6 +450,18 @@ impl LightBuffers {
         queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(first));
         queue.write_buffer(&self.every, 0, bytemuck::cast_slice(lights));
     }
+}
+
+/// Words of the lights' grid buffer made with the scene (grown when a grid needs more).
+const GRID_WORDS_AT_FIRST: usize = 1024;
+
+fn grid_buffer(device: &wgpu::Device, words: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("lights' grid"),
+        size: (words.max(1) * std::mem::size_of::<u32>()) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }
 
 fn frame_bind_group(
@@ -415,6 +479,7 @@ fn frame_bind_group(
             (slots::LIGHTS, lights.uniform.as_entire_binding()),
             (slots::BAKED_INDIRECT, indirect.as_entire_binding()),
             (slots::EVERY_LIGHT, lights.every.as_entire_binding()),
+            (slots::LIGHT_GRID, lights.grid.as_entire_binding()),
         ]),
     })
 }

@@ -36,6 +36,7 @@ pub const FRAME: Slot = slot(FRAME_GROUP, 0, "frame");
 pub const LIGHTS: Slot = slot(FRAME_GROUP, 1, "lights");
 pub const BAKED_INDIRECT: Slot = slot(FRAME_GROUP, 2, "baked_indirect");
 pub const EVERY_LIGHT: Slot = slot(FRAME_GROUP, 3, "every_light");
+pub const LIGHT_GRID: Slot = slot(FRAME_GROUP, 4, "light_grid");
 
 pub const MATERIAL: Slot = slot(MATERIAL_GROUP, 0, "material");
 pub const BASE_COLOR_TEXTURE: Slot = slot(MATERIAL_GROUP, 1, "base_color_texture");
@@ -83,11 +84,12 @@ pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 41] = [
+pub const ALL: [Slot; 42] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
     EVERY_LIGHT,
+    LIGHT_GRID,
     MATERIAL,
     BASE_COLOR_TEXTURE,
     BASE_COLOR_SAMPLER,
