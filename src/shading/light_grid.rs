@@ -30,8 +30,14 @@ use crate::scene::Aabb;
 /// indirection costs more than the lights it leaves out.
 pub const LIGHT_GRID_MIN_LIGHTS: usize = 8;
 
-/// Boxes along the scene's longest side.
+/// Boxes along the scene's longest side: at least this many, and more — up to
+/// [`MOST_BOXES_ALONG_LONGEST_SIDE`] — where the lights' ranges are short beside the scene
+/// (a street of lamps), so that a box is about a third of the median range across: a box
+/// lists the lights within about its side plus their range of it, so boxes much larger
+/// than the ranges list many lights that reach only a corner of them.
 const BOXES_ALONG_LONGEST_SIDE: f32 = 24.0;
+const MOST_BOXES_ALONG_LONGEST_SIDE: f32 = 64.0;
+const BOX_SIDES_PER_RANGE: f32 = 3.0;
 
 /// The most words a grid may take (16 MiB): past it the grid is built coarser.
 const MAX_WORDS: usize = 4 << 20;
@@ -71,6 +77,24 @@ pub fn grid_worth_it(shaded: &[GpuLight]) -> bool {
         >= LIGHT_GRID_MIN_LIGHTS
 }
 
+/// How many boxes go along the longest side (`longest_m`) for `lights`: see
+/// [`BOXES_ALONG_LONGEST_SIDE`].
+fn boxes_along_longest_side(lights: &[GpuLight], longest_m: f32) -> f32 {
+    let mut ranges: Vec<f32> = lights
+        .iter()
+        .map(|light| light.direction_range[3])
+        .filter(|range| *range > 0.0 && range.is_finite())
+        .collect();
+    if ranges.is_empty() {
+        return BOXES_ALONG_LONGEST_SIDE;
+    }
+    let middle = ranges.len() / 2;
+    let median_m = *ranges.select_nth_unstable_by(middle, f32::total_cmp).1;
+    (BOX_SIDES_PER_RANGE * longest_m / median_m)
+        .ceil()
+        .clamp(BOXES_ALONG_LONGEST_SIDE, MOST_BOXES_ALONG_LONGEST_SIDE)
+}
+
 /// A light whose reach ends somewhere: it has a range, or is a spot under 90°.
 fn bounded(light: &GpuLight) -> bool {
     light.kind != LIGHT_DIRECTIONAL && (light.direction_range[3] > 0.0 || half_space_cone(light))
@@ -103,7 +127,7 @@ impl LightGrid {
         origin -= Vec3::splat(padding_m);
         extent += Vec3::splat(2.0 * padding_m);
         let longest = extent.max_element();
-        let mut along_longest = BOXES_ALONG_LONGEST_SIDE;
+        let mut along_longest = boxes_along_longest_side(&ordered[..first_exact_light], longest);
         loop {
             let box_side_m = longest / along_longest;
             let boxes = (extent / box_side_m).ceil().as_uvec3().max(UVec3::ONE);
@@ -408,6 +432,35 @@ mod tests {
             assert_ne!(grid.box_of(p), grid.box_count(), "{p} is outside the grid");
             assert!(grid.lights_at(p)[0].len() <= 2);
         }
+    }
+
+    /// A street 100 m long lit by a lamp every 2 m, each of 2 m range: its boxes follow
+    /// the lamps' range, not the street's length, and a point walks a handful of lamps.
+    #[test]
+    fn short_ranges_in_a_long_scene_take_finer_boxes() {
+        let street = Aabb {
+            min: Vec3::new(-50.0, 0.0, -4.0),
+            max: Vec3::new(50.0, 6.0, 4.0),
+        };
+        let lamps: Vec<GpuLight> = (0..50)
+            .map(|k| point(Vec3::new(-49.0 + 2.0 * k as f32, 1.0, 0.0), Some(2.0)))
+            .collect();
+        let grid = LightGrid::build(&lamps, [50, 50], street);
+        assert_eq!(grid.boxes.x, 64, "the most boxes along the street: {grid:?}");
+        for x in [-40.3, -3.3, 0.0, 27.9] {
+            let on_the_ground = Vec3::new(x, 0.0, 1.0);
+            let listed = grid.lights_at(on_the_ground)[0].len();
+            assert!((2..=5).contains(&listed), "{listed} lamps listed at {on_the_ground}");
+        }
+        // Without ranges, the grid stays as coarse as before.
+        let unranged: Vec<GpuLight> = lamps
+            .iter()
+            .map(|l| GpuLight {
+                direction_range: [0.0, -1.0, 0.0, 0.0],
+                ..*l
+            })
+            .collect();
+        assert_eq!(LightGrid::build(&unranged, [50, 50], street).boxes.x, 24);
     }
 
     #[test]
