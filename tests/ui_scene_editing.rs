@@ -738,3 +738,39 @@ fn a_locked_light_is_left_as_it_is_by_strokes_and_stays_locked() {
     assert!(!harness.state().document().expect("open").scene.lights[key].locked);
     assert_eq!(harness.state().light_intensities(), before);
 }
+
+/// A project lit by lamps with a range: the Shadows section says the frames walk the
+/// lights' grid, and how many lamps a box lists (`shading::light_grid`).
+#[test]
+fn the_shadows_section_tells_of_the_lights_grid() {
+    if common::no_gpu_wanted() {
+        eprintln!("UI test not run: {}=1", common::NO_GPU_ENV);
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let project = Sample::Sample.write(dir.path()).unwrap();
+    let mut document = Document::open(&project).expect("the sample opens");
+    for k in 0..12 {
+        document.scene.lights.push(lightpaint::scene::Light {
+            name: format!("lamp {k}"),
+            kind: lightpaint::scene::LightKind::Point,
+            color: glam::Vec3::ONE,
+            intensity: 0.2,
+            position: glam::Vec3::new(-1.5 + 0.3 * k as f32, 0.3, 0.5),
+            direction: glam::Vec3::NEG_Y,
+            range: Some(0.8),
+            locked: false,
+        });
+    }
+    document.save(&project).expect("saved with its lamps");
+    let mut harness = editor_on(project);
+    harness.run();
+    // A label keeps its text as its value (AccessKit's Role::Label).
+    let label = egui_kittest::kittest::NodeT::accesskit_node(&harness.get_by_label_contains("lights' grid: "))
+        .value()
+        .unwrap_or_default();
+    assert!(
+        label.contains("boxes of") && label.contains("lights listed a box on average"),
+        "{label}"
+    );
+}

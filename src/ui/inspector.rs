@@ -166,6 +166,11 @@ impl EditorApp {
                 if let Some(maps) = self.viewport.as_ref().and_then(|v| v.shadow_maps_in_words()) {
                     ui.weak(format!("shadow maps: {maps}"));
                 }
+                if let Some(grid) = self.viewport.as_ref().and_then(|v| v.light_grid_in_words()) {
+                    ui.weak(format!("lights' grid: {grid}")).on_hover_text(
+                        "Each point shades only the lights with a range or a cone that can reach its box",
+                    );
+                }
                 ui.checkbox(&mut self.preferences.show_blockers, "show blocker spheres")
                     .on_hover_text("Outlines the spheres that stand in for the meshes as shadow casters");
             });

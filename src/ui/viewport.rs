@@ -130,6 +130,11 @@ impl Viewport {
         self.renderer.shadow_maps_in_words()
     }
 
+    /// The lights' grid the frames walk, in words (None when they walk every light).
+    pub fn light_grid_in_words(&self) -> Option<String> {
+        self.renderer.light_grid_in_words()
+    }
+
     /// Whether shaders for new shadow settings are being compiled (the viewport shows
     /// the previous settings until they are ready).
     pub fn is_compiling_shaders(&self) -> bool {
