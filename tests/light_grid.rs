@@ -9,7 +9,6 @@ mod common;
 
 use glam::Vec3;
 use lightpaint::blockers::fit_scene;
-use lightpaint::render::{AntiAliasing, Compilation, FrameQuality, SceneRenderer};
 use lightpaint::scene::{Light, LightKind, Scene};
 use lightpaint::shading::{RenderSettings, ShadowSettings};
 
@@ -93,18 +92,9 @@ fn frames_walking_the_lights_grid_are_those_walking_every_light() {
     ] {
         let settings = RenderSettings { shadows, ..defaults };
         let draw = |grid: bool| {
-            let mut renderer = SceneRenderer::new(
-                &gpu.device,
-                &gpu.queue,
-                &scene,
-                &blockers,
-                &settings.shadows,
-                AntiAliasing::default(),
-                Compilation::Blocking,
-            );
-            renderer.set_light_grid(grid);
-            renderer.render(&camera, SIZE, &settings, FrameQuality::default());
-            let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+            let (image, renderer) = common::drawn_with(&gpu, (&scene, &blockers), &settings, (&camera, SIZE), |r| {
+                r.set_light_grid(grid)
+            });
             (image, renderer.walks_light_grid())
         };
         let (gridded, walked) = draw(true);

@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 
 use lightpaint::blockers::fit_scene;
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, Compilation, FrameQuality, GpuContext, SceneRenderer};
+use lightpaint::render::{FrameQuality, GpuContext, SceneRenderer};
 use lightpaint::scene::{Camera, Light, Scene};
 use lightpaint::shading::RenderSettings;
 
@@ -39,25 +39,7 @@ fn studio() -> Studio {
 }
 
 fn renderer(gpu: &GpuContext, studio: &Studio, scene: &Scene) -> SceneRenderer {
-    renderer_of(gpu, scene, &studio.blockers, &studio.document.settings)
-}
-
-/// A renderer of `scene` with `blockers` and `settings`' shadows, antialiased as shipped.
-fn renderer_of(
-    gpu: &GpuContext,
-    scene: &Scene,
-    blockers: &[lightpaint::blockers::Sphere],
-    settings: &RenderSettings,
-) -> SceneRenderer {
-    SceneRenderer::new(
-        &gpu.device,
-        &gpu.queue,
-        scene,
-        blockers,
-        &settings.shadows,
-        AntiAliasing::default(),
-        Compilation::Blocking,
-    )
+    common::renderer_for(gpu, scene, &studio.blockers, &studio.document.settings)
 }
 
 fn draw(renderer: &mut SceneRenderer, camera: &Camera, settings: &RenderSettings) -> image::RgbaImage {
@@ -88,7 +70,11 @@ fn scene_drawn_anew(
     settings: &RenderSettings,
     camera: &Camera,
 ) -> image::RgbaImage {
-    draw(&mut renderer_of(gpu, scene, blockers, settings), camera, settings)
+    draw(
+        &mut common::renderer_for(gpu, scene, blockers, settings),
+        camera,
+        settings,
+    )
 }
 
 /// Fails unless the frame drawn `after` a change is byte for byte the one drawn anew.
@@ -195,7 +181,7 @@ fn a_change_the_soft_layer_reads_draws_it_again() {
     });
     let settings = &mut studio.document.settings.clone();
     let mut blockers = studio.blockers.clone();
-    let mut kept = renderer_of(&gpu, &scene, &blockers, settings);
+    let mut kept = common::renderer_for(&gpu, &scene, &blockers, settings);
     let paths = kept.light_paths_at(&scene.lights, centre, &settings.shadows);
     assert_eq!(
         paths.last().map(|p| p.0),
@@ -284,7 +270,7 @@ fn a_moved_point_light_redraws_its_own_faces_alone() {
     let settings = RenderSettings::default();
     let blockers = fit_scene(&scene, &settings.blockers).spheres();
     let camera = ring_camera();
-    let mut kept = renderer_of(&gpu, &scene, &blockers, &settings);
+    let mut kept = common::renderer_for(&gpu, &scene, &blockers, &settings);
     let before = draw(&mut kept, &camera, &settings);
     assert_eq!(kept.shadow_map_triangles().0, 12, "both lights' cubes drawn");
     let mut moved = scene.clone();

@@ -9,7 +9,7 @@ mod common;
 
 use lightpaint::blockers::fit_scene;
 use lightpaint::project::Document;
-use lightpaint::render::{AntiAliasing, Compilation, FrameQuality, GpuContext, SceneRenderer};
+use lightpaint::render::{FrameQuality, GpuContext, SceneRenderer};
 use lightpaint::scene::Camera;
 use lightpaint::shading::RenderSettings;
 
@@ -25,18 +25,9 @@ fn frame(
     culling: bool,
 ) -> (image::RgbaImage, (u64, u64)) {
     let blockers = fit_scene(&document.scene, &settings.blockers).spheres();
-    let mut renderer = SceneRenderer::new(
-        &gpu.device,
-        &gpu.queue,
-        &document.scene,
-        &blockers,
-        &settings.shadows,
-        AntiAliasing::default(),
-        Compilation::Blocking,
-    );
-    renderer.set_view_culling(culling);
-    renderer.render(camera, SIZE, settings, FrameQuality::default());
-    let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+    let (image, renderer) = common::drawn_with(gpu, (&document.scene, &blockers), settings, (camera, SIZE), |r| {
+        r.set_view_culling(culling)
+    });
     (image, renderer.triangles_in_view())
 }
 
@@ -115,18 +106,9 @@ fn shadow_maps_culled_per_view_cast_the_same_shadows() {
     let camera = common::scenes::ring_camera();
     let blockers = fit_scene(&scene, &settings.blockers).spheres();
     let draw = |culling: bool| {
-        let mut renderer = SceneRenderer::new(
-            &gpu.device,
-            &gpu.queue,
-            &scene,
-            &blockers,
-            &settings.shadows,
-            AntiAliasing::default(),
-            Compilation::Blocking,
-        );
-        renderer.set_view_culling(culling);
-        renderer.render(&camera, SIZE, &settings, FrameQuality::default());
-        let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+        let (image, renderer) = common::drawn_with(&gpu, (&scene, &blockers), &settings, (&camera, SIZE), |r| {
+            r.set_view_culling(culling)
+        });
         (image, renderer.shadow_map_triangles(), renderer.triangles_in_view().1)
     };
     let (culled, (views, culled_triangles), shown) = draw(true);
@@ -168,17 +150,7 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     // Every light on the SH path, so that without the environment their windows apply.
     settings.shadows.light_paths = lightpaint::shading::LightPaths::Harmonics;
     let blockers = fit_scene(&document.scene, &settings.blockers).spheres();
-    let new_renderer = |scene: &lightpaint::scene::Scene| {
-        SceneRenderer::new(
-            &gpu.device,
-            &gpu.queue,
-            scene,
-            &blockers,
-            &settings.shadows,
-            AntiAliasing::default(),
-            Compilation::Blocking,
-        )
-    };
+    let new_renderer = |scene: &lightpaint::scene::Scene| common::renderer_for(&gpu, scene, &blockers, &settings);
     let draw = |renderer: &mut SceneRenderer, camera: &Camera| {
         renderer.render(camera, SIZE, &settings, FrameQuality::default());
         let image = renderer.read_image().expect("a frame was drawn").expect("readback");

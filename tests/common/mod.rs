@@ -7,7 +7,7 @@ pub mod thin_casters;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use lightpaint::render::GpuContext;
+use lightpaint::render::{AntiAliasing, Compilation, FrameQuality, GpuContext, SceneRenderer};
 
 /// The environment variable with which a run says explicitly that it wants no GPU.
 pub const NO_GPU_ENV: &str = "LIGHTPAINT_NO_GPU";
@@ -35,6 +35,42 @@ pub fn no_gpu_wanted() -> bool {
 /// Pixels whose bytes differ between two images of one size.
 pub fn differing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
     a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count()
+}
+
+/// A renderer of `scene` with `blockers` and `settings`' shadows, antialiased as shipped,
+/// its pipelines compiled before it returns.
+pub fn renderer_for(
+    gpu: &GpuContext,
+    scene: &lightpaint::scene::Scene,
+    blockers: &[lightpaint::blockers::Sphere],
+    settings: &lightpaint::shading::RenderSettings,
+) -> SceneRenderer {
+    SceneRenderer::new(
+        &gpu.device,
+        &gpu.queue,
+        scene,
+        blockers,
+        &settings.shadows,
+        AntiAliasing::default(),
+        Compilation::Blocking,
+    )
+}
+
+/// One frame of `scene` drawn from `camera` at `size` by a new [`SceneRenderer`] set up
+/// by `configure` first (a test's switch: view culling, the lights' grid), read back; and
+/// the renderer, to ask it about the frame.
+pub fn drawn_with(
+    gpu: &GpuContext,
+    (scene, blockers): (&lightpaint::scene::Scene, &[lightpaint::blockers::Sphere]),
+    settings: &lightpaint::shading::RenderSettings,
+    (camera, size): (&lightpaint::scene::Camera, [u32; 2]),
+    configure: impl FnOnce(&mut SceneRenderer),
+) -> (image::RgbaImage, SceneRenderer) {
+    let mut renderer = renderer_for(gpu, scene, blockers, settings);
+    configure(&mut renderer);
+    renderer.render(camera, size, settings, FrameQuality::default());
+    let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+    (image, renderer)
 }
 
 pub fn repo_path(relative: &str) -> PathBuf {
