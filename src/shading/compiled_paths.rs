@@ -51,7 +51,7 @@ pub struct CompiledPaths {
     pub light_windows: u32,
     /// A point walks the lights of its box of the lights' grid on the SH and shadow-map
     /// paths rather than all of them (LIGHT_GRID; `super::light_grid`): frames with at
-    /// least `LIGHT_GRID_MIN_LIGHTS` of those lights whose reach ends somewhere.
+    /// least `LIGHT_GRID_MIN_LIGHTS` of those lights with a range.
     pub light_grid: bool,
     /// Back faces are culled: every material of the scene is single-sided. Not code but
     /// the rasteriser's setting, fixed at pipeline creation all the same; lavapipe spent

@@ -26,7 +26,7 @@ use super::gpu_types::{GpuLight, LIGHT_DIRECTIONAL, LIGHT_SPOT, SHADOW_PATH_EXAC
 use crate::scene::Aabb;
 
 /// Frames with at least this many lights on the SH and shadow-map paths that have a
-/// range (or a cone) walk the grid (`CompiledPaths::light_grid`); with fewer the list's
+/// range walk the grid (`CompiledPaths::light_grid`); with fewer the list's
 /// indirection costs more than the lights it leaves out.
 pub const LIGHT_GRID_MIN_LIGHTS: usize = 8;
 
@@ -68,7 +68,7 @@ pub struct LightGrid {
 }
 
 /// Whether a frame's lights, each on its shadow path, are worth a grid: at least
-/// [`LIGHT_GRID_MIN_LIGHTS`] on the SH and shadow-map paths whose reach ends somewhere.
+/// [`LIGHT_GRID_MIN_LIGHTS`] on the SH and shadow-map paths with a range.
 pub fn grid_worth_it(shaded: &[GpuLight]) -> bool {
     shaded
         .iter()
@@ -95,9 +95,11 @@ fn boxes_along_longest_side(lights: &[GpuLight], longest_m: f32) -> f32 {
         .clamp(BOXES_ALONG_LONGEST_SIDE, MOST_BOXES_ALONG_LONGEST_SIDE)
 }
 
-/// A light whose reach ends somewhere: it has a range, or is a spot under 90°.
+/// A light whose reach ends within some distance: it has a range. (A spot's cone alone
+/// leaves out only the boxes behind its apex: a rig of spots aimed at a stage reaches
+/// most of the scene, and its frames would pay the list's indirection for little.)
 fn bounded(light: &GpuLight) -> bool {
-    light.kind != LIGHT_DIRECTIONAL && (light.direction_range[3] > 0.0 || half_space_cone(light))
+    light.kind != LIGHT_DIRECTIONAL && light.direction_range[3] > 0.0
 }
 
 /// A spot whose cone factor is 0 behind the plane through its apex: cos(outer cone) > 0
@@ -500,6 +502,10 @@ mod tests {
         assert!(!grid_worth_it(&ranged), "the exact path's lights are not gridded");
         let unbounded: Vec<GpuLight> = (0..32).map(|k| point(Vec3::X * k as f32, None)).collect();
         assert!(!grid_worth_it(&unbounded));
+        let rig: Vec<GpuLight> = (0..12)
+            .map(|k| spot(Vec3::X * k as f32, Vec3::NEG_Y, 0.5, None))
+            .collect();
+        assert!(!grid_worth_it(&rig), "spots without a range reach most of a scene");
     }
 
     #[test]
