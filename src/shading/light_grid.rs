@@ -1,7 +1,7 @@
 //! Lights culled per region of space: a uniform grid of boxes over the scene's bounds,
 //! each listing the lights on the SH and shadow-map paths that can reach some point of
-//! it, so that a shaded point walks the lights of its box (scene.wgsl `lights_in_reach`)
-//! instead of every light of the scene.
+//! it, so that a shaded point walks the lights of its box (scene.wgsl `harmonic_lights_at`,
+//! `mapped_lights_at`) instead of every light of the scene.
 //!
 //! A light with a range reaches the boxes its range sphere meets: KHR_lights_punctual's
 //! window, which `incidence` (scene.wgsl, `cpu::incidence`) applies to every light with a
@@ -111,9 +111,8 @@ fn half_space_cone(light: &GpuLight) -> bool {
 impl LightGrid {
     /// The grid over `bounds`, grown a little (a box of a few centimetres at the origin
     /// when they are empty or not finite: most points then walk the outside box's whole
-    /// list) of the lights
-    /// `ordered[..first_exact_light]`, those on the SH path before `first_mapped_light`,
-    /// the shadow-map ones after.
+    /// list), of the lights `ordered[..first_exact_light]`: those on the SH path before
+    /// `first_mapped_light`, the shadow-map ones after.
     pub fn build(ordered: &[GpuLight], [first_mapped_light, first_exact_light]: [usize; 2], bounds: Aabb) -> LightGrid {
         let first_exact_light = first_exact_light.min(ordered.len());
         let first_mapped_light = first_mapped_light.min(first_exact_light);
