@@ -206,6 +206,28 @@ impl LightGrid {
         (box_at(position - reach), box_at(position + reach))
     }
 
+    /// A grid of no box, for frames not worth one ([`grid_worth_it`]): every point walks
+    /// the outside box, which lists every light on the SH and shadow-map paths, at the
+    /// cost of those lights alone. A pipeline compiled for earlier lights that walks a
+    /// grid, drawing while the next one compiles, then walks every light.
+    pub fn every_light(ordered: &[GpuLight], [first_mapped_light, first_exact_light]: [usize; 2]) -> LightGrid {
+        let first_exact_light = first_exact_light.min(ordered.len());
+        let first_mapped_light = first_mapped_light.min(first_exact_light);
+        let header = HEADER_WORDS as u32;
+        let mut words = vec![
+            header,
+            header + first_mapped_light as u32,
+            header + first_exact_light as u32,
+        ];
+        words.extend(0..first_exact_light as u32);
+        LightGrid {
+            origin: Vec3::ZERO,
+            box_side_m: 1.0,
+            boxes: UVec3::ZERO,
+            words,
+        }
+    }
+
     pub fn box_count(&self) -> usize {
         (self.boxes.x * self.boxes.y * self.boxes.z) as usize
     }
@@ -245,8 +267,12 @@ impl LightGrid {
         [&self.words[start..split], &self.words[split..end]]
     }
 
-    /// The entries over the boxes' count: how many lights a box lists on average.
+    /// The entries over the boxes' count: how many lights a box lists on average (the
+    /// outside box's, without boxes).
     pub fn mean_listed(&self) -> f64 {
+        if self.box_count() == 0 {
+            return (self.words.len() - HEADER_WORDS) as f64;
+        }
         let header = HEADER_WORDS * (self.box_count() + 1);
         let outside = self.words[HEADER_WORDS * self.box_count() + 2] - self.words[HEADER_WORDS * self.box_count()];
         (self.words.len() - header - outside as usize) as f64 / self.box_count() as f64
@@ -462,6 +488,22 @@ mod tests {
             })
             .collect();
         assert_eq!(LightGrid::build(&unranged, [50, 50], street).boxes.x, 24);
+    }
+
+    /// The grid of no box lists every light at every point, as the shaders' walk over
+    /// every light takes them.
+    #[test]
+    fn the_grid_of_no_box_lists_every_light_everywhere() {
+        let mut random = SplitMix64(11);
+        let lights = lights(&mut random, 20);
+        let grid = LightGrid::every_light(&lights, [12, 18]);
+        assert_eq!(grid.box_count(), 0);
+        for p in [Vec3::ZERO, Vec3::new(3.0, -1.0, 2.0), Vec3::splat(f32::NAN)] {
+            let [harmonic, mapped] = grid.lights_at(p);
+            assert_eq!(harmonic, (0..12).collect::<Vec<u32>>().as_slice());
+            assert_eq!(mapped, (12..18).collect::<Vec<u32>>().as_slice());
+        }
+        assert_eq!(grid.mean_listed(), 18.0);
     }
 
     #[test]

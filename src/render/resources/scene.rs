@@ -11,7 +11,7 @@ use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
     GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance, srgb8_word,
 };
-use crate::shading::light_grid::LightGrid;
+use crate::shading::light_grid::{LightGrid, grid_worth_it};
 use crate::shading::wgsl::slots;
 
 pub struct GpuObject {
@@ -66,9 +66,10 @@ pub struct GpuScene {
     /// The scene's bounds, which the lights' grid covers.
     bounds: Aabb,
     /// The lights' grid of the uploaded lights (`shading::light_grid`), and those lights
-    /// without their intensities: what it depends on (a stroke leaves it as it is).
+    /// without their intensities, what it was built from (a stroke leaves it as it is;
+    /// None before the first upload).
     light_grid: LightGrid,
-    light_grid_key: Vec<GpuLight>,
+    light_grid_key: Option<Vec<GpuLight>>,
     /// Whether objects outside the camera's frustum are left out of its passes (on unless
     /// a test compares frames without it: [`GpuScene::set_view_culling`]).
     view_culling: bool,
@@ -211,8 +212,8 @@ impl GpuScene {
             harmonic_lights: Vec::new(),
             mapped_light_geometry: Vec::new(),
             bounds: scene.bounds(),
-            light_grid: LightGrid::build(&[], [0, 0], scene.bounds()),
-            light_grid_key: Vec::new(),
+            light_grid: LightGrid::every_light(&[], [0, 0]),
+            light_grid_key: None,
         };
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::new).collect();
         gpu_scene.update_lights(device, queue, layouts, &lights);
@@ -267,34 +268,35 @@ impl GpuScene {
         }
         let (ordered, first_light_on) = crate::shading::gpu_types::order_by_shadow_path(lights);
         self.lights.write(queue, &ordered);
-        let grid_key: Vec<GpuLight> = ordered
+        // The lights without their intensities: what the grid and the mapped lights'
+        // visibility depend on.
+        let geometry: Vec<GpuLight> = ordered
             .iter()
             .map(|light| GpuLight {
                 intensity_rgb: [0.0; 4],
                 ..*light
             })
             .collect();
-        if grid_key != self.light_grid_key || self.light_grid_key.is_empty() {
-            // Built whether or not this frame's pipelines walk it: a pipeline compiled
-            // for earlier lights may draw a frame or two while the next one compiles.
-            self.light_grid = LightGrid::build(&ordered, first_light_on, self.bounds);
+        let mapped = first_light_on[0].min(ordered.len())..first_light_on[1].min(ordered.len());
+        self.mapped_light_geometry = geometry[mapped].to_vec();
+        if self.light_grid_key.as_ref() != Some(&geometry) {
+            // Written whether or not this frame's pipelines walk it: a pipeline compiled
+            // for earlier lights may draw a frame or two while the next one compiles (a
+            // grid of no box, listing every light, for lights not worth one).
+            self.light_grid = if grid_worth_it(&ordered) {
+                LightGrid::build(&ordered, first_light_on, self.bounds)
+            } else {
+                LightGrid::every_light(&ordered, first_light_on)
+            };
             if self.lights.write_grid(device, queue, &self.light_grid.words) {
                 self.frame_bind_group =
                     frame_bind_group(device, layouts, &self.frame_buffer, &self.lights, &self.indirect_buffer);
             }
-            self.light_grid_key = grid_key;
+            self.light_grid_key = Some(geometry);
         }
         self.light_count = ordered.len();
         self.first_light_on = first_light_on;
         self.harmonic_lights = ordered[..first_light_on[0].min(ordered.len())].to_vec();
-        let mapped = first_light_on[0].min(ordered.len())..first_light_on[1].min(ordered.len());
-        self.mapped_light_geometry = ordered[mapped]
-            .iter()
-            .map(|light| GpuLight {
-                intensity_rgb: [0.0; 4],
-                ..*light
-            })
-            .collect();
     }
 
     /// The lights on the shadow-map path as uploaded, in order, without their intensity
