@@ -181,8 +181,8 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn track_frame_time(&mut self) {
-        self.frame_clock.tick(Instant::now());
+    pub(super) fn track_frame_time(&mut self, ctx: &egui::Context) {
+        self.frame_clock.tick(Instant::now(), ctx.requested_repaint_last_pass());
     }
 
     /// "NAME.lightpaint • — lightpaint" (the dot: unsaved changes), as window managers

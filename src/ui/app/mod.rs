@@ -283,8 +283,8 @@ impl eframe::App for EditorApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        self.track_frame_time();
         let ctx = ui.ctx().clone();
+        self.track_frame_time(&ctx);
         self.handle_shortcuts_and_drops(&ctx);
         self.take_up_saved_strokes();
         self.menu_bar(ui);
