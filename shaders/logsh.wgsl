@@ -14,13 +14,13 @@
 // #import blockers exact_lights terrain shadow_lookup lobes
 
 // The discs' log-visibility at p (each shaded at every receiver, in their own loop so
-// that the spheres' walk stays small).
-fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>) -> Sh {
+// that the spheres' walk stays small), weighed by the light windows when `windowed`.
+fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>, windowed: bool) -> Sh {
     var sum = f;
     for (var i = 0u; i < shadow.disc_count; i++) {
         let seen = disc_cap_seen(shadow.discs[i], p, n);
         if seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0 {
-            sum = add_cap(sum, seen.direction, seen.ratio, seen.horizon);
+            sum = add_cap(sum, seen.direction, seen.ratio, seen.horizon, windowed);
         }
     }
     return sum;
@@ -48,48 +48,64 @@ override SH_VISIBILITY: bool = true;
 // spheres that contain p (a sphere-fit artefact on the blocker's own surface), blockers
 // too small in the sky to matter, and blockers wholly below the tangent plane; blockers
 // straddling it are faded by smoothstep(−1, 1, (c − p)·n / h), h their half-extent
-// along n.
+// along n. Walked with the light windows where they apply (open_light_windows), else
+// without: with PER_POINT_WINDOWS both walks are compiled in and each point takes one.
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     if LIGHT_WINDOWS > 0u {
         open_light_windows(p);
+        if !PER_POINT_WINDOWS || windows_open {
+            return walked_log_visibility(p, n, true);
+        }
     }
+    return walked_log_visibility(p, n, false);
+}
+
+// false: every point of a frame walks alike, with the windows when LIGHT_WINDOWS > 0
+// (1–4 SH lights, no environment), else without. true: more than MAX_WINDOW_LIGHTS SH
+// lights and no environment, where each point opens the windows of the lights that reach
+// it when at most MAX_WINDOW_LIGHTS do (window_lights): the walk with windows and the one
+// without are both compiled in, each specialised, so that the points where no window
+// opens — past four lights reaching them — do not pay the windows' tests at every
+// blocker (lavapipe runs a branch's both sides, but a loop no lane enters only once).
+// Set by shading::compiled_paths.
+override PER_POINT_WINDOWS: bool = false;
+
+// log_visibility's walk, with the light windows when `windowed` (a constant at each
+// call, so each walk is compiled for one case). Whether the stand-ins come as steps of
+// the walk (only where they weigh anything) or are added at every group and cluster
+// tested: with light windows most far stand-ins weigh nothing and the walk saves their
+// caps (blocker bench, 20,000 spheres: 370 → 312 ms); without, most weigh something, and
+// the walk's larger state costs every blocker's step more than it saves (the large
+// sample's pixels shaded in full: 133 → 148 ms).
+fn walked_log_visibility(p: vec3<f32>, n: vec3<f32>, windowed: bool) -> Sh {
     var f = sh_zero();
     for (var c = 0u; c < shadow.cluster_count; c++) {
         let cluster = group_at(c);
-        let in_windows = group_in_windows(cluster, p);
+        let in_windows = group_in_windows(cluster, p, windowed);
         let walked = cluster_groups(cluster, group_in_reach(cluster, p, n) && in_windows);
         let share = stand_in_share(cluster, p);
-        let passing = groups_to_walk(walked, p, n, 1.0 - share, &f);
-        if !stand_ins_walked() {
+        let passing = groups_to_walk(walked, p, n, 1.0 - share, &f, windowed);
+        if !windowed {
             f = add_stand_in(f, cluster, p, n, 1.0);
         }
-        let cluster_stand_in = stand_ins_walked() && in_windows && stand_in_weighs(cluster, p, n, 1.0);
+        let cluster_stand_in = windowed && in_windows && stand_in_weighs(cluster, p, n, 1.0);
         var walk = cluster_walk(cluster, share, passing, p, cluster_stand_in);
         loop {
             let i = walk_next(&walk);
             if i == WALK_DONE {
                 break;
             }
-            f = add_walked(f, &walk, i, p, n);
+            f = add_walked(f, &walk, i, p, n, windowed);
         }
     }
-    f = add_discs(f, p, n);
+    f = add_discs(f, p, n, windowed);
     return sh_sum(f, terrain_log_visibility(p));
-}
-
-// Whether the stand-ins come as steps of the walk (only where they weigh anything) or
-// are added at every group and cluster tested: with light windows most far stand-ins
-// weigh nothing and the walk saves their caps (blocker bench, 20,000 spheres: 370 → 312
-// ms); without, most weigh something, and the walk's larger state costs every blocker's
-// step more than it saves (the large sample's pixels shaded in full: 133 → 148 ms).
-fn stand_ins_walked() -> bool {
-    return LIGHT_WINDOWS > 0u;
 }
 
 // A group's (or a cluster's) stand-in, one sphere at its centre covering the area its
 // spheres cover, weighed by stand_in_share times `weight` times its depth (so it keeps
 // their summed log-visibility) and faded below the tangent plane over the group's extent
-// (when the walk does not take it: stand_ins_walked).
+// (when the walk does not take it: the walk without windows).
 fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: f32) -> Sh {
     if !stand_in_weighs(group, p, n, weight) {
         return f;
@@ -98,7 +114,7 @@ fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: 
     let distance = sqrt(max(dot(offset, offset), 1e-30));
     let horizon = smoothstep(-1.0, 1.0, dot(offset, n) / max(group.center_extent.w, 1e-30));
     let share = stand_in_share(group, p) * weight;
-    return add_cap(f, offset / distance, group.stand_in_radius_m / distance, horizon * share * group.stand_in_depth);
+    return add_cap(f, offset / distance, group.stand_in_radius_m / distance, horizon * share * group.stand_in_depth, false);
 }
 
 // The groups of `walked` whose blockers p walks (in reach, short of their stand-in's
@@ -106,21 +122,21 @@ fn add_stand_in(f: Sh, group: BlockerGroup, p: vec3<f32>, n: vec3<f32>, weight: 
 // share times `weight`, the groups' share against their cluster's stand-in, above 0,
 // as large in the sky as min_cap_ratio, not wholly below the tangent plane, within a
 // window): their blockers and stand-ins then come in the walk, and a group with neither
-// costs no cap. Without the walk's stand-ins (stand_ins_walked), each group's is added
-// to *f here.
-fn groups_to_walk(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32, f: ptr<function, Sh>) -> GroupsToWalk {
+// costs no cap. Without windows the walk takes no stand-in: each group's is added to *f
+// here.
+fn groups_to_walk(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32, f: ptr<function, Sh>, windowed: bool) -> GroupsToWalk {
     var passing = GroupsToWalk(0u, 0u);
     for (var g = walked.first; g < walked.end; g++) {
         let group = group_at(g);
-        if !stand_ins_walked() {
+        if !windowed {
             *f = add_stand_in(*f, group, p, n, weight);
         }
         let bit = 1u << (g - walked.first);
-        let in_windows = group_in_windows(group, p);
+        let in_windows = group_in_windows(group, p, windowed);
         if group_in_reach(group, p, n) && stand_in_share(group, p) < 1.0 && in_windows {
             passing.blockers |= bit;
         }
-        if stand_ins_walked() && in_windows && stand_in_weighs(group, p, n, weight) {
+        if windowed && in_windows && stand_in_weighs(group, p, n, weight) {
             passing.stand_ins |= bit;
         }
     }
@@ -135,8 +151,8 @@ fn groups_to_walk(walked: ClusterGroups, p: vec3<f32>, n: vec3<f32>, weight: f32
 // blotches where they leave it); a stand-in — one sphere of its group's (or cluster's)
 // spheres' covered area at its centre — weighed walk.stand_in_weight and faded
 // over the group's extent.
-fn add_walked(f: Sh, walk: ptr<function, BlockerWalk>, i: u32, p: vec3<f32>, n: vec3<f32>) -> Sh {
-    let is_stand_in = stand_ins_walked() && i == WALK_STAND_IN;
+fn add_walked(f: Sh, walk: ptr<function, BlockerWalk>, i: u32, p: vec3<f32>, n: vec3<f32>, windowed: bool) -> Sh {
+    let is_stand_in = windowed && i == WALK_STAND_IN;
     let b = blocker_at(select(i, 0u, is_stand_in));
     let sphere = select(b.center_radius, (*walk).stand_in, is_stand_in);
     let fade_m = select(b.center_radius.w, (*walk).stand_in_extent, is_stand_in);
@@ -150,7 +166,7 @@ fn add_walked(f: Sh, walk: ptr<function, BlockerWalk>, i: u32, p: vec3<f32>, n: 
     if inside || ratio < shadow.min_cap_ratio || horizon <= 0.0 || weight <= 0.0 {
         return f;
     }
-    return add_cap(f, offset / distance, ratio, horizon * weight);
+    return add_cap(f, offset / distance, ratio, horizon * weight, windowed);
 }
 
 // k(s): the scale of a cap's log-visibility that keeps the light it blocks through the
@@ -167,9 +183,9 @@ fn cap_mass_scale(s: f32) -> f32 {
 // below the tangent plane, and its share against a stand-in): ln ε · weight · k(s)
 // [· s with ratio attenuation] times the cap's ZH rotated there (shading::cpu::visibility's
 // add_cap is the twin).
-fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32) -> Sh {
+fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool) -> Sh {
     var scale = shadow.ln_epsilon * weight;
-    if LIGHT_WINDOWS > 0u && windows_open {
+    if windowed && LIGHT_WINDOWS > 0u && windows_open {
         scale *= windowed_cap_scale(direction, ratio, cap_mass_scale(ratio));
     } else {
         scale *= cap_mass_scale(ratio);
@@ -185,8 +201,10 @@ fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32) -> Sh {
 // each cap is weighed by how near it comes to the nearest light's cap and scaled for
 // that light's mean (min(1, k(s) · gain)) instead of by k(s); blockers far from every
 // light then no longer darken the lights they do not hide through the band limit.
-// The number of windows compiled in (shading::compiled_paths): 0 for a frame without
-// them; lavapipe pays for each window at every blocker, used or not.
+// With more than MAX_WINDOW_LIGHTS SH lights a point opens windows for those that reach
+// it, when at most that many do (window_lights). The number of windows compiled in
+// (shading::compiled_paths): 0 for a frame without them; lavapipe pays for each window
+// at every blocker, used or not.
 override LIGHT_WINDOWS: u32 = 4u;
 const MAX_WINDOW_LIGHTS: u32 = 4u;
 
@@ -204,20 +222,52 @@ var<private> window_sines: vec4<f32>;
 var<private> window_half_angles: vec4<f32>;
 var<private> window_gains: vec4<f32>;
 
-// Whether the windows apply to this frame (light_windows::windows_apply): no environment
-// light and 1 to MAX_WINDOW_LIGHTS lights on the SH path (the first frame.first_mapped_light).
-fn light_windows_apply() -> bool {
-    var environment_lights = false;
+// No light in a window's slot.
+const NO_WINDOW_LIGHT: u32 = 0xffffffffu;
+
+// Whether an environment lights the frame (gpu_types::irradiance_lights).
+fn environment_lights() -> bool {
+    var lights = false;
     for (var k = 0u; k < 9u; k++) {
-        environment_lights = environment_lights || any(frame.environment_irradiance[k].xyz != vec3<f32>(0.0));
+        lights = lights || any(frame.environment_irradiance[k].xyz != vec3<f32>(0.0));
     }
-    return !environment_lights && frame.first_mapped_light >= 1u && frame.first_mapped_light <= MAX_WINDOW_LIGHTS;
+    return lights;
+}
+
+// The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none), and whether
+// any window applies there (windows_open; light_windows::windowed_lights is the twin):
+// without an environment's light, the frame's SH lights when there are 1 to
+// MAX_WINDOW_LIGHTS (the first frame.first_mapped_light), else those that reach p
+// (light_reaches, among its box's: harmonic_lights_at) when at most MAX_WINDOW_LIGHTS
+// do — none at a point no SH light reaches, where nothing reads the visibility.
+fn window_lights(p: vec3<f32>) -> vec4<u32> {
+    let slots = vec4<u32>(0u, 1u, 2u, 3u);
+    windows_open = false;
+    if environment_lights() || frame.first_mapped_light == 0u {
+        return vec4<u32>(NO_WINDOW_LIGHT);
+    }
+    if frame.first_mapped_light <= MAX_WINDOW_LIGHTS {
+        windows_open = true;
+        return select(vec4<u32>(NO_WINDOW_LIGHT), slots, slots < vec4<u32>(frame.first_mapped_light));
+    }
+    var chosen = vec4<u32>(NO_WINDOW_LIGHT);
+    var count = 0u;
+    let run = harmonic_lights_at(p);
+    for (var k = run.first; k < run.end; k++) {
+        let i = run_light(k);
+        if light_reaches(light_at(i), p) {
+            chosen = select(chosen, vec4<u32>(i), vec4<u32>(count) == slots);
+            count += 1u;
+        }
+    }
+    windows_open = count <= MAX_WINDOW_LIGHTS;
+    return chosen;
 }
 
 // SH light i's window seen from p (LightWindows::at): its cap grown to hold the emitter,
-// as (direction, half-angle).
+// as (direction, half-angle); half-angle −1 for NO_WINDOW_LIGHT.
 fn light_window(i: u32, p: vec3<f32>) -> vec4<f32> {
-    if i >= frame.first_mapped_light {
+    if i == NO_WINDOW_LIGHT {
         return vec4<f32>(0.0, 0.0, 0.0, -1.0);
     }
     let light = light_at(i);
@@ -239,9 +289,9 @@ fn window_cosine(window: vec4<f32>) -> vec4<f32> {
 }
 
 fn open_light_windows(p: vec3<f32>) {
-    windows_open = light_windows_apply();
+    let lights = window_lights(p);
     if windows_open {
-        let w = array<vec4<f32>, 4>(light_window(0u, p), light_window(1u, p), light_window(2u, p), light_window(3u, p));
+        let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
         let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
         window_0 = window_cosine(w[0]);
         window_1 = window_cosine(w[1]);
@@ -265,8 +315,8 @@ fn open_light_windows(p: vec3<f32>) {
 // only within α + 3β/2 of it; 1e-3 rad more for rounding). Those skipped, the walk costs
 // the windows nothing where no light can be hidden; their weights were 0 (the twin,
 // which walks them all, adds nothing for them). Of a cluster, likewise for its groups.
-fn group_in_windows(group: BlockerGroup, p: vec3<f32>) -> bool {
-    if LIGHT_WINDOWS == 0u || !windows_open {
+fn group_in_windows(group: BlockerGroup, p: vec3<f32>, windowed: bool) -> bool {
+    if !windowed || LIGHT_WINDOWS == 0u || !windows_open {
         return true;
     }
     let to_group = group.center_extent.xyz - p;

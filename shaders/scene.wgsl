@@ -199,6 +199,24 @@ fn incidence(light: Light, p: vec3<f32>) -> Incidence {
     return result;
 }
 
+// Whether `light` adds anything at p as far as its range and its cone say: the window
+// and the cone factor of incidence above 0, written as incidence computes them
+// (light_windows::light_reaches is the twin).
+fn light_reaches(light: Light, p: vec3<f32>) -> bool {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return true;
+    }
+    let offset = light.position.xyz - p;
+    let distance2 = max(dot(offset, offset), 1e-8);
+    let range = light.direction_range.w;
+    var reaches = !(range > 0.0) || distance2 / (range * range) < 1.0;
+    if light.kind == LIGHT_SPOT {
+        let cos_angle = dot(-offset * inverseSqrt(distance2), light.direction_range.xyz);
+        reaches = reaches && (cos_angle - light.spot_cone.x) * light.spot_cone.y > 0.0;
+    }
+    return reaches;
+}
+
 // false: no light of the frame is a rect (a disk), and the vector irradiance of its
 // polygon is left out (shading::compiled_paths; lavapipe pays for a branch's body whether
 // or not a pixel takes it).

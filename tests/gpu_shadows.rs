@@ -148,6 +148,37 @@ fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
     }
 }
 
+/// Past four SH lights each point opens the windows of those that reach it (within their
+/// range: `light_windows::windowed_lights`), when at most four do: the bench with 600
+/// spheres, its panel and 24 lamps of 1 m range all on the SH path, where a floor point
+/// sees the panel and a lamp or two.
+#[test]
+fn windows_of_the_sh_lights_that_reach_each_point_match_the_cpu_reference() {
+    use lightpaint::samples::blocker_bench;
+    use lightpaint::shading::LightPaths;
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = blocker_bench::thin_casters_scene();
+    blocker_bench::add_lamps(&mut scene, 24);
+    let camera = blocker_bench::thin_casters_camera();
+    let blockers = blocker_bench::spheres_on_casters(&scene, 600);
+    let settings = RenderSettings::default();
+    let shadows = ShadowSettings {
+        light_paths: LightPaths::Harmonics,
+        ..ShadowSettings::default().every_pixel()
+    };
+    let frame = ShadowFrame {
+        baked_indirect: None,
+        scene: &scene,
+        camera: &camera,
+        settings: &settings,
+        shadows: &shadows,
+        blockers: &blockers,
+        width: 120,
+        height: 68,
+    };
+    assert_parity(&gpu, "bench-lamps-windows", &frame);
+}
+
 #[test]
 fn every_method_and_order_matches_the_cpu_reference() {
     let Some(gpu) = common::gpu() else { return };

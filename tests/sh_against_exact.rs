@@ -24,14 +24,16 @@ struct Departure {
 }
 
 /// The SH path (order `order`, exponentiation `exp`) against the exact path with
-/// `spheres` spheres spread over the bench's casters, on the f64 twin at `width` ×
-/// `height` surfaces; None without a GPU (the surfaces are rasterised on it).
-fn departure(order: usize, exp: ExpMethod, spheres: usize, width: u32, height: u32) -> Option<Departure> {
+/// `spheres` spheres spread over the bench's casters and `lamps` lamps of 1 m range added
+/// (`blocker_bench::add_lamps`), on the f64 twin at `width` × `height` surfaces; None
+/// without a GPU (the surfaces are rasterised on it).
+fn departure(order: usize, exp: ExpMethod, spheres: usize, lamps: usize, width: u32, height: u32) -> Option<Departure> {
     use lightpaint::scene::luminance;
     use lightpaint::shading::cpu::{ShadingInputs, shadowed_radiance};
     use rayon::prelude::*;
     let gpu = common::gpu()?;
-    let scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    lightpaint::samples::blocker_bench::add_lamps(&mut scene, lamps);
     let camera = lightpaint::samples::blocker_bench::thin_casters_camera();
     let surfaces = lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
     let spheres = lightpaint::samples::blocker_bench::spheres_on_casters(&scene, spheres);
@@ -102,7 +104,7 @@ fn departure(order: usize, exp: ExpMethod, spheres: usize, width: u32, height: u
 /// (tests/gpu_shadows.rs), at a quarter of the measurement's surfaces.
 #[test]
 fn six_hundred_spheres_leave_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 120, 68) else {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 0, 120, 68) else {
         return;
     };
     eprintln!(
@@ -129,7 +131,7 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
     // The shipped exponentiation (HYB) at orders 4 and 8, and the exact exponential at 4.
     let defaults = ShadowSettings::default();
     for (order, exp) in [(4, defaults.exp), (8, defaults.exp), (4, ExpMethod::Reference)] {
-        let Some(d) = departure(order, exp, 600, 240, 135) else {
+        let Some(d) = departure(order, exp, 600, 0, 240, 135) else {
             return;
         };
         eprintln!(
@@ -144,4 +146,24 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
             d.pixels[2]
         );
     }
+}
+
+/// Past four SH lights each point opens the windows of those that reach it
+/// (`light_windows::windowed_lights`) when at most four do: with the panel and 24 lamps of
+/// 1 m range all on the SH path, a floor point sees the panel and at most a few lamps,
+/// and the lit floor stays lit as with the panel alone.
+#[test]
+fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 24, 120, 68) else {
+        return;
+    };
+    eprintln!(
+        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
+        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
+    );
+    assert!(d.pixels[2] > 100, "the floor has lit pixels: {:?}", d.pixels);
+    assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
+    // Walking without windows wherever more than four SH lights light the frame gave
+    // −0.204 and a penumbra RMS of 0.364 here.
+    assert!(d.penumbra_rms < 0.364, "penumbra RMS {:.4}", d.penumbra_rms);
 }

@@ -137,8 +137,8 @@ fn shadow_maps_culled_per_view_cast_the_same_shadows() {
 /// path's lights hold: a frame of the close view computes the objects it sees, the whole
 /// view then only those the close one culled, the same view again none, and under the
 /// sample's environment (no windows) a moved light none; without the environment the
-/// windows apply and a moved light computes every object in view again. Each frame must
-/// be byte for byte the one a new renderer draws.
+/// windows apply and a moved light computes every object in view again, a brightened one
+/// none. Each frame must be byte for byte the one a new renderer draws.
 #[test]
 fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     let Some(gpu) = common::gpu() else { return };
@@ -220,5 +220,25 @@ fn per_vertex_visibility_is_computed_once_per_object_in_view() {
     assert_eq!(
         move_vertices, first_vertices,
         "a moved light whose window applies computes every vertex in view again"
+    );
+
+    // A stroke changes how bright a light is, not where its window is.
+    let mut brighter = moved.clone();
+    brighter.lights[0].intensity *= 2.0;
+    kept.set_lights(&brighter.lights);
+    let (after_stroke, stroke_vertices) = draw(&mut kept, &whole);
+    let (stroke_anew, _) = drawn_anew(&brighter, &whole);
+    assert!(
+        common::differing_pixels(&move_anew, &stroke_anew) > 1000,
+        "the brighter light must show"
+    );
+    assert_eq!(
+        common::differing_pixels(&after_stroke, &stroke_anew),
+        0,
+        "the view after a windowed light was brightened"
+    );
+    assert_eq!(
+        stroke_vertices, 0,
+        "a brighter light leaves its window: nothing computed"
     );
 }

@@ -30,8 +30,13 @@
 //! Auto gives it them). Without the larger scale (k(s) in the windows) the umbrae at
 //! order 4 came out 36 % too light.
 //!
-//! With an environment the windows are off: its light comes from the whole sky. So are
-//! they past [`MAX_WINDOW_LIGHTS`] SH lights (the shaders keep each window in registers).
+//! With an environment the windows are off: its light comes from the whole sky. With more
+//! than [`MAX_WINDOW_LIGHTS`] SH lights (the shaders keep each window in registers) a
+//! point opens windows for those of them that reach it ([`light_reaches`]: within its
+//! range, inside a spot's cone), when at most [`MAX_WINDOW_LIGHTS`] do: the others add
+//! exactly nothing there, so nothing else reads its visibility (a street of lamps with
+//! ranges; a point no SH light reaches opens none, and no blocker weighs anything there).
+//! Past that many at a point, its blockers all weigh, as with an environment.
 
 use super::gpu_types::{GpuLight, SHADOW_PATH_SH, irradiance_lights};
 
@@ -39,24 +44,77 @@ use super::gpu_types::{GpuLight, SHADOW_PATH_SH, irradiance_lights};
 /// (`MAX_WINDOW_LIGHTS` in logsh.wgsl).
 pub const MAX_WINDOW_LIGHTS: usize = 4;
 
-/// Whether the windows apply to a frame with this environment irradiance (order-3 SH,
+/// Whether the windows may apply in a frame with this environment irradiance (order-3 SH,
 /// `Frame::environment_irradiance`) and these lights on their paths: no environment
-/// light, and 1 to [`MAX_WINDOW_LIGHTS`] lights on the SH path (`light_windows_apply` in
-/// logsh.wgsl decides alike from the same numbers).
+/// light, and some light on the SH path — at every point when there are 1 to
+/// [`MAX_WINDOW_LIGHTS`], else at the points [`windowed_lights`] gives windows
+/// (`open_light_windows` in logsh.wgsl decides alike from the same numbers).
 pub fn windows_apply(environment_irradiance: &[[f32; 4]; 9], lights: &[GpuLight]) -> bool {
     compiled_windows(irradiance_lights(environment_irradiance), lights) > 0
 }
 
 /// The windows the shaders compile in for a frame with (`environment_lights`) or without
-/// an environment's light and these lights: the SH lights' count where
-/// [`windows_apply`] would hold, else 0 (`CompiledPaths::light_windows`).
+/// an environment's light and these lights: the SH lights' count when there are 1 to
+/// [`MAX_WINDOW_LIGHTS`], [`MAX_WINDOW_LIGHTS`] when there are more (each point opens
+/// those of the lights that reach it), 0 with an environment or without SH lights
+/// (`CompiledPaths::light_windows`).
 pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    if !environment_lights && (1..=MAX_WINDOW_LIGHTS).contains(&sh_lights) {
-        sh_lights as u32
-    } else {
+    if environment_lights || sh_lights == 0 {
         0
+    } else {
+        sh_lights.min(MAX_WINDOW_LIGHTS) as u32
     }
+}
+
+/// Whether each point decides for itself whether windows apply (past
+/// [`MAX_WINDOW_LIGHTS`] SH lights without an environment's light), so that the shaders
+/// compile the walk without windows beside the one with them
+/// (`CompiledPaths::per_point_windows`).
+pub fn windows_per_point(environment_lights: bool, lights: &[GpuLight]) -> bool {
+    let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
+    !environment_lights && sh_lights > MAX_WINDOW_LIGHTS
+}
+
+/// The SH-path lights among `lights` whose windows a point at `p` opens, or None where no
+/// window applies (see the module's documentation): every SH light when there are at most
+/// [`MAX_WINDOW_LIGHTS`], else those that reach p when at most that many do.
+pub fn windowed_lights(
+    environment_irradiance: &[[f32; 4]; 9],
+    lights: &[GpuLight],
+    p: glam::DVec3,
+) -> Option<Vec<GpuLight>> {
+    if !windows_apply(environment_irradiance, lights) {
+        return None;
+    }
+    let harmonic = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH);
+    if harmonic.clone().count() <= MAX_WINDOW_LIGHTS {
+        return Some(harmonic.copied().collect());
+    }
+    let reaching: Vec<GpuLight> = harmonic.filter(|light| light_reaches(light, p)).copied().collect();
+    (reaching.len() <= MAX_WINDOW_LIGHTS).then_some(reaching)
+}
+
+/// Whether `light` adds anything at `p` as far as its range and cone say (scene.wgsl
+/// `light_reaches`, in f32 there): within its range (KHR_lights_punctual's window is 0
+/// from the range on), and for a spot inside its outer cone.
+pub fn light_reaches(light: &GpuLight, p: glam::DVec3) -> bool {
+    let position = glam::Vec3::from_slice(&light.position[..3]).as_dvec3();
+    let offset = position - p;
+    let range = f64::from(light.direction_range[3]);
+    if light.kind == super::gpu_types::LIGHT_DIRECTIONAL {
+        return true;
+    }
+    if range > 0.0 && offset.length_squared() >= range * range {
+        return false;
+    }
+    if light.kind == super::gpu_types::LIGHT_SPOT {
+        let direction = glam::Vec3::from_slice(&light.direction_range[..3]).as_dvec3();
+        let cos_angle = (-offset).normalize_or_zero().dot(direction);
+        let t = (cos_angle - f64::from(light.spot_cone[0])) * f64::from(light.spot_cone[1]);
+        return t > 0.0;
+    }
+    true
 }
 
 #[cfg(test)]
@@ -74,11 +132,59 @@ mod tests {
         sky[0] = [0.2, 0.3, 0.4, 0.0];
         assert!(windows_apply(&dark, &[light]));
         assert!(windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS]));
-        assert!(!windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS + 1]));
+        assert!(
+            windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS + 1]),
+            "at the points few of them reach"
+        );
         assert!(!windows_apply(&dark, &[]));
         assert!(!windows_apply(&sky, &[light]));
         assert_eq!(compiled_windows(false, &[light; 3]), 3);
         assert_eq!(compiled_windows(true, &[light; 3]), 0);
-        assert_eq!(compiled_windows(false, &[light; MAX_WINDOW_LIGHTS + 1]), 0);
+        assert_eq!(
+            compiled_windows(false, &[light; MAX_WINDOW_LIGHTS + 1]),
+            MAX_WINDOW_LIGHTS as u32
+        );
+        assert_eq!(compiled_windows(true, &[light; MAX_WINDOW_LIGHTS + 1]), 0);
+        assert!(!windows_per_point(false, &[light; MAX_WINDOW_LIGHTS]));
+        assert!(windows_per_point(false, &[light; MAX_WINDOW_LIGHTS + 1]));
+        assert!(!windows_per_point(true, &[light; MAX_WINDOW_LIGHTS + 1]));
+    }
+
+    /// Past four SH lights a point opens the windows of those within their range, when
+    /// at most four are; the rest of the scene has none.
+    #[test]
+    fn past_four_sh_lights_a_point_opens_the_windows_of_the_lights_that_reach_it() {
+        let lamp = |x: f32| {
+            GpuLight::new(&crate::scene::Light {
+                name: "lamp".into(),
+                kind: crate::scene::LightKind::Point,
+                color: glam::Vec3::ONE,
+                intensity: 1.0,
+                position: glam::Vec3::new(x, 1.0, 0.0),
+                direction: glam::Vec3::NEG_Y,
+                range: Some(1.5),
+                locked: false,
+            })
+        };
+        let lamps: Vec<GpuLight> = (0..10).map(|k| lamp(2.0 * k as f32)).collect();
+        let dark = [[0.0; 4]; 9];
+        let under_the_third = windowed_lights(&dark, &lamps, glam::DVec3::new(4.0, 0.0, 0.0)).expect("windows");
+        assert_eq!(under_the_third.len(), 1);
+        assert_eq!(under_the_third[0].position[0], 4.0);
+        let between = windowed_lights(&dark, &lamps, glam::DVec3::new(5.0, 0.5, 0.0)).expect("windows");
+        assert_eq!(between.len(), 2);
+        let far = windowed_lights(&dark, &lamps, glam::DVec3::new(5.0, 0.0, 30.0)).expect("windows");
+        assert!(far.is_empty(), "no lamp reaches it: no window, nothing weighs");
+        let mut bright = lamps.clone();
+        for light in &mut bright {
+            light.direction_range[3] = 0.0;
+        }
+        assert!(
+            windowed_lights(&dark, &bright, glam::DVec3::ZERO).is_none(),
+            "ten unbounded lamps reach it"
+        );
+        let mut sky = dark;
+        sky[0] = [0.2, 0.3, 0.4, 0.0];
+        assert!(windowed_lights(&sky, &lamps, glam::DVec3::new(4.0, 0.0, 0.0)).is_none());
     }
 }

@@ -13,7 +13,7 @@ use super::cpu::LightWindows;
 use super::cpu::mapped_visibility;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
-use super::light_windows::windows_apply;
+use super::light_windows::windowed_lights;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{PaintedPoint, Transfer, VertexRef};
@@ -113,8 +113,8 @@ impl<'a> DirectEstimate<'a> {
     /// Exponentiated visibility SH at the surface point.
     fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
         // The view's windows on the blockers (same lights, same environment).
-        let windows = windows_apply(&self.environment, &self.unit_lights)
-            .then(|| LightWindows::at(&self.unit_lights, s.position, self.settings.order));
+        let windows = windowed_lights(&self.environment, &self.unit_lights, s.position)
+            .map(|lights| LightWindows::at(&lights, s.position, self.settings.order));
         let f = cpu::scene_log_visibility(
             &self.settings,
             &self.blockers,

@@ -118,7 +118,7 @@ impl PerVertexCompute {
 }
 
 /// What the per-vertex visibility is computed from besides the vertices: the SH path's
-/// lights where their windows on the blockers apply (`shading::light_windows`: without
+/// lights' geometry (not their intensities) where their windows on the blockers apply (`shading::light_windows`: without
 /// them the walk reads no light), the environment, the shadow settings, the blockers and
 /// the scene's upload (new geometry, objects hidden or shown).
 #[derive(Debug, Clone, PartialEq)]
@@ -138,8 +138,18 @@ impl VisibilityInputs {
         scene_generation: u64,
     ) -> VisibilityInputs {
         let windows = crate::shading::light_windows::windows_apply(&lighting.environment_irradiance, &lighting.lights);
+        // The windows read where the lights are, not how bright: a stroke keeps them.
+        let geometry = |lights: Vec<crate::shading::gpu_types::GpuLight>| {
+            lights
+                .into_iter()
+                .map(|light| crate::shading::gpu_types::GpuLight {
+                    intensity_rgb: [0.0; 4],
+                    ..light
+                })
+                .collect()
+        };
         VisibilityInputs {
-            windowed_lights: windows.then_some(lighting.lights),
+            windowed_lights: windows.then(|| geometry(lighting.lights)),
             environment_irradiance: lighting.environment_irradiance,
             settings,
             blockers_generation,

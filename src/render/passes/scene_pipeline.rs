@@ -92,6 +92,7 @@ pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("LIGHT_OVERFLOW", flag(paths.light_overflow)),
         ("BLOCKER_OVERFLOW", flag(paths.blocker_overflow)),
         ("LIGHT_WINDOWS", f64::from(paths.light_windows)),
+        ("PER_POINT_WINDOWS", flag(paths.per_point_windows)),
         ("LIGHT_GRID", flag(paths.light_grid)),
     ]
 }

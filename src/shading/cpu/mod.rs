@@ -50,7 +50,7 @@ use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
-use crate::shading::light_windows::windows_apply;
+use crate::shading::light_windows::windowed_lights;
 use crate::terrain::TerrainShadow;
 pub use lobes::environment_through_visibility;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
@@ -79,8 +79,8 @@ pub struct ShadingInputs<'a> {
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
 pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     let settings = inputs.settings;
-    let windows = windows_apply(inputs.environment_irradiance, inputs.lights)
-        .then(|| LightWindows::at(inputs.lights, s.position, settings.order));
+    let windows = windowed_lights(inputs.environment_irradiance, inputs.lights, s.position)
+        .map(|lights| LightWindows::at(&lights, s.position, settings.order));
     let f = scene_log_visibility(
         settings,
         inputs.blockers,
