@@ -254,6 +254,10 @@ fn window_lights(p: vec3<f32>) -> vec4<u32> {
     var count = 0u;
     let run = harmonic_lights_at(p);
     for (var k = run.first; k < run.end; k++) {
+        if count > MAX_WINDOW_LIGHTS {
+            // No window opens: the rest need not be looked at.
+            break;
+        }
         let i = run_light(k);
         if light_reaches(light_at(i), p) {
             chosen = select(chosen, vec4<u32>(i), vec4<u32>(count) == slots);

@@ -56,15 +56,25 @@ pub fn windows_apply(environment_irradiance: &[[f32; 4]; 9], lights: &[GpuLight]
 /// The windows the shaders compile in for a frame with (`environment_lights`) or without
 /// an environment's light and these lights: the SH lights' count when there are 1 to
 /// [`MAX_WINDOW_LIGHTS`], [`MAX_WINDOW_LIGHTS`] when there are more (each point opens
-/// those of the lights that reach it), 0 with an environment or without SH lights
-/// (`CompiledPaths::light_windows`).
+/// those of the lights that reach it), 0 with an environment, without SH lights, or with
+/// more than [`MAX_WINDOW_LIGHTS`] SH lights that reach every point (no range, not a
+/// spot: no point would open a window) (`CompiledPaths::light_windows`).
 pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
-    let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    if environment_lights || sh_lights == 0 {
+    let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH);
+    let count = sh_lights.clone().count();
+    // Past MAX_WINDOW_LIGHTS lights that reach every point, none ever opens a window.
+    let everywhere = sh_lights.filter(|light| reaches_everywhere(light)).count();
+    if environment_lights || count == 0 || everywhere > MAX_WINDOW_LIGHTS {
         0
     } else {
-        sh_lights.min(MAX_WINDOW_LIGHTS) as u32
+        count.min(MAX_WINDOW_LIGHTS) as u32
     }
+}
+
+/// Whether [`light_reaches`] holds at every point: a light neither a spot nor with a
+/// range (a sun, a point or area light without a range).
+fn reaches_everywhere(light: &GpuLight) -> bool {
+    light.kind != super::gpu_types::LIGHT_SPOT && !(light.direction_range[3] > 0.0)
 }
 
 /// Whether each point decides for itself whether windows apply (past
@@ -73,7 +83,7 @@ pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
 /// (`CompiledPaths::per_point_windows`).
 pub fn windows_per_point(environment_lights: bool, lights: &[GpuLight]) -> bool {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    !environment_lights && sh_lights > MAX_WINDOW_LIGHTS
+    compiled_windows(environment_lights, lights) > 0 && sh_lights > MAX_WINDOW_LIGHTS
 }
 
 /// The SH-path lights among `lights` whose windows a point at `p` opens, or None where no
@@ -127,27 +137,43 @@ mod tests {
             shadow_path: SHADOW_PATH_SH,
             ..bytemuck::Zeroable::zeroed()
         };
+        // A light with a range of 1 m, which some points lie beyond.
+        let mut bounded = light;
+        bounded.direction_range[3] = 1.0;
         let dark = [[0.0; 4]; 9];
         let mut sky = dark;
         sky[0] = [0.2, 0.3, 0.4, 0.0];
         assert!(windows_apply(&dark, &[light]));
         assert!(windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS]));
         assert!(
-            windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS + 1]),
+            windows_apply(&dark, &[bounded; MAX_WINDOW_LIGHTS + 1]),
             "at the points few of them reach"
+        );
+        assert!(
+            !windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS + 1]),
+            "five lights without a range reach every point: no window ever opens"
         );
         assert!(!windows_apply(&dark, &[]));
         assert!(!windows_apply(&sky, &[light]));
         assert_eq!(compiled_windows(false, &[light; 3]), 3);
         assert_eq!(compiled_windows(true, &[light; 3]), 0);
         assert_eq!(
-            compiled_windows(false, &[light; MAX_WINDOW_LIGHTS + 1]),
+            compiled_windows(false, &[bounded; MAX_WINDOW_LIGHTS + 1]),
             MAX_WINDOW_LIGHTS as u32
         );
-        assert_eq!(compiled_windows(true, &[light; MAX_WINDOW_LIGHTS + 1]), 0);
+        assert_eq!(compiled_windows(false, &[light; MAX_WINDOW_LIGHTS + 1]), 0);
+        assert_eq!(compiled_windows(true, &[bounded; MAX_WINDOW_LIGHTS + 1]), 0);
+        let four_everywhere = [light, light, light, light, bounded];
+        assert_eq!(
+            compiled_windows(false, &four_everywhere),
+            MAX_WINDOW_LIGHTS as u32,
+            "beyond the fifth's range only four reach"
+        );
         assert!(!windows_per_point(false, &[light; MAX_WINDOW_LIGHTS]));
-        assert!(windows_per_point(false, &[light; MAX_WINDOW_LIGHTS + 1]));
-        assert!(!windows_per_point(true, &[light; MAX_WINDOW_LIGHTS + 1]));
+        assert!(windows_per_point(false, &[bounded; MAX_WINDOW_LIGHTS + 1]));
+        assert!(windows_per_point(false, &four_everywhere));
+        assert!(!windows_per_point(false, &[light; MAX_WINDOW_LIGHTS + 1]));
+        assert!(!windows_per_point(true, &[bounded; MAX_WINDOW_LIGHTS + 1]));
     }
 
     /// Past four SH lights a point opens the windows of those within their range, when
