@@ -74,7 +74,8 @@ pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
 /// Whether [`light_reaches`] holds at every point: a light neither a spot nor with a
 /// range (a sun, a point or area light without a range).
 fn reaches_everywhere(light: &GpuLight) -> bool {
-    light.kind != super::gpu_types::LIGHT_SPOT && !(light.direction_range[3] > 0.0)
+    let range = light.direction_range[3];
+    light.kind != super::gpu_types::LIGHT_SPOT && (range.is_nan() || range <= 0.0)
 }
 
 /// Whether each point decides for itself whether windows apply (past
