@@ -15,7 +15,8 @@
 //! with a range added (`blocker_bench::add_lamps`, the light paths then chosen as the
 //! shipped defaults do: as many as the maps' views hold on shadow maps, the rest on the SH
 //! path); `every-light`: every point
-//! walks every light instead of those of its box of the lights' grid.
+//! walks every light instead of those of its box of the lights' grid. With BENCH_PANELS=N
+//! in the environment the panel is split into N on a ring (`blocker_bench::ring_of_panels`).
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -38,6 +39,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = blocker_bench::thin_casters_scene();
     let lamps: usize = args.get(5).map(|a| a.parse()).transpose()?.unwrap_or(0);
     blocker_bench::add_lamps(&mut scene, lamps);
+    let panels: usize = std::env::var("BENCH_PANELS")
+        .ok()
+        .map(|n| n.parse())
+        .transpose()?
+        .unwrap_or(1);
+    blocker_bench::ring_of_panels(&mut scene, panels);
     let every_light = args.get(6).is_some_and(|a| a == "every-light");
     let camera = blocker_bench::thin_casters_camera();
     let png = args.get(3).filter(|path| !path.is_empty());

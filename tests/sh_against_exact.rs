@@ -24,15 +24,24 @@ struct Departure {
 }
 
 /// The SH path (order `order`, exponentiation `exp`) against the exact path with
-/// `spheres` spheres spread over the bench's casters and `lamps` lamps of 1 m range added
-/// (`blocker_bench::add_lamps`), on the f64 twin at `width` × `height` surfaces; None
-/// without a GPU (the surfaces are rasterised on it).
-fn departure(order: usize, exp: ExpMethod, spheres: usize, lamps: usize, width: u32, height: u32) -> Option<Departure> {
+/// `spheres` spheres spread over the bench's casters, its panel split into `panels` on a
+/// ring (`blocker_bench::ring_of_panels`; 1: as it is) and `lamps` lamps of 1 m range
+/// added (`blocker_bench::add_lamps`), on the f64 twin at `width` × `height` surfaces;
+/// None without a GPU (the surfaces are rasterised on it).
+fn departure(
+    order: usize,
+    exp: ExpMethod,
+    spheres: usize,
+    [panels, lamps]: [usize; 2],
+    width: u32,
+    height: u32,
+) -> Option<Departure> {
     use lightpaint::scene::luminance;
     use lightpaint::shading::cpu::{ShadingInputs, shadowed_radiance};
     use rayon::prelude::*;
     let gpu = common::gpu()?;
     let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    lightpaint::samples::blocker_bench::ring_of_panels(&mut scene, panels);
     lightpaint::samples::blocker_bench::add_lamps(&mut scene, lamps);
     let camera = lightpaint::samples::blocker_bench::thin_casters_camera();
     let surfaces = lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, width, height).expect("surfaces");
@@ -104,7 +113,7 @@ fn departure(order: usize, exp: ExpMethod, spheres: usize, lamps: usize, width: 
 /// (tests/gpu_shadows.rs), at a quarter of the measurement's surfaces.
 #[test]
 fn six_hundred_spheres_leave_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 0, 120, 68) else {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [1, 0], 120, 68) else {
         return;
     };
     eprintln!(
@@ -131,7 +140,7 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
     // The shipped exponentiation (HYB) at orders 4 and 8, and the exact exponential at 4.
     let defaults = ShadowSettings::default();
     for (order, exp) in [(4, defaults.exp), (8, defaults.exp), (4, ExpMethod::Reference)] {
-        let Some(d) = departure(order, exp, 600, 0, 240, 135) else {
+        let Some(d) = departure(order, exp, 600, [1, 0], 240, 135) else {
             return;
         };
         eprintln!(
@@ -154,7 +163,7 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
 /// and the lit floor stays lit as with the panel alone.
 #[test]
 fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, 24, 120, 68) else {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [1, 24], 120, 68) else {
         return;
     };
     eprintln!(
@@ -166,4 +175,22 @@ fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
     // Walking without windows wherever more than four SH lights light the frame gave
     // −0.204 and a penumbra RMS of 0.364 here.
     assert!(d.penumbra_rms < 0.364, "penumbra RMS {:.4}", d.penumbra_rms);
+}
+
+/// The SH path against exact visibility under the bench's panel split into 1 to 5 panels
+/// on a ring (order 4, HYB, 600 spheres, 120 × 68): how the windows of several lights
+/// spread over the sky weigh the lit floor against the penumbrae (docs/performance.md).
+/// `cargo nextest run --test sh_against_exact --run-ignored only --no-capture`.
+#[test]
+#[ignore = "a measurement: run it with --run-ignored only --no-capture"]
+fn measure_the_sh_path_against_exact_visibility_under_several_panels() {
+    for panels in 1..=5 {
+        let Some(d) = departure(4, ShadowSettings::default().exp, 600, [panels, 0], 120, 68) else {
+            return;
+        };
+        eprintln!(
+            "{panels} panels: lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
+            d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
+        );
+    }
 }

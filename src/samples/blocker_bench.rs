@@ -71,6 +71,29 @@ pub fn add_lamps(scene: &mut Scene, count: usize) {
     }
 }
 
+/// The set's panel split into `count` panels (a studio rig of soft boxes, none with a
+/// range) of the same size on a 1.5 m ring at its height around where it hung, sharing
+/// its intensity; `count` 1 (or 0) leaves the panel as it is. A frame with more than four
+/// lights on the SH path and no environment had no light windows on the blockers.
+pub fn ring_of_panels(scene: &mut Scene, count: usize) {
+    let Some(index) = scene.lights.iter().position(|light| light.name == "panel") else {
+        return;
+    };
+    if count <= 1 {
+        return;
+    }
+    let panel = scene.lights.remove(index);
+    for k in 0..count {
+        let angle = k as f32 / count as f32 * std::f32::consts::TAU;
+        scene.lights.push(Light {
+            name: format!("panel {k}"),
+            position: panel.position + 1.5 * Vec3::new(angle.cos(), 0.0, angle.sin()),
+            intensity: panel.intensity / count as f32,
+            ..panel.clone()
+        });
+    }
+}
+
 /// The camera the bench frames the set with.
 pub fn thin_casters_camera() -> Camera {
     Camera::looking_at(
