@@ -120,31 +120,11 @@ fn gpu_matches_the_cpu_reference_on_the_samples() {
 /// light on the SH path) on the thin-caster bench with 600 spheres, at orders 4 and 8.
 #[test]
 fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
-    use lightpaint::samples::blocker_bench;
-    use lightpaint::shading::LightPaths;
     let Some(gpu) = common::gpu() else { return };
-    let scene = blocker_bench::thin_casters_scene();
+    let scene = lightpaint::samples::blocker_bench::thin_casters_scene();
     assert!(scene.environment.is_none(), "no environment: the windows apply");
-    let camera = blocker_bench::thin_casters_camera();
-    let blockers = blocker_bench::spheres_on_casters(&scene, 600);
-    let settings = RenderSettings::default();
     for order in [4, 8] {
-        let shadows = ShadowSettings {
-            light_paths: LightPaths::Harmonics,
-            order,
-            ..ShadowSettings::default().every_pixel()
-        };
-        let frame = ShadowFrame {
-            baked_indirect: None,
-            scene: &scene,
-            camera: &camera,
-            settings: &settings,
-            shadows: &shadows,
-            blockers: &blockers,
-            width: 120,
-            height: 68,
-        };
-        assert_parity(&gpu, &format!("bench-windows-order-{order}"), &frame);
+        assert_bench_parity(&gpu, &scene, order, &format!("bench-windows-order-{order}"));
     }
 }
 
@@ -154,21 +134,27 @@ fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
 /// sees the panel and a lamp or two.
 #[test]
 fn windows_of_the_sh_lights_that_reach_each_point_match_the_cpu_reference() {
-    use lightpaint::samples::blocker_bench;
-    use lightpaint::shading::LightPaths;
     let Some(gpu) = common::gpu() else { return };
-    let mut scene = blocker_bench::thin_casters_scene();
-    blocker_bench::add_lamps(&mut scene, 24);
+    let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    lightpaint::samples::blocker_bench::add_lamps(&mut scene, 24);
+    assert_bench_parity(&gpu, &scene, 4, "bench-lamps-windows");
+}
+
+/// The GPU against the f64 twin on `scene` (the blocker bench's set) with 600 spheres
+/// over its casters, every light on the SH path at `order`, every pixel shaded.
+fn assert_bench_parity(gpu: &GpuContext, scene: &lightpaint::scene::Scene, order: usize, name: &str) {
+    use lightpaint::samples::blocker_bench;
     let camera = blocker_bench::thin_casters_camera();
-    let blockers = blocker_bench::spheres_on_casters(&scene, 600);
+    let blockers = blocker_bench::spheres_on_casters(scene, 600);
     let settings = RenderSettings::default();
     let shadows = ShadowSettings {
-        light_paths: LightPaths::Harmonics,
+        light_paths: lightpaint::shading::LightPaths::Harmonics,
+        order,
         ..ShadowSettings::default().every_pixel()
     };
     let frame = ShadowFrame {
         baked_indirect: None,
-        scene: &scene,
+        scene,
         camera: &camera,
         settings: &settings,
         shadows: &shadows,
@@ -176,7 +162,7 @@ fn windows_of_the_sh_lights_that_reach_each_point_match_the_cpu_reference() {
         width: 120,
         height: 68,
     };
-    assert_parity(&gpu, "bench-lamps-windows", &frame);
+    assert_parity(gpu, name, &frame);
 }
 
 #[test]
