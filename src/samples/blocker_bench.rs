@@ -73,8 +73,9 @@ pub fn add_lamps(scene: &mut Scene, count: usize) {
 
 /// The set's panel split into `count` panels (a studio rig of soft boxes, none with a
 /// range) of the same size on a 1.5 m ring at its height around where it hung, sharing
-/// its intensity; `count` 1 (or 0) leaves the panel as it is. A frame with more than four
-/// lights on the SH path and no environment had no light windows on the blockers.
+/// its intensity; `count` 1 (or 0) leaves the panel as it is. Past four such lights on
+/// the SH path, reaching every point, no point opens light windows on the blockers
+/// (`shading::light_windows`).
 pub fn ring_of_panels(scene: &mut Scene, count: usize) {
     let Some(index) = scene.lights.iter().position(|light| light.name == "panel") else {
         return;

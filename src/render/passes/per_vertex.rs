@@ -118,9 +118,10 @@ impl PerVertexCompute {
 }
 
 /// What the per-vertex visibility is computed from besides the vertices: the SH path's
-/// lights' geometry (not their intensities) where their windows on the blockers apply (`shading::light_windows`: without
-/// them the walk reads no light), the environment, the shadow settings, the blockers and
-/// the scene's upload (new geometry, objects hidden or shown).
+/// lights' geometry (not their intensities) where their windows on the blockers apply
+/// (`shading::light_windows`: without them the walk reads no light), the environment,
+/// the shadow settings, the blockers and the scene's upload (new geometry, objects
+/// hidden or shown).
 #[derive(Debug, Clone, PartialEq)]
 pub struct VisibilityInputs {
     windowed_lights: Option<Vec<crate::shading::gpu_types::GpuLight>>,
