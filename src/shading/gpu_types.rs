@@ -230,6 +230,15 @@ impl GpuLight {
         self.area_half_width_m.iter().map(|c| c * c).sum::<f32>() > 0.0
     }
 
+    /// This light without its intensity and colour: what its reach, its windows on the
+    /// blockers and its shadow maps depend on (a stroke changes only what this leaves out).
+    pub fn geometry(&self) -> GpuLight {
+        GpuLight {
+            intensity_rgb: [0.0; 4],
+            ..*self
+        }
+    }
+
     pub fn new(light: &Light) -> GpuLight {
         // A sphere lights like a point at its centre (exact for unshadowed receivers it is
         // wholly above the horizon of); an area light carries L·A, its shape (area and

@@ -98,7 +98,7 @@ fn boxes_along_longest_side(lights: &[GpuLight], longest_m: f32) -> f32 {
 /// A light whose reach ends within some distance: it has a range. (A spot's cone alone
 /// leaves out only the boxes behind its apex: a rig of spots aimed at a stage reaches
 /// most of the scene, and its frames would pay the list's indirection for little.)
-fn bounded(light: &GpuLight) -> bool {
+pub(super) fn bounded(light: &GpuLight) -> bool {
     light.kind != LIGHT_DIRECTIONAL && light.direction_range[3] > 0.0
 }
 

@@ -71,11 +71,11 @@ pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
     }
 }
 
-/// Whether [`light_reaches`] holds at every point: a light neither a spot nor with a
-/// range (a sun, a point or area light without a range).
+/// Whether [`light_reaches`] holds at every point: a light neither a spot nor bounded by
+/// a range (the lights' grid's `bounded`: a sun, whatever range it carries, or a point
+/// or area light without one).
 fn reaches_everywhere(light: &GpuLight) -> bool {
-    let range = light.direction_range[3];
-    light.kind != super::gpu_types::LIGHT_SPOT && (range.is_nan() || range <= 0.0)
+    light.kind != super::gpu_types::LIGHT_SPOT && !super::light_grid::bounded(light)
 }
 
 /// Whether each point decides for itself whether windows apply (past

@@ -140,17 +140,8 @@ impl VisibilityInputs {
     ) -> VisibilityInputs {
         let windows = crate::shading::light_windows::windows_apply(&lighting.environment_irradiance, &lighting.lights);
         // The windows read where the lights are, not how bright: a stroke keeps them.
-        let geometry = |lights: Vec<crate::shading::gpu_types::GpuLight>| {
-            lights
-                .into_iter()
-                .map(|light| crate::shading::gpu_types::GpuLight {
-                    intensity_rgb: [0.0; 4],
-                    ..light
-                })
-                .collect()
-        };
         VisibilityInputs {
-            windowed_lights: windows.then(|| geometry(lighting.lights)),
+            windowed_lights: windows.then(|| lighting.lights.iter().map(|light| light.geometry()).collect()),
             environment_irradiance: lighting.environment_irradiance,
             settings,
             blockers_generation,

@@ -270,13 +270,7 @@ impl GpuScene {
         self.lights.write(queue, &ordered);
         // The lights without their intensities: what the grid and the mapped lights'
         // visibility depend on.
-        let geometry: Vec<GpuLight> = ordered
-            .iter()
-            .map(|light| GpuLight {
-                intensity_rgb: [0.0; 4],
-                ..*light
-            })
-            .collect();
+        let geometry: Vec<GpuLight> = ordered.iter().map(GpuLight::geometry).collect();
         let mapped = first_light_on[0].min(ordered.len())..first_light_on[1].min(ordered.len());
         self.mapped_light_geometry = geometry[mapped].to_vec();
         if self.light_grid_key.as_ref() != Some(&geometry) {
