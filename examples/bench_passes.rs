@@ -16,7 +16,9 @@
 //! shipped defaults do: as many as the maps' views hold on shadow maps, the rest on the SH
 //! path); `every-light`: every point
 //! walks every light instead of those of its box of the lights' grid. With BENCH_PANELS=N
-//! in the environment the panel is split into N on a ring (`blocker_bench::ring_of_panels`).
+//! in the environment the panel is split into N on a ring (`blocker_bench::ring_of_panels`);
+//! with BENCH_EXACT=1 every light is on the exact path (the SH path's frame to compare
+//! with: exact visibility of the same spheres).
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -56,7 +58,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .transpose()?
         .unwrap_or(defaults.shading_downsample);
     let shadows = ShadowSettings {
-        light_paths: if lamps > 0 {
+        light_paths: if std::env::var("BENCH_EXACT").is_ok_and(|v| v == "1") {
+            LightPaths::Exact
+        } else if lamps > 0 {
             LightPaths::Auto
         } else {
             LightPaths::Harmonics

@@ -11,7 +11,7 @@
 //       the disc above the terrain's horizon
 // Each light keeps its exact unshadowed shading; the SH only say how much of it arrives
 // (shading-model.md §4b: never shade through an order-n triple product of light × cosine).
-// #import blockers exact_lights terrain shadow_lookup lobes
+// #import blockers light_windows exact_lights terrain shadow_lookup lobes
 
 // The discs' log-visibility at p (each shaded at every receiver, in their own loop so
 // that the spheres' walk stays small), weighed by the light windows when `windowed`.
@@ -182,9 +182,23 @@ fn cap_mass_scale(s: f32) -> f32 {
 // A blocker's cap of sine `ratio` toward unit `direction`, weighed by `weight` (its fade
 // below the tangent plane, and its share against a stand-in): ln ε · weight · k(s)
 // [· s with ratio attenuation] times the cap's ZH rotated there (shading::cpu::visibility's
-// add_cap is the twin).
+// add_cap is the twin). In the walk with windows, where they are open, k(s) gives way to
+// the windows' scales: the largest, or, with a log-visibility per light, each window's in
+// its own sum (add_to_window_logs; f is then left as it was).
 fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool) -> Sh {
     var scale = shadow.ln_epsilon * weight;
+    if windowed && LIGHT_WINDOWS > 0u && per_light_visibility() {
+        if shadow.ratio_attenuation != 0u {
+            scale *= ratio;
+        }
+        // One rotation for either side of the branch (lavapipe runs both).
+        let rotated = sh_add_zonal(sh_zero(), sh_cap_zh(ratio), 1.0, direction);
+        if windows_open {
+            add_to_window_logs(rotated, scale * windowed_cap_scales(direction, ratio, cap_mass_scale(ratio)));
+            return f;
+        }
+        return sh_sum(f, sh_scaled(rotated, scale * cap_mass_scale(ratio)));
+    }
     if windowed && LIGHT_WINDOWS > 0u && windows_open {
         scale *= windowed_cap_scale(direction, ratio, cap_mass_scale(ratio));
     } else {
@@ -194,199 +208,6 @@ fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool)
         scale *= ratio;
     }
     return sh_add_zonal(f, sh_cap_zh(ratio), scale, direction);
-}
-
-// Windows on the blockers for the SH path's lights (shading::light_windows, the twin):
-// without an environment's light, only visibility inside the SH lights' caps is read, so
-// each cap is weighed by how near it comes to the nearest light's cap and scaled for
-// that light's mean (min(1, k(s) · gain)) instead of by k(s); blockers far from every
-// light then no longer darken the lights they do not hide through the band limit.
-// With more than MAX_WINDOW_LIGHTS SH lights a point opens windows for those that reach
-// it, when at most that many do (window_lights). The number of windows compiled in
-// (shading::compiled_paths): 0 for a frame without them; lavapipe pays for each window
-// at every blocker, used or not.
-override LIGHT_WINDOWS: u32 = 4u;
-const MAX_WINDOW_LIGHTS: u32 = 4u;
-
-// The receiver's windows, set by open_light_windows: per SH light the unit direction
-// toward it and the cosine of the half-angle of the cap holding its emitter (w = 2: no
-// such light), that half-angle's sine in window_sines and each window's gain on k(s) in
-// window_gains. Four variables rather than an array: lavapipe reads a private array
-// lane by lane.
-var<private> windows_open: bool;
-var<private> window_0: vec4<f32>;
-var<private> window_1: vec4<f32>;
-var<private> window_2: vec4<f32>;
-var<private> window_3: vec4<f32>;
-var<private> window_sines: vec4<f32>;
-var<private> window_half_angles: vec4<f32>;
-var<private> window_gains: vec4<f32>;
-
-// No light in a window's slot.
-const NO_WINDOW_LIGHT: u32 = 0xffffffffu;
-
-// Whether an environment lights the frame (gpu_types::irradiance_lights).
-fn environment_lights() -> bool {
-    var lights = false;
-    for (var k = 0u; k < 9u; k++) {
-        lights = lights || any(frame.environment_irradiance[k].xyz != vec3<f32>(0.0));
-    }
-    return lights;
-}
-
-// The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none), and whether
-// any window applies there (windows_open; light_windows::windowed_lights is the twin):
-// without an environment's light, the frame's SH lights when there are 1 to
-// MAX_WINDOW_LIGHTS (the first frame.first_mapped_light), else those that reach p
-// (light_reaches, among its box's: harmonic_lights_at) when at most MAX_WINDOW_LIGHTS
-// do — none at a point no SH light reaches, where nothing reads the visibility.
-fn window_lights(p: vec3<f32>) -> vec4<u32> {
-    let slots = vec4<u32>(0u, 1u, 2u, 3u);
-    windows_open = false;
-    if environment_lights() || frame.first_mapped_light == 0u {
-        return vec4<u32>(NO_WINDOW_LIGHT);
-    }
-    if frame.first_mapped_light <= MAX_WINDOW_LIGHTS {
-        windows_open = true;
-        return select(vec4<u32>(NO_WINDOW_LIGHT), slots, slots < vec4<u32>(frame.first_mapped_light));
-    }
-    var chosen = vec4<u32>(NO_WINDOW_LIGHT);
-    var count = 0u;
-    let run = harmonic_lights_at(p);
-    for (var k = run.first; k < run.end; k++) {
-        if count > MAX_WINDOW_LIGHTS {
-            // No window opens: the rest need not be looked at.
-            break;
-        }
-        let i = run_light(k);
-        if light_reaches(light_at(i), p) {
-            chosen = select(chosen, vec4<u32>(i), vec4<u32>(count) == slots);
-            count += 1u;
-        }
-    }
-    windows_open = count <= MAX_WINDOW_LIGHTS;
-    return chosen;
-}
-
-// SH light i's window seen from p (LightWindows::at): its cap grown to hold the emitter,
-// as (direction, half-angle); half-angle −1 for NO_WINDOW_LIGHT.
-fn light_window(i: u32, p: vec3<f32>) -> vec4<f32> {
-    if i == NO_WINDOW_LIGHT {
-        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
-    }
-    let light = light_at(i);
-    let inc = incidence(light, p);
-    let bound = light_bounding_radius_m(light) / inc.distance;
-    return vec4<f32>(inc.to_light, asin(clamp(max(inc.cap_ratio, bound), 0.0, 1.0)));
-}
-
-// A window's gain on k(s), max(1, (4π/n²)/Ω) (LightWindow::new); 1 − cos α = 2 sin²(α/2).
-fn window_gain(half_angle: f32) -> f32 {
-    let half = sin(0.5 * half_angle);
-    let solid_angle_sr = 4.0 * PI * half * half;
-    return max(4.0 * PI / f32(SH_ORDER * SH_ORDER) / max(solid_angle_sr, 1e-12), 1.0);
-}
-
-// A window from light_window as read per blocker: (direction, cos α), 2 for none.
-fn window_cosine(window: vec4<f32>) -> vec4<f32> {
-    return vec4<f32>(window.xyz, select(cos(window.w), 2.0, window.w < 0.0));
-}
-
-fn open_light_windows(p: vec3<f32>) {
-    let lights = window_lights(p);
-    if windows_open {
-        let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
-        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
-        window_0 = window_cosine(w[0]);
-        window_1 = window_cosine(w[1]);
-        window_2 = window_cosine(w[2]);
-        window_3 = window_cosine(w[3]);
-        window_sines = sin(half_angles);
-        window_half_angles = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
-        window_gains = vec4<f32>(
-            window_gain(half_angles.x),
-            window_gain(half_angles.y),
-            window_gain(half_angles.z),
-            window_gain(half_angles.w),
-        );
-    }
-}
-
-// Whether a group's blockers or its stand-in can have any weight in the windows: a
-// sphere bounding them all (the group's extent or the stand-in's radius, the larger)
-// seen under half-angle γ, its centre θ from a window of half-angle α, holds none beyond
-// it unless θ < α + 3γ/2 (a cap of half-angle β ≤ γ inside it reaches the window's ramp
-// only within α + 3β/2 of it; 1e-3 rad more for rounding). Those skipped, the walk costs
-// the windows nothing where no light can be hidden; their weights were 0 (the twin,
-// which walks them all, adds nothing for them). Of a cluster, likewise for its groups.
-fn group_in_windows(group: BlockerGroup, p: vec3<f32>, windowed: bool) -> bool {
-    if !windowed || LIGHT_WINDOWS == 0u || !windows_open {
-        return true;
-    }
-    let to_group = group.center_extent.xyz - p;
-    let distance = length(to_group);
-    // The bounding sphere holds the stand-in's too.
-    let bound_m = max(group.center_extent.w, group.stand_in_radius_m);
-    if distance <= bound_m {
-        return true;
-    }
-    let reaches = window_half_angles + vec4<f32>(1.5 * asin(bound_m / distance) + 1e-3);
-    let direction = to_group / distance;
-    var inside = angle_between(direction, window_0.xyz) < reaches.x;
-    if LIGHT_WINDOWS >= 2u {
-        inside = inside || angle_between(direction, window_1.xyz) < reaches.y;
-    }
-    if LIGHT_WINDOWS >= 3u {
-        inside = inside || angle_between(direction, window_2.xyz) < reaches.z;
-    }
-    if LIGHT_WINDOWS >= 4u {
-        inside = inside || angle_between(direction, window_3.xyz) < reaches.w;
-    }
-    return inside;
-}
-
-fn angle_between(a: vec3<f32>, b: vec3<f32>) -> f32 {
-    return acos(clamp(dot(a, b), -1.0, 1.0));
-}
-
-// A blocker cap's half-angle β as the windows read it: cos and sin of β/2 (xy) and of
-// 3β/2 (zw), from its sine s by half- and triple-angle formulas.
-fn cap_angles(ratio: f32) -> vec4<f32> {
-    let cos_cap = sqrt(max(1.0 - ratio * ratio, 0.0));
-    let c = sqrt(0.5 + 0.5 * cos_cap);
-    let s = 0.5 * ratio / c;
-    return vec4<f32>(c, s, c * (4.0 * c * c - 3.0), s * (3.0 - 4.0 * s * s));
-}
-
-// The weight a window (direction, cos α; sine sin α) gives a cap toward unit `direction`
-// of angles `cap` (cap_angles) (LightWindow::weight): smoothstep in cos θ from
-// cos(α + 3β/2) to cos(α + β/2), by angle-sum formulas (an angle past π counts as π); 0
-// for no window (cos α = 2).
-fn window_weight(window: vec4<f32>, sine: f32, direction: vec3<f32>, cap: vec4<f32>) -> f32 {
-    let whole = window.w * cap.x - sine * cap.y;
-    let past_pi = sine * cap.z + window.w * cap.w < 0.0;
-    let none = select(window.w * cap.z - sine * cap.w, -1.0, past_pi);
-    let cos_between = dot(direction, window.xyz);
-    let weight = select(select(0.0, 1.0, cos_between >= whole), smoothstep(none, whole, cos_between), none < whole);
-    return select(weight, 0.0, window.w > 1.5);
-}
-
-// The factor on a cap's ln ε · f_n (LightWindows::cap_scale): the largest
-// weight × min(1, k(s) · gain) of the LIGHT_WINDOWS windows compiled in.
-fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 {
-    let cap = cap_angles(ratio);
-    let scales = min(vec4<f32>(1.0), mass_scale * window_gains);
-    var scale = window_weight(window_0, window_sines.x, direction, cap) * scales.x;
-    if LIGHT_WINDOWS >= 2u {
-        scale = max(scale, window_weight(window_1, window_sines.y, direction, cap) * scales.y);
-    }
-    if LIGHT_WINDOWS >= 3u {
-        scale = max(scale, window_weight(window_2, window_sines.z, direction, cap) * scales.z);
-    }
-    if LIGHT_WINDOWS >= 4u {
-        scale = max(scale, window_weight(window_3, window_sines.w, direction, cap) * scales.w);
-    }
-    return scale;
 }
 
 // How each light's BRDF meets the visibility (BRDF_SHADING, generated from the settings'
@@ -449,7 +270,7 @@ fn shadowed_radiance(s: Surface) -> vec3<f32> {
 
 // shadowed_radiance without the lights on the shadow-map path.
 fn soft_shadowed_radiance(s: Surface) -> vec3<f32> {
-    return soft_radiance_through(s, soft_lobes(s));
+    return s.emissive + harmonic_radiance(s) + exact_path_radiance(s);
 }
 
 // The lobes' visibility at s through the blockers and the terrain (log_visibility).
@@ -555,8 +376,42 @@ fn harmonic_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 
 // harmonic_radiance_through with the blockers' and the terrain's visibility at s: the
 // light of soft shadows, which reduced_shading.wgsl may shade more coarsely than the rest.
+// With a log-visibility per light (per_light_visibility) and the windows open at s, each
+// windowed light is shaded through its own (window_log_visibility; the SH lights without
+// a window there do not reach s); else every light and the environment through the one.
 fn harmonic_radiance(s: Surface) -> vec3<f32> {
-    return harmonic_radiance_through(s, soft_lobes(s));
+    if !SH_VISIBILITY || !per_light_visibility() {
+        return harmonic_radiance_through(s, soft_lobes(s));
+    }
+    let unwindowed = log_visibility(s.position, s.normal);
+    let run = harmonic_lights_at(s.position);
+    // One pass per visibility: each open window's, or the walk's one. Written as one loop
+    // rather than two branches, which lavapipe would both run.
+    let opened = select(vec4<u32>(0u), vec4<u32>(1u), window_light_indices != vec4<u32>(NO_WINDOW_LIGHT));
+    let passes = select(1u, opened.x + opened.y + opened.z + opened.w, windows_open);
+    var radiance = vec3<f32>(0.0);
+    for (var k = 0u; k < passes; k++) {
+        var sum = unwindowed;
+        var first = run.first;
+        var end = run.end;
+        if windows_open {
+            sum = window_log_visibility(unwindowed, k);
+            first = slot_light(k);
+            end = first + 1u;
+        }
+        let lobes = lobes_from_log_visibility(s, sum);
+        if k == 0u {
+            radiance += environment_through(s, lobes);
+        }
+        for (var j = first; j < end; j++) {
+            var light = j;
+            if !windows_open {
+                light = run_light(j);
+            }
+            radiance += light_through(s, lobes, incidence(light_at(light), s.position));
+        }
+    }
+    return radiance;
 }
 
 // The lights from frame.first_exact_light on, eight at a time: their exact visibility

@@ -140,6 +140,20 @@ fn windows_of_the_sh_lights_that_reach_each_point_match_the_cpu_reference() {
     assert_bench_parity(&gpu, &scene, 4, "bench-lamps-windows");
 }
 
+/// Under three panels spread over the ring, all on the SH path, each panel is shaded
+/// through a log-visibility of its own (`cpu::harmonic_log_visibility`: its blockers
+/// weighed by its window alone), at orders 4 and 6.
+#[test]
+fn each_of_three_panels_reads_a_visibility_of_its_own_as_the_cpu_reference_does() {
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    lightpaint::samples::blocker_bench::ring_of_panels(&mut scene, 3);
+    assert_eq!(scene.lights.len(), 3);
+    for order in [4, 6] {
+        assert_bench_parity(&gpu, &scene, order, &format!("bench-three-panels-order-{order}"));
+    }
+}
+
 /// The GPU against the f64 twin on `scene` (the blocker bench's set) with 600 spheres
 /// over its casters, every light on the SH path at `order`, every pixel shaded.
 fn assert_bench_parity(gpu: &GpuContext, scene: &lightpaint::scene::Scene, order: usize, name: &str) {

@@ -177,6 +177,30 @@ fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
     assert!(d.penumbra_rms < 0.364, "penumbra RMS {:.4}", d.penumbra_rms);
 }
 
+/// Under three panels spread over a ring, each reads a log-visibility of its own (its
+/// blockers weighed by its window alone: `cpu::harmonic_log_visibility`): the lit floor
+/// stays lit and the penumbrae keep their light, where one log-visibility weighed by the
+/// largest window's weight, read by all three, gave −4.0 % and a penumbra RMS of 0.324
+/// (and without windows −15.0 % and 0.268; docs/performance.md).
+#[test]
+fn three_panels_each_read_their_own_visibility_at_order_4() {
+    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [3, 0], 120, 68) else {
+        return;
+    };
+    eprintln!(
+        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
+        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
+    );
+    assert!(
+        d.pixels[2] > 100 && d.pixels[0] > 100,
+        "lit and penumbra pixels: {:?}",
+        d.pixels
+    );
+    assert!(d.lit_bias.abs() <= 0.03, "lit floor bias {:+.4}", d.lit_bias);
+    assert!(d.penumbra_rms < 0.22, "penumbra RMS {:.4}", d.penumbra_rms);
+    assert!(d.umbra_rms < 0.06, "umbra RMS {:.4}", d.umbra_rms);
+}
+
 /// The SH path against exact visibility under the bench's panel split into 1 to 5 panels
 /// on a ring (order 4, HYB, 600 spheres, 120 × 68): how the windows of several lights
 /// spread over the sky weigh the lit floor against the penumbrae (docs/performance.md).

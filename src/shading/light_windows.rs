@@ -19,8 +19,10 @@
 //! (before the windows, the neighbouring caps a light does not see made up for it). A
 //! lone small cap in the middle of a light of solid angle Ω blocks its true share of it,
 //! to first order, at k(s)·(4π/n²)/Ω; the scale is that, at least k(s), and at most 1 —
-//! the cap's own log-visibility, ln ε. With several lights a cap takes the largest
-//! weight × scale any light's window gives it. Measured on the thin-caster bench (f64
+//! the cap's own log-visibility, ln ε. With several lights each reads a log-visibility
+//! of its own, every cap weighed by that light's window alone
+//! (`cpu::harmonic_log_visibility`; one sum weighed by the largest window's weight, read
+//! by every light, made each read its neighbours' blockers). Measured on the thin-caster bench (f64
 //! twin, HYB, against the exact path over the same 600 spheres; `cargo nextest run
 //! --test sh_against_exact --run-ignored only --no-capture`, docs/performance.md): at
 //! order 4 the lit floor −23.1 % → −2.5 %, penumbra RMS 0.397 → 0.329, umbra RMS 0.079 →
@@ -95,14 +97,31 @@ pub fn windowed_lights(
     lights: &[GpuLight],
     p: glam::DVec3,
 ) -> Option<Vec<GpuLight>> {
+    windowed_light_indices(environment_irradiance, lights, p)
+        .map(|indices| indices.iter().map(|&i| lights[i]).collect())
+}
+
+/// [`windowed_lights`] as indices into `lights`, in order (the slots of `window_lights` in
+/// logsh.wgsl).
+pub fn windowed_light_indices(
+    environment_irradiance: &[[f32; 4]; 9],
+    lights: &[GpuLight],
+    p: glam::DVec3,
+) -> Option<Vec<usize>> {
     if !windows_apply(environment_irradiance, lights) {
         return None;
     }
-    let harmonic = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH);
+    let harmonic = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.shadow_path == SHADOW_PATH_SH);
     if harmonic.clone().count() <= MAX_WINDOW_LIGHTS {
-        return Some(harmonic.copied().collect());
+        return Some(harmonic.map(|(i, _)| i).collect());
     }
-    let reaching: Vec<GpuLight> = harmonic.filter(|light| light_reaches(light, p)).copied().collect();
+    let reaching: Vec<usize> = harmonic
+        .filter(|(_, light)| light_reaches(light, p))
+        .map(|(i, _)| i)
+        .collect();
     (reaching.len() <= MAX_WINDOW_LIGHTS).then_some(reaching)
 }
 

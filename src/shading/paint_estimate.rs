@@ -9,11 +9,9 @@
 use glam::{DVec3, Vec3};
 
 use super::ShadowSettings;
-use super::cpu::LightWindows;
 use super::cpu::mapped_visibility;
 use super::cpu::{self, SurfacePoint};
 use super::gpu_types::{GpuLight, SHADOW_PATH_MAP, environment_irradiance};
-use super::light_windows::windowed_lights;
 use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::paint::{PaintedPoint, Transfer, VertexRef};
@@ -110,20 +108,20 @@ impl<'a> DirectEstimate<'a> {
         })
     }
 
-    /// Exponentiated visibility SH at the surface point.
-    fn visibility(&self, s: &SurfacePoint) -> Vec<f64> {
-        // The view's windows on the blockers (same lights, same environment).
-        let windows = windowed_lights(&self.environment, &self.unit_lights, s.position)
-            .map(|lights| LightWindows::at(&lights, s.position, self.settings.order));
-        let f = cpu::scene_log_visibility(
+    /// Exponentiated visibility SH at the surface point: one shared by the environment and
+    /// every SH light, or, where the view's light windows apply (same lights, same
+    /// environment), one per windowed light (`cpu::harmonic_log_visibility`).
+    fn visibility(&self, s: &SurfacePoint) -> cpu::HarmonicVisibility<Vec<f64>> {
+        cpu::harmonic_log_visibility(
             &self.settings,
             &self.blockers,
             self.terrain.as_ref(),
+            &self.environment,
+            &self.unit_lights,
             s.position,
             s.normal,
-            windows.as_ref(),
-        );
-        sh::exp(self.settings.exp, &f)
+        )
+        .map(|f| sh::exp(self.settings.exp, f))
     }
 }
 
@@ -131,11 +129,11 @@ impl<'a> DirectEstimate<'a> {
 /// the transfer and the fixed light of the same vertex.
 struct LazyVisibility<'e, 'a> {
     estimate: &'e DirectEstimate<'a>,
-    g: Option<Vec<f64>>,
+    g: Option<cpu::HarmonicVisibility<Vec<f64>>>,
 }
 
 impl LazyVisibility<'_, '_> {
-    fn at(&mut self, s: &SurfacePoint) -> &[f64] {
+    fn at(&mut self, s: &SurfacePoint) -> &cpu::HarmonicVisibility<Vec<f64>> {
         let estimate = self.estimate;
         self.g.get_or_insert_with(|| estimate.visibility(s))
     }
@@ -178,7 +176,10 @@ impl<'a> DirectEstimate<'a> {
                     0.0,
                 )
                 .unwrap_or_else(|| {
-                    cpu::visibility_toward(g.at(s), incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                    // None: a windowed frame's light that does not reach s (it adds nothing).
+                    g.at(s).of_light(i).map_or(0.0, |g| {
+                        cpu::visibility_toward(g, incidence.to_light, incidence.cap_ratio).clamp(0.0, 1.0)
+                    })
                 });
                 let t = luminance(unshadowed) * visible;
                 (t.is_finite() && t > 0.0).then_some((i as u32, t))
@@ -196,8 +197,10 @@ impl<'a> DirectEstimate<'a> {
     /// Luminance at `s` that no light changes: emission and the shadowed environment.
     fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
         let mut radiance = s.emissive;
-        if self.scene.environment.is_some() {
-            radiance += cpu::environment_through_visibility(s, &self.environment, g.at(s));
+        if self.scene.environment.is_some()
+            && let Some(g) = g.at(s).shared()
+        {
+            radiance += cpu::environment_through_visibility(s, &self.environment, g);
         }
         luminance(radiance)
     }

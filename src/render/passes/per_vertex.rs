@@ -56,13 +56,20 @@ impl PerVertexCompute {
             ],
             immediate_size: 0,
         });
+        // One visibility per vertex, which every light reads: the walk with windows sums
+        // its caps into one log-visibility, not one per light (light_windows.wgsl).
+        let constants: Vec<(&str, f64)> = constants
+            .iter()
+            .copied()
+            .chain([("PER_LIGHT_VISIBILITY", 0.0)])
+            .collect();
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("per-vertex visibility"),
             layout: Some(&layout),
             module,
             entry_point: Some("cs_vertex_visibility"),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
+                constants: &constants,
                 ..Default::default()
             },
             cache: None,

@@ -5,9 +5,10 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
-//!   with no environment and 1–4 lights on the SH path, each cap is weighed by how near it
-//!   comes to those lights' caps and scaled for their means instead of by k(s)
-//!   (`shading::light_windows`, `windows.rs`);
+//!   where the light windows apply (no environment; a point that opens the windows of at
+//!   most four SH lights), each of those lights reads an F of its own, every cap weighed
+//!   by how near it comes to that light's cap and scaled for its mean instead of by k(s)
+//!   (`shading::light_windows`, `windows.rs`, `harmonic_visibility.rs`);
 //! - visibility G = exp*(F) by the chosen [`crate::sh::ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
@@ -27,6 +28,7 @@
 //! Lights come in their GPU form ([`GpuLight`]) so CPU and GPU read the same parameters.
 
 pub mod area;
+mod harmonic_visibility;
 pub mod lobes;
 mod mapped;
 mod surface;
@@ -35,6 +37,7 @@ mod windows;
 
 use glam::DVec3;
 
+pub use harmonic_visibility::{HarmonicVisibility, harmonic_log_visibility};
 pub use mapped::{DISC_RAYS, GOLDEN_ANGLE_RAD, mapped_visibility, ray_visibility, vogel_point};
 pub use surface::{
     Incidence, SurfacePoint, direct_lobes, direct_radiance, environment_irradiance_at, environment_radiance, incidence,
@@ -50,7 +53,6 @@ use crate::bake::scene_bvh::SceneBvh;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_MAP};
-use crate::shading::light_windows::windowed_lights;
 use crate::terrain::TerrainShadow;
 pub use lobes::environment_through_visibility;
 use lobes::{environment_through, light_through, lobes_from_log_visibility};
@@ -79,20 +81,23 @@ pub struct ShadingInputs<'a> {
 /// Linear radiance toward the eye with log-SH shadows (`shadowed_radiance` in logsh.wgsl).
 pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     let settings = inputs.settings;
-    let windows = windowed_lights(inputs.environment_irradiance, inputs.lights, s.position)
-        .map(|lights| LightWindows::at(&lights, s.position, settings.order));
-    let f = scene_log_visibility(
+    let visibility = harmonic_log_visibility(
         settings,
         inputs.blockers,
         inputs.terrain,
+        inputs.environment_irradiance,
+        inputs.lights,
         s.position,
         s.normal,
-        windows.as_ref(),
     );
-    let lobes = lobes_from_log_visibility(settings, s, inputs.eye, &f, |f| exp_for_shading(settings.exp, f));
-    let mut radiance = s.emissive + environment_through(settings, s, inputs.environment_irradiance, &lobes);
+    let lobes =
+        visibility.map(|f| lobes_from_log_visibility(settings, s, inputs.eye, f, |f| exp_for_shading(settings.exp, f)));
+    let mut radiance = s.emissive;
+    if let Some(shared) = lobes.shared() {
+        radiance += environment_through(settings, s, inputs.environment_irradiance, shared);
+    }
     let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
-    for light in inputs.lights {
+    for (index, light) in inputs.lights.iter().enumerate() {
         let inc = incidence(light, s.position);
         let unshadowed = direct_radiance(s, &inc, inputs.eye);
         if unshadowed == DVec3::ZERO {
@@ -107,7 +112,11 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
         }
         radiance += match exact_visibility(s, light, &inc, settings, inputs.blockers, inputs.terrain, footprint) {
             Some(visibility) => unshadowed * visibility,
-            None => light_through(settings, s, &inc, inputs.eye, &lobes),
+            // A light with no visibility of its own at s is one the windows found not to
+            // reach it (out of its range or cone): it adds nothing there.
+            None => lobes
+                .of_light(index)
+                .map_or(DVec3::ZERO, |lobes| light_through(settings, s, &inc, inputs.eye, lobes)),
         };
     }
     radiance

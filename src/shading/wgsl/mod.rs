@@ -25,6 +25,7 @@ pub const RASTER: &str = include_str!("../../../shaders/raster.wgsl");
 pub const SHADOW_BINDINGS: &str = include_str!("../../../shaders/shadow_bindings.wgsl");
 pub const BLOCKERS: &str = include_str!("../../../shaders/blockers.wgsl");
 pub const LOGSH: &str = include_str!("../../../shaders/logsh.wgsl");
+pub const LIGHT_WINDOWS: &str = include_str!("../../../shaders/light_windows.wgsl");
 pub const EXACT_LIGHTS: &str = include_str!("../../../shaders/exact_lights.wgsl");
 pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
@@ -42,7 +43,7 @@ pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.w
 pub const FULL_SCREEN: &str = include_str!("../../../shaders/full_screen.wgsl");
 
 /// Every file under `shaders/`, by the name modules import it by (its file stem).
-pub const FILES: [WgslModule<'static>; 18] = [
+pub const FILES: [WgslModule<'static>; 19] = [
     WgslModule {
         name: "common",
         source: COMMON,
@@ -66,6 +67,10 @@ pub const FILES: [WgslModule<'static>; 18] = [
     WgslModule {
         name: "logsh",
         source: LOGSH,
+    },
+    WgslModule {
+        name: "light_windows",
+        source: LIGHT_WINDOWS,
     },
     WgslModule {
         name: "exact_lights",

@@ -1,0 +1,271 @@
+// Windows on the blockers for the SH path's lights (shading::light_windows and
+// shading::cpu::windows are the twins), and the log-visibility of each windowed light
+// (shading::cpu::harmonic_visibility).
+// #import blockers sh
+
+// Windows on the blockers for the SH path's lights:
+// without an environment's light, only visibility inside the SH lights' caps is read, so
+// each cap is weighed by how near it comes to the nearest light's cap and scaled for
+// that light's mean (min(1, k(s) · gain)) instead of by k(s); blockers far from every
+// light then no longer darken the lights they do not hide through the band limit.
+// With more than MAX_WINDOW_LIGHTS SH lights a point opens windows for those that reach
+// it, when at most that many do (window_lights). The number of windows compiled in
+// (shading::compiled_paths): 0 for a frame without them; lavapipe pays for each window
+// at every blocker, used or not.
+override LIGHT_WINDOWS: u32 = 4u;
+const MAX_WINDOW_LIGHTS: u32 = 4u;
+
+// The receiver's windows, set by open_light_windows: per SH light the unit direction
+// toward it and the cosine of the half-angle of the cap holding its emitter (w = 2: no
+// such light), that half-angle's sine in window_sines and each window's gain on k(s) in
+// window_gains. Four variables rather than an array: lavapipe reads a private array
+// lane by lane.
+var<private> windows_open: bool;
+var<private> window_0: vec4<f32>;
+var<private> window_1: vec4<f32>;
+var<private> window_2: vec4<f32>;
+var<private> window_3: vec4<f32>;
+var<private> window_sines: vec4<f32>;
+var<private> window_half_angles: vec4<f32>;
+var<private> window_gains: vec4<f32>;
+// The SH light in each window's slot (NO_WINDOW_LIGHT: none), set with the windows.
+var<private> window_light_indices: vec4<u32>;
+
+// No light in a window's slot.
+const NO_WINDOW_LIGHT: u32 = 0xffffffffu;
+
+// Whether an environment lights the frame (gpu_types::irradiance_lights).
+fn environment_lights() -> bool {
+    var lights = false;
+    for (var k = 0u; k < 9u; k++) {
+        lights = lights || any(frame.environment_irradiance[k].xyz != vec3<f32>(0.0));
+    }
+    return lights;
+}
+
+// The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none), and whether
+// any window applies there (windows_open; light_windows::windowed_lights is the twin):
+// without an environment's light, the frame's SH lights when there are 1 to
+// MAX_WINDOW_LIGHTS (the first frame.first_mapped_light), else those that reach p
+// (light_reaches, among its box's: harmonic_lights_at) when at most MAX_WINDOW_LIGHTS
+// do — none at a point no SH light reaches, where nothing reads the visibility.
+fn window_lights(p: vec3<f32>) -> vec4<u32> {
+    let slots = vec4<u32>(0u, 1u, 2u, 3u);
+    windows_open = false;
+    if environment_lights() || frame.first_mapped_light == 0u {
+        return vec4<u32>(NO_WINDOW_LIGHT);
+    }
+    if frame.first_mapped_light <= MAX_WINDOW_LIGHTS {
+        windows_open = true;
+        return select(vec4<u32>(NO_WINDOW_LIGHT), slots, slots < vec4<u32>(frame.first_mapped_light));
+    }
+    var chosen = vec4<u32>(NO_WINDOW_LIGHT);
+    var count = 0u;
+    let run = harmonic_lights_at(p);
+    for (var k = run.first; k < run.end; k++) {
+        if count > MAX_WINDOW_LIGHTS {
+            // No window opens: the rest need not be looked at.
+            break;
+        }
+        let i = run_light(k);
+        if light_reaches(light_at(i), p) {
+            chosen = select(chosen, vec4<u32>(i), vec4<u32>(count) == slots);
+            count += 1u;
+        }
+    }
+    windows_open = count <= MAX_WINDOW_LIGHTS;
+    return chosen;
+}
+
+// SH light i's window seen from p (LightWindows::at): its cap grown to hold the emitter,
+// as (direction, half-angle); half-angle −1 for NO_WINDOW_LIGHT.
+fn light_window(i: u32, p: vec3<f32>) -> vec4<f32> {
+    if i == NO_WINDOW_LIGHT {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let light = light_at(i);
+    let inc = incidence(light, p);
+    let bound = light_bounding_radius_m(light) / inc.distance;
+    return vec4<f32>(inc.to_light, asin(clamp(max(inc.cap_ratio, bound), 0.0, 1.0)));
+}
+
+// A window's gain on k(s), max(1, (4π/n²)/Ω) (LightWindow::new); 1 − cos α = 2 sin²(α/2).
+fn window_gain(half_angle: f32) -> f32 {
+    let half = sin(0.5 * half_angle);
+    let solid_angle_sr = 4.0 * PI * half * half;
+    return max(4.0 * PI / f32(SH_ORDER * SH_ORDER) / max(solid_angle_sr, 1e-12), 1.0);
+}
+
+// A window from light_window as read per blocker: (direction, cos α), 2 for none.
+fn window_cosine(window: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(window.xyz, select(cos(window.w), 2.0, window.w < 0.0));
+}
+
+fn open_light_windows(p: vec3<f32>) {
+    let lights = window_lights(p);
+    window_light_indices = lights;
+    clear_window_logs();
+    if windows_open {
+        let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
+        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
+        window_0 = window_cosine(w[0]);
+        window_1 = window_cosine(w[1]);
+        window_2 = window_cosine(w[2]);
+        window_3 = window_cosine(w[3]);
+        window_sines = sin(half_angles);
+        window_half_angles = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
+        window_gains = vec4<f32>(
+            window_gain(half_angles.x),
+            window_gain(half_angles.y),
+            window_gain(half_angles.z),
+            window_gain(half_angles.w),
+        );
+    }
+}
+
+// Whether a group's blockers or its stand-in can have any weight in the windows: a
+// sphere bounding them all (the group's extent or the stand-in's radius, the larger)
+// seen under half-angle γ, its centre θ from a window of half-angle α, holds none beyond
+// it unless θ < α + 3γ/2 (a cap of half-angle β ≤ γ inside it reaches the window's ramp
+// only within α + 3β/2 of it; 1e-3 rad more for rounding). Those skipped, the walk costs
+// the windows nothing where no light can be hidden; their weights were 0 (the twin,
+// which walks them all, adds nothing for them). Of a cluster, likewise for its groups.
+fn group_in_windows(group: BlockerGroup, p: vec3<f32>, windowed: bool) -> bool {
+    if !windowed || LIGHT_WINDOWS == 0u || !windows_open {
+        return true;
+    }
+    let to_group = group.center_extent.xyz - p;
+    let distance = length(to_group);
+    // The bounding sphere holds the stand-in's too.
+    let bound_m = max(group.center_extent.w, group.stand_in_radius_m);
+    if distance <= bound_m {
+        return true;
+    }
+    let reaches = window_half_angles + vec4<f32>(1.5 * asin(bound_m / distance) + 1e-3);
+    let direction = to_group / distance;
+    var inside = angle_between(direction, window_0.xyz) < reaches.x;
+    if LIGHT_WINDOWS >= 2u {
+        inside = inside || angle_between(direction, window_1.xyz) < reaches.y;
+    }
+    if LIGHT_WINDOWS >= 3u {
+        inside = inside || angle_between(direction, window_2.xyz) < reaches.z;
+    }
+    if LIGHT_WINDOWS >= 4u {
+        inside = inside || angle_between(direction, window_3.xyz) < reaches.w;
+    }
+    return inside;
+}
+
+fn angle_between(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return acos(clamp(dot(a, b), -1.0, 1.0));
+}
+
+// A blocker cap's half-angle β as the windows read it: cos and sin of β/2 (xy) and of
+// 3β/2 (zw), from its sine s by half- and triple-angle formulas.
+fn cap_angles(ratio: f32) -> vec4<f32> {
+    let cos_cap = sqrt(max(1.0 - ratio * ratio, 0.0));
+    let c = sqrt(0.5 + 0.5 * cos_cap);
+    let s = 0.5 * ratio / c;
+    return vec4<f32>(c, s, c * (4.0 * c * c - 3.0), s * (3.0 - 4.0 * s * s));
+}
+
+// The weight a window (direction, cos α; sine sin α) gives a cap toward unit `direction`
+// of angles `cap` (cap_angles) (LightWindow::weight): smoothstep in cos θ from
+// cos(α + 3β/2) to cos(α + β/2), by angle-sum formulas (an angle past π counts as π); 0
+// for no window (cos α = 2).
+fn window_weight(window: vec4<f32>, sine: f32, direction: vec3<f32>, cap: vec4<f32>) -> f32 {
+    let whole = window.w * cap.x - sine * cap.y;
+    let past_pi = sine * cap.z + window.w * cap.w < 0.0;
+    let none = select(window.w * cap.z - sine * cap.w, -1.0, past_pi);
+    let cos_between = dot(direction, window.xyz);
+    let weight = select(select(0.0, 1.0, cos_between >= whole), smoothstep(none, whole, cos_between), none < whole);
+    return select(weight, 0.0, window.w > 1.5);
+}
+
+// The factor on a cap's ln ε · f_n that each of the LIGHT_WINDOWS windows compiled in
+// gives it, weight × min(1, k(s) · gain) (0 for the windows not compiled in).
+fn windowed_cap_scales(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> vec4<f32> {
+    let cap = cap_angles(ratio);
+    var weights = vec4<f32>(window_weight(window_0, window_sines.x, direction, cap), 0.0, 0.0, 0.0);
+    if LIGHT_WINDOWS >= 2u {
+        weights.y = window_weight(window_1, window_sines.y, direction, cap);
+    }
+    if LIGHT_WINDOWS >= 3u {
+        weights.z = window_weight(window_2, window_sines.z, direction, cap);
+    }
+    if LIGHT_WINDOWS >= 4u {
+        weights.w = window_weight(window_3, window_sines.w, direction, cap);
+    }
+    return weights * min(vec4<f32>(1.0), mass_scale * window_gains);
+}
+
+// The factor on a cap's ln ε · f_n when one log-visibility serves every window
+// (LightWindows::cap_scale): the largest of windowed_cap_scales.
+fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 {
+    let scales = windowed_cap_scales(direction, ratio, mass_scale);
+    return max(max(scales.x, scales.y), max(scales.z, scales.w));
+}
+
+// Each windowed light's own log-visibility (shading::cpu::harmonic_log_visibility): where
+// windows are open every reader of the visibility is one of their lights, and each reads
+// it over its own cap alone; one log-visibility weighed by the largest window's weight
+// makes each light read its neighbours' blockers too, spread over the band limit's width
+// (under a few lights spread over the sky, lit ground dimmed and penumbrae blurred). So
+// with two or more windows compiled in, the walk with windows sums each cap into one
+// log-visibility per window, weighed by that window alone (window_log_0..3), and each
+// light is shaded through its own (harmonic_radiance). false: one log-visibility for
+// every light (the per-vertex pass, which keeps one visibility per vertex).
+override PER_LIGHT_VISIBILITY: bool = true;
+
+fn per_light_visibility() -> bool {
+    return PER_LIGHT_VISIBILITY && LIGHT_WINDOWS >= 2u;
+}
+
+// The blockers' log-visibility of the light in each window's slot (the rest of its
+// log-visibility, the terrain's, is in the walk's own sum). Four variables rather than an
+// array, as the windows.
+var<private> window_log_0: Sh;
+var<private> window_log_1: Sh;
+var<private> window_log_2: Sh;
+var<private> window_log_3: Sh;
+
+fn clear_window_logs() {
+    window_log_0 = sh_zero();
+    window_log_1 = sh_zero();
+    window_log_2 = sh_zero();
+    window_log_3 = sh_zero();
+}
+
+// A cap's rotated log-visibility, `rotated`, added to each window's sum at its scale.
+fn add_to_window_logs(rotated: Sh, scales: vec4<f32>) {
+    window_log_0 = sh_sum(window_log_0, sh_scaled(rotated, scales.x));
+    if LIGHT_WINDOWS >= 2u {
+        window_log_1 = sh_sum(window_log_1, sh_scaled(rotated, scales.y));
+    }
+    if LIGHT_WINDOWS >= 3u {
+        window_log_2 = sh_sum(window_log_2, sh_scaled(rotated, scales.z));
+    }
+    if LIGHT_WINDOWS >= 4u {
+        window_log_3 = sh_sum(window_log_3, sh_scaled(rotated, scales.w));
+    }
+}
+
+// The log-visibility of the light in window slot k: the walk's own sum `unwindowed` (the
+// terrain's alone where windows are open: the blockers' caps went to the windows' sums)
+// plus the window's.
+fn window_log_visibility(unwindowed: Sh, k: u32) -> Sh {
+    var own = window_log_0;
+    if k == 1u {
+        own = window_log_1;
+    } else if k == 2u {
+        own = window_log_2;
+    } else if k == 3u {
+        own = window_log_3;
+    }
+    return sh_sum(unwindowed, own);
+}
+
+// The SH light in window slot k (NO_WINDOW_LIGHT: none).
+fn slot_light(k: u32) -> u32 {
+    return window_light_indices[min(k, 3u)];
+}
