@@ -18,7 +18,8 @@
 //! walks every light instead of those of its box of the lights' grid. With BENCH_PANELS=N
 //! in the environment the panel is split into N on a ring (`blocker_bench::ring_of_panels`);
 //! with BENCH_EXACT=1 every light is on the exact path (the SH path's frame to compare
-//! with: exact visibility of the same spheres).
+//! with: exact visibility of the same spheres); with BENCH_SKY=1 a uniform sky lights the
+//! set too.
 
 use lightpaint::render::{AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer};
 use lightpaint::samples::blocker_bench;
@@ -47,6 +48,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .transpose()?
         .unwrap_or(1);
     blocker_bench::ring_of_panels(&mut scene, panels);
+    if std::env::var("BENCH_SKY").is_ok_and(|v| v == "1") {
+        scene.environment = Some(lightpaint::scene::Environment::uniform([0.3, 0.35, 0.4]));
+    }
     let every_light = args.get(6).is_some_and(|a| a == "every-light");
     let camera = blocker_bench::thin_casters_camera();
     let png = args.get(3).filter(|path| !path.is_empty());

@@ -6,6 +6,8 @@
 //! blocker bench's frame against the same frame on the exact path (`BENCH_EXACT=1`
 //! `bench_passes … PNG 1`): docs/performance.md.
 
+use std::io::Write;
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (Some(image), Some(reference)) = (args.first(), args.get(1)) else {
@@ -44,7 +46,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let (rmse, bias) = difference(0);
     let (floor_rmse, floor_bias) = difference(floor_row);
-    println!("frame: RMSE {rmse:.1}/255, bias {bias:+.1}");
-    println!("rows from {floor_row}: RMSE {floor_rmse:.1}/255, bias {floor_bias:+.1}");
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "frame: RMSE {rmse:.1}/255, bias {bias:+.1}")?;
+    writeln!(
+        out,
+        "rows from {floor_row}: RMSE {floor_rmse:.1}/255, bias {floor_bias:+.1}"
+    )?;
     Ok(())
 }

@@ -43,16 +43,22 @@ fn environment_lights() -> bool {
     return lights;
 }
 
+// Whether an environment lights the frame, as window_lights found.
+var<private> environment_lit: bool;
+
 // The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none), and whether
-// any window applies there (windows_open; light_windows::windowed_lights is the twin):
-// without an environment's light, the frame's SH lights when there are 1 to
-// MAX_WINDOW_LIGHTS (the first frame.first_mapped_light), else those that reach p
-// (light_reaches, among its box's: harmonic_lights_at) when at most MAX_WINDOW_LIGHTS
-// do — none at a point no SH light reaches, where nothing reads the visibility.
+// any window applies there (windows_open; light_windows::light_window_indices is the
+// twin): the frame's SH lights when there are 1 to MAX_WINDOW_LIGHTS (the first
+// frame.first_mapped_light), else those that reach p (light_reaches, among its box's:
+// harmonic_lights_at) when at most MAX_WINDOW_LIGHTS do — none at a point no SH light
+// reaches. With an environment's light only where each light reads a visibility of its
+// own (per_light_visibility): one visibility for every reader (per vertex) must be the
+// environment's, which sees every blocker.
 fn window_lights(p: vec3<f32>) -> vec4<u32> {
     let slots = vec4<u32>(0u, 1u, 2u, 3u);
     windows_open = false;
-    if environment_lights() || frame.first_mapped_light == 0u {
+    environment_lit = environment_lights();
+    if (environment_lit && !per_light_visibility()) || frame.first_mapped_light == 0u {
         return vec4<u32>(NO_WINDOW_LIGHT);
     }
     if frame.first_mapped_light <= MAX_WINDOW_LIGHTS {
@@ -206,20 +212,27 @@ fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 
     return max(max(scales.x, scales.y), max(scales.z, scales.w));
 }
 
-// Each windowed light's own log-visibility (shading::cpu::harmonic_log_visibility): where
-// windows are open every reader of the visibility is one of their lights, and each reads
-// it over its own cap alone; one log-visibility weighed by the largest window's weight
-// makes each light read its neighbours' blockers too, spread over the band limit's width
-// (under a few lights spread over the sky, lit ground dimmed and penumbrae blurred). So
-// with two or more windows compiled in, the walk with windows sums each cap into one
-// log-visibility per window, weighed by that window alone (window_log_0..3), and each
-// light is shaded through its own (harmonic_radiance). false: one log-visibility for
-// every light (the per-vertex pass, which keeps one visibility per vertex).
+// Each windowed light's own log-visibility (shading::cpu::harmonic_log_visibility): each
+// SH light reads the visibility over its own cap alone; one log-visibility weighed by
+// the largest window's weight makes each light read its neighbours' blockers too,
+// spread over the band limit's width (under a few lights spread over the sky, lit
+// ground dimmed and penumbrae blurred), and one with every blocker at k(s), which an
+// environment needs, drags a light's lit ground down by every blocker's ringing. So the
+// walk sums each cap into one log-visibility per window, weighed by that window alone
+// (window_log_0..3), beside, under an environment, the walk's own sum at k(s) for the
+// environment; each light is shaded through its own (harmonic_radiance). Compiled in
+// with two windows or more, or one under an environment (one window without an
+// environment gives the walk's own sum the same weights). false: one log-visibility
+// for every reader (the per-vertex pass, which keeps one visibility per vertex).
 override PER_LIGHT_VISIBILITY: bool = true;
 
 fn per_light_visibility() -> bool {
-    return PER_LIGHT_VISIBILITY && LIGHT_WINDOWS >= 2u;
+    return PER_LIGHT_VISIBILITY && (LIGHT_WINDOWS >= 2u || (ENVIRONMENT_LIGHT && LIGHT_WINDOWS >= 1u));
 }
+
+// The terrain's log-visibility at the point the walk last walked (walked_log_visibility),
+// which every window's light reads besides its blockers.
+var<private> walk_terrain_log: Sh;
 
 // The blockers' log-visibility of the light in each window's slot (the rest of its
 // log-visibility, the terrain's, is in the walk's own sum). Four variables rather than an
@@ -250,10 +263,8 @@ fn add_to_window_logs(rotated: Sh, scales: vec4<f32>) {
     }
 }
 
-// The log-visibility of the light in window slot k: the walk's own sum `unwindowed` (the
-// terrain's alone where windows are open: the blockers' caps went to the windows' sums)
-// plus the window's.
-fn window_log_visibility(unwindowed: Sh, k: u32) -> Sh {
+// The log-visibility of the light in window slot k: the terrain's plus the window's.
+fn window_log_visibility(k: u32) -> Sh {
     var own = window_log_0;
     if k == 1u {
         own = window_log_1;
@@ -262,7 +273,7 @@ fn window_log_visibility(unwindowed: Sh, k: u32) -> Sh {
     } else if k == 3u {
         own = window_log_3;
     }
-    return sh_sum(unwindowed, own);
+    return sh_sum(walk_terrain_log, own);
 }
 
 // The SH light in window slot k (NO_WINDOW_LIGHT: none).

@@ -53,7 +53,11 @@ override SH_VISIBILITY: bool = true;
 fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
     if LIGHT_WINDOWS > 0u {
         open_light_windows(p);
-        if !PER_POINT_WINDOWS || windows_open {
+        // Under an environment the walk weighs every cap for it, each window's in its own
+        // sum besides (add_cap); a pipeline compiled with the environment compiles no walk
+        // with windows, but one compiled for every frame (PER_POINT_WINDOWS) decides here.
+        let environment = ENVIRONMENT_LIGHT && (!PER_POINT_WINDOWS || environment_lit);
+        if !environment && (!PER_POINT_WINDOWS || windows_open) {
             return walked_log_visibility(p, n, true);
         }
     }
@@ -99,7 +103,8 @@ fn walked_log_visibility(p: vec3<f32>, n: vec3<f32>, windowed: bool) -> Sh {
         }
     }
     f = add_discs(f, p, n, windowed);
-    return sh_sum(f, terrain_log_visibility(p));
+    walk_terrain_log = terrain_log_visibility(p);
+    return sh_sum(f, walk_terrain_log);
 }
 
 // A group's (or a cluster's) stand-in, one sphere at its centre covering the area its
@@ -187,17 +192,22 @@ fn cap_mass_scale(s: f32) -> f32 {
 // its own sum (add_to_window_logs; f is then left as it was).
 fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool) -> Sh {
     var scale = shadow.ln_epsilon * weight;
-    if windowed && LIGHT_WINDOWS > 0u && per_light_visibility() {
+    if LIGHT_WINDOWS > 0u && per_light_visibility() {
         if shadow.ratio_attenuation != 0u {
             scale *= ratio;
         }
-        // One rotation for either side of the branch (lavapipe runs both).
+        // One rotation for every sum (lavapipe runs both sides of a branch).
         let rotated = sh_add_zonal(sh_zero(), sh_cap_zh(ratio), 1.0, direction);
-        if windows_open {
-            add_to_window_logs(rotated, scale * windowed_cap_scales(direction, ratio, cap_mass_scale(ratio)));
-            return f;
+        let mass_scale = cap_mass_scale(ratio);
+        // The windows' sums: in the walk with windows, and in the one without under an
+        // environment (compiled out of it otherwise: no window opens where it is taken).
+        if windows_open && (windowed || ENVIRONMENT_LIGHT) {
+            add_to_window_logs(rotated, scale * windowed_cap_scales(direction, ratio, mass_scale));
+            if windowed {
+                return f;
+            }
         }
-        return sh_sum(f, sh_scaled(rotated, scale * cap_mass_scale(ratio)));
+        return sh_sum(f, sh_scaled(rotated, scale * mass_scale));
     }
     if windowed && LIGHT_WINDOWS > 0u && windows_open {
         scale *= windowed_cap_scale(direction, ratio, cap_mass_scale(ratio));
@@ -298,10 +308,6 @@ fn light_through(s: Surface, lobes: LobeVisibility, inc: Incidence) -> vec3<f32>
     return inc.irradiance * (s.k_d * clamp(diffuse_mean, 0.0, direct.x) + s.k_s * specular);
 }
 
-// false: no environment lights the frame (shading::compiled_paths), and its light through
-// the visibility — a product of SH at every point shaded — is left out.
-override ENVIRONMENT_LIGHT: bool = true;
-
 // The environment's diffuse light at s through the lobes' SH, ⟨V · cos⁺/π, L_env⟩: the
 // visibility weighted by where the environment is bright. (Scaling the unshadowed light
 // by the cosine-weighted mean of V, as the separate BRDF does for each light, dimmed a
@@ -378,29 +384,47 @@ fn harmonic_radiance_through(s: Surface, lobes: LobeVisibility) -> vec3<f32> {
 // light of soft shadows, which reduced_shading.wgsl may shade more coarsely than the rest.
 // With a log-visibility per light (per_light_visibility) and the windows open at s, each
 // windowed light is shaded through its own (window_log_visibility; the SH lights without
-// a window there do not reach s); else every light and the environment through the one.
+// a window there do not reach s) and the environment through the walk's own sum; else
+// every light and the environment through the one.
 fn harmonic_radiance(s: Surface) -> vec3<f32> {
     if !SH_VISIBILITY || !per_light_visibility() {
         return harmonic_radiance_through(s, soft_lobes(s));
     }
     let unwindowed = log_visibility(s.position, s.normal);
     let run = harmonic_lights_at(s.position);
-    // One pass per visibility: each open window's, or the walk's one. Written as one loop
-    // rather than two branches, which lavapipe would both run.
+    // One pass per visibility: each open window's and, under an environment, the walk's
+    // own for it; or the walk's own for every reader. Written as one loop rather than
+    // branches, which lavapipe would all run.
     let opened = select(vec4<u32>(0u), vec4<u32>(1u), window_light_indices != vec4<u32>(NO_WINDOW_LIGHT));
-    let passes = select(1u, opened.x + opened.y + opened.z + opened.w, windows_open);
+    let window_count = opened.x + opened.y + opened.z + opened.w;
+    let environment_pass = ENVIRONMENT_LIGHT && environment_lit;
+    let passes = select(1u, window_count + u32(environment_pass), windows_open);
     var radiance = vec3<f32>(0.0);
     for (var k = 0u; k < passes; k++) {
+        // The walk's own sum, read by the environment and by the run's lights...
+        let unwindowed_pass = !windows_open || k == window_count;
         var sum = unwindowed;
         var first = run.first;
         var end = run.end;
         if windows_open {
-            sum = window_log_visibility(unwindowed, k);
-            first = slot_light(k);
-            end = first + 1u;
+            // ...or by the environment alone; or window k's, read by its light.
+            end = first;
+            if !unwindowed_pass {
+                sum = window_log_visibility(k);
+                first = slot_light(k);
+                end = first + 1u;
+            }
         }
-        let lobes = lobes_from_log_visibility(s, sum);
-        if k == 0u {
+        // Where nothing weighs in the sum (no blocker in this light's window, no terrain)
+        // exp*(0) is 1 exactly for every method (sh.rs: OL's a(0) = 1), which with the
+        // separate BRDF is the lobes' visibility: the exponentiation — most of the cost of
+        // a light's own visibility — is left out. A loop no lane enters costs lavapipe its
+        // test alone, where a branch would be run anyway.
+        var lobes = LobeVisibility(sh_one(), sh_one(), false);
+        for (var pending = BRDF_SHADING != BRDF_SEPARATE || sh_norm_squared(sum) > 0.0; pending; pending = false) {
+            lobes = lobes_from_log_visibility(s, sum);
+        }
+        if unwindowed_pass {
             radiance += environment_through(s, lobes);
         }
         for (var j = first; j < end; j++) {

@@ -217,6 +217,11 @@ fn light_reaches(light: Light, p: vec3<f32>) -> bool {
     return reaches;
 }
 
+// false: no environment lights the frame (shading::compiled_paths), and its light through
+// the visibility — a product of SH at every point shaded — is left out (logsh.wgsl), as
+// is its own log-visibility beside the lights' (light_windows.wgsl).
+override ENVIRONMENT_LIGHT: bool = true;
+
 // false: no light of the frame is a rect (a disk), and the vector irradiance of its
 // polygon is left out (shading::compiled_paths; lavapipe pays for a branch's body whether
 // or not a pixel takes it).

@@ -129,7 +129,7 @@ fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
 }
 
 /// Past four SH lights each point opens the windows of those that reach it (within their
-/// range: `light_windows::windowed_lights`), when at most four do: the bench with 600
+/// range: `light_windows::light_window_indices`), when at most four do: the bench with 600
 /// spheres, its panel and 24 lamps of 1 m range all on the SH path, where a floor point
 /// sees the panel and a lamp or two.
 #[test]
@@ -151,6 +151,19 @@ fn each_of_three_panels_reads_a_visibility_of_its_own_as_the_cpu_reference_does(
     assert_eq!(scene.lights.len(), 3);
     for order in [4, 6] {
         assert_bench_parity(&gpu, &scene, order, &format!("bench-three-panels-order-{order}"));
+    }
+}
+
+/// Under a sky each SH light reads its own windowed visibility and the sky the walk's
+/// sum of every blocker at k(s): one panel and three, order 4.
+#[test]
+fn under_a_sky_each_sh_light_reads_its_own_visibility_as_the_cpu_reference_does() {
+    let Some(gpu) = common::gpu() else { return };
+    for panels in [1, 3] {
+        let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+        lightpaint::samples::blocker_bench::ring_of_panels(&mut scene, panels);
+        scene.environment = Some(lightpaint::scene::Environment::uniform([0.3, 0.35, 0.4]));
+        assert_bench_parity(&gpu, &scene, 4, &format!("bench-sky-{panels}-panels"));
     }
 }
 

@@ -186,6 +186,26 @@ mod tests {
     use super::*;
     use crate::sh::log_visibility;
 
+    /// exp*(0) is the constant 1 exactly, whatever the method: the OL tables start at
+    /// a(0) = 1, and every method keeps the zero vector zero. The shaders skip a light's
+    /// exponentiation where its log-visibility is zero (`harmonic_radiance`), relying on it.
+    #[test]
+    fn the_exponential_of_zero_is_exactly_one_for_every_method() {
+        for order in 2..=8 {
+            assert_eq!(crate::sh::ol_tables::table(order).expect("a table")[0].0, 1.0);
+            let zero = vec![0.0; order * order];
+            let mut one = zero.clone();
+            one[0] = SQRT_4PI;
+            for method in [ExpMethod::Dc, ExpMethod::Ol, ExpMethod::Hyb, ExpMethod::Ps(6)] {
+                // The constant 1 as each method writes it (√(4π) computed two ways).
+                assert!(
+                    max_abs_diff(&exp(method, &zero), &one) <= 1e-15,
+                    "order {order}, {method:?}"
+                );
+            }
+        }
+    }
+
     fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
     }

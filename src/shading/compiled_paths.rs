@@ -45,9 +45,9 @@ pub struct CompiledPaths {
     /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
     pub blocker_overflow: bool,
     /// How many windows of SH-path lights on the blockers the code holds (LIGHT_WINDOWS;
-    /// `shading::light_windows`): without an environment's light, the SH lights' count,
-    /// at most 4 (past four each point opens those that reach it), else 0 (the shaders
-    /// decide per point which apply; lavapipe pays for every window compiled in).
+    /// `shading::light_windows`): the SH lights' count, at most 4 (past four each point
+    /// opens those that reach it) (the shaders decide per point which apply; lavapipe
+    /// pays for every window compiled in).
     pub light_windows: u32,
     /// Past four SH lights (windows compiled in), each point opens the windows of the
     /// lights that reach it or none, so the walk with windows and the one without are
@@ -157,8 +157,8 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
             .any(|light| light.kind == super::gpu_types::LIGHT_AREA && !light.is_rect()),
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
-        light_windows: super::light_windows::compiled_windows(lighting.has_environment, shaded),
-        per_point_windows: super::light_windows::windows_per_point(lighting.has_environment, shaded),
+        light_windows: super::light_windows::compiled_windows(shaded),
+        per_point_windows: super::light_windows::windows_per_point(shaded),
         light_grid: super::light_grid::grid_worth_it(shaded),
         cull_back_faces: lighting.single_sided,
     }

@@ -32,7 +32,10 @@
 //! Auto gives it them). Without the larger scale (k(s) in the windows) the umbrae at
 //! order 4 came out 36 % too light.
 //!
-//! With an environment the windows are off: its light comes from the whole sky. With more
+//! With an environment its light comes from the whole sky, so its visibility is the one
+//! with every blocker at k(s) (no window); the SH lights still read each their own
+//! windowed one ([`light_window_indices`]), and per vertex, where one visibility serves
+//! every reader, no window applies. With more
 //! than [`MAX_WINDOW_LIGHTS`] SH lights (the shaders keep each window in registers) a
 //! point opens windows for those of them that reach it ([`light_reaches`]: within its
 //! range, inside a spot's cone), when at most [`MAX_WINDOW_LIGHTS`] do: the others add
@@ -46,27 +49,27 @@ use super::gpu_types::{GpuLight, SHADOW_PATH_SH, irradiance_lights};
 /// (`MAX_WINDOW_LIGHTS` in logsh.wgsl).
 pub const MAX_WINDOW_LIGHTS: usize = 4;
 
-/// Whether the windows may apply in a frame with this environment irradiance (order-3 SH,
-/// `Frame::environment_irradiance`) and these lights on their paths: no environment
-/// light, and some light on the SH path — at every point when there are 1 to
-/// [`MAX_WINDOW_LIGHTS`], else at the points [`windowed_lights`] gives windows
-/// (`open_light_windows` in logsh.wgsl decides alike from the same numbers).
+/// Whether one visibility weighed by the windows may serve every reader in a frame with
+/// this environment irradiance (order-3 SH, `Frame::environment_irradiance`) and these
+/// lights on their paths (the per-vertex pass; per pixel each light reads its own): no
+/// environment light, and some light on the SH path — at every point when there are 1 to
+/// [`MAX_WINDOW_LIGHTS`], else at the points [`light_window_indices`] gives windows
+/// (`open_light_windows` in light_windows.wgsl decides alike from the same numbers).
 pub fn windows_apply(environment_irradiance: &[[f32; 4]; 9], lights: &[GpuLight]) -> bool {
-    compiled_windows(irradiance_lights(environment_irradiance), lights) > 0
+    !irradiance_lights(environment_irradiance) && compiled_windows(lights) > 0
 }
 
-/// The windows the shaders compile in for a frame with (`environment_lights`) or without
-/// an environment's light and these lights: the SH lights' count when there are 1 to
-/// [`MAX_WINDOW_LIGHTS`], [`MAX_WINDOW_LIGHTS`] when there are more (each point opens
-/// those of the lights that reach it), 0 with an environment, without SH lights, or with
-/// more than [`MAX_WINDOW_LIGHTS`] SH lights that reach every point (no range, not a
-/// spot: no point would open a window) (`CompiledPaths::light_windows`).
-pub fn compiled_windows(environment_lights: bool, lights: &[GpuLight]) -> u32 {
+/// The windows the shaders compile in for a frame with these lights on their paths: the
+/// SH lights' count when there are 1 to [`MAX_WINDOW_LIGHTS`], [`MAX_WINDOW_LIGHTS`] when
+/// there are more (each point opens those of the lights that reach it), 0 without SH
+/// lights or with more than [`MAX_WINDOW_LIGHTS`] SH lights that reach every point (no
+/// range, not a spot: no point would open a window) (`CompiledPaths::light_windows`).
+pub fn compiled_windows(lights: &[GpuLight]) -> u32 {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH);
     let count = sh_lights.clone().count();
     // Past MAX_WINDOW_LIGHTS lights that reach every point, none ever opens a window.
     let everywhere = sh_lights.filter(|light| reaches_everywhere(light)).count();
-    if environment_lights || count == 0 || everywhere > MAX_WINDOW_LIGHTS {
+    if count == 0 || everywhere > MAX_WINDOW_LIGHTS {
         0
     } else {
         count.min(MAX_WINDOW_LIGHTS) as u32
@@ -81,34 +84,20 @@ fn reaches_everywhere(light: &GpuLight) -> bool {
 }
 
 /// Whether each point decides for itself whether windows apply (past
-/// [`MAX_WINDOW_LIGHTS`] SH lights without an environment's light), so that the shaders
-/// compile the walk without windows beside the one with them
-/// (`CompiledPaths::per_point_windows`).
-pub fn windows_per_point(environment_lights: bool, lights: &[GpuLight]) -> bool {
+/// [`MAX_WINDOW_LIGHTS`] SH lights), so that the shaders compile the walk without windows
+/// beside the one with them (`CompiledPaths::per_point_windows`).
+pub fn windows_per_point(lights: &[GpuLight]) -> bool {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    compiled_windows(environment_lights, lights) > 0 && sh_lights > MAX_WINDOW_LIGHTS
+    compiled_windows(lights) > 0 && sh_lights > MAX_WINDOW_LIGHTS
 }
 
-/// The SH-path lights among `lights` whose windows a point at `p` opens, or None where no
-/// window applies (see the module's documentation): every SH light when there are at most
-/// [`MAX_WINDOW_LIGHTS`], else those that reach p when at most that many do.
-pub fn windowed_lights(
-    environment_irradiance: &[[f32; 4]; 9],
-    lights: &[GpuLight],
-    p: glam::DVec3,
-) -> Option<Vec<GpuLight>> {
-    windowed_light_indices(environment_irradiance, lights, p)
-        .map(|indices| indices.iter().map(|&i| lights[i]).collect())
-}
-
-/// [`windowed_lights`] as indices into `lights`, in order (the slots of `window_lights` in
-/// logsh.wgsl).
-pub fn windowed_light_indices(
-    environment_irradiance: &[[f32; 4]; 9],
-    lights: &[GpuLight],
-    p: glam::DVec3,
-) -> Option<Vec<usize>> {
-    if !windows_apply(environment_irradiance, lights) {
+/// The SH-path lights (indices into `lights`, in order: the slots of `window_lights` in
+/// light_windows.wgsl) whose windows a point at `p` opens, each to read a visibility of
+/// its own, environment or not: every SH light when there are at most
+/// [`MAX_WINDOW_LIGHTS`], else those that reach p when at most that many do; None where
+/// no window opens (no SH light, or more than that many reach p).
+pub fn light_window_indices(lights: &[GpuLight], p: glam::DVec3) -> Option<Vec<usize>> {
+    if compiled_windows(lights) == 0 {
         return None;
     }
     let harmonic = lights
@@ -174,26 +163,23 @@ mod tests {
             "five lights without a range reach every point: no window ever opens"
         );
         assert!(!windows_apply(&dark, &[]));
-        assert!(!windows_apply(&sky, &[light]));
-        assert_eq!(compiled_windows(false, &[light; 3]), 3);
-        assert_eq!(compiled_windows(true, &[light; 3]), 0);
+        assert!(!windows_apply(&sky, &[light]), "the sky reads the visibility unweighed");
+        assert_eq!(compiled_windows(&[light; 3]), 3, "each light's own, sky or not");
         assert_eq!(
-            compiled_windows(false, &[bounded; MAX_WINDOW_LIGHTS + 1]),
+            compiled_windows(&[bounded; MAX_WINDOW_LIGHTS + 1]),
             MAX_WINDOW_LIGHTS as u32
         );
-        assert_eq!(compiled_windows(false, &[light; MAX_WINDOW_LIGHTS + 1]), 0);
-        assert_eq!(compiled_windows(true, &[bounded; MAX_WINDOW_LIGHTS + 1]), 0);
+        assert_eq!(compiled_windows(&[light; MAX_WINDOW_LIGHTS + 1]), 0);
         let four_everywhere = [light, light, light, light, bounded];
         assert_eq!(
-            compiled_windows(false, &four_everywhere),
+            compiled_windows(&four_everywhere),
             MAX_WINDOW_LIGHTS as u32,
             "beyond the fifth's range only four reach"
         );
-        assert!(!windows_per_point(false, &[light; MAX_WINDOW_LIGHTS]));
-        assert!(windows_per_point(false, &[bounded; MAX_WINDOW_LIGHTS + 1]));
-        assert!(windows_per_point(false, &four_everywhere));
-        assert!(!windows_per_point(false, &[light; MAX_WINDOW_LIGHTS + 1]));
-        assert!(!windows_per_point(true, &[bounded; MAX_WINDOW_LIGHTS + 1]));
+        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS]));
+        assert!(windows_per_point(&[bounded; MAX_WINDOW_LIGHTS + 1]));
+        assert!(windows_per_point(&four_everywhere));
+        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS + 1]));
     }
 
     /// Past four SH lights a point opens the windows of those within their range, when
@@ -213,24 +199,26 @@ mod tests {
             })
         };
         let lamps: Vec<GpuLight> = (0..10).map(|k| lamp(2.0 * k as f32)).collect();
-        let dark = [[0.0; 4]; 9];
-        let under_the_third = windowed_lights(&dark, &lamps, glam::DVec3::new(4.0, 0.0, 0.0)).expect("windows");
-        assert_eq!(under_the_third.len(), 1);
-        assert_eq!(under_the_third[0].position[0], 4.0);
-        let between = windowed_lights(&dark, &lamps, glam::DVec3::new(5.0, 0.5, 0.0)).expect("windows");
-        assert_eq!(between.len(), 2);
-        let far = windowed_lights(&dark, &lamps, glam::DVec3::new(5.0, 0.0, 30.0)).expect("windows");
+        let under_the_third = light_window_indices(&lamps, glam::DVec3::new(4.0, 0.0, 0.0));
+        assert_eq!(under_the_third, Some(vec![2]), "the lamp at x = 4 m");
+        let between = light_window_indices(&lamps, glam::DVec3::new(5.0, 0.5, 0.0)).expect("windows");
+        assert_eq!(between, vec![2, 3]);
+        let far = light_window_indices(&lamps, glam::DVec3::new(5.0, 0.0, 30.0)).expect("windows");
         assert!(far.is_empty(), "no lamp reaches it: no window, nothing weighs");
         let mut bright = lamps.clone();
         for light in &mut bright {
             light.direction_range[3] = 0.0;
         }
         assert!(
-            windowed_lights(&dark, &bright, glam::DVec3::ZERO).is_none(),
+            light_window_indices(&bright, glam::DVec3::ZERO).is_none(),
             "ten unbounded lamps reach it"
         );
-        let mut sky = dark;
+        let mut sky = [[0.0; 4]; 9];
         sky[0] = [0.2, 0.3, 0.4, 0.0];
-        assert!(windowed_lights(&sky, &lamps, glam::DVec3::new(4.0, 0.0, 0.0)).is_none());
+        assert!(windows_apply(&[[0.0; 4]; 9], &lamps));
+        assert!(
+            !windows_apply(&sky, &lamps),
+            "under the sky no window weighs the one visibility every reader shares"
+        );
     }
 }

@@ -198,7 +198,7 @@ impl<'a> DirectEstimate<'a> {
     fn fixed_at(&self, s: &SurfacePoint, g: &mut LazyVisibility) -> f64 {
         let mut radiance = s.emissive;
         if self.scene.environment.is_some()
-            && let Some(g) = g.at(s).shared()
+            && let Some(g) = &g.at(s).shared
         {
             radiance += cpu::environment_through_visibility(s, &self.environment, g);
         }

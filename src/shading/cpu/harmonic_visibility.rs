@@ -1,20 +1,20 @@
-//! The log-visibility each SH-path light reads at a point (`harmonic_radiance` and
-//! `add_cap` in logsh.wgsl, `PER_LIGHT_VISIBILITY`).
+//! The log-visibility each SH-path light and the environment read at a point
+//! (`harmonic_radiance` and `add_cap` in logsh.wgsl, `PER_LIGHT_VISIBILITY`).
 //!
-//! Where the light windows apply (`shading::light_windows`: no environment, and a point
-//! that opens the windows of at most four SH lights) every reader of the visibility is
-//! one of those lights, and each reads it over its own cap alone. Weighing every blocker
-//! by the largest weight any window gives it, and summing those caps into one
-//! log-visibility that all the lights read, makes a light read the log-visibility its
-//! neighbours' blockers spread over the band limit's width: with a few lights spread
-//! over the sky each dims the others' lit ground and blurs their penumbrae. So each
-//! windowed light reads a log-visibility of its own, the blockers weighed by its window
-//! alone (one exponentiation per light). With one window the two are the same.
+//! Where a point opens light windows (`shading::light_windows`: at most four SH lights,
+//! or past four the few that reach it) each of those lights reads the visibility over its
+//! own cap alone. Weighing every blocker by the largest weight any window gives it, and
+//! summing those caps into one log-visibility that all the lights read, made each light
+//! read the log-visibility its neighbours' blockers spread over the band limit's width:
+//! with a few lights spread over the sky each dimmed the others' lit ground and blurred
+//! their penumbrae. So each windowed light reads a log-visibility of its own, the
+//! blockers weighed by its window alone (one exponentiation per light). An environment
+//! lights the point from the whole sky and reads the visibility of every blocker at k(s)
+//! (no window); before the lights had their own, its presence took the windows away from
+//! the lights too, and their lit ground was dragged down by every blocker's ringing.
 //!
-//! Measured against exact visibility of the same spheres under several panels
-//! (`tests/sh_against_exact.rs`, the ignored
-//! `measure_the_sh_path_against_exact_visibility_under_several_panels`;
-//! docs/performance.md): see the table there.
+//! Measured against exact visibility of the same spheres (`tests/sh_against_exact.rs`;
+//! docs/performance.md, "Each windowed SH light reads its own visibility").
 
 use glam::DVec3;
 
@@ -22,57 +22,50 @@ use super::LightWindows;
 use super::visibility::scene_log_visibility;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
-use crate::shading::gpu_types::GpuLight;
-use crate::shading::light_windows::windowed_light_indices;
+use crate::shading::gpu_types::{GpuLight, irradiance_lights};
+use crate::shading::light_windows::light_window_indices;
 use crate::terrain::TerrainShadow;
 
-/// What the SH-path lights and the environment read at a point: one visibility for all,
-/// or one per windowed light.
+/// What the SH-path lights and the environment read at a point.
 #[derive(Debug, Clone, PartialEq)]
-pub enum HarmonicVisibility<T> {
-    /// No window applies: the environment and every SH light read this one.
-    Shared(T),
-    /// Windows apply: each light (its index among the frame's lights) reads its own; the
-    /// SH lights not listed add nothing at the point (out of range or cone), and no
-    /// environment lights the frame.
-    PerLight(Vec<(usize, T)>),
+pub struct HarmonicVisibility<T> {
+    /// The visibility of every blocker at k(s), which the environment reads, and every SH
+    /// light where no window opens; None where windows open and no environment lights
+    /// the frame (nothing reads it).
+    pub shared: Option<T>,
+    /// Where windows open, each windowed light's own (its index among the frame's
+    /// lights): the SH lights not listed add nothing at the point (out of range or cone).
+    pub per_light: Option<Vec<(usize, T)>>,
 }
 
 impl<T> HarmonicVisibility<T> {
-    /// What light `index` reads: the shared visibility, or its own (None: it is not one of
-    /// the point's windowed lights).
+    /// What light `index` reads: its own where windows open (None: it is not one of the
+    /// point's windowed lights), else the shared visibility.
     pub fn of_light(&self, index: usize) -> Option<&T> {
-        match self {
-            HarmonicVisibility::Shared(shared) => Some(shared),
-            HarmonicVisibility::PerLight(own) => own.iter().find(|(i, _)| *i == index).map(|(_, v)| v),
-        }
-    }
-
-    /// The visibility the environment reads (None: per light, where no environment lights
-    /// the frame).
-    pub fn shared(&self) -> Option<&T> {
-        match self {
-            HarmonicVisibility::Shared(shared) => Some(shared),
-            HarmonicVisibility::PerLight(_) => None,
+        match &self.per_light {
+            Some(own) => own.iter().find(|(i, _)| *i == index).map(|(_, v)| v),
+            None => self.shared.as_ref(),
         }
     }
 
     /// Each visibility mapped by `f`.
     pub fn map<U>(&self, mut f: impl FnMut(&T) -> U) -> HarmonicVisibility<U> {
-        match self {
-            HarmonicVisibility::Shared(shared) => HarmonicVisibility::Shared(f(shared)),
-            HarmonicVisibility::PerLight(own) => {
-                HarmonicVisibility::PerLight(own.iter().map(|(i, v)| (*i, f(v))).collect())
-            }
+        HarmonicVisibility {
+            shared: self.shared.as_ref().map(&mut f),
+            per_light: self
+                .per_light
+                .as_ref()
+                .map(|own| own.iter().map(|(i, v)| (*i, f(v))).collect()),
         }
     }
 }
 
 /// The log-visibility (blockers and terrain, `scene_log_visibility`) the SH lights among
-/// `lights` read at `p` with normal `n`, with the environment's irradiance
-/// `environment_irradiance` (order-3 SH, `Frame::environment_irradiance`): without windows
-/// one, unweighed (k(s) on every cap); with them one per windowed light, its blockers
-/// weighed by its own window.
+/// `lights` and the environment of irradiance `environment_irradiance` (order-3 SH,
+/// `Frame::environment_irradiance`) read at `p` with normal `n`: where the point opens
+/// windows, one per windowed light, its blockers weighed by its own window, and with an
+/// environment the unweighed one (k(s) on every cap) for it; elsewhere the unweighed one
+/// for all.
 pub fn harmonic_log_visibility(
     settings: &ShadowSettings,
     blockers: &[Sphere],
@@ -84,17 +77,19 @@ pub fn harmonic_log_visibility(
 ) -> HarmonicVisibility<Vec<f64>> {
     let log_visibility =
         |windows: Option<&LightWindows>| scene_log_visibility(settings, blockers, terrain, p, n, windows);
-    match windowed_light_indices(environment_irradiance, lights, p) {
-        None => HarmonicVisibility::Shared(log_visibility(None)),
-        Some(indices) => HarmonicVisibility::PerLight(
-            indices
-                .into_iter()
-                .map(|i| {
-                    let windows = LightWindows::at(&lights[i..=i], p, settings.order);
-                    (i, log_visibility(Some(&windows)))
-                })
-                .collect(),
-        ),
+    let per_light = light_window_indices(lights, p).map(|indices| {
+        indices
+            .into_iter()
+            .map(|i| {
+                let windows = LightWindows::at(&lights[i..=i], p, settings.order);
+                (i, log_visibility(Some(&windows)))
+            })
+            .collect::<Vec<_>>()
+    });
+    let read_by_all = per_light.is_none() || irradiance_lights(environment_irradiance);
+    HarmonicVisibility {
+        shared: read_by_all.then(|| log_visibility(None)),
+        per_light,
     }
 }
 
@@ -131,7 +126,7 @@ mod tests {
         assert!(lamps.iter().all(|l| l.shadow_path == SHADOW_PATH_SH));
         let p = DVec3::ZERO;
         let visibility = harmonic_log_visibility(&settings, &[sphere(0.0)], None, &dark, &lamps, p, DVec3::Y);
-        assert!(visibility.shared().is_none());
+        assert!(visibility.shared.is_none(), "no environment: nothing reads it");
         let under = visibility.of_light(0).expect("the first lamp's");
         let beside = visibility.of_light(1).expect("the second lamp's");
         assert!(under[0] < 0.0, "the sphere hides the first lamp: {}", under[0]);
@@ -142,8 +137,10 @@ mod tests {
         assert_eq!(alone.of_light(0), Some(&windowed));
     }
 
+    /// Under a sky the environment reads every blocker at k(s), and each lamp still its
+    /// own windowed visibility.
     #[test]
-    fn with_an_environment_every_reader_shares_one_unweighed_visibility() {
+    fn with_an_environment_it_reads_the_unweighed_visibility_and_each_light_its_own() {
         let settings = ShadowSettings::default();
         let mut sky = [[0.0; 4]; 9];
         sky[0] = [0.2, 0.3, 0.4, 0.0];
@@ -151,8 +148,34 @@ mod tests {
         let p = DVec3::ZERO;
         let visibility = harmonic_log_visibility(&settings, &[sphere(3.0)], None, &sky, &lamps, p, DVec3::Y);
         let unweighed = scene_log_visibility(&settings, &[sphere(3.0)], None, p, DVec3::Y, None);
-        assert_eq!(visibility.shared(), Some(&unweighed));
-        assert_eq!(visibility.of_light(0), Some(&unweighed));
-        assert_eq!(visibility.of_light(1), Some(&unweighed));
+        assert_eq!(visibility.shared.as_ref(), Some(&unweighed));
+        let windows = LightWindows::at(&lamps[1..], p, settings.order);
+        let own = scene_log_visibility(&settings, &[sphere(3.0)], None, p, DVec3::Y, Some(&windows));
+        assert_eq!(visibility.of_light(1), Some(&own));
+        assert!(
+            visibility
+                .of_light(0)
+                .expect("the first lamp's")
+                .iter()
+                .all(|c| *c == 0.0),
+            "the sphere lies outside the first lamp's window"
+        );
+        assert!(unweighed[0] < 0.0, "the sky sees it");
+    }
+
+    /// Past four SH lights that all reach a point no window opens: every reader shares
+    /// the unweighed visibility.
+    #[test]
+    fn past_four_lights_reaching_a_point_every_reader_shares_one_visibility() {
+        let settings = ShadowSettings::default();
+        let dark = [[0.0; 4]; 9];
+        let lamps: Vec<GpuLight> = (0..5).map(|k| lamp(k as f32)).collect();
+        let p = DVec3::ZERO;
+        let visibility = harmonic_log_visibility(&settings, &[sphere(3.0)], None, &dark, &lamps, p, DVec3::Y);
+        let unweighed = scene_log_visibility(&settings, &[sphere(3.0)], None, p, DVec3::Y, None);
+        assert!(visibility.per_light.is_none());
+        for i in 0..5 {
+            assert_eq!(visibility.of_light(i), Some(&unweighed));
+        }
     }
 }

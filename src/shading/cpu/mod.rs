@@ -5,10 +5,10 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
-//!   where the light windows apply (no environment; a point that opens the windows of at
-//!   most four SH lights), each of those lights reads an F of its own, every cap weighed
-//!   by how near it comes to that light's cap and scaled for its mean instead of by k(s)
-//!   (`shading::light_windows`, `windows.rs`, `harmonic_visibility.rs`);
+//!   where a point opens light windows (the windows of at most four SH lights), each of
+//!   those lights reads an F of its own, every cap weighed by how near it comes to that
+//!   light's cap and scaled for its mean instead of by k(s), while an environment reads
+//!   the F above (`shading::light_windows`, `windows.rs`, `harmonic_visibility.rs`);
 //! - visibility G = exp*(F) by the chosen [`crate::sh::ExpMethod`];
 //! - radiance = emissive + environment diffuse · clamp(⟨G, cos_n⟩, 0, 1) plus, summed
 //!   over lights, unshadowed(light) · clamp(V̄(light), 0, 1) (with the default
@@ -93,7 +93,7 @@ pub fn shadowed_radiance(s: &SurfacePoint, inputs: &ShadingInputs) -> DVec3 {
     let lobes =
         visibility.map(|f| lobes_from_log_visibility(settings, s, inputs.eye, f, |f| exp_for_shading(settings.exp, f)));
     let mut radiance = s.emissive;
-    if let Some(shared) = lobes.shared() {
+    if let Some(shared) = &lobes.shared {
         radiance += environment_through(settings, s, inputs.environment_irradiance, shared);
     }
     let footprint = (inputs.eye - s.position).length() * inputs.pixel_angle_rad;
