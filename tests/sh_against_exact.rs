@@ -117,6 +117,23 @@ fn departure(
     })
 }
 
+impl Departure {
+    /// One line: the lit floor's bias, the penumbra's and the umbra's RMS, with pixel counts.
+    fn summary(&self) -> String {
+        format!(
+            "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
+            self.lit_bias, self.pixels[2], self.penumbra_rms, self.pixels[0], self.umbra_rms, self.pixels[1]
+        )
+    }
+}
+
+/// [`departure`] at order 4 (the default exponentiation, 600 spheres, 120 × 68), printed.
+fn departure_at_order_4(lights: [usize; 2], sky: bool) -> Option<Departure> {
+    let d = departure(4, ShadowSettings::default().exp, 600, lights, sky, (120, 68))?;
+    eprintln!("{}", d.summary());
+    Some(d)
+}
+
 /// The issue's bar for the lit floor with 600 spheres at order 4 (HYB): within 5 % of
 /// exact visibility (it was −23 % before the SH lights' windows on the blockers, −72 %
 /// when the issue was filed), with no more penumbra error than before the windows (RMS
@@ -124,13 +141,9 @@ fn departure(
 /// (tests/gpu_shadows.rs), at a quarter of the measurement's surfaces.
 #[test]
 fn six_hundred_spheres_leave_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [1, 0], false, (120, 68)) else {
+    let Some(d) = departure_at_order_4([1, 0], false) else {
         return;
     };
-    eprintln!(
-        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
-        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
-    );
     assert!(
         d.pixels.iter().all(|&n| n > 100),
         "the floor has lit, penumbra and umbra pixels: {:?}",
@@ -174,13 +187,9 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
 /// and the lit floor stays lit as with the panel alone.
 #[test]
 fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [1, 24], false, (120, 68)) else {
+    let Some(d) = departure_at_order_4([1, 24], false) else {
         return;
     };
-    eprintln!(
-        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
-        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
-    );
     assert!(d.pixels[2] > 100, "the floor has lit pixels: {:?}", d.pixels);
     assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
     // Walking without windows wherever more than four SH lights light the frame gave
@@ -195,13 +204,9 @@ fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
 /// (and without windows −15.0 % and 0.268; docs/performance.md).
 #[test]
 fn three_panels_each_read_their_own_visibility_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [3, 0], false, (120, 68)) else {
+    let Some(d) = departure_at_order_4([3, 0], false) else {
         return;
     };
-    eprintln!(
-        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
-        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
-    );
     assert!(
         d.pixels[2] > 100 && d.pixels[0] > 100,
         "lit and penumbra pixels: {:?}",
@@ -218,13 +223,9 @@ fn three_panels_each_read_their_own_visibility_at_order_4() {
 /// without windows (docs/performance.md).
 #[test]
 fn under_a_sky_the_panel_leaves_the_lit_floor_lit_at_order_4() {
-    let Some(d) = departure(4, ShadowSettings::default().exp, 600, [1, 0], true, (120, 68)) else {
+    let Some(d) = departure_at_order_4([1, 0], true) else {
         return;
     };
-    eprintln!(
-        "lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
-        d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
-    );
     assert!(d.pixels[2] > 100, "the floor has lit pixels: {:?}", d.pixels);
     assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
 }
@@ -240,9 +241,6 @@ fn measure_the_sh_path_against_exact_visibility_under_several_panels() {
         let Some(d) = departure(4, ShadowSettings::default().exp, 600, [panels, 0], false, (120, 68)) else {
             return;
         };
-        eprintln!(
-            "{panels} panels: lit floor bias {:+.4} ({} px), penumbra RMS {:.4} ({} px), umbra RMS {:.4} ({} px)",
-            d.lit_bias, d.pixels[2], d.penumbra_rms, d.pixels[0], d.umbra_rms, d.pixels[1]
-        );
+        eprintln!("{panels} panels: {}", d.summary());
     }
 }
