@@ -3,15 +3,14 @@
 // (shading::cpu::harmonic_visibility).
 // #import blockers sh
 
-// Windows on the blockers for the SH path's lights:
-// without an environment's light, only visibility inside the SH lights' caps is read, so
-// each cap is weighed by how near it comes to the nearest light's cap and scaled for
-// that light's mean (min(1, k(s) · gain)) instead of by k(s); blockers far from every
-// light then no longer darken the lights they do not hide through the band limit.
+// Windows on the blockers for the SH path's lights: a light reads the visibility only
+// inside its own cap, so for its visibility each cap is weighed by how near it comes to
+// that light's cap and scaled for the light's mean (min(1, k(s) · gain)) instead of by
+// k(s); blockers far from a light then no longer darken it through the band limit.
 // With more than MAX_WINDOW_LIGHTS SH lights a point opens windows for those that reach
 // it, when at most that many do (window_lights). The number of windows compiled in
-// (shading::compiled_paths): 0 for a frame without them; lavapipe pays for each window
-// at every blocker, used or not.
+// (shading::compiled_paths): 0 for a frame without SH lights; lavapipe pays for each
+// window at every blocker, used or not.
 override LIGHT_WINDOWS: u32 = 4u;
 const MAX_WINDOW_LIGHTS: u32 = 4u;
 
