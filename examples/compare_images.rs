@@ -1,12 +1,16 @@
-//! How far one PNG lies from another, in 8-bit steps: the RMSE and the mean difference
-//! (bias) of every colour channel over the frame and over its lower part (rows from
-//! FLOOR_ROW on; the blocker bench's floor below its casters at 960 × 540 starts at row 300).
+//! How far one PNG lies from another, by the study's image errors (`study::metrics`: on
+//! the sRGB-decoded values in [0, 1] that the artist sees): RMSE, relative L1 and SSIM of
+//! the whole frame, and the RMSE and the mean difference (bias: negative where the image
+//! is too dark) over its lower part (rows from FLOOR_ROW on; the blocker bench's floor in
+//! front of its casters at 960 × 540 starts at row 300).
 //!
 //! `cargo run --release --example compare_images IMAGE REFERENCE [FLOOR_ROW]`, e.g. the
 //! blocker bench's frame against the same frame on the exact path (`BENCH_EXACT=1`
 //! `bench_passes … PNG 1`): docs/performance.md.
 
 use std::io::Write;
+
+use lightpaint::study::metrics::{DisplayImage, image_errors};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -15,42 +19,40 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let open = |path: &str| {
         image::open(path)
-            .map(|i| i.to_rgb8())
+            .map(|i| DisplayImage::from_rgba8(&i.to_rgba8()))
             .map_err(|err| format!("{path}: {err}"))
     };
     let (a, b) = (open(image)?, open(reference)?);
-    if a.dimensions() != b.dimensions() {
+    if (a.width, a.height) != (b.width, b.height) {
         return Err(format!(
-            "{image} is {:?} but {reference} is {:?}",
-            a.dimensions(),
-            b.dimensions()
+            "{image} is {} × {} but {reference} is {} × {}",
+            a.width, a.height, b.width, b.height
         )
         .into());
     }
-    let floor_row: u32 = args.get(2).map(|r| r.parse()).transpose()?.unwrap_or(a.height() / 2);
-    let difference = |from_row: u32| {
-        let (mut sum, mut squares, mut count) = (0.0f64, 0.0f64, 0u64);
-        for (x, y, pixel) in a.enumerate_pixels() {
-            if y < from_row {
-                continue;
-            }
-            for (p, q) in pixel.0.iter().zip(b.get_pixel(x, y).0) {
-                let d = f64::from(*p) - f64::from(q);
-                sum += d;
-                squares += d * d;
-                count += 1;
-            }
-        }
-        let n = count.max(1) as f64;
-        ((squares / n).sqrt(), sum / n)
-    };
-    let (rmse, bias) = difference(0);
-    let (floor_rmse, floor_bias) = difference(floor_row);
+    let floor_row: usize = args.get(2).map(|r| r.parse()).transpose()?.unwrap_or(a.height / 2);
+    let on_floor: Vec<bool> = (0..a.width * a.height).map(|i| i / a.width >= floor_row).collect();
+    let errors = image_errors(&a, &b, &on_floor);
+    let (sum, count) = a
+        .rgb
+        .iter()
+        .zip(&b.rgb)
+        .zip(&on_floor)
+        .filter(|(_, floor)| **floor)
+        .fold((0.0, 0usize), |(sum, n), ((p, q), _)| {
+            (sum + (0..3).map(|c| p[c] - q[c]).sum::<f64>(), n + 3)
+        });
     let mut out = std::io::stdout().lock();
-    writeln!(out, "frame: RMSE {rmse:.1}/255, bias {bias:+.1}")?;
     writeln!(
         out,
-        "rows from {floor_row}: RMSE {floor_rmse:.1}/255, bias {floor_bias:+.1}"
+        "frame: RMSE {:.4}, relative L1 {:.4}, SSIM {:.4}",
+        errors.rmse, errors.relative_l1, errors.ssim
+    )?;
+    writeln!(
+        out,
+        "rows from {floor_row}: RMSE {:.4}, bias {:+.4}",
+        errors.shadow_rmse.unwrap_or(0.0),
+        sum / count.max(1) as f64
     )?;
     Ok(())
 }
