@@ -10,25 +10,42 @@
 // With more than MAX_WINDOW_LIGHTS SH lights a point opens windows for those that reach
 // it, when at most that many do (window_lights). The number of windows compiled in
 // (shading::compiled_paths): 0 for a frame without SH lights; lavapipe pays for each
-// window at every blocker, used or not.
-override LIGHT_WINDOWS: u32 = 4u;
-const MAX_WINDOW_LIGHTS: u32 = 4u;
+// window at every blocker, used or not. Where one visibility serves every light
+// (PER_LIGHT_VISIBILITY false: per vertex) at most MAX_SHARED_WINDOW_LIGHTS open: one
+// sum weighed by the largest of more windows darkened each light's penumbrae by its
+// neighbours' blockers past the sum without windows (shading::light_windows).
+// Under an environment at most MAX_SKY_WINDOW_LIGHTS: the walk without windows that the
+// environment reads adds every cap to each window's sum (add_cap), so each window costs
+// every cap (shading::light_windows::MAX_SKY_WINDOW_LIGHTS).
+override LIGHT_WINDOWS: u32 = 8u;
+const MAX_WINDOW_LIGHTS: u32 = 8u;
+const MAX_SHARED_WINDOW_LIGHTS: u32 = 4u;
+const MAX_SKY_WINDOW_LIGHTS: u32 = 4u;
 
 // The receiver's windows, set by open_light_windows: per SH light the unit direction
 // toward it and the cosine of the half-angle of the cap holding its emitter (w = 2: no
 // such light), that half-angle's sine in window_sines and each window's gain on k(s) in
-// window_gains. Four variables rather than an array: lavapipe reads a private array
-// lane by lane.
+// window_gains (slots 0–3; slots 4–7 in the _hi vectors, compiled in past four
+// windows). Variables rather than an array: lavapipe reads a private array lane by lane.
 var<private> windows_open: bool;
 var<private> window_0: vec4<f32>;
 var<private> window_1: vec4<f32>;
 var<private> window_2: vec4<f32>;
 var<private> window_3: vec4<f32>;
+var<private> window_4: vec4<f32>;
+var<private> window_5: vec4<f32>;
+var<private> window_6: vec4<f32>;
+var<private> window_7: vec4<f32>;
 var<private> window_sines: vec4<f32>;
 var<private> window_half_angles: vec4<f32>;
 var<private> window_gains: vec4<f32>;
-// The SH light in each window's slot (NO_WINDOW_LIGHT: none), set with the windows.
+var<private> window_sines_hi: vec4<f32>;
+var<private> window_half_angles_hi: vec4<f32>;
+var<private> window_gains_hi: vec4<f32>;
+// The SH light in each window's slot (NO_WINDOW_LIGHT: none), set with the windows:
+// slots 0–3, then 4–7.
 var<private> window_light_indices: vec4<u32>;
+var<private> window_light_indices_hi: vec4<u32>;
 
 // No light in a window's slot.
 const NO_WINDOW_LIGHT: u32 = 0xffffffffu;
@@ -45,41 +62,59 @@ fn environment_lights() -> bool {
 // Whether an environment lights the frame, as window_lights found.
 var<private> environment_lit: bool;
 
-// The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none), and whether
-// any window applies there (windows_open; light_windows::light_window_indices is the
-// twin): the frame's SH lights when there are 1 to MAX_WINDOW_LIGHTS (the first
-// frame.first_mapped_light), else those that reach p (light_reaches, among its box's:
-// harmonic_lights_at) when at most MAX_WINDOW_LIGHTS do — none at a point no SH light
-// reaches. With an environment's light only where each light reads a visibility of its
-// own (per_light_visibility): one visibility for every reader (per vertex) must be the
-// environment's, which sees every blocker.
-fn window_lights(p: vec3<f32>) -> vec4<u32> {
+// The SH lights whose windows p opens, one per slot (NO_WINDOW_LIGHT: none) in
+// window_light_indices and window_light_indices_hi, and whether any window applies there
+// (windows_open; light_windows::light_window_indices is the twin): the frame's SH lights
+// when there are 1 to max_window_lights() (the first frame.first_mapped_light), else
+// those that reach p (light_reaches, among its box's: harmonic_lights_at) when at most
+// that many do — none at a point no SH light reaches. With an environment's light only
+// where each light reads a visibility of its own (per_light_visibility): one visibility
+// for every reader (per vertex) must be the environment's, which sees every blocker.
+fn window_lights(p: vec3<f32>) {
     let slots = vec4<u32>(0u, 1u, 2u, 3u);
+    let slots_hi = slots + vec4<u32>(4u);
     windows_open = false;
+    window_light_indices = vec4<u32>(NO_WINDOW_LIGHT);
+    window_light_indices_hi = vec4<u32>(NO_WINDOW_LIGHT);
     environment_lit = environment_lights();
     if (environment_lit && !per_light_visibility()) || frame.first_mapped_light == 0u {
-        return vec4<u32>(NO_WINDOW_LIGHT);
+        return;
     }
-    if frame.first_mapped_light <= MAX_WINDOW_LIGHTS {
+    let most = max_window_lights();
+    if frame.first_mapped_light <= most {
         windows_open = true;
-        return select(vec4<u32>(NO_WINDOW_LIGHT), slots, slots < vec4<u32>(frame.first_mapped_light));
+        let count = vec4<u32>(frame.first_mapped_light);
+        window_light_indices = select(vec4<u32>(NO_WINDOW_LIGHT), slots, slots < count);
+        window_light_indices_hi = select(vec4<u32>(NO_WINDOW_LIGHT), slots_hi, slots_hi < count);
+        return;
     }
     var chosen = vec4<u32>(NO_WINDOW_LIGHT);
+    var chosen_hi = vec4<u32>(NO_WINDOW_LIGHT);
     var count = 0u;
     let run = harmonic_lights_at(p);
     for (var k = run.first; k < run.end; k++) {
-        if count > MAX_WINDOW_LIGHTS {
+        if count > most {
             // No window opens: the rest need not be looked at.
             break;
         }
         let i = run_light(k);
         if light_reaches(light_at(i), p) {
             chosen = select(chosen, vec4<u32>(i), vec4<u32>(count) == slots);
+            chosen_hi = select(chosen_hi, vec4<u32>(i), vec4<u32>(count) == slots_hi);
             count += 1u;
         }
     }
-    windows_open = count <= MAX_WINDOW_LIGHTS;
-    return chosen;
+    windows_open = count <= most;
+    window_light_indices = chosen;
+    window_light_indices_hi = chosen_hi;
+}
+
+// The most windows a point opens (light_windows::most_windows): those compiled in, with
+// one visibility for every reader at most MAX_SHARED_WINDOW_LIGHTS, under an environment
+// at most MAX_SKY_WINDOW_LIGHTS (environment_lit is set).
+fn max_window_lights() -> u32 {
+    let own = select(MAX_WINDOW_LIGHTS, MAX_SKY_WINDOW_LIGHTS, environment_lit);
+    return min(LIGHT_WINDOWS, select(MAX_SHARED_WINDOW_LIGHTS, own, per_light_visibility()));
 }
 
 // SH light i's window seen from p (LightWindows::at): its cap grown to hold the emitter,
@@ -107,8 +142,8 @@ fn window_cosine(window: vec4<f32>) -> vec4<f32> {
 }
 
 fn open_light_windows(p: vec3<f32>) {
-    let lights = window_lights(p);
-    window_light_indices = lights;
+    window_lights(p);
+    let lights = window_light_indices;
     clear_window_logs();
     if windows_open {
         let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
@@ -120,6 +155,23 @@ fn open_light_windows(p: vec3<f32>) {
         window_sines = sin(half_angles);
         window_half_angles = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
         window_gains = vec4<f32>(
+            window_gain(half_angles.x),
+            window_gain(half_angles.y),
+            window_gain(half_angles.z),
+            window_gain(half_angles.w),
+        );
+    }
+    if LIGHT_WINDOWS > 4u && windows_open {
+        let hi = window_light_indices_hi;
+        let w = array<vec4<f32>, 4>(light_window(hi.x, p), light_window(hi.y, p), light_window(hi.z, p), light_window(hi.w, p));
+        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
+        window_4 = window_cosine(w[0]);
+        window_5 = window_cosine(w[1]);
+        window_6 = window_cosine(w[2]);
+        window_7 = window_cosine(w[3]);
+        window_sines_hi = sin(half_angles);
+        window_half_angles_hi = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
+        window_gains_hi = vec4<f32>(
             window_gain(half_angles.x),
             window_gain(half_angles.y),
             window_gain(half_angles.z),
@@ -158,6 +210,19 @@ fn group_in_windows(group: BlockerGroup, p: vec3<f32>, windowed: bool) -> bool {
     if LIGHT_WINDOWS >= 4u {
         inside = inside || angle_between(direction, window_3.xyz) < reaches.w;
     }
+    if LIGHT_WINDOWS > 4u {
+        let reaches_hi = window_half_angles_hi + vec4<f32>(1.5 * asin(bound_m / distance) + 1e-3);
+        inside = inside || angle_between(direction, window_4.xyz) < reaches_hi.x;
+        if LIGHT_WINDOWS >= 6u {
+            inside = inside || angle_between(direction, window_5.xyz) < reaches_hi.y;
+        }
+        if LIGHT_WINDOWS >= 7u {
+            inside = inside || angle_between(direction, window_6.xyz) < reaches_hi.z;
+        }
+        if LIGHT_WINDOWS >= 8u {
+            inside = inside || angle_between(direction, window_7.xyz) < reaches_hi.w;
+        }
+    }
     return inside;
 }
 
@@ -188,9 +253,28 @@ fn window_weight(window: vec4<f32>, sine: f32, direction: vec3<f32>, cap: vec4<f
 }
 
 // The factor on a cap's ln ε · f_n that each of the LIGHT_WINDOWS windows compiled in
-// gives it, weight × min(1, k(s) · gain) (0 for the windows not compiled in).
-fn windowed_cap_scales(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> vec4<f32> {
+// gives it, weight × min(1, k(s) · gain) (0 for the windows not compiled in): slots 0–3
+// (lo) and 4–7 (hi).
+struct WindowScales {
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+};
+
+fn windowed_cap_scales(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> WindowScales {
     let cap = cap_angles(ratio);
+    var weights_hi = vec4<f32>(0.0);
+    if LIGHT_WINDOWS > 4u {
+        weights_hi.x = window_weight(window_4, window_sines_hi.x, direction, cap);
+        if LIGHT_WINDOWS >= 6u {
+            weights_hi.y = window_weight(window_5, window_sines_hi.y, direction, cap);
+        }
+        if LIGHT_WINDOWS >= 7u {
+            weights_hi.z = window_weight(window_6, window_sines_hi.z, direction, cap);
+        }
+        if LIGHT_WINDOWS >= 8u {
+            weights_hi.w = window_weight(window_7, window_sines_hi.w, direction, cap);
+        }
+    }
     var weights = vec4<f32>(window_weight(window_0, window_sines.x, direction, cap), 0.0, 0.0, 0.0);
     if LIGHT_WINDOWS >= 2u {
         weights.y = window_weight(window_1, window_sines.y, direction, cap);
@@ -201,14 +285,22 @@ fn windowed_cap_scales(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> vec
     if LIGHT_WINDOWS >= 4u {
         weights.w = window_weight(window_3, window_sines.w, direction, cap);
     }
-    return weights * min(vec4<f32>(1.0), mass_scale * window_gains);
+    return WindowScales(
+        weights * min(vec4<f32>(1.0), mass_scale * window_gains),
+        weights_hi * min(vec4<f32>(1.0), mass_scale * window_gains_hi),
+    );
+}
+
+fn scaled_window_scales(scales: WindowScales, factor: f32) -> WindowScales {
+    return WindowScales(factor * scales.lo, factor * scales.hi);
 }
 
 // The factor on a cap's ln ε · f_n when one log-visibility serves every window
 // (LightWindows::cap_scale): the largest of windowed_cap_scales.
 fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 {
     let scales = windowed_cap_scales(direction, ratio, mass_scale);
-    return max(max(scales.x, scales.y), max(scales.z, scales.w));
+    let most = max(scales.lo, scales.hi);
+    return max(max(most.x, most.y), max(most.z, most.w));
 }
 
 // Each windowed light's own log-visibility (shading::cpu::harmonic_log_visibility): each
@@ -240,25 +332,47 @@ var<private> window_log_0: Sh;
 var<private> window_log_1: Sh;
 var<private> window_log_2: Sh;
 var<private> window_log_3: Sh;
+var<private> window_log_4: Sh;
+var<private> window_log_5: Sh;
+var<private> window_log_6: Sh;
+var<private> window_log_7: Sh;
 
 fn clear_window_logs() {
     window_log_0 = sh_zero();
     window_log_1 = sh_zero();
     window_log_2 = sh_zero();
     window_log_3 = sh_zero();
+    if LIGHT_WINDOWS > 4u {
+        window_log_4 = sh_zero();
+        window_log_5 = sh_zero();
+        window_log_6 = sh_zero();
+        window_log_7 = sh_zero();
+    }
 }
 
 // A cap's rotated log-visibility, `rotated`, added to each window's sum at its scale.
-fn add_to_window_logs(rotated: Sh, scales: vec4<f32>) {
-    window_log_0 = sh_sum(window_log_0, sh_scaled(rotated, scales.x));
+fn add_to_window_logs(rotated: Sh, scales: WindowScales) {
+    window_log_0 = sh_sum(window_log_0, sh_scaled(rotated, scales.lo.x));
     if LIGHT_WINDOWS >= 2u {
-        window_log_1 = sh_sum(window_log_1, sh_scaled(rotated, scales.y));
+        window_log_1 = sh_sum(window_log_1, sh_scaled(rotated, scales.lo.y));
     }
     if LIGHT_WINDOWS >= 3u {
-        window_log_2 = sh_sum(window_log_2, sh_scaled(rotated, scales.z));
+        window_log_2 = sh_sum(window_log_2, sh_scaled(rotated, scales.lo.z));
     }
     if LIGHT_WINDOWS >= 4u {
-        window_log_3 = sh_sum(window_log_3, sh_scaled(rotated, scales.w));
+        window_log_3 = sh_sum(window_log_3, sh_scaled(rotated, scales.lo.w));
+    }
+    if LIGHT_WINDOWS >= 5u {
+        window_log_4 = sh_sum(window_log_4, sh_scaled(rotated, scales.hi.x));
+    }
+    if LIGHT_WINDOWS >= 6u {
+        window_log_5 = sh_sum(window_log_5, sh_scaled(rotated, scales.hi.y));
+    }
+    if LIGHT_WINDOWS >= 7u {
+        window_log_6 = sh_sum(window_log_6, sh_scaled(rotated, scales.hi.z));
+    }
+    if LIGHT_WINDOWS >= 8u {
+        window_log_7 = sh_sum(window_log_7, sh_scaled(rotated, scales.hi.w));
     }
 }
 
@@ -272,10 +386,32 @@ fn window_log_visibility(k: u32) -> Sh {
     } else if k == 3u {
         own = window_log_3;
     }
+    if LIGHT_WINDOWS > 4u {
+        if k == 4u {
+            own = window_log_4;
+        } else if k == 5u {
+            own = window_log_5;
+        } else if k == 6u {
+            own = window_log_6;
+        } else if k == 7u {
+            own = window_log_7;
+        }
+    }
     return sh_sum(walk_terrain_log, own);
 }
 
 // The SH light in window slot k (NO_WINDOW_LIGHT: none).
 fn slot_light(k: u32) -> u32 {
-    return window_light_indices[min(k, 3u)];
+    if k >= 4u {
+        return window_light_indices_hi[min(k - 4u, 3u)];
+    }
+    return window_light_indices[k];
+}
+
+// How many window slots hold a light.
+fn open_window_count() -> u32 {
+    let none = vec4<u32>(NO_WINDOW_LIGHT);
+    let opened = select(vec4<u32>(0u), vec4<u32>(1u), window_light_indices != none)
+        + select(vec4<u32>(0u), vec4<u32>(1u), window_light_indices_hi != none);
+    return opened.x + opened.y + opened.z + opened.w;
 }

@@ -65,11 +65,11 @@ fn log_visibility(p: vec3<f32>, n: vec3<f32>) -> Sh {
 }
 
 // false: every point of a frame walks alike, with the windows when LIGHT_WINDOWS > 0
-// (1–4 SH lights, no environment), else without. true: more than MAX_WINDOW_LIGHTS SH
+// (1–8 SH lights, no environment), else without. true: more than max_window_lights() SH
 // lights and no environment, where each point opens the windows of the lights that reach
-// it when at most MAX_WINDOW_LIGHTS do (window_lights): the walk with windows and the one
+// it when at most that many do (window_lights): the walk with windows and the one
 // without are both compiled in, each specialised, so that the points where no window
-// opens — past four lights reaching them — do not pay the windows' tests at every
+// opens — past that many lights reaching them — do not pay the windows' tests at every
 // blocker (lavapipe runs a branch's both sides, but a loop no lane enters only once).
 // Set by shading::compiled_paths.
 override PER_POINT_WINDOWS: bool = false;
@@ -202,7 +202,7 @@ fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool)
         // The windows' sums: in the walk with windows, and in the one without under an
         // environment (compiled out of it otherwise: no window opens where it is taken).
         if windows_open && (windowed || ENVIRONMENT_LIGHT) {
-            add_to_window_logs(rotated, scale * windowed_cap_scales(direction, ratio, mass_scale));
+            add_to_window_logs(rotated, scaled_window_scales(windowed_cap_scales(direction, ratio, mass_scale), scale));
             if windowed {
                 return f;
             }
@@ -395,8 +395,7 @@ fn harmonic_radiance(s: Surface) -> vec3<f32> {
     // One pass per visibility: each open window's and, under an environment, the walk's
     // own for it; or the walk's own for every reader. Written as one loop rather than
     // branches, which lavapipe would all run.
-    let opened = select(vec4<u32>(0u), vec4<u32>(1u), window_light_indices != vec4<u32>(NO_WINDOW_LIGHT));
-    let window_count = opened.x + opened.y + opened.z + opened.w;
+    let window_count = open_window_count();
     let environment_pass = ENVIRONMENT_LIGHT && environment_lit;
     let passes = select(1u, window_count + u32(environment_pass), windows_open);
     var radiance = vec3<f32>(0.0);

@@ -128,8 +128,8 @@ fn the_sh_lights_windows_on_the_blockers_match_the_cpu_reference() {
     }
 }
 
-/// Past four SH lights each point opens the windows of those that reach it (within their
-/// range: `light_windows::light_window_indices`), when at most four do: the bench with 600
+/// Past eight SH lights each point opens the windows of those that reach it (within their
+/// range: `light_windows::light_window_indices`), when at most eight do: the bench with 600
 /// spheres, its panel and 24 lamps of 1 m range all on the SH path, where a floor point
 /// sees the panel and a lamp or two.
 #[test]
@@ -152,6 +152,17 @@ fn each_of_three_panels_reads_a_visibility_of_its_own_as_the_cpu_reference_does(
     for order in [4, 6] {
         assert_bench_parity(&gpu, &scene, order, &format!("bench-three-panels-order-{order}"));
     }
+}
+
+/// Six panels, past the four windows one shared visibility may have: each reads its own
+/// through the second bank of windows (slots 4–7), order 4.
+#[test]
+fn each_of_six_panels_reads_a_visibility_of_its_own_as_the_cpu_reference_does() {
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = lightpaint::samples::blocker_bench::thin_casters_scene();
+    lightpaint::samples::blocker_bench::ring_of_panels(&mut scene, 6);
+    assert_eq!(scene.lights.len(), 6);
+    assert_bench_parity(&gpu, &scene, 4, "bench-six-panels");
 }
 
 /// Under a sky each SH light reads its own windowed visibility and the sky the walk's

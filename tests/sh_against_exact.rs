@@ -181,8 +181,8 @@ fn measure_the_sh_path_against_exact_visibility_with_600_spheres() {
     }
 }
 
-/// Past four SH lights each point opens the windows of those that reach it
-/// (`light_windows::light_window_indices`) when at most four do: with the panel and 24 lamps of
+/// Past eight SH lights each point opens the windows of those that reach it
+/// (`light_windows::light_window_indices`) when at most eight do: with the panel and 24 lamps of
 /// 1 m range all on the SH path, a floor point sees the panel and at most a few lamps,
 /// and the lit floor stays lit as with the panel alone.
 #[test]
@@ -192,7 +192,7 @@ fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
     };
     assert!(d.pixels[2] > 100, "the floor has lit pixels: {:?}", d.pixels);
     assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
-    // Walking without windows wherever more than four SH lights light the frame gave
+    // Walking without windows wherever more than four SH lights lit the frame gave
     // −0.204 and a penumbra RMS of 0.364 here.
     assert!(d.penumbra_rms < 0.364, "penumbra RMS {:.4}", d.penumbra_rms);
 }
@@ -205,6 +205,25 @@ fn twenty_four_lamps_leave_the_lit_floor_lit_at_order_4() {
 #[test]
 fn three_panels_each_read_their_own_visibility_at_order_4() {
     let Some(d) = departure_at_order_4([3, 0], false) else {
+        return;
+    };
+    assert!(
+        d.pixels[2] > 100 && d.pixels[0] > 100,
+        "lit and penumbra pixels: {:?}",
+        d.pixels
+    );
+    assert!(d.lit_bias.abs() <= 0.03, "lit floor bias {:+.4}", d.lit_bias);
+    assert!(d.penumbra_rms < 0.22, "penumbra RMS {:.4}", d.penumbra_rms);
+    assert!(d.umbra_rms < 0.06, "umbra RMS {:.4}", d.umbra_rms);
+}
+
+/// Six panels (past the four windows one shared visibility may have) each read a
+/// log-visibility of their own too: the lit floor stays lit, where walking without
+/// windows past four SH lights gave −14.6 % with five panels and a penumbra RMS of 0.272
+/// (docs/performance.md).
+#[test]
+fn six_panels_each_read_their_own_visibility_at_order_4() {
+    let Some(d) = departure_at_order_4([6, 0], false) else {
         return;
     };
     assert!(
@@ -230,14 +249,14 @@ fn under_a_sky_the_panel_leaves_the_lit_floor_lit_at_order_4() {
     assert!(d.lit_bias.abs() <= 0.05, "lit floor bias {:+.4}", d.lit_bias);
 }
 
-/// The SH path against exact visibility under the bench's panel split into 1 to 5 panels
+/// The SH path against exact visibility under the bench's panel split into 1 to 9 panels
 /// on a ring (order 4, HYB, 600 spheres, 120 × 68): how the windows of several lights
 /// spread over the sky weigh the lit floor against the penumbrae (docs/performance.md).
 /// `cargo nextest run --test sh_against_exact --run-ignored only --no-capture`.
 #[test]
 #[ignore = "a measurement: run it with --run-ignored only --no-capture"]
 fn measure_the_sh_path_against_exact_visibility_under_several_panels() {
-    for panels in 1..=5 {
+    for panels in [1, 2, 3, 4, 5, 6, 8, 9] {
         let Some(d) = departure(4, ShadowSettings::default().exp, 600, [panels, 0], false, (120, 68)) else {
             return;
         };

@@ -73,7 +73,7 @@ pub fn add_lamps(scene: &mut Scene, count: usize) {
 
 /// The set's panel split into `count` panels (a studio rig of soft boxes, none with a
 /// range) of the same size on a 1.5 m ring at its height around where it hung, sharing
-/// its intensity; `count` 1 (or 0) leaves the panel as it is. Past four such lights on
+/// its intensity; `count` 1 (or 0) leaves the panel as it is. Past eight such lights on
 /// the SH path, reaching every point, no point opens light windows on the blockers
 /// (`shading::light_windows`).
 pub fn ring_of_panels(scene: &mut Scene, count: usize) {

@@ -45,16 +45,16 @@ pub struct CompiledPaths {
     /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
     pub blocker_overflow: bool,
     /// How many windows of SH-path lights on the blockers the code holds (LIGHT_WINDOWS;
-    /// `shading::light_windows`): the SH lights' count, at most 4 (past four each point
+    /// `shading::light_windows`): the SH lights' count, at most 8, 4 under an environment (past that each point
     /// opens those that reach it) (the shaders decide per point which apply; lavapipe
     /// pays for every window compiled in).
     pub light_windows: u32,
-    /// Past four SH lights (windows compiled in), each point opens the windows of the
+    /// Past eight SH lights (windows compiled in), each point opens the windows of the
     /// lights that reach it or none, so the walk with windows and the one without are
     /// both compiled in and each point takes one (PER_POINT_WINDOWS): where more than
-    /// four reach a point it does not pay the windows' tests at every blocker (the blocker
-    /// bench with 256 lamps: 343 ms a frame with the windows' walk alone, against 280
-    /// without windows).
+    /// eight reach a point it does not pay the windows' tests at every blocker (the
+    /// blocker bench with 256 lamps: 343 ms a frame with the windows' walk alone, against
+    /// 280 without windows).
     pub per_point_windows: bool,
     /// A point walks the lights of its box of the lights' grid on the SH and shadow-map
     /// paths rather than all of them (LIGHT_GRID; `super::light_grid`): frames with at
@@ -86,6 +86,19 @@ impl CompiledPaths {
         light_grid: true,
         cull_back_faces: false,
     };
+
+    /// These paths as a pass that keeps one visibility for every light compiles them (the
+    /// per-vertex visibility): at most
+    /// [`MAX_SHARED_WINDOW_LIGHTS`](super::light_windows::MAX_SHARED_WINDOW_LIGHTS)
+    /// windows, and past that many SH lights each point decides whether they open.
+    pub fn with_one_visibility(self) -> CompiledPaths {
+        let most = super::light_windows::MAX_SHARED_WINDOW_LIGHTS as u32;
+        CompiledPaths {
+            light_windows: self.light_windows.min(most),
+            per_point_windows: self.per_point_windows || self.light_windows > most,
+            ..self
+        }
+    }
 
     /// No optional path (a pipeline that shades no light).
     pub const NONE: CompiledPaths = CompiledPaths {
@@ -157,8 +170,8 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
             .any(|light| light.kind == super::gpu_types::LIGHT_AREA && !light.is_rect()),
         light_overflow: shaded.len() > UNIFORM_LIGHT_CAPACITY,
         blocker_overflow: blocker_count > UNIFORM_BLOCKER_CAPACITY,
-        light_windows: super::light_windows::compiled_windows(shaded),
-        per_point_windows: super::light_windows::windows_per_point(shaded),
+        light_windows: super::light_windows::compiled_windows(shaded, lighting.has_environment),
+        per_point_windows: super::light_windows::windows_per_point(shaded, lighting.has_environment),
         light_grid: super::light_grid::grid_worth_it(shaded),
         cull_back_faces: lighting.single_sided,
     }

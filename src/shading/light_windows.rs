@@ -42,37 +42,72 @@
 //! exactly nothing there, so nothing else reads its visibility (a street of lamps with
 //! ranges; a point no SH light reaches opens none, and no blocker weighs anything there).
 //! Past that many at a point, its blockers all weigh, as with an environment.
+//!
+//! Where one visibility serves every light (per vertex), the limit is
+//! [`MAX_SHARED_WINDOW_LIGHTS`]: with more, one sum weighed by the largest window's
+//! weight made each light read its neighbours' blockers, and five panels' penumbrae came
+//! out darker than with no window at all (docs/performance.md, "Windows for several
+//! lights spread over the sky"). Under an environment it is [`MAX_SKY_WINDOW_LIGHTS`]
+//! ([`most_windows`]).
 
 use super::gpu_types::{GpuLight, SHADOW_PATH_SH, irradiance_lights};
 
-/// The most SH-path lights a frame may have for the windows to apply
-/// (`MAX_WINDOW_LIGHTS` in logsh.wgsl).
-pub const MAX_WINDOW_LIGHTS: usize = 4;
+/// The most windows a point opens, each SH light reading a visibility of its own
+/// (`MAX_WINDOW_LIGHTS` in light_windows.wgsl).
+pub const MAX_WINDOW_LIGHTS: usize = 8;
+
+/// The most windows a point opens where one visibility serves every reader (the
+/// per-vertex pass; `MAX_SHARED_WINDOW_LIGHTS` in light_windows.wgsl).
+pub const MAX_SHARED_WINDOW_LIGHTS: usize = 4;
+
+/// The most windows a point opens under an environment (`MAX_SKY_WINDOW_LIGHTS` in
+/// light_windows.wgsl): the environment reads the walk without windows, which visits
+/// every cap in reach and adds it to each window's sum besides its own, so every window
+/// costs every cap there, where the walk with windows leaves out the groups outside all
+/// of them. The large sample (an environment and eight SH lights without a range) took
+/// 360 → 569 ms a frame with its eight lights' windows (docs/performance.md).
+pub const MAX_SKY_WINDOW_LIGHTS: usize = 4;
+
+/// The most windows a point opens, each SH light reading its own visibility, with or
+/// without an environment lighting the frame.
+pub fn most_windows(environment: bool) -> usize {
+    if environment {
+        MAX_SKY_WINDOW_LIGHTS
+    } else {
+        MAX_WINDOW_LIGHTS
+    }
+}
 
 /// Whether one visibility weighed by the windows may serve every reader in a frame with
 /// this environment irradiance (order-3 SH, `Frame::environment_irradiance`) and these
 /// lights on their paths (the per-vertex pass; per pixel each light reads its own): no
 /// environment light, and some light on the SH path — at every point when there are 1 to
-/// [`MAX_WINDOW_LIGHTS`], else at the points [`light_window_indices`] gives windows
+/// [`MAX_SHARED_WINDOW_LIGHTS`], else at the points where at most that many reach
 /// (`open_light_windows` in light_windows.wgsl decides alike from the same numbers).
 pub fn windows_apply(environment_irradiance: &[[f32; 4]; 9], lights: &[GpuLight]) -> bool {
-    !irradiance_lights(environment_irradiance) && compiled_windows(lights) > 0
+    !irradiance_lights(environment_irradiance) && windows_up_to(lights, MAX_SHARED_WINDOW_LIGHTS) > 0
 }
 
-/// The windows the shaders compile in for a frame with these lights on their paths: the
-/// SH lights' count when there are 1 to [`MAX_WINDOW_LIGHTS`], [`MAX_WINDOW_LIGHTS`] when
-/// there are more (each point opens those of the lights that reach it), 0 without SH
-/// lights or with more than [`MAX_WINDOW_LIGHTS`] SH lights that reach every point (no
-/// range, not a spot: no point would open a window) (`CompiledPaths::light_windows`).
-pub fn compiled_windows(lights: &[GpuLight]) -> u32 {
+/// The windows the shaders compile in for a frame with these lights on their paths, under
+/// an environment or not (`environment`), for m = [`most_windows`]: the SH lights' count
+/// when there are 1 to m, m when there are more (each point opens those of the lights
+/// that reach it), 0 without SH lights or with more than m SH lights that reach every
+/// point (no range, not a spot: no point would open a window)
+/// (`CompiledPaths::light_windows`).
+pub fn compiled_windows(lights: &[GpuLight], environment: bool) -> u32 {
+    windows_up_to(lights, most_windows(environment))
+}
+
+/// [`compiled_windows`] where a point opens at most `most` windows.
+fn windows_up_to(lights: &[GpuLight], most: usize) -> u32 {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH);
     let count = sh_lights.clone().count();
-    // Past MAX_WINDOW_LIGHTS lights that reach every point, none ever opens a window.
+    // Past `most` lights that reach every point, none ever opens a window.
     let everywhere = sh_lights.filter(|light| reaches_everywhere(light)).count();
-    if count == 0 || everywhere > MAX_WINDOW_LIGHTS {
+    if count == 0 || everywhere > most {
         0
     } else {
-        count.min(MAX_WINDOW_LIGHTS) as u32
+        count.min(most) as u32
     }
 }
 
@@ -84,34 +119,35 @@ fn reaches_everywhere(light: &GpuLight) -> bool {
 }
 
 /// Whether each point decides for itself whether windows apply (past
-/// [`MAX_WINDOW_LIGHTS`] SH lights), so that the shaders compile the walk without windows
+/// [`most_windows`] SH lights), so that the shaders compile the walk without windows
 /// beside the one with them (`CompiledPaths::per_point_windows`).
-pub fn windows_per_point(lights: &[GpuLight]) -> bool {
+pub fn windows_per_point(lights: &[GpuLight], environment: bool) -> bool {
     let sh_lights = lights.iter().filter(|l| l.shadow_path == SHADOW_PATH_SH).count();
-    compiled_windows(lights) > 0 && sh_lights > MAX_WINDOW_LIGHTS
+    compiled_windows(lights, environment) > 0 && sh_lights > most_windows(environment)
 }
 
 /// The SH-path lights (indices into `lights`, in order: the slots of `window_lights` in
 /// light_windows.wgsl) whose windows a point at `p` opens, each to read a visibility of
-/// its own, environment or not: every SH light when there are at most
-/// [`MAX_WINDOW_LIGHTS`], else those that reach p when at most that many do; None where
-/// no window opens (no SH light, or more than that many reach p).
-pub fn light_window_indices(lights: &[GpuLight], p: glam::DVec3) -> Option<Vec<usize>> {
-    if compiled_windows(lights) == 0 {
+/// its own, under an environment or not (`environment`), for m = [`most_windows`]: every
+/// SH light when there are at most m, else those that reach p when at most m do; None
+/// where no window opens (no SH light, or more than m reach p).
+pub fn light_window_indices(lights: &[GpuLight], environment: bool, p: glam::DVec3) -> Option<Vec<usize>> {
+    if compiled_windows(lights, environment) == 0 {
         return None;
     }
+    let most = most_windows(environment);
     let harmonic = lights
         .iter()
         .enumerate()
         .filter(|(_, l)| l.shadow_path == SHADOW_PATH_SH);
-    if harmonic.clone().count() <= MAX_WINDOW_LIGHTS {
+    if harmonic.clone().count() <= most {
         return Some(harmonic.map(|(i, _)| i).collect());
     }
     let reaching: Vec<usize> = harmonic
         .filter(|(_, light)| light_reaches(light, p))
         .map(|(i, _)| i)
         .collect();
-    (reaching.len() <= MAX_WINDOW_LIGHTS).then_some(reaching)
+    (reaching.len() <= most).then_some(reaching)
 }
 
 /// Whether `light` adds anything at `p` as far as its range and cone say (scene.wgsl
@@ -141,7 +177,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_windows_apply_without_an_environment_to_one_to_four_sh_lights() {
+    fn the_windows_apply_to_one_to_eight_sh_lights_and_to_four_sharing_one_visibility() {
         let light = GpuLight {
             shadow_path: SHADOW_PATH_SH,
             ..bytemuck::Zeroable::zeroed()
@@ -152,40 +188,59 @@ mod tests {
         let dark = [[0.0; 4]; 9];
         let mut sky = dark;
         sky[0] = [0.2, 0.3, 0.4, 0.0];
+        // Each light reading its own visibility: up to eight windows at every point.
+        assert_eq!(compiled_windows(&[light; 3], false), 3, "each light's own, sky or not");
+        assert_eq!(compiled_windows(&[light; 6], false), 6);
+        assert_eq!(
+            compiled_windows(&[light; MAX_WINDOW_LIGHTS], false),
+            MAX_WINDOW_LIGHTS as u32
+        );
+        assert_eq!(
+            compiled_windows(&[bounded; MAX_WINDOW_LIGHTS + 1], false),
+            MAX_WINDOW_LIGHTS as u32
+        );
+        assert_eq!(
+            compiled_windows(&[light; MAX_WINDOW_LIGHTS + 1], false),
+            0,
+            "nine lights without a range reach every point: no window ever opens"
+        );
+        let eight_everywhere = [[light; MAX_WINDOW_LIGHTS].as_slice(), &[bounded]].concat();
+        assert_eq!(
+            compiled_windows(&eight_everywhere, false),
+            MAX_WINDOW_LIGHTS as u32,
+            "beyond the ninth's range only eight reach"
+        );
+        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS], false));
+        assert!(windows_per_point(&[bounded; MAX_WINDOW_LIGHTS + 1], false));
+        assert!(windows_per_point(&eight_everywhere, false));
+        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS + 1], false));
+        let six = light_window_indices(&[light; 6], false, glam::DVec3::ZERO);
+        assert_eq!(six, Some((0..6).collect()));
+        // Under an environment up to four.
+        assert_eq!(compiled_windows(&[light; 3], true), 3);
+        assert_eq!(compiled_windows(&[light; 6], true), 0, "six reach every point");
+        assert_eq!(compiled_windows(&[bounded; 6], true), MAX_SKY_WINDOW_LIGHTS as u32);
+        assert!(windows_per_point(&[bounded; 6], true));
+        assert_eq!(light_window_indices(&[light; 6], true, glam::DVec3::ZERO), None);
+        // One visibility for every reader (per vertex): up to MAX_SHARED_WINDOW_LIGHTS.
         assert!(windows_apply(&dark, &[light]));
-        assert!(windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS]));
+        assert!(windows_apply(&dark, &[light; MAX_SHARED_WINDOW_LIGHTS]));
         assert!(
-            windows_apply(&dark, &[bounded; MAX_WINDOW_LIGHTS + 1]),
+            windows_apply(&dark, &[bounded; MAX_SHARED_WINDOW_LIGHTS + 1]),
             "at the points few of them reach"
         );
         assert!(
-            !windows_apply(&dark, &[light; MAX_WINDOW_LIGHTS + 1]),
-            "five lights without a range reach every point: no window ever opens"
+            !windows_apply(&dark, &[light; MAX_SHARED_WINDOW_LIGHTS + 1]),
+            "five lights without a range reach every point: no shared window ever opens"
         );
         assert!(!windows_apply(&dark, &[]));
         assert!(!windows_apply(&sky, &[light]), "the sky reads the visibility unweighed");
-        assert_eq!(compiled_windows(&[light; 3]), 3, "each light's own, sky or not");
-        assert_eq!(
-            compiled_windows(&[bounded; MAX_WINDOW_LIGHTS + 1]),
-            MAX_WINDOW_LIGHTS as u32
-        );
-        assert_eq!(compiled_windows(&[light; MAX_WINDOW_LIGHTS + 1]), 0);
-        let four_everywhere = [light, light, light, light, bounded];
-        assert_eq!(
-            compiled_windows(&four_everywhere),
-            MAX_WINDOW_LIGHTS as u32,
-            "beyond the fifth's range only four reach"
-        );
-        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS]));
-        assert!(windows_per_point(&[bounded; MAX_WINDOW_LIGHTS + 1]));
-        assert!(windows_per_point(&four_everywhere));
-        assert!(!windows_per_point(&[light; MAX_WINDOW_LIGHTS + 1]));
     }
 
-    /// Past four SH lights a point opens the windows of those within their range, when
-    /// at most four are; the rest of the scene has none.
+    /// Past eight SH lights a point opens the windows of those within their range, when
+    /// at most eight are; the rest of the scene has none.
     #[test]
-    fn past_four_sh_lights_a_point_opens_the_windows_of_the_lights_that_reach_it() {
+    fn past_eight_sh_lights_a_point_opens_the_windows_of_the_lights_that_reach_it() {
         let lamp = |x: f32| {
             GpuLight::new(&crate::scene::Light {
                 name: "lamp".into(),
@@ -199,18 +254,18 @@ mod tests {
             })
         };
         let lamps: Vec<GpuLight> = (0..10).map(|k| lamp(2.0 * k as f32)).collect();
-        let under_the_third = light_window_indices(&lamps, glam::DVec3::new(4.0, 0.0, 0.0));
+        let under_the_third = light_window_indices(&lamps, false, glam::DVec3::new(4.0, 0.0, 0.0));
         assert_eq!(under_the_third, Some(vec![2]), "the lamp at x = 4 m");
-        let between = light_window_indices(&lamps, glam::DVec3::new(5.0, 0.5, 0.0)).expect("windows");
+        let between = light_window_indices(&lamps, false, glam::DVec3::new(5.0, 0.5, 0.0)).expect("windows");
         assert_eq!(between, vec![2, 3]);
-        let far = light_window_indices(&lamps, glam::DVec3::new(5.0, 0.0, 30.0)).expect("windows");
+        let far = light_window_indices(&lamps, false, glam::DVec3::new(5.0, 0.0, 30.0)).expect("windows");
         assert!(far.is_empty(), "no lamp reaches it: no window, nothing weighs");
         let mut bright = lamps.clone();
         for light in &mut bright {
             light.direction_range[3] = 0.0;
         }
         assert!(
-            light_window_indices(&bright, glam::DVec3::ZERO).is_none(),
+            light_window_indices(&bright, false, glam::DVec3::ZERO).is_none(),
             "ten unbounded lamps reach it"
         );
         let mut sky = [[0.0; 4]; 9];

@@ -92,7 +92,7 @@ impl LogShPipeline {
                     &module,
                     [&layouts.frame, &shadow_layout],
                     settings.order,
-                    &path_constants(paths),
+                    &path_constants(paths.with_one_visibility()),
                 ),
                 make(Stage::ShadePerVertex(settings.order)),
             )

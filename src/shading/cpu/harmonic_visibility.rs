@@ -1,8 +1,8 @@
 //! The log-visibility each SH-path light and the environment read at a point
 //! (`harmonic_radiance` and `add_cap` in logsh.wgsl, `PER_LIGHT_VISIBILITY`).
 //!
-//! Where a point opens light windows (`shading::light_windows`: at most four SH lights,
-//! or past four the few that reach it) each of those lights reads the visibility over its
+//! Where a point opens light windows (`shading::light_windows`: at most eight SH lights,
+//! four under an environment, or past that many the few that reach it) each of those lights reads the visibility over its
 //! own cap alone. Weighing every blocker by the largest weight any window gives it, and
 //! summing those caps into one log-visibility that all the lights read, made each light
 //! read the log-visibility its neighbours' blockers spread over the band limit's width:
@@ -77,7 +77,8 @@ pub fn harmonic_log_visibility(
 ) -> HarmonicVisibility<Vec<f64>> {
     let log_visibility =
         |windows: Option<&LightWindows>| scene_log_visibility(settings, blockers, terrain, p, n, windows);
-    let per_light = light_window_indices(lights, p).map(|indices| {
+    let environment = irradiance_lights(environment_irradiance);
+    let per_light = light_window_indices(lights, environment, p).map(|indices| {
         indices
             .into_iter()
             .map(|i| {
@@ -86,7 +87,7 @@ pub fn harmonic_log_visibility(
             })
             .collect::<Vec<_>>()
     });
-    let read_by_all = per_light.is_none() || irradiance_lights(environment_irradiance);
+    let read_by_all = per_light.is_none() || environment;
     HarmonicVisibility {
         shared: read_by_all.then(|| log_visibility(None)),
         per_light,
@@ -163,18 +164,27 @@ mod tests {
         assert!(unweighed[0] < 0.0, "the sky sees it");
     }
 
-    /// Past four SH lights that all reach a point no window opens: every reader shares
-    /// the unweighed visibility.
+    /// Five SH lights each read their own visibility; past eight that all reach a point
+    /// no window opens and every reader shares the unweighed visibility.
     #[test]
-    fn past_four_lights_reaching_a_point_every_reader_shares_one_visibility() {
+    fn up_to_eight_lights_read_their_own_past_eight_every_reader_shares_one() {
+        use crate::shading::light_windows::MAX_WINDOW_LIGHTS;
         let settings = ShadowSettings::default();
         let dark = [[0.0; 4]; 9];
-        let lamps: Vec<GpuLight> = (0..5).map(|k| lamp(k as f32)).collect();
         let p = DVec3::ZERO;
-        let visibility = harmonic_log_visibility(&settings, &[sphere(3.0)], None, &dark, &lamps, p, DVec3::Y);
+        let five: Vec<GpuLight> = (0..5).map(|k| lamp(k as f32)).collect();
+        let visibility = harmonic_log_visibility(&settings, &[sphere(0.0)], None, &dark, &five, p, DVec3::Y);
+        assert!(visibility.shared.is_none());
+        for i in 0..5 {
+            let windows = LightWindows::at(&five[i..=i], p, settings.order);
+            let own = scene_log_visibility(&settings, &[sphere(0.0)], None, p, DVec3::Y, Some(&windows));
+            assert_eq!(visibility.of_light(i), Some(&own), "lamp {i}");
+        }
+        let many: Vec<GpuLight> = (0..=MAX_WINDOW_LIGHTS).map(|k| lamp(k as f32)).collect();
+        let visibility = harmonic_log_visibility(&settings, &[sphere(3.0)], None, &dark, &many, p, DVec3::Y);
         let unweighed = scene_log_visibility(&settings, &[sphere(3.0)], None, p, DVec3::Y, None);
         assert!(visibility.per_light.is_none());
-        for i in 0..5 {
+        for i in 0..many.len() {
             assert_eq!(visibility.of_light(i), Some(&unweighed));
         }
     }

@@ -5,7 +5,7 @@
 //!   over the blockers that do not contain p and whose r/d reaches `min_cap_ratio`, where
 //!   fade = smoothstep(−1, 1, (c − p)·n / r) removes blockers below the tangent plane
 //!   smoothly (a hard cut leaves blotches where fitted spheres straddle their own surface);
-//!   where a point opens light windows (the windows of at most four SH lights), each of
+//!   where a point opens light windows (the windows of at most eight SH lights), each of
 //!   those lights reads an F of its own, every cap weighed by how near it comes to that
 //!   light's cap and scaled for its mean instead of by k(s), while an environment reads
 //!   the F above (`shading::light_windows`, `windows.rs`, `harmonic_visibility.rs`);
