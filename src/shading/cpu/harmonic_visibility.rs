@@ -19,7 +19,7 @@
 use glam::DVec3;
 
 use super::LightWindows;
-use super::visibility::scene_log_visibility;
+use super::visibility::scene_log_visibilities;
 use crate::blockers::Sphere;
 use crate::shading::ShadowSettings;
 use crate::shading::gpu_types::{GpuLight, irradiance_lights};
@@ -75,28 +75,32 @@ pub fn harmonic_log_visibility(
     p: DVec3,
     n: DVec3,
 ) -> HarmonicVisibility<Vec<f64>> {
-    let log_visibility =
-        |windows: Option<&LightWindows>| scene_log_visibility(settings, blockers, terrain, p, n, windows);
     let environment = irradiance_lights(environment_irradiance);
-    let per_light = light_window_indices(lights, environment, p).map(|indices| {
-        indices
-            .into_iter()
-            .map(|i| {
-                let windows = LightWindows::at(&lights[i..=i], p, settings.order);
-                (i, log_visibility(Some(&windows)))
-            })
-            .collect::<Vec<_>>()
-    });
-    let read_by_all = per_light.is_none() || environment;
+    let indices = light_window_indices(lights, environment, p);
+    let windows: Vec<(usize, LightWindows)> = indices
+        .iter()
+        .flatten()
+        .map(|&i| (i, LightWindows::at(&lights[i..=i], p, settings.order)))
+        .collect();
+    let read_by_all = indices.is_none() || environment;
+    // One walk for every reader, as the shaders' (each light's window, then the walk's
+    // own for the environment or every light).
+    let mut readers: Vec<Option<&LightWindows>> = windows.iter().map(|(_, w)| Some(w)).collect();
+    if read_by_all {
+        readers.push(None);
+    }
+    let mut sums = scene_log_visibilities(settings, blockers, terrain, p, n, &readers);
+    let shared = read_by_all.then(|| sums.pop().expect("the walk's own sum"));
     HarmonicVisibility {
-        shared: read_by_all.then(|| log_visibility(None)),
-        per_light,
+        shared,
+        per_light: indices.map(|_| windows.iter().map(|(i, _)| *i).zip(sums).collect()),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shading::cpu::scene_log_visibility;
     use crate::shading::gpu_types::SHADOW_PATH_SH;
 
     fn lamp(x: f32) -> GpuLight {

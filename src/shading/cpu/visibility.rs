@@ -34,32 +34,60 @@ pub fn log_visibility_within(
     n: DVec3,
     windows: Option<&LightWindows>,
 ) -> Vec<f64> {
+    log_visibilities_within(settings, blockers, p, n, &[windows])
+        .pop()
+        .expect("one reader, one log-visibility")
+}
+
+/// [`log_visibility_within`] for each of `readers` from one walk over the blockers, as
+/// the shaders' walk fills each window's sum beside its own (`add_cap` in logsh.wgsl):
+/// each cap's basis and zonal harmonics are evaluated once and added to every reader's
+/// sum at that reader's scale, in the order and arithmetic one reader alone would use
+/// (each sum is bit for bit [`log_visibility_within`]'s).
+pub fn log_visibilities_within(
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    p: DVec3,
+    n: DVec3,
+    readers: &[Option<&LightWindows>],
+) -> Vec<Vec<f64>> {
     let order = settings.order;
     let ln_epsilon = (settings.epsilon as f64).ln();
     let mass_scales = settings.cap_mass_table();
-    let mut f = vec![0.0; order * order];
+    let mut sums = vec![vec![0.0; order * order]; readers.len()];
+    let mut scales = vec![0.0; readers.len()];
     let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
         let k = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
-        let (mass_scale, window) = match windows {
-            Some(windows) => (1.0, windows.cap_scale(direction, ratio, k)),
-            None => (k, 1.0),
-        };
-        if window <= 0.0 {
+        for (scale, windows) in scales.iter_mut().zip(readers) {
+            let (mass_scale, window) = match windows {
+                Some(windows) => (1.0, windows.cap_scale(direction, ratio, k)),
+                None => (k, 1.0),
+            };
+            let horizon = horizon * window;
+            *scale = if window <= 0.0 {
+                0.0
+            } else if settings.ratio_attenuation {
+                ln_epsilon * horizon * ratio * mass_scale
+            } else {
+                ln_epsilon * horizon * mass_scale
+            };
+        }
+        if scales.iter().all(|&scale| scale == 0.0) {
             return;
         }
-        let horizon = horizon * window;
-        let scale = if settings.ratio_attenuation {
-            ln_epsilon * horizon * ratio * mass_scale
-        } else {
-            ln_epsilon * horizon * mass_scale
-        };
         // Funk–Hecke: f_lm += scale·√(4π/(2l+1))·z_l·y_lm(d), without building the
         // rotated vector.
         with_basis(order, direction, |y| {
             sh::cap_zh_ratio_each(order, ratio, |l, z| {
-                let weight = scale * (4.0 * PI / (2 * l + 1) as f64).sqrt() * z;
-                for i in l * l..(l + 1) * (l + 1) {
-                    f[i] += weight * y[i];
+                let band = (4.0 * PI / (2 * l + 1) as f64).sqrt();
+                for (f, &scale) in sums.iter_mut().zip(&scales) {
+                    if scale == 0.0 {
+                        continue;
+                    }
+                    let weight = scale * band * z;
+                    for i in l * l..(l + 1) * (l + 1) {
+                        f[i] += weight * y[i];
+                    }
                 }
             });
         });
@@ -67,7 +95,7 @@ pub fn log_visibility_within(
     for_each_cap(settings, blockers, p, n, |direction, ratio, horizon| {
         add_cap(direction, ratio, horizon)
     });
-    f
+    sums
 }
 
 /// Calls `add_cap(direction, ratio, horizon weight)` for each blocker cap that shadows `p`
@@ -266,14 +294,32 @@ pub fn scene_log_visibility(
     n: DVec3,
     windows: Option<&LightWindows>,
 ) -> Vec<f64> {
-    let mut f = log_visibility_within(settings, blockers, p, n, windows);
+    scene_log_visibilities(settings, blockers, terrain, p, n, &[windows])
+        .pop()
+        .expect("one reader, one log-visibility")
+}
+
+/// [`scene_log_visibility`] for each of `readers` from one walk over the blockers
+/// ([`log_visibilities_within`]), the terrain's added to each.
+pub fn scene_log_visibilities(
+    settings: &ShadowSettings,
+    blockers: &[Sphere],
+    terrain: Option<&TerrainShadow>,
+    p: DVec3,
+    n: DVec3,
+    readers: &[Option<&LightWindows>],
+) -> Vec<Vec<f64>> {
+    let mut sums = log_visibilities_within(settings, blockers, p, n, readers);
     if let Some(terrain) = terrain {
         let ln_epsilon = (settings.epsilon as f64).ln();
-        for (a, b) in f.iter_mut().zip(terrain.log_visibility(p, ln_epsilon)) {
-            *a += b;
+        let horizon = terrain.log_visibility(p, ln_epsilon);
+        for f in &mut sums {
+            for (a, b) in f.iter_mut().zip(&horizon) {
+                *a += b;
+            }
         }
     }
-    f
+    sums
 }
 
 /// The SH basis at unit `d`: the unrolled polynomials up to order 4 (as the shaders
