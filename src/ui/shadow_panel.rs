@@ -59,7 +59,10 @@ pub fn shadow_section(ui: &mut egui::Ui, render: &mut RenderSettings, blockers: 
             .on_hover_text(
                 "Exact: each light's visible share past every sphere, right for small lights \
                  (sharp, correct penumbrae; point lights cast hard shadows) at a cost per light. \
-                 SH: one visibility for all lights, soft. Auto: shadow maps for point, spot and \
+                 SH: soft; per pixel each light reads a visibility of its own (up to eight \
+                 lights at a point, four under a sky; past that they share one, which dims lit \
+                 ground among many blockers; per vertex they always share one). Auto: shadow \
+                 maps for point, spot and \
                  sun lights when they are on, exact for sphere and area lights under 40° of \
                  angular radius. The selected light says which path it takes.",
             );
