@@ -141,42 +141,54 @@ fn window_cosine(window: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(window.xyz, select(cos(window.w), 2.0, window.w < 0.0));
 }
 
+// Four windows (slots of one bank) as the walk reads them: each window_cosine, the
+// half-angles' sines, the half-angles (−10 for an empty slot) and the gains.
+struct WindowBank {
+    cosines: array<vec4<f32>, 4>,
+    sines: vec4<f32>,
+    half_angles: vec4<f32>,
+    gains: vec4<f32>,
+};
+
+fn window_bank(lights: vec4<u32>, p: vec3<f32>) -> WindowBank {
+    let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
+    let angles = vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w);
+    let half_angles = max(angles, vec4<f32>(0.0));
+    return WindowBank(
+        array<vec4<f32>, 4>(window_cosine(w[0]), window_cosine(w[1]), window_cosine(w[2]), window_cosine(w[3])),
+        sin(half_angles),
+        select(half_angles, vec4<f32>(-10.0), angles < vec4<f32>(0.0)),
+        vec4<f32>(
+            window_gain(half_angles.x),
+            window_gain(half_angles.y),
+            window_gain(half_angles.z),
+            window_gain(half_angles.w),
+        ),
+    );
+}
+
 fn open_light_windows(p: vec3<f32>) {
     window_lights(p);
-    let lights = window_light_indices;
     clear_window_logs();
     if windows_open {
-        let w = array<vec4<f32>, 4>(light_window(lights.x, p), light_window(lights.y, p), light_window(lights.z, p), light_window(lights.w, p));
-        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
-        window_0 = window_cosine(w[0]);
-        window_1 = window_cosine(w[1]);
-        window_2 = window_cosine(w[2]);
-        window_3 = window_cosine(w[3]);
-        window_sines = sin(half_angles);
-        window_half_angles = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
-        window_gains = vec4<f32>(
-            window_gain(half_angles.x),
-            window_gain(half_angles.y),
-            window_gain(half_angles.z),
-            window_gain(half_angles.w),
-        );
+        let bank = window_bank(window_light_indices, p);
+        window_0 = bank.cosines[0];
+        window_1 = bank.cosines[1];
+        window_2 = bank.cosines[2];
+        window_3 = bank.cosines[3];
+        window_sines = bank.sines;
+        window_half_angles = bank.half_angles;
+        window_gains = bank.gains;
     }
     if LIGHT_WINDOWS > 4u && windows_open {
-        let hi = window_light_indices_hi;
-        let w = array<vec4<f32>, 4>(light_window(hi.x, p), light_window(hi.y, p), light_window(hi.z, p), light_window(hi.w, p));
-        let half_angles = max(vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w), vec4<f32>(0.0));
-        window_4 = window_cosine(w[0]);
-        window_5 = window_cosine(w[1]);
-        window_6 = window_cosine(w[2]);
-        window_7 = window_cosine(w[3]);
-        window_sines_hi = sin(half_angles);
-        window_half_angles_hi = select(half_angles, vec4<f32>(-10.0), vec4<f32>(w[0].w, w[1].w, w[2].w, w[3].w) < vec4<f32>(0.0));
-        window_gains_hi = vec4<f32>(
-            window_gain(half_angles.x),
-            window_gain(half_angles.y),
-            window_gain(half_angles.z),
-            window_gain(half_angles.w),
-        );
+        let bank = window_bank(window_light_indices_hi, p);
+        window_4 = bank.cosines[0];
+        window_5 = bank.cosines[1];
+        window_6 = bank.cosines[2];
+        window_7 = bank.cosines[3];
+        window_sines_hi = bank.sines;
+        window_half_angles_hi = bank.half_angles;
+        window_gains_hi = bank.gains;
     }
 }
 
