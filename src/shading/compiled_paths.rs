@@ -45,16 +45,16 @@ pub struct CompiledPaths {
     /// Likewise for the blockers (BLOCKER_OVERFLOW; [`UNIFORM_BLOCKER_CAPACITY`]).
     pub blocker_overflow: bool,
     /// How many windows of SH-path lights on the blockers the code holds (LIGHT_WINDOWS;
-    /// `shading::light_windows`): the SH lights' count, at most 8, 4 under an environment (past that each point
-    /// opens those that reach it) (the shaders decide per point which apply; lavapipe
-    /// pays for every window compiled in).
+    /// `shading::light_windows`): the SH lights' count, at most 8 (4 under an
+    /// environment; past that each point opens those that reach it) (the shaders decide
+    /// per point which apply; lavapipe pays for every window compiled in).
     pub light_windows: u32,
-    /// Past eight SH lights (windows compiled in), each point opens the windows of the
-    /// lights that reach it or none, so the walk with windows and the one without are
-    /// both compiled in and each point takes one (PER_POINT_WINDOWS): where more than
-    /// eight reach a point it does not pay the windows' tests at every blocker (the
-    /// blocker bench with 256 lamps: 343 ms a frame with the windows' walk alone, against
-    /// 280 without windows).
+    /// Past eight SH lights (four under an environment; windows compiled in), each point
+    /// opens the windows of the lights that reach it or none, so the walk with windows
+    /// and the one without are both compiled in and each point takes one
+    /// (PER_POINT_WINDOWS): where more reach a point it does not pay the windows' tests
+    /// at every blocker (the blocker bench with 256 lamps: 343 ms a frame with the
+    /// windows' walk alone, against 280 without windows).
     pub per_point_windows: bool,
     /// A point walks the lights of its box of the lights' grid on the SH and shadow-map
     /// paths rather than all of them (LIGHT_GRID; `super::light_grid`): frames with at

@@ -2,8 +2,8 @@
 //! (`harmonic_radiance` and `add_cap` in logsh.wgsl, `PER_LIGHT_VISIBILITY`).
 //!
 //! Where a point opens light windows (`shading::light_windows`: at most eight SH lights,
-//! four under an environment, or past that many the few that reach it) each of those lights reads the visibility over its
-//! own cap alone. Weighing every blocker by the largest weight any window gives it, and
+//! four under an environment, or past that many the few that reach it) each of those
+//! lights reads the visibility over its own cap alone. Weighing every blocker by the largest weight any window gives it, and
 //! summing those caps into one log-visibility that all the lights read, made each light
 //! read the log-visibility its neighbours' blockers spread over the band limit's width:
 //! with a few lights spread over the sky each dimmed the others' lit ground and blurred
