@@ -130,23 +130,20 @@ pub fn windows_per_point(lights: &[GpuLight], environment: bool) -> bool {
 /// light_windows.wgsl) whose windows a point at `p` opens, each to read a visibility of
 /// its own, under an environment or not (`environment`), for m = [`most_windows`]: every
 /// SH light when there are at most m, else those that reach p when at most m do; None
-/// where no window opens (no SH light, or more than m reach p).
+/// where no window opens (no SH light, or more than m reach p). Where [`compiled_windows`]
+/// is 0 with SH lights, more than m of them reach every point, and so p: None too.
 pub fn light_window_indices(lights: &[GpuLight], environment: bool, p: glam::DVec3) -> Option<Vec<usize>> {
-    if compiled_windows(lights, environment) == 0 {
+    let most = most_windows(environment);
+    let harmonic: Vec<usize> = (0..lights.len())
+        .filter(|&i| lights[i].shadow_path == SHADOW_PATH_SH)
+        .collect();
+    if harmonic.is_empty() {
         return None;
     }
-    let most = most_windows(environment);
-    let harmonic = lights
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| l.shadow_path == SHADOW_PATH_SH);
-    if harmonic.clone().count() <= most {
-        return Some(harmonic.map(|(i, _)| i).collect());
+    if harmonic.len() <= most {
+        return Some(harmonic);
     }
-    let reaching: Vec<usize> = harmonic
-        .filter(|(_, light)| light_reaches(light, p))
-        .map(|(i, _)| i)
-        .collect();
+    let reaching: Vec<usize> = harmonic.into_iter().filter(|&i| light_reaches(&lights[i], p)).collect();
     (reaching.len() <= most).then_some(reaching)
 }
 
