@@ -15,8 +15,8 @@ const LIGHT_AREA: u32 = 3u;
 // Rust side). Frames with more also read the rest from storage buffers.
 const UNIFORM_LIGHT_CAPACITY: u32 = 682u;
 const UNIFORM_BLOCKER_CAPACITY: u32 = 2048u;
-// Layers of the shadow-map array (src/shading/gpu_types.rs MAX_SHADOW_VIEWS).
-const MAX_SHADOW_VIEWS: u32 = 96u;
+// Views of the shadow-map array (src/shading/gpu_types.rs MAX_SHADOW_VIEWS).
+const MAX_SHADOW_VIEWS: u32 = 384u;
 // Light.shadow_path values and the first_shadow_view of a light without maps.
 const SHADOW_PATH_SH: u32 = 0u;
 const SHADOW_PATH_EXACT: u32 = 1u;

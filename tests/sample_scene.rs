@@ -71,6 +71,7 @@ fn every_sample_matches_its_generator_loads_and_renders() {
             Sample::Interior => (150_000, 16),
             Sample::Large => (500_000, 22),
             Sample::Terrain => (20_000, 2),
+            Sample::LampRoom => (50_000, 30),
         };
         assert!(
             vertices >= min_vertices && lights >= min_lights,

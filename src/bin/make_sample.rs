@@ -1,5 +1,6 @@
 //! Regenerates sample scenes and projects under projects/NAME/:
 //! `cargo run --bin make-sample [NAME…]`, NAME one of sample, studio, interior, large, terrain,
+//! lamp-room,
 //! all (default: the committed ones, sample, studio and terrain).
 
 use std::path::Path;
@@ -19,7 +20,9 @@ fn main() -> ExitCode {
             match Sample::from_name(name) {
                 Some(sample) => samples.push(sample),
                 None => {
-                    eprintln!("error: unknown sample '{name}' (sample, studio, interior, large, terrain, all)");
+                    eprintln!(
+                        "error: unknown sample '{name}' (sample, studio, interior, large, terrain, lamp-room, all)"
+                    );
                     return ExitCode::from(2);
                 }
             }

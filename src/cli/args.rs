@@ -164,5 +164,5 @@ pub fn parse_srgb8(text: &str) -> Result<[u8; 3], String> {
 
 pub fn parse_sample(text: &str) -> Result<lightpaint::samples::Sample, String> {
     lightpaint::samples::Sample::from_name(text)
-        .ok_or_else(|| format!("expected sample, studio, interior, large or terrain, got '{text}'"))
+        .ok_or_else(|| format!("expected sample, studio, interior, large, terrain or lamp-room, got '{text}'"))
 }

@@ -70,7 +70,7 @@ pub enum Command {
         /// Directory for study.csv, study.md, pareto.png and images/.
         #[arg(short, long)]
         output: PathBuf,
-        /// Only this sample scene (repeatable: sample, studio, interior, large, terrain),
+        /// Only this sample scene (repeatable: sample, studio, interior, large, terrain, lamp-room),
         /// without the stability and small-light suites.
         #[arg(long = "scene", value_parser = parse_sample)]
         scenes: Vec<lightpaint::samples::Sample>,

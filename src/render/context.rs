@@ -9,9 +9,9 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
-    /// Opens the best adapter without a window. `WGPU_BACKEND` and the other wgpu
-    /// environment variables are honoured. On a machine without a GPU this is Mesa's
-    /// lavapipe (software Vulkan).
+    /// Opens the best Vulkan, Metal or DX12 adapter without a window. `WGPU_BACKEND` and
+    /// the other wgpu environment variables are honoured. On a machine without a GPU this
+    /// is Mesa's lavapipe (software Vulkan); without it, [`RenderError::NoAdapter`].
     pub fn headless() -> Result<GpuContext, RenderError> {
         GpuContext::headless_with_limits(|limits| limits)
     }
@@ -19,11 +19,11 @@ impl GpuContext {
     /// [`Self::headless`] with the device's limits changed by `limits` from those
     /// lightpaint asks for (tests of what a device with lower limits does).
     pub fn headless_with_limits(limits: impl FnOnce(wgpu::Limits) -> wgpu::Limits) -> Result<GpuContext, RenderError> {
-        let adapter = match request_adapter(primary_backends_unless_env()) {
-            Ok(adapter) => adapter,
-            // No Vulkan/Metal/DX12 adapter: any backend wgpu has (e.g. GL) will do.
-            Err(_) => request_adapter(wgpu::InstanceDescriptor::new_without_display_handle_from_env())?,
-        };
+        // No fallback to GL without `WGPU_BACKEND`: its shader translation has no
+        // `textureLoad` of depth textures, which the shadow maps need, so a GL adapter
+        // failed at the first pipeline (a panic inside wgpu) instead of here, with the
+        // cause and the package to install.
+        let adapter = request_adapter(primary_backends_unless_env())?;
         let adapter_info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("lightpaint"),

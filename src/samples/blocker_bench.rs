@@ -53,7 +53,7 @@ pub fn thin_casters_scene() -> Scene {
 /// `count` lamps with a range added to the set (`frame/lamp-count`: a frame's cost against
 /// its lights' count): warm point lights 0.4 m over the floor in a square grid over its
 /// middle 7 m, each of 0.1 cd and 1 m range, so that each lights a patch of floor and
-/// the casters near it. Past the shadow maps' views (96: 16 cubes) they take the SH path.
+/// the casters near it. Past the shadow maps' views (384: 64 cubes) they take the SH path.
 pub fn add_lamps(scene: &mut Scene, count: usize) {
     let side = (count as f32).sqrt().ceil().max(1.0) as usize;
     let at = |t: usize| -3.5 + 7.0 * (t as f32 + 0.5) / side as f32;

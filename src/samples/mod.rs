@@ -6,6 +6,7 @@
 pub mod blocker_bench;
 pub mod figure;
 mod interior;
+mod lamp_room;
 mod large;
 mod studio_set;
 mod terrain;
@@ -36,15 +37,19 @@ pub enum Sample {
     Large,
     /// Generated hills with a figure, standing stones and boulders, a low sun and a lantern.
     Terrain,
+    /// A room at night: single-quad walls, an open shelf and card, a lattice, a box, a pole
+    /// and a 100k-triangle ball under 30 lamps of 1.5 m range; no sky.
+    LampRoom,
 }
 
 impl Sample {
-    pub const ALL: [Sample; 5] = [
+    pub const ALL: [Sample; 6] = [
         Sample::Sample,
         Sample::Studio,
         Sample::Interior,
         Sample::Large,
         Sample::Terrain,
+        Sample::LampRoom,
     ];
 
     pub fn name(self) -> &'static str {
@@ -54,6 +59,7 @@ impl Sample {
             Sample::Interior => "interior",
             Sample::Large => "large",
             Sample::Terrain => "terrain",
+            Sample::LampRoom => "lamp-room",
         }
     }
 
@@ -73,11 +79,18 @@ impl Sample {
             Sample::Interior => interior::interior_glb(),
             Sample::Large => large::large_glb(),
             Sample::Terrain => terrain::terrain_glb(&terrain_field()),
+            Sample::LampRoom => lamp_room::lamp_room_glb(),
         }
     }
 
-    /// Writes `NAME.glb`, `sky.hdr` and `NAME.lightpaint` into `directory`; returns the
-    /// project path.
+    /// Whether the sample is lit by the sky too ([`sky_hdr`]); the lamp room is a room at
+    /// night.
+    pub fn has_sky(self) -> bool {
+        self != Sample::LampRoom
+    }
+
+    /// Writes `NAME.glb`, `sky.hdr` (for samples with a sky) and `NAME.lightpaint` into
+    /// `directory`; returns the project path.
     pub fn write(self, directory: &Path) -> Result<PathBuf, ProjectError> {
         let write = |path: &Path, bytes: &[u8]| {
             write_atomically(path, bytes).map_err(|source| ProjectError::Write {
@@ -87,11 +100,13 @@ impl Sample {
         };
         let scene_path = directory.join(format!("{}.glb", self.name()));
         write(&scene_path, &self.glb())?;
-        let sky_path = directory.join("sky.hdr");
-        write(&sky_path, &sky_hdr())?;
         let mut document = Document::from_gltf(&scene_path)?;
-        document.scene.environment =
-            Some(Environment::load(&sky_path, SKY_INTENSITY, 0.0).map_err(ProjectError::SceneOnly)?);
+        if self.has_sky() {
+            let sky_path = directory.join("sky.hdr");
+            write(&sky_path, &sky_hdr())?;
+            document.scene.environment =
+                Some(Environment::load(&sky_path, SKY_INTENSITY, 0.0).map_err(ProjectError::SceneOnly)?);
+        }
         if self == Sample::Terrain {
             document.scene.lights.insert(0, terrain::sun());
             document

@@ -250,6 +250,23 @@ impl GltfBuilder {
         }))
     }
 
+    /// [`Self::add_light_node`] with a glTF `range`: the distance in metres past which the
+    /// light has no effect.
+    pub fn add_ranged_light_node(
+        &mut self,
+        name: &str,
+        light: &LightSpec,
+        position: Vec3,
+        forward: Vec3,
+        range_m: f32,
+    ) -> usize {
+        let node = self.add_light_node(name, light, position, forward);
+        if let Some(written) = self.lights.last_mut() {
+            written["range"] = json!(range_m);
+        }
+        node
+    }
+
     pub fn add_camera_node(
         &mut self,
         name: &str,

@@ -23,12 +23,14 @@ pub const SHADOW_PATH_MAP: u32 = 2;
 /// `GpuLight::first_shadow_view` of a light without a shadow map.
 pub const NO_SHADOW_VIEW: u32 = u32::MAX;
 
-/// How many shadow-map views (layers or quadrants of the map array, WGSL `MAX_SHADOW_VIEWS`) a frame
-/// has at most: a point light takes six (a cube), a spot or the sun one. 96: a room lit by
-/// a dozen ceiling lights, a few spots and the sun (the interior sample, 77 views) maps
-/// every light, rather than leave some to the SH path, where the room's own walls and
-/// ceiling, as disc blockers, would hide them.
-pub const MAX_SHADOW_VIEWS: usize = 96;
+/// How many shadow-map views (squares of the map array, WGSL `MAX_SHADOW_VIEWS`) a frame
+/// has at most: a point light takes six (a cube), a spot or the sun one. 384 (64 cubes,
+/// 48 KiB of uniform views): a room lit by a dozen ceiling lights, a few spots and the sun
+/// (the interior sample, 77 views) or by 30 lamps (the lamp room, 180) maps every light,
+/// rather than leave some to the SH path, where the room's own walls and ceiling, as disc
+/// blockers, would hide them; the atlas sizes the squares to fit its memory
+/// (`shading::shadow_atlas`).
+pub const MAX_SHADOW_VIEWS: usize = 384;
 
 /// How many lights the uniform array `lights` of scene.wgsl holds (WGSL
 /// `UNIFORM_LIGHT_CAPACITY`): as many as fit in wgpu's default 64 KiB uniform binding.

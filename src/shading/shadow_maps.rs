@@ -33,7 +33,7 @@
 use glam::Vec3;
 
 use super::gpu_types::{GpuLight, GpuShadowView, LIGHT_DIRECTIONAL, LIGHT_SPOT};
-use super::shadow_atlas::ShadowAtlas;
+use super::shadow_atlas::{ShadowAtlas, WantedView};
 use crate::scene::Aabb;
 
 /// A spot whose cos(outer cone) is at least this (a cone of at most 60°) is drawn in one
@@ -168,59 +168,90 @@ pub fn drafted(view: &GpuShadowView) -> GpuShadowView {
 /// ([`super::shadow_atlas`]). Views of lights without a map are left out; the list is as
 /// long as the largest view index used plus one.
 pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> ShadowViews {
-    let mapped = || {
-        lights
-            .iter()
-            .filter(|light| light.shadow_path == super::gpu_types::SHADOW_PATH_MAP && light.shadow_view_count > 0)
-    };
-    let cube_faces = mapped().filter(|light| light.shadow_view_count == 6).count() * 6;
-    let single_views = mapped().filter(|light| light.shadow_view_count != 6).count();
-    let mut atlas = ShadowAtlas::new(single_views, cube_faces, size);
-    let mut views: Vec<GpuShadowView> = Vec::new();
+    let mapped: Vec<&GpuLight> = lights
+        .iter()
+        .filter(|light| light.shadow_path == super::gpu_types::SHADOW_PATH_MAP && light.shadow_view_count > 0)
+        .collect();
     let (centre, radius) = bounding_sphere(bounds);
-    for light in mapped() {
-        let (count, first) = (light.shadow_view_count as usize, light.first_shadow_view as usize);
-        let needed = first + count;
-        if views.len() < needed {
-            views.resize(needed, bytemuck::Zeroable::zeroed());
+    let view_slots = mapped
+        .iter()
+        .map(|light| (light.first_shadow_view + light.shadow_view_count) as usize)
+        .max()
+        .unwrap_or(0);
+    // What each slot asks of the atlas; slots no light uses ask for nothing.
+    let mut wanted: Vec<Option<WantedView>> = vec![None; view_slots];
+    for light in &mapped {
+        let first = light.first_shadow_view as usize;
+        let cube_face = light.shadow_view_count == 6;
+        let range_share = range_m(light).map(|range| range / radius);
+        for slot in &mut wanted[first..first + light.shadow_view_count as usize] {
+            *slot = Some(WantedView { cube_face, range_share });
         }
+    }
+    let asked: Vec<WantedView> = wanted.iter().flatten().copied().collect();
+    let atlas = ShadowAtlas::new(&asked, size);
+    // Slot k's index among the views asked.
+    let mut asked_index = vec![usize::MAX; view_slots];
+    for (index, slot) in wanted
+        .iter()
+        .enumerate()
+        .filter(|(_, w)| w.is_some())
+        .map(|(k, _)| k)
+        .enumerate()
+    {
+        asked_index[slot] = index;
+    }
+    let mut views: Vec<GpuShadowView> = vec![bytemuck::Zeroable::zeroed(); view_slots];
+    for light in mapped {
+        let (count, first) = (light.shadow_view_count as usize, light.first_shadow_view as usize);
         let position = Vec3::from_slice(&light.position[..3]);
         let direction = Vec3::from_slice(&light.direction_range[..3]).normalize_or(Vec3::NEG_Y);
         let up_for = |forward: Vec3| if forward.y.abs() > 0.9 { Vec3::X } else { Vec3::Y };
-        let single = atlas.view_size(false);
+        let side = atlas.view_size(asked_index[first]);
+        let reach = Reach {
+            centre,
+            radius,
+            range_m: range_m(light),
+        };
         match (light.kind, count) {
-            (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, single),
+            (LIGHT_DIRECTIONAL, _) => views[first] = orthographic_view(direction, centre, radius, side),
             (LIGHT_SPOT, 1) if single_view_spot(light) => {
                 let half_angle = light.spot_cone[0].clamp(-1.0, 1.0).acos();
-                views[first] = perspective_view(
-                    position,
-                    direction,
-                    up_for(direction),
-                    half_angle.tan(),
-                    centre,
-                    radius,
-                    single,
-                );
+                views[first] = perspective_view(position, direction, up_for(direction), half_angle.tan(), &reach, side);
             }
             (_, 1) => {
                 // Aimed at the scene; a scene that grew around the light since falls back
                 // to a 45° view, which the lookup leaves unshadowed outside.
                 let (forward, tan_half) =
                     fitted_view(light, centre, radius).unwrap_or(((centre - position).normalize_or(Vec3::NEG_Y), 1.0));
-                views[first] = perspective_view(position, forward, up_for(forward), tan_half, centre, radius, single);
+                views[first] = perspective_view(position, forward, up_for(forward), tan_half, &reach, side);
             }
             _ => {
-                let face_size = atlas.view_size(true);
                 for (k, (forward, up)) in CUBE_FACES.iter().enumerate() {
-                    views[first + k] = perspective_view(position, *forward, *up, 1.0, centre, radius, face_size);
+                    views[first + k] = perspective_view(position, *forward, *up, 1.0, &reach, side);
                 }
             }
         }
-        for view in &mut views[first..needed] {
-            view.atlas = atlas.place(count == 6);
+        for (k, view) in views.iter_mut().enumerate().skip(first).take(count) {
+            view.atlas = atlas.squares[asked_index[k]];
         }
     }
     ShadowViews { views, atlas }
+}
+
+/// A point or spot light's range in metres (glTF `range`), None without one.
+fn range_m(light: &GpuLight) -> Option<f32> {
+    let range = light.direction_range[3];
+    (light.kind != LIGHT_DIRECTIONAL && range > 0.0 && range.is_finite()).then_some(range)
+}
+
+/// What a perspective view has to see: the scene's bounding sphere, and no farther from
+/// the light than its range.
+#[derive(Clone, Copy)]
+struct Reach {
+    centre: Vec3,
+    radius: f32,
+    range_m: Option<f32>,
 }
 
 /// The sphere the maps' views cover: the centre of `bounds` and half their diagonal
@@ -234,25 +265,28 @@ pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
 
 /// A perspective view from `eye` along `forward` whose half-width is `tan_half` (at unit
 /// distance) widened by the face margin, with near and far planes around the scene's
-/// bounding sphere.
-fn perspective_view(
-    eye: Vec3,
-    forward: Vec3,
-    up: Vec3,
-    tan_half: f32,
-    centre: Vec3,
-    radius: f32,
-    size: u32,
-) -> GpuShadowView {
+/// bounding sphere, the far one no farther than the light's range: past it the light
+/// shadows nothing, and a far plane there keeps the depths finer and leaves out of the
+/// view (and of its drawing) what the light cannot reach.
+fn perspective_view(eye: Vec3, forward: Vec3, up: Vec3, tan_half: f32, reach: &Reach, size: u32) -> GpuShadowView {
+    let Reach {
+        centre,
+        radius,
+        range_m,
+    } = *reach;
     let size = size.max(1) as f32;
     // Widened so that the nominal field of view keeps FACE_MARGIN_TEXELS texels on each side.
     let tan_wide = tan_half * size / (size - 2.0 * FACE_MARGIN_TEXELS).max(1.0);
-    let far = ((centre - eye).length() + radius) * 1.01 + 1e-3;
+    let scene_far = ((centre - eye).length() + radius) * 1.01 + 1e-3;
+    // Along the view's axis a receiver within the range is at most the range away.
+    let far = range_m.map_or(scene_far, |range| scene_far.min(range * 1.01 + 1e-3));
     // Nothing nearer than the scene's bounding sphere casts: starting the depth range
     // there keeps a far light's depths fine (a near plane at far·10⁻⁴ left a light 200 m
     // away with depth steps of 10 cm, which showed as speckled self-shadowing).
     let nearest_m = (centre - eye).length() - radius;
     let near = (far * 1e-4).max(1e-3).max(0.99 * nearest_m);
+    // A range that ends before the scene begins: a valid (empty) depth range all the same.
+    let near = if far < scene_far { near.min(0.5 * far) } else { near };
     let view = glam::camera::rh::view::look_to_mat4(eye, forward, up);
     // Near and far swapped: reversed depth (the module's documentation).
     let projection = glam::camera::rh::proj::directx::perspective(2.0 * tan_wide.atan(), 1.0, far, near);
@@ -346,6 +380,39 @@ mod tests {
             );
             assert!((0.0..=1.0).contains(&q.z), "depth {}", q.z);
         }
+    }
+
+    #[test]
+    fn a_lamps_faces_end_at_its_range_and_keep_its_reach_as_fine_as_the_scene() {
+        // A lamp of 1 m range inside a scene of radius 5√3 m ≈ 8.7 m: its faces halve while
+        // a texel at 1 m stays no wider than a 1024² face's at 8.7 m (1024/8 = 128 ≥ 118).
+        let mut lamp = mapped(crate::scene::LightKind::Point, Vec3::new(1.0, 0.5, 0.0), Vec3::NEG_Y);
+        lamp.direction_range[3] = 1.0;
+        let bounds = Aabb::from_points(&[Vec3::splat(-5.0), Vec3::splat(5.0)]);
+        let ranged = shadow_views(&[lamp], &bounds, 1024);
+        assert_eq!(ranged.atlas.view_size(0), 128);
+        let texel_at_range = ranged.views[0].texel[0] * 1.0;
+        let full_face_at_radius = 2.0 / 1024.0 * bounds.radius();
+        assert!(
+            texel_at_range <= full_face_at_radius,
+            "{texel_at_range} > {full_face_at_radius}"
+        );
+        for view in &ranged.views {
+            let far = view.depth_range[1];
+            assert!((1.0..1.02).contains(&far), "far plane at {far} m, not at the range");
+        }
+        // Depth still falls with distance, and a point past the range is past the far plane.
+        let eye = Vec3::new(1.0, 0.5, 0.0);
+        let (inside, past) = (
+            clip(&ranged.views[0], eye + Vec3::new(0.9, 0.0, 0.0)).z,
+            clip(&ranged.views[0], eye + Vec3::new(1.5, 0.0, 0.0)).z,
+        );
+        assert!(inside > 0.0 && past < 0.0, "{inside} {past}");
+        // Without the range: full faces to the scene's far side.
+        lamp.direction_range[3] = 0.0;
+        let unranged = shadow_views(&[lamp], &bounds, 1024);
+        assert_eq!(unranged.atlas.view_size(0), 1024);
+        assert!(unranged.views[0].depth_range[1] > 8.0);
     }
 
     #[test]
