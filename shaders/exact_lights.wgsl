@@ -100,6 +100,25 @@ fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
     return select(hidden, vec4<f32>(0.0), beyond | vec4<bool>(!cap.counts));
 }
 
+// Per lane, whether a disc with unit `normal`, p `side_p` in front of its plane, may stand
+// between p and the lane's light, the lights first.. of the batch half: false when the
+// light's emitter lies wholly on p's side of the plane (blockers::disc::
+// disc_plane_between, the twin; emitter_support_m, and the sun's angular radius).
+fn disc_plane_between(side_p: f32, normal: vec3<f32>, batch: ExactBatch, first: u32) -> vec4<bool> {
+    let last = max(frame.light_count, 1u) - 1u;
+    let support = vec4<f32>(
+        emitter_support_m(light_at(min(first, last)), normal),
+        emitter_support_m(light_at(min(first + 1u, last)), normal),
+        emitter_support_m(light_at(min(first + 2u, last)), normal),
+        emitter_support_m(light_at(min(first + 3u, last)), normal),
+    );
+    let toward = normal.x * batch.to_light_x + normal.y * batch.to_light_y + normal.z * batch.to_light_z;
+    let side_light = vec4<f32>(side_p) + batch.distance * toward;
+    // The sun (support −1): its distance stands for infinity, and its sine for its extent.
+    let extent = select(support, batch.sin_light * batch.distance, support < vec4<f32>(0.0));
+    return !((side_light * side_p > vec4<f32>(0.0)) & (abs(side_light) > extent));
+}
+
 // The solid angle where two caps meet (versines v_a, of cap b's, v_g of their
 // separation): hidden_fractions' lens for one pair of caps, before its division by the
 // first cap's area.
@@ -277,9 +296,10 @@ struct ExactVisibility {
     hi: vec4<f32>,
 };
 
-// Visibility of each light of the batch from p with normal n (the f32 twin of
+// Visibility of each light of the batch (the lights first.., first + 4.. for hi) from p
+// with normal n (the f32 twin of
 // penumbra::light_visibility).
-fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch) -> ExactVisibility {
+fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactBatch, first: u32) -> ExactVisibility {
     let half_footprint = 0.5 * pixel_footprint(p);
     // Lights a blocker hides wholly (visibility 0).
     var covered_lo = vec4<bool>(false);
@@ -345,15 +365,19 @@ fn exact_batch_visibility(p: vec3<f32>, n: vec3<f32>, lo: ExactBatch, hi: ExactB
     }
     var visible_lo = vec4<f32>(1.0) - clamp(union_lo, largest_lo, vec4<f32>(1.0));
     var visible_hi = vec4<f32>(1.0) - clamp(union_hi, largest_hi, vec4<f32>(1.0));
-    // The discs, at every receiver (their own list; logsh.wgsl's add_discs).
+    // The discs, at every receiver (their own list; logsh.wgsl's add_discs), each for the
+    // lights that reach its plane from p's side (disc_plane_between).
     for (var d = 0u; d < shadow.disc_count; d++) {
         let disc = shadow.discs[d];
         let seen = disc_cap_seen(disc, p, n);
         let counts = seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0;
         let cap = BlockerCap(seen.direction, seen.distance, seen.ratio, sqrt(max(1.0 - seen.ratio * seen.ratio, 0.0)), seen.horizon, counts);
-        visible_lo *= vec4<f32>(1.0) - hidden_by(cap, disc.center_radius.w, lo, half_footprint);
+        let side_p = dot(p - disc.center_radius.xyz, disc.disc_normal.xyz);
+        let between_lo = disc_plane_between(side_p, disc.disc_normal.xyz, lo, first);
+        visible_lo *= vec4<f32>(1.0) - select(vec4<f32>(0.0), hidden_by(cap, disc.center_radius.w, lo, half_footprint), between_lo);
         if EXACT_WIDE {
-            visible_hi *= vec4<f32>(1.0) - hidden_by(cap, disc.center_radius.w, hi, half_footprint);
+            let between_hi = disc_plane_between(side_p, disc.disc_normal.xyz, hi, first + 4u);
+            visible_hi *= vec4<f32>(1.0) - select(vec4<f32>(0.0), hidden_by(cap, disc.center_radius.w, hi, half_footprint), between_hi);
         }
     }
     return ExactVisibility(select(visible_lo, vec4<f32>(0.0), covered_lo), select(visible_hi, vec4<f32>(0.0), covered_hi));

@@ -458,7 +458,7 @@ fn exact_lights_radiance(s: Surface, first: u32) -> vec3<f32> {
     if EXACT_WIDE {
         hi = exact_lights(s, first + 4u);
     }
-    let v = exact_batch_visibility(s.position, s.normal, lo.batch, hi.batch);
+    let v = exact_batch_visibility(s.position, s.normal, lo.batch, hi.batch, first);
     return lo.unshadowed[0] * v.lo.x + lo.unshadowed[1] * v.lo.y + lo.unshadowed[2] * v.lo.z
         + lo.unshadowed[3] * v.lo.w + hi.unshadowed[0] * v.hi.x + hi.unshadowed[1] * v.hi.y
         + hi.unshadowed[2] * v.hi.z + hi.unshadowed[3] * v.hi.w;

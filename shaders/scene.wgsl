@@ -268,6 +268,30 @@ fn light_bounding_radius_m(light: Light) -> f32 {
     return select(0.0, light.source_size, light.kind == LIGHT_POINT);
 }
 
+// How far a light's emitter reaches from its centre along unit `axis` (cpu::area::emitter,
+// penumbra::Emitter::support_m): a rect's |w·a| + |h·a|, a disk's circumradius times
+// √(1 − (n·a)²), a sphere light's radius, 0 for point-like lights; −1 for the sun, at
+// infinity.
+fn emitter_support_m(light: Light, axis: vec3<f32>) -> f32 {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return -1.0;
+    }
+    if light.kind == LIGHT_AREA {
+        let normal = light.direction_range.xyz;
+        let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
+        let half_width_m = length(half_width);
+        if half_width_m > 0.0 {
+            let half_height = normalize(cross(normal, half_width)) * (light.source_size / (4.0 * half_width_m));
+            return abs(dot(half_width, axis)) + abs(dot(half_height, axis));
+        }
+        let n = f32(DISK_LIGHT_SIDES);
+        let circumradius = sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+        let along = dot(normal, axis);
+        return circumradius * sqrt(max(1.0 - along * along, 0.0));
+    }
+    return select(0.0, light.source_size, light.kind == LIGHT_POINT);
+}
+
 // The vector irradiance at p of an area light of unit radiance, Φ = ½ Σ_edges γ·n̂
 // (Lambert's formula; Arvo 1994): E = L·Φ·n for a receiver whose horizon the light is
 // wholly above. Its polygon: a rect's 4 corners, or for a disk the regular polygon of

@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 
 use glam::{DVec3, Vec3, Vec4};
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
-use lightpaint::penumbra::{LightDisc, light_visibility};
+use lightpaint::penumbra::{Emitter, LightDisc, light_visibility};
 use lightpaint::project::Document;
 use lightpaint::render::{
     AntiAliasing, GpuContext, ShadowFrame, capture_surfaces, render_cpu_image, render_logsh_image,
@@ -370,6 +370,7 @@ fn the_f64_path_draws_the_exact_penumbra_of_a_ball() {
             to_light: offset / d,
             distance_m: d,
             cap_ratio: 0.5 / d,
+            emitter: Emitter::Sphere { radius_m: 0.5 },
         };
         let v = light_visibility(p, DVec3::Y, &disc, &ball, &[], 0.0, 0.0);
         let expected = 1.0 - hidden_share(p, light, 0.5, &[(DVec3::new(0.0, 1.0, 0.0), 0.3)]);
@@ -403,6 +404,7 @@ fn a_point_lights_shadow_edge_ramps_over_about_one_pixel() {
             to_light: offset.normalize(),
             distance_m: offset.length(),
             cap_ratio: 0.0,
+            emitter: Emitter::Sphere { radius_m: 0.0 },
         };
         light_visibility(p, DVec3::Y, &disc, &ball, &[], 0.0, footprint)
     };

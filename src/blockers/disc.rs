@@ -31,6 +31,34 @@ pub const NEAR_FIELD_RADII: f64 = 4.0;
 /// rounding of its receivers' positions.
 pub const DISC_PLANE_TOLERANCE_M: f64 = 1e-3;
 
+/// Whether a disc blocker at `center` with unit `normal` may stand between the receiver
+/// `p` and a light seen toward unit `to_light`, `distance_m` away: false when the light's
+/// emitter lies wholly on `p`'s side of the disc's plane (a backdrop behind a soft box
+/// hides none of it from the set in front; the cap that stands for the disc has no depth
+/// and would), true when it reaches the plane or beyond. `emitter_support_m` is how far
+/// the emitter reaches from its centre along `normal` (`penumbra::Emitter::support_m`);
+/// None for a light at infinity, which is on `p`'s side when it shines from there more
+/// steeply than its angular radius (sine `sin_light`). The same in exact_lights.wgsl
+/// (`disc_plane_between`).
+pub fn disc_plane_between(
+    center: DVec3,
+    normal: DVec3,
+    p: DVec3,
+    to_light: DVec3,
+    distance_m: f64,
+    sin_light: f64,
+    emitter_support_m: Option<f64>,
+) -> bool {
+    let side_p = (p - center).dot(normal);
+    let toward = to_light.dot(normal);
+    let (side_light, extent) = match emitter_support_m {
+        Some(support_m) if distance_m.is_finite() => (side_p + distance_m * toward, support_m),
+        // Both sides over the distance, in the limit.
+        _ => (toward, sin_light),
+    };
+    !(side_light * side_p > 0.0 && side_light.abs() > extent)
+}
+
 /// An orthonormal pair perpendicular to unit `n` (Duff et al. 2017), the same in WGSL.
 pub fn disc_frame(n: DVec3) -> (DVec3, DVec3) {
     let sign = if n.z >= 0.0 { 1.0 } else { -1.0 };
@@ -152,6 +180,64 @@ pub fn spheres_and_discs(blockers: &[Sphere]) -> (Vec<Sphere>, Vec<Sphere>) {
 mod tests {
     use super::*;
     use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn a_disc_stands_between_only_lights_that_reach_its_plane_from_the_receivers_side() {
+        // A wall in the plane z = 0 facing +z; the receiver 2 m in front of it.
+        let (center, normal, p) = (DVec3::ZERO, DVec3::Z, DVec3::new(0.3, 0.0, 2.0));
+        let between = |light: DVec3, support_m: f64| {
+            let (to_light, distance) = ((light - p).normalize(), (light - p).length());
+            disc_plane_between(center, normal, p, to_light, distance, 0.0, Some(support_m))
+        };
+        // In front of the wall, between it and the receiver: nothing of the wall can hide it.
+        assert!(!between(DVec3::new(0.0, 1.0, 0.5), 0.1));
+        // Behind the wall.
+        assert!(between(DVec3::new(0.0, 1.0, -0.5), 0.1));
+        // An emitter reaching the plane or through it.
+        assert!(between(DVec3::new(0.0, 1.0, 0.15), 0.2));
+        assert!(!between(DVec3::new(0.0, 1.0, 0.25), 0.2));
+        // The receiver behind the wall and the light in front: between.
+        let behind = DVec3::new(0.0, 0.0, -1.0);
+        let light = DVec3::new(0.0, 1.0, 0.5);
+        let to_light = (light - behind).normalize();
+        assert!(disc_plane_between(
+            center,
+            normal,
+            behind,
+            to_light,
+            (light - behind).length(),
+            0.0,
+            Some(0.0)
+        ));
+        // A sun: on the receiver's side if it shines from the front more steeply than its size.
+        assert!(!disc_plane_between(
+            center,
+            normal,
+            p,
+            DVec3::new(0.0, 0.6, 0.8),
+            f64::INFINITY,
+            0.01,
+            None
+        ));
+        assert!(disc_plane_between(
+            center,
+            normal,
+            p,
+            DVec3::new(0.0, 0.6, -0.8),
+            f64::INFINITY,
+            0.01,
+            None
+        ));
+        assert!(disc_plane_between(
+            center,
+            normal,
+            p,
+            DVec3::new(0.0, 0.999, 0.005),
+            f64::INFINITY,
+            0.01,
+            None
+        ));
+    }
 
     #[test]
     fn the_polygon_has_the_discs_area() {

@@ -34,13 +34,49 @@ pub struct LightDisc {
     pub distance_m: f64,
     /// sin of the angular radius of the light's disc (0 for point-like lights).
     pub cap_ratio: f64,
+    /// The emitter's shape about its centre, for the disc blockers' plane test.
+    pub emitter: Emitter,
+}
+
+/// A light's emitter about its centre: how far it reaches along an axis is what decides
+/// whether it lies wholly on one side of a disc blocker's plane
+/// ([`crate::blockers::disc::disc_plane_between`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Emitter {
+    /// A point, or a sphere of this radius.
+    Sphere { radius_m: f64 },
+    /// A rect of these half extents (vectors in its plane).
+    Rect { half_width_m: DVec3, half_height_m: DVec3 },
+    /// A disk of this radius facing unit `normal`.
+    Disk { radius_m: f64, normal: DVec3 },
+    /// A directional light: at infinity, no extent in metres.
+    AtInfinity,
+}
+
+impl Emitter {
+    /// How far the emitter reaches from its centre along unit `axis` (its support), None
+    /// at infinity: a sphere's radius, a rect's |w·a| + |h·a|, a disk's r·√(1 − (n·a)²).
+    /// The same in scene.wgsl (`emitter_support_m`).
+    pub fn support_m(&self, axis: DVec3) -> Option<f64> {
+        match *self {
+            Emitter::Sphere { radius_m } => Some(radius_m),
+            Emitter::Rect {
+                half_width_m,
+                half_height_m,
+            } => Some(half_width_m.dot(axis).abs() + half_height_m.dot(axis).abs()),
+            Emitter::Disk { radius_m, normal } => Some(radius_m * (1.0 - normal.dot(axis).powi(2)).max(0.0).sqrt()),
+            Emitter::AtInfinity => None,
+        }
+    }
 }
 
 /// Visibility (0–1) from `p` (unit normal `n`) of `light` through `spheres` and `discs`.
 ///
 /// The spheres' shares of the light's disc combine as their union ([`union`], in the
 /// order given: the GPU's, `blocker_groups`); the discs' multiply in after, as
-/// independent (the shader takes them in a loop of their own).
+/// independent (the shader takes them in a loop of their own), each only where the light
+/// is not wholly on the receiver's side of its plane
+/// ([`crate::blockers::disc::disc_plane_between`]).
 ///
 /// `pixel_footprint_m`, the width of one pixel at `p` (0: none), anti-aliases hard edges:
 /// against a blocker at distance d the disc's sine is taken at least footprint/(2d),
@@ -96,6 +132,19 @@ pub fn light_visibility(
     });
     let mut visibility = 1.0 - hidden_by_spheres;
     for b in discs {
+        let (center, normal) = (b.center.as_dvec3(), b.disc_normal.as_dvec3());
+        let support_m = light.emitter.support_m(normal);
+        if !crate::blockers::disc::disc_plane_between(
+            center,
+            normal,
+            p,
+            light.to_light,
+            light.distance_m,
+            sin_light,
+            support_m,
+        ) {
+            continue; // the light is on the receiver's side of the disc's plane
+        }
         match hides(b) {
             Hides::All => return 0.0,
             Hides::Part(cap) => visibility *= 1.0 - cap.hidden,
@@ -123,6 +172,9 @@ mod tests {
             to_light: DVec3::Y,
             distance_m: 3.0,
             cap_ratio,
+            emitter: Emitter::Sphere {
+                radius_m: 3.0 * cap_ratio,
+            },
         }
     }
 

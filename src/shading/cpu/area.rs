@@ -20,7 +20,7 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 
 use crate::blockers::disc::edge_form_factor;
-use crate::shading::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_POINT};
+use crate::shading::gpu_types::{GpuLight, LIGHT_AREA, LIGHT_DIRECTIONAL, LIGHT_POINT};
 
 /// The xyz of a GPU vector in f64.
 fn v3(a: [f32; 4]) -> DVec3 {
@@ -74,6 +74,43 @@ pub fn area_light_corners(light: &GpuLight) -> ([DVec3; DISK_LIGHT_SIDES], usize
         *corner = centre + u * angle.cos() + v * angle.sin();
     }
     (corners, sides)
+}
+
+/// A light's emitter about its centre (`penumbra::Emitter`): a rect's half extents, a
+/// disk's circle of its polygon's circumradius (its polygon's support is within it), a
+/// sphere light's radius, a point for point-like lights, none at infinity for the sun.
+/// scene.wgsl's `emitter_support_m` measures the same shapes.
+pub fn emitter(light: &GpuLight) -> crate::penumbra::Emitter {
+    use crate::penumbra::Emitter;
+    match light.kind {
+        LIGHT_AREA => {
+            let normal = v3(light.direction_range);
+            let half_width = DVec3::new(
+                light.area_half_width_m[0] as f64,
+                light.area_half_width_m[1] as f64,
+                light.area_half_width_m[2] as f64,
+            );
+            let area = light.source_size as f64;
+            if half_width.length_squared() > 0.0 {
+                let half_height = area / (4.0 * half_width.length());
+                Emitter::Rect {
+                    half_width_m: half_width,
+                    half_height_m: normal.cross(half_width).normalize_or_zero() * half_height,
+                }
+            } else {
+                let n = DISK_LIGHT_SIDES as f64;
+                Emitter::Disk {
+                    radius_m: (area / (0.5 * n * (TAU / n).sin())).sqrt(),
+                    normal,
+                }
+            }
+        }
+        LIGHT_DIRECTIONAL => Emitter::AtInfinity,
+        LIGHT_POINT => Emitter::Sphere {
+            radius_m: light.source_size as f64,
+        },
+        _ => Emitter::Sphere { radius_m: 0.0 },
+    }
 }
 
 /// The radius (metres) of the smallest sphere about a light's centre that holds its

@@ -388,6 +388,7 @@ pub fn exact_visibility(
             to_light: inc.to_light,
             distance_m: inc.distance_m,
             cap_ratio: inc.cap_ratio,
+            emitter: super::area::emitter(light),
         };
         let min_cap_ratio = settings.min_cap_ratio as f64;
         // The spheres in the GPU's order: their union is taken in order (penumbra::union).
