@@ -307,11 +307,55 @@ fn scaled_window_scales(scales: WindowScales, factor: f32) -> WindowScales {
     return WindowScales(factor * scales.lo, factor * scales.hi);
 }
 
+// Per window slot, 1 where a disc blocker at `center` with unit `normal` may stand
+// between p and the slot's light, 0 where the light's emitter lies wholly on p's side of
+// the disc's plane (exact_lights' disc_plane_between for one light; LightWindow::
+// may_be_hidden_by_disc is the twin); 1 for a slot without a light. Each slot's light is
+// looked up again: discs are few, and shaded at every receiver in their own loop.
+fn disc_window_mask(center: vec3<f32>, normal: vec3<f32>, p: vec3<f32>) -> WindowScales {
+    let side_p = dot(p - center, normal);
+    var lo = vec4<f32>(1.0);
+    var hi = vec4<f32>(1.0);
+    if windows_open {
+        lo = vec4<f32>(
+            disc_may_hide(side_p, normal, p, window_light_indices.x),
+            disc_may_hide(side_p, normal, p, window_light_indices.y),
+            disc_may_hide(side_p, normal, p, window_light_indices.z),
+            disc_may_hide(side_p, normal, p, window_light_indices.w),
+        );
+        if LIGHT_WINDOWS > 4u {
+            hi = vec4<f32>(
+                disc_may_hide(side_p, normal, p, window_light_indices_hi.x),
+                disc_may_hide(side_p, normal, p, window_light_indices_hi.y),
+                disc_may_hide(side_p, normal, p, window_light_indices_hi.z),
+                disc_may_hide(side_p, normal, p, window_light_indices_hi.w),
+            );
+        }
+    }
+    return WindowScales(lo, hi);
+}
+
+fn disc_may_hide(side_p: f32, normal: vec3<f32>, p: vec3<f32>, index: u32) -> f32 {
+    let light = light_at(min(index, max(frame.light_count, 1u) - 1u));
+    let inc = incidence(light, p);
+    let support = emitter_support_m(light, normal);
+    let side_light = side_p + inc.distance * dot(inc.to_light, normal);
+    // The sun (support −1): its distance stands for infinity, and its sine for its extent.
+    let extent = select(support, clamp(inc.cap_ratio, 0.0, 1.0) * inc.distance, support < 0.0);
+    let beside = side_light * side_p > 0.0 && abs(side_light) > extent;
+    return select(1.0, 0.0, beside && index != NO_WINDOW_LIGHT);
+}
+
 // The factor on a cap's ln ε · f_n when one log-visibility serves every window
 // (LightWindows::cap_scale): the largest of windowed_cap_scales.
 fn windowed_cap_scale(direction: vec3<f32>, ratio: f32, mass_scale: f32) -> f32 {
+    return windowed_cap_scale_within(direction, ratio, mass_scale, WindowScales(vec4<f32>(1.0), vec4<f32>(1.0)));
+}
+
+// windowed_cap_scale over the windows `mask` keeps (disc_window_mask).
+fn windowed_cap_scale_within(direction: vec3<f32>, ratio: f32, mass_scale: f32, mask: WindowScales) -> f32 {
     let scales = windowed_cap_scales(direction, ratio, mass_scale);
-    let most = max(scales.lo, scales.hi);
+    let most = max(scales.lo * mask.lo, scales.hi * mask.hi);
     return max(max(most.x, most.y), max(most.z, most.w));
 }
 

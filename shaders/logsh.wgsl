@@ -18,9 +18,11 @@
 fn add_discs(f: Sh, p: vec3<f32>, n: vec3<f32>, windowed: bool) -> Sh {
     var sum = f;
     for (var i = 0u; i < shadow.disc_count; i++) {
-        let seen = disc_cap_seen(shadow.discs[i], p, n);
+        let disc = shadow.discs[i];
+        let seen = disc_cap_seen(disc, p, n);
         if seen.ratio >= shadow.min_cap_ratio && seen.horizon > 0.0 {
-            sum = add_cap(sum, seen.direction, seen.ratio, seen.horizon, windowed);
+            let mask = disc_window_mask(disc.center_radius.xyz, disc.disc_normal.xyz, p);
+            sum = add_cap_within(sum, seen.direction, seen.ratio, seen.horizon, windowed, mask);
         }
     }
     return sum;
@@ -191,6 +193,13 @@ fn cap_mass_scale(s: f32) -> f32 {
 // the windows' scales: the largest, or, with a log-visibility per light, each window's in
 // its own sum (add_to_window_logs; f is then left as it was).
 fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool) -> Sh {
+    return add_cap_within(f, direction, ratio, weight, windowed, WindowScales(vec4<f32>(1.0), vec4<f32>(1.0)));
+}
+
+// add_cap with each window's scale times `mask` (1: the window's light may be hidden by
+// the cap; 0: not — a disc whose plane the light does not reach from p's side,
+// disc_window_mask). add_cap's mask of ones folds away.
+fn add_cap_within(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool, mask: WindowScales) -> Sh {
     var scale = shadow.ln_epsilon * weight;
     if LIGHT_WINDOWS > 0u && per_light_visibility() {
         if shadow.ratio_attenuation != 0u {
@@ -202,7 +211,8 @@ fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool)
         // The windows' sums: in the walk with windows, and in the one without under an
         // environment (compiled out of it otherwise: no window opens where it is taken).
         if windows_open && (windowed || ENVIRONMENT_LIGHT) {
-            add_to_window_logs(rotated, scaled_window_scales(windowed_cap_scales(direction, ratio, mass_scale), scale));
+            let scales = windowed_cap_scales(direction, ratio, mass_scale);
+            add_to_window_logs(rotated, scaled_window_scales(WindowScales(scales.lo * mask.lo, scales.hi * mask.hi), scale));
             if windowed {
                 return f;
             }
@@ -210,7 +220,7 @@ fn add_cap(f: Sh, direction: vec3<f32>, ratio: f32, weight: f32, windowed: bool)
         return sh_sum(f, sh_scaled(rotated, scale * mass_scale));
     }
     if windowed && LIGHT_WINDOWS > 0u && windows_open {
-        scale *= windowed_cap_scale(direction, ratio, cap_mass_scale(ratio));
+        scale *= windowed_cap_scale_within(direction, ratio, cap_mass_scale(ratio), mask);
     } else {
         scale *= cap_mass_scale(ratio);
     }

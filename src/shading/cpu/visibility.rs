@@ -56,11 +56,12 @@ pub fn log_visibilities_within(
     let mass_scales = settings.cap_mass_table();
     let mut sums = vec![vec![0.0; order * order]; readers.len()];
     let mut scales = vec![0.0; readers.len()];
-    let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64| {
+    let mut add_cap = |direction: DVec3, ratio: f64, horizon: f64, disc: Option<(DVec3, DVec3)>| {
         let k = sh::interpolate_cap_mass_scale(&mass_scales, ratio);
+        let disc = disc.map(|(center, normal)| (center, normal, p));
         for (scale, windows) in scales.iter_mut().zip(readers) {
             let (mass_scale, window) = match windows {
-                Some(windows) => (1.0, windows.cap_scale(direction, ratio, k)),
+                Some(windows) => (1.0, windows.disc_cap_scale(direction, ratio, k, disc)),
                 None => (k, 1.0),
             };
             let horizon = horizon * window;
@@ -92,42 +93,56 @@ pub fn log_visibilities_within(
             });
         });
     };
-    for_each_cap(settings, blockers, p, n, |direction, ratio, horizon| {
-        add_cap(direction, ratio, horizon)
+    for_each_cap(settings, blockers, p, n, |direction, ratio, horizon, disc| {
+        add_cap(direction, ratio, horizon, disc)
     });
     sums
 }
 
-/// Calls `add_cap(direction, ratio, horizon weight)` for each blocker cap that shadows `p`
+/// Calls `add_cap(direction, ratio, horizon weight, disc)` for each blocker cap that shadows `p`
 /// with normal `n` as logsh.wgsl's walk takes them: per cluster, its stand-in weighed by
 /// its share at p and, within its hand-over distance, its groups as [`add_group_caps`]
 /// takes them, weighed 1 − the cluster's share; then the discs. Returns how many
 /// blockers the walk visits (every sphere of a group in reach, every stand-in it weighs,
-/// every disc): the per-pixel work.
+/// every disc): the per-pixel work. `disc` is a disc blocker's centre and unit normal
+/// (None for the spheres and stand-ins), which the lights' windows test
+/// (`LightWindows::disc_cap_scale`).
 fn for_each_cap(
     settings: &ShadowSettings,
     blockers: &[Sphere],
     p: DVec3,
     n: DVec3,
-    mut add_cap: impl FnMut(DVec3, f64, f64),
+    mut add_cap: impl FnMut(DVec3, f64, f64, Option<(DVec3, DVec3)>),
 ) -> usize {
     let min_ratio = settings.min_cap_ratio as f64;
     with_groups(blockers, settings, |grouped, discs| {
         let mut walked = discs.len();
+        let mut add_sphere_cap = |direction, ratio, horizon| add_cap(direction, ratio, horizon, None);
         for cluster in &grouped.clusters {
             let bounds = Bounds::of_cluster(cluster);
             let share = bounds.stand_in_share(p);
             if bounds.in_reach(p, n) && share < 1.0 {
                 let groups = &grouped.groups[cluster.first_group..cluster.first_group + cluster.group_count];
                 for group in groups {
-                    walked += add_group_caps(group, &grouped.spheres, min_ratio, 1.0 - share, p, n, &mut add_cap);
+                    walked += add_group_caps(
+                        group,
+                        &grouped.spheres,
+                        min_ratio,
+                        1.0 - share,
+                        p,
+                        n,
+                        &mut add_sphere_cap,
+                    );
                 }
             }
-            walked += bounds.add_stand_in(min_ratio, 1.0, p, n, &mut add_cap);
+            walked += bounds.add_stand_in(min_ratio, 1.0, p, n, &mut add_sphere_cap);
         }
         // The discs, at every receiver (`add_discs`).
-        for cap in discs.iter().filter_map(|b| b.cap_from(p, n, min_ratio)) {
-            add_cap(cap.direction, cap.ratio, cap.horizon);
+        for disc in discs {
+            if let Some(cap) = disc.cap_from(p, n, min_ratio) {
+                let plane = (disc.center.as_dvec3(), disc.disc_normal.as_dvec3());
+                add_cap(cap.direction, cap.ratio, cap.horizon, Some(plane));
+            }
         }
         walked
     })
@@ -252,7 +267,7 @@ pub struct BlockersInReach {
 
 pub fn blockers_in_reach(settings: &ShadowSettings, blockers: &[Sphere], p: DVec3, n: DVec3) -> BlockersInReach {
     let mut shadowing = 0;
-    let walked = for_each_cap(settings, blockers, p, n, |_, _, _| shadowing += 1);
+    let walked = for_each_cap(settings, blockers, p, n, |_, _, _, _| shadowing += 1);
     BlockersInReach { walked, shadowing }
 }
 

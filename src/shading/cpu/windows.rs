@@ -7,7 +7,10 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::{area::bounding_radius_m, incidence};
+use super::{
+    area::{bounding_radius_m, emitter},
+    incidence,
+};
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_SH};
 
 /// A light's window at a receiver: the unit direction toward the light, the half-angle
@@ -18,6 +21,10 @@ pub struct LightWindow {
     pub toward: DVec3,
     pub half_angle_rad: f64,
     pub mass_gain: f64,
+    /// The light's distance, the sine of its angular radius and its emitter, for the disc
+    /// blockers' plane test ([`LightWindow::may_be_hidden_by_disc`]); None: every disc may
+    /// hide it.
+    pub light: Option<(f64, f64, crate::penumbra::Emitter)>,
 }
 
 impl LightWindow {
@@ -29,7 +36,27 @@ impl LightWindow {
             toward,
             half_angle_rad,
             mass_gain: (band_sr / solid_angle_sr.max(1e-12)).max(1.0),
+            light: None,
         }
+    }
+
+    /// Whether a disc blocker at `center` with unit `normal` may stand between `p` and
+    /// this window's light (`blockers::disc::disc_plane_between`; the shaders'
+    /// `disc_window_mask`): a disc that cannot weighs nothing in the window's sum, as on
+    /// the exact path.
+    pub fn may_be_hidden_by_disc(&self, center: DVec3, normal: DVec3, p: DVec3) -> bool {
+        let Some((distance_m, sin_light, emitter)) = self.light else {
+            return true;
+        };
+        crate::blockers::disc::disc_plane_between(
+            center,
+            normal,
+            p,
+            self.toward,
+            distance_m,
+            sin_light,
+            emitter.support_m(normal),
+        )
     }
 
     /// The weight this window gives a blocker cap of half-angle `half_angle_rad` toward
@@ -67,7 +94,10 @@ impl LightWindows {
             .map(|light| {
                 let inc = incidence(light, p);
                 let bound = bounding_radius_m(light) / inc.distance_m.max(1e-300);
-                LightWindow::new(inc.to_light, inc.cap_ratio.max(bound).clamp(0.0, 1.0).asin(), order)
+                LightWindow {
+                    light: Some((inc.distance_m, inc.cap_ratio.clamp(0.0, 1.0), emitter(light))),
+                    ..LightWindow::new(inc.to_light, inc.cap_ratio.max(bound).clamp(0.0, 1.0).asin(), order)
+                }
             })
             .collect();
         LightWindows { windows }
@@ -77,9 +107,23 @@ impl LightWindows {
     /// unit `direction`, whose cap-mass scale is `mass_scale` (k(s)): the largest
     /// weight × min(1, k(s) · gain) of any window (see the module's documentation).
     pub fn cap_scale(&self, direction: DVec3, ratio: f64, mass_scale: f64) -> f64 {
+        self.disc_cap_scale(direction, ratio, mass_scale, None)
+    }
+
+    /// [`Self::cap_scale`] for a cap that may be a disc blocker's: `disc` its centre and
+    /// unit normal and the receiver, and then windows whose light it cannot hide
+    /// ([`LightWindow::may_be_hidden_by_disc`]) give it no weight.
+    pub fn disc_cap_scale(
+        &self,
+        direction: DVec3,
+        ratio: f64,
+        mass_scale: f64,
+        disc: Option<(DVec3, DVec3, DVec3)>,
+    ) -> f64 {
         let half_angle = ratio.clamp(0.0, 1.0).asin();
         self.windows
             .iter()
+            .filter(|w| disc.is_none_or(|(center, normal, p)| w.may_be_hidden_by_disc(center, normal, p)))
             .map(|w| w.weight(direction, half_angle) * (mass_scale * w.mass_gain).min(1.0))
             .fold(0.0, f64::max)
     }
