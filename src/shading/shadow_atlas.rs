@@ -18,8 +18,9 @@
 //! Memory: when the views' squares would take more than [`MAP_MEMORY_BUDGET_BYTES`], the
 //! single views come down to the setting first, then the largest cube faces are halved
 //! (all of one side at a time) until they fit or reach [`MIN_FACE_SIDE`]. The budget is
-//! what the array took before views were sized (at most 96 views at the suggested 1024²),
-//! so no scene that fitted then draws coarser maps now.
+//! the most the array took at the default 1024² before views were sized (96 faces), so at
+//! the default no scene draws coarser maps than it did; at larger settings a scene of
+//! many cube faces does (16 cubes took 1.5 GiB at 2048²).
 //!
 //! Placing: the squares go largest first, each into the next free cell of its side in
 //! the open layer's quadtree (cells in Morton order: since every square taken before is

@@ -34,6 +34,7 @@ pub fn run_editor(options: EditorOptions) -> Result<(), eframe::Error> {
             .with_inner_size([1280.0, 800.0])
             .with_min_inner_size([640.0, 400.0]),
         renderer: eframe::Renderer::Wgpu,
+        wgpu_options: primary_backends_unless_env(),
         persist_window: true,
         ..Default::default()
     };
@@ -51,4 +52,19 @@ pub fn run_editor(options: EditorOptions) -> Result<(), eframe::Error> {
             Ok(Box::new(EditorApp::new(cc, options)))
         }),
     )
+}
+
+/// egui's wgpu set-up with only the primary backends (Vulkan, Metal, DX12) unless
+/// `WGPU_BACKEND` says otherwise, as `render::GpuContext::headless` opens: the GL backend
+/// cannot translate the shadow maps' `textureLoad` of depth textures, so on a machine
+/// without Vulkan the editor failed at its first pipeline instead of saying that it
+/// needs one (eframe's error names the missing adapter).
+fn primary_backends_unless_env() -> eframe::egui_wgpu::WgpuConfiguration {
+    let mut options = eframe::egui_wgpu::WgpuConfiguration::default();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create_new) = &mut options.wgpu_setup
+        && std::env::var_os("WGPU_BACKEND").is_none()
+    {
+        create_new.instance_descriptor.backends = eframe::wgpu::Backends::PRIMARY;
+    }
+    options
 }
