@@ -210,33 +210,10 @@ mod tests {
             Some(0.0)
         ));
         // A sun: on the receiver's side if it shines from the front more steeply than its size.
-        assert!(!disc_plane_between(
-            center,
-            normal,
-            p,
-            DVec3::new(0.0, 0.6, 0.8),
-            f64::INFINITY,
-            0.01,
-            None
-        ));
-        assert!(disc_plane_between(
-            center,
-            normal,
-            p,
-            DVec3::new(0.0, 0.6, -0.8),
-            f64::INFINITY,
-            0.01,
-            None
-        ));
-        assert!(disc_plane_between(
-            center,
-            normal,
-            p,
-            DVec3::new(0.0, 0.999, 0.005),
-            f64::INFINITY,
-            0.01,
-            None
-        ));
+        let sun_between = |to_light: DVec3| disc_plane_between(center, normal, p, to_light, f64::INFINITY, 0.01, None);
+        assert!(!sun_between(DVec3::new(0.0, 0.6, 0.8)));
+        assert!(sun_between(DVec3::new(0.0, 0.6, -0.8)));
+        assert!(sun_between(DVec3::new(0.0, 0.999, 0.005)));
     }
 
     #[test]
