@@ -101,22 +101,23 @@ fn hidden_by(cap: BlockerCap, radius: f32, batch: ExactBatch, half_footprint: f3
 }
 
 // Per lane, whether a disc with unit `normal`, p `side_p` in front of its plane, may stand
-// between p and the lane's light, the lights first.. of the batch half: false when the
-// light's emitter lies wholly on p's side of the plane (blockers::disc::
-// disc_plane_between, the twin; emitter_support_m, and the sun's angular radius).
+// between p and the lane's light, the lights first.. of the batch half: not where the
+// light's emitter lies wholly on p's side of the plane (emitter_beside_plane; unused
+// lanes have distance 0, and hidden_by gives them nothing anyway).
+// Written out lane by lane: lavapipe makes a loop writing vector lanes by index costly.
 fn disc_plane_between(side_p: f32, normal: vec3<f32>, batch: ExactBatch, first: u32) -> vec4<bool> {
-    let last = max(frame.light_count, 1u) - 1u;
-    let support = vec4<f32>(
-        emitter_support_m(light_at(min(first, last)), normal),
-        emitter_support_m(light_at(min(first + 1u, last)), normal),
-        emitter_support_m(light_at(min(first + 2u, last)), normal),
-        emitter_support_m(light_at(min(first + 3u, last)), normal),
+    return !vec4<bool>(
+        lane_beside_plane(side_p, normal, batch, first, 0u),
+        lane_beside_plane(side_p, normal, batch, first, 1u),
+        lane_beside_plane(side_p, normal, batch, first, 2u),
+        lane_beside_plane(side_p, normal, batch, first, 3u),
     );
-    let toward = normal.x * batch.to_light_x + normal.y * batch.to_light_y + normal.z * batch.to_light_z;
-    let side_light = vec4<f32>(side_p) + batch.distance * toward;
-    // The sun (support −1): its distance stands for infinity, and its sine for its extent.
-    let extent = select(support, batch.sin_light * batch.distance, support < vec4<f32>(0.0));
-    return !((side_light * side_p > vec4<f32>(0.0)) & (abs(side_light) > extent));
+}
+
+fn lane_beside_plane(side_p: f32, normal: vec3<f32>, batch: ExactBatch, first: u32, k: u32) -> bool {
+    let light = light_at(min(first + k, max(frame.light_count, 1u) - 1u));
+    let to_light = vec3<f32>(batch.to_light_x[k], batch.to_light_y[k], batch.to_light_z[k]);
+    return emitter_beside_plane(light, side_p, normal, to_light, batch.distance[k], batch.sin_light[k]);
 }
 
 // The solid angle where two caps meet (versines v_a, of cap b's, v_g of their

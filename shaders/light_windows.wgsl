@@ -338,11 +338,7 @@ fn disc_window_mask(center: vec3<f32>, normal: vec3<f32>, p: vec3<f32>) -> Windo
 fn disc_may_hide(side_p: f32, normal: vec3<f32>, p: vec3<f32>, index: u32) -> f32 {
     let light = light_at(min(index, max(frame.light_count, 1u) - 1u));
     let inc = incidence(light, p);
-    let support = emitter_support_m(light, normal);
-    let side_light = side_p + inc.distance * dot(inc.to_light, normal);
-    // The sun (support −1): its distance stands for infinity, and its sine for its extent.
-    let extent = select(support, clamp(inc.cap_ratio, 0.0, 1.0) * inc.distance, support < 0.0);
-    let beside = side_light * side_p > 0.0 && abs(side_light) > extent;
+    let beside = emitter_beside_plane(light, side_p, normal, inc.to_light, inc.distance, clamp(inc.cap_ratio, 0.0, 1.0));
     return select(1.0, 0.0, beside && index != NO_WINDOW_LIGHT);
 }
 

@@ -251,19 +251,35 @@ fn edge_form_factor(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
     return atan2(plane_length, dot(a, b)) * plane / max(plane_length, 1e-30);
 }
 
+// A light's area_half_width as a vector (zero for a disk).
+fn area_half_width(light: Light) -> vec3<f32> {
+    return vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
+}
+
+// A rect light's half extent along its height axis, normal × width, as a vector: area /
+// (4 · |half width|) (cpu::area::emitter).
+fn rect_half_height(light: Light, half_width: vec3<f32>) -> vec3<f32> {
+    return normalize(cross(light.direction_range.xyz, half_width)) * (light.source_size / (4.0 * length(half_width)));
+}
+
+// The circumradius of a disk light's regular polygon of equal area, A = ½·N·ρ²·sin(2π/N)
+// (cpu::area::emitter).
+fn disk_circumradius_m(light: Light) -> f32 {
+    let n = f32(DISK_LIGHT_SIDES);
+    return sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+}
+
 // The radius (metres) of the smallest sphere about a light's centre that holds its
 // emitter (cpu::area::bounding_radius_m): a rect's half diagonal, the circumradius of a
 // disk's polygon, a sphere light's radius, 0 for point-like lights.
 fn light_bounding_radius_m(light: Light) -> f32 {
     if light.kind == LIGHT_AREA {
-        let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
-        let half_width_m = length(half_width);
+        let half_width_m = length(area_half_width(light));
         if half_width_m > 0.0 {
             let half_height_m = light.source_size / (4.0 * half_width_m);
             return sqrt(half_width_m * half_width_m + half_height_m * half_height_m);
         }
-        let n = f32(DISK_LIGHT_SIDES);
-        return sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+        return disk_circumradius_m(light);
     }
     return select(0.0, light.source_size, light.kind == LIGHT_POINT);
 }
@@ -277,19 +293,26 @@ fn emitter_support_m(light: Light, axis: vec3<f32>) -> f32 {
         return -1.0;
     }
     if light.kind == LIGHT_AREA {
-        let normal = light.direction_range.xyz;
-        let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
-        let half_width_m = length(half_width);
-        if half_width_m > 0.0 {
-            let half_height = normalize(cross(normal, half_width)) * (light.source_size / (4.0 * half_width_m));
-            return abs(dot(half_width, axis)) + abs(dot(half_height, axis));
+        let half_width = area_half_width(light);
+        if dot(half_width, half_width) > 0.0 {
+            return abs(dot(half_width, axis)) + abs(dot(rect_half_height(light, half_width), axis));
         }
-        let n = f32(DISK_LIGHT_SIDES);
-        let circumradius = sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
-        let along = dot(normal, axis);
-        return circumradius * sqrt(max(1.0 - along * along, 0.0));
+        let along = dot(light.direction_range.xyz, axis);
+        return disk_circumradius_m(light) * sqrt(max(1.0 - along * along, 0.0));
     }
     return select(0.0, light.source_size, light.kind == LIGHT_POINT);
+}
+
+// Whether `light`'s emitter lies wholly on p's side of a plane with unit `normal`, p
+// `side_p` in front of it, the light seen toward `to_light`, `distance` away, of sine
+// `sin_light` (the sun: its distance stands for infinity, its sine for its extent): then
+// a disc blocker in that plane cannot hide it (blockers::disc::disc_plane_between is
+// the twin, negated). The exact path's discs and the SH lights' windows ask it.
+fn emitter_beside_plane(light: Light, side_p: f32, normal: vec3<f32>, to_light: vec3<f32>, distance: f32, sin_light: f32) -> bool {
+    let support = emitter_support_m(light, normal);
+    let side_light = side_p + distance * dot(to_light, normal);
+    let extent = select(support, sin_light * distance, support < 0.0);
+    return side_light * side_p > 0.0 && abs(side_light) > extent;
 }
 
 // The vector irradiance at p of an area light of unit radiance, Φ = ½ Σ_edges γ·n̂
@@ -304,14 +327,14 @@ fn area_vector_irradiance(light: Light, p: vec3<f32>) -> vec3<f32> {
     if dot(centre, normal) >= 0.0 {
         return vec3<f32>(0.0);
     }
-    let half_width = vec3<f32>(light.area_half_width_x, light.area_half_width_y, light.area_half_width_z);
+    let half_width = area_half_width(light);
     let rect = dot(half_width, half_width) > 0.0;
     // The polygons' edges written out, corners without a sine or cosine: a loop over
     // them, with a sine and a cosine a corner, cost lavapipe about twice as much.
     var sum = vec3<f32>(0.0);
     if RECT_LIGHTS && rect {
         // Corners at 45° + k·90° on the ellipse of semi-axes √2·(half extents).
-        let half_height = normalize(cross(normal, half_width)) * (light.source_size / (4.0 * length(half_width)));
+        let half_height = rect_half_height(light, half_width);
         let c0 = centre + half_width + half_height;
         let c1 = centre - half_width + half_height;
         let c2 = centre - half_width - half_height;
@@ -320,8 +343,7 @@ fn area_vector_irradiance(light: Light, p: vec3<f32>) -> vec3<f32> {
     }
     if DISK_LIGHTS && !rect {
         // DISK_LIGHT_SIDES (8) corners at k·45° on the circle of the circumradius.
-        let n = f32(DISK_LIGHT_SIDES);
-        let circumradius = sqrt(light.source_size / (0.5 * n * sin(2.0 * PI / n)));
+        let circumradius = disk_circumradius_m(light);
         let width = area_width_axis(normal);
         let u = width * circumradius;
         let v = cross(normal, width) * circumradius;

@@ -44,29 +44,19 @@ pub fn area_frame(normal: DVec3) -> (DVec3, DVec3) {
 /// on an ellipse through them: centre + cos θ_k·U + sin θ_k·V.
 pub fn area_light_corners(light: &GpuLight) -> ([DVec3; DISK_LIGHT_SIDES], usize) {
     let centre = v3(light.position);
-    let normal = v3(light.direction_range);
-    let area = light.source_size as f64;
-    let half_width = DVec3::new(
-        light.area_half_width_m[0] as f64,
-        light.area_half_width_m[1] as f64,
-        light.area_half_width_m[2] as f64,
-    );
-    let (u, v, sides, first_angle) = if half_width.length_squared() > 0.0 {
+    let (u, v, sides, first_angle) = match emitter(light) {
         // Rect: corners at θ = 45° + k·90° on the ellipse of semi-axes √2·(half extents).
-        let half_height = area / (4.0 * half_width.length());
-        let height_axis = normal.cross(half_width).normalize_or_zero();
-        (
-            half_width * 2f64.sqrt(),
-            height_axis * half_height * 2f64.sqrt(),
-            4,
-            0.25 * PI,
-        )
-    } else {
-        // Disk: the regular polygon of equal area, A = ½·N·ρ²·sin(2π/N).
-        let n = DISK_LIGHT_SIDES as f64;
-        let circumradius = (area / (0.5 * n * (TAU / n).sin())).sqrt();
-        let (width, height) = area_frame(normal);
-        (width * circumradius, height * circumradius, DISK_LIGHT_SIDES, 0.0)
+        crate::penumbra::Emitter::Rect {
+            half_width_m,
+            half_height_m,
+        } => (half_width_m * 2f64.sqrt(), half_height_m * 2f64.sqrt(), 4, 0.25 * PI),
+        // Disk: the regular polygon of equal area, on the circle of its circumradius.
+        crate::penumbra::Emitter::Disk { radius_m, normal } => {
+            let (width, height) = area_frame(normal);
+            (width * radius_m, height * radius_m, DISK_LIGHT_SIDES, 0.0)
+        }
+        // Not an area light: no polygon.
+        _ => (DVec3::ZERO, DVec3::ZERO, 0, 0.0),
     };
     let mut corners = [centre; DISK_LIGHT_SIDES];
     for (k, corner) in corners.iter_mut().enumerate().take(sides) {
@@ -98,6 +88,7 @@ pub fn emitter(light: &GpuLight) -> crate::penumbra::Emitter {
                     half_height_m: normal.cross(half_width).normalize_or_zero() * half_height,
                 }
             } else {
+                // The regular polygon of equal area, A = ½·N·ρ²·sin(2π/N).
                 let n = DISK_LIGHT_SIDES as f64;
                 Emitter::Disk {
                     radius_m: (area / (0.5 * n * (TAU / n).sin())).sqrt(),
