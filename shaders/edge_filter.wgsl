@@ -17,6 +17,9 @@
 @group(IMAGE_GROUP) @binding(FRAME_IMAGE_BINDING) var frame_image: texture_2d<f32>;
 // Bilinear, clamped at the border.
 @group(IMAGE_GROUP) @binding(FRAME_SAMPLER_BINDING) var frame_sampler: sampler;
+// The frame's depth as rasterised (1: no surface; an image filtered without surfaces is
+// all 1).
+@group(IMAGE_GROUP) @binding(FRAME_DEPTH_BINDING) var frame_depth: texture_depth_2d;
 
 // Contrast (in encoded luma) below which a pixel is left alone: an absolute floor for
 // dark regions, and a share of the neighbourhood's brightest luma.
@@ -78,14 +81,57 @@ fn is_edge(m: f32, c: Cross) -> bool {
     return contrast_of(m, c) >= max(EDGE_CONTRAST_FLOOR, highest * EDGE_CONTRAST_SHARE);
 }
 
-// First draw: a pixel without contrast keeps its colour (and its depth, written 0, keeps
-// fs_edge_filter away); a pixel on an edge is discarded, for fs_edge_filter.
+fn depth_at(pixel: vec2<i32>) -> f32 {
+    let last = vec2<i32>(textureDimensions(frame_depth)) - vec2<i32>(1);
+    return textureLoad(frame_depth, clamp(pixel, vec2<i32>(0), last), 0);
+}
+
+// How far the depth along a row or column may bend at a pixel, as a share of its steepest
+// step there, before the surfaces count as folding or breaking: within one plane the
+// rasterised depth is affine in the screen's coordinates (its second difference is only
+// rounding), across a silhouette it jumps, and across a crease its slope turns. A
+// tessellated curve bends by about its pixel's share of the curve's radius on the screen.
+const DEPTH_BEND_SHARE: f32 = 0.25;
+// And in absolute terms: a few units in the last place of depths near 1.
+const DEPTH_BEND_FLOOR: f32 = 4.0e-7;
+
+// Whether the surfaces fold or break at `pixel` (a silhouette, a crease), or no surface
+// is there or beside it (a frame's background, or an image filtered without its
+// surfaces, judged by its colours alone). Contrast elsewhere lies within one surface —
+// a texture already filtered over each pixel's footprint, a shadow's outline, a
+// highlight — which the edge filter would only blur: on the lamp room's checkered floor
+// the frame came closer to the path tracer without the filter than with it
+// (docs/speed-accuracy.md).
+fn surfaces_break(pixel: vec2<i32>) -> bool {
+    let c = depth_at(pixel);
+    let n = depth_at(pixel + vec2<i32>(0, -1));
+    let s = depth_at(pixel + vec2<i32>(0, 1));
+    let e = depth_at(pixel + vec2<i32>(1, 0));
+    let w = depth_at(pixel + vec2<i32>(-1, 0));
+    let nothing_drawn = min(c, min(min(n, s), min(e, w))) >= 1.0;
+    // At the image's border the neighbour beyond is the pixel itself (clamped), which
+    // would read as a fold: no bend is measured across that side.
+    let last = vec2<i32>(textureDimensions(frame_depth)) - vec2<i32>(1);
+    let across_x = pixel.x > 0 && pixel.x < last.x;
+    let across_y = pixel.y > 0 && pixel.y < last.y;
+    let bend = max(select(0.0, abs(e + w - 2.0 * c), across_x), select(0.0, abs(n + s - 2.0 * c), across_y));
+    let step = max(max(abs(e - c), abs(c - w)), max(abs(n - c), abs(c - s)));
+    return nothing_drawn || bend > DEPTH_BEND_SHARE * step + DEPTH_BEND_FLOOR;
+}
+
+// First draw: a pixel without contrast, or whose contrast lies within one surface, keeps
+// its colour (and its depth, written 0, keeps fs_edge_filter away); a pixel on an edge
+// of the surfaces is discarded, for fs_edge_filter.
 @fragment
 fn fs_keep_flat(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let pixel = vec2<i32>(position.xy);
     let centre = textureLoad(frame_image, pixel, 0);
+    // Nested, so that blocks of pixels without contrast (most of a frame) skip the depth
+    // reads (a software GPU runs a branch only where some lane takes it).
     if is_edge(luma(centre.rgb), cross_at(pixel)) {
-        discard;
+        if surfaces_break(pixel) {
+            discard;
+        }
     }
     return centre;
 }

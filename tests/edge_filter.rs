@@ -5,8 +5,11 @@
 
 mod common;
 
+use glam::{Affine3A, Quat, Vec2, Vec3, Vec4};
 use image::{Rgba, RgbaImage};
-use lightpaint::render::filter_edges;
+use lightpaint::render::{AntiAliasing, ShadowFrame, filter_edges, render_logsh_image};
+use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, TextureImage, shapes};
+use lightpaint::shading::RenderSettings;
 
 /// A `width` × `height` image lit (white) where `inside(x, y)` holds at the pixel centre.
 fn staircase(width: u32, height: u32, inside: impl Fn(f64, f64) -> bool) -> RgbaImage {
@@ -110,4 +113,145 @@ fn a_slanted_edge_moves_toward_its_pixel_coverage() {
         );
         assert!(after < 0.7 * before, "{before:.1} → {after:.1}");
     }
+}
+
+/// A checkered floor under a sun (a texture of 8 × 8 cells, each cell 8 texels, a repeat
+/// every 4 m) seen from 1.2 m above it, looking down enough that it fills the view, with
+/// `card`: a 1.2 m square card standing on it 3 m ahead, turned about the vertical.
+fn checkered_floor(card: bool) -> (Scene, Camera) {
+    let mut scene = Scene::default();
+    let side = 64u32;
+    let rgba8 = (0..side * side)
+        .flat_map(|i| {
+            let (x, y) = (i % side / 8, i / side / 8);
+            if (x + y) % 2 == 0 {
+                [210, 200, 180, 255]
+            } else {
+                [60, 50, 40, 255]
+            }
+        })
+        .collect();
+    scene.textures.push(TextureImage {
+        name: "checker".into(),
+        width: side,
+        height: side,
+        rgba8,
+    });
+    scene.materials.push(Material {
+        base_color: Vec4::ONE,
+        metallic: 0.0,
+        base_color_texture: Some(0),
+        ..Material::default()
+    });
+    scene.materials.push(Material {
+        base_color: Vec4::new(0.9, 0.1, 0.1, 1.0),
+        metallic: 0.0,
+        ..Material::default()
+    });
+    let mut floor = shapes::plane(200.0, 1, 1.0).into_object("floor");
+    floor.uvs = floor
+        .positions
+        .iter()
+        .map(|p| Vec2::new(p.x / 4.0, p.z / 4.0))
+        .collect();
+    scene.objects.push(floor);
+    if card {
+        let mut object = shapes::cuboid(Vec3::new(0.6, 0.6, 0.005))
+            .transformed(Affine3A::from_rotation_translation(
+                Quat::from_rotation_y(0.5),
+                Vec3::new(0.0, 0.6, 3.0),
+            ))
+            .into_object("card");
+        object.material = 1;
+        scene.objects.push(object);
+    }
+    scene.lights.push(Light {
+        name: "sun".into(),
+        kind: LightKind::Directional,
+        color: Vec3::ONE,
+        intensity: 2.0,
+        position: Vec3::ZERO,
+        direction: Vec3::new(0.3, -1.0, -0.6).normalize(),
+        range: None,
+        locked: false,
+    });
+    let camera = Camera::looking_at(Vec3::new(0.0, 1.2, 6.0), Vec3::new(0.0, 0.0, 3.5), 0.8, 0.05);
+    (scene, camera)
+}
+
+/// The default frame of `scene` with the edge filter and with one sample at each pixel
+/// centre and no filter.
+fn filtered_and_unfiltered(scene: &Scene, camera: &Camera) -> (RgbaImage, RgbaImage) {
+    let gpu = common::gpu().expect("checked by the caller");
+    let settings = RenderSettings::default();
+    let frame = ShadowFrame {
+        scene,
+        camera,
+        settings: &settings,
+        shadows: &settings.shadows,
+        blockers: &[],
+        baked_indirect: None,
+        width: 320,
+        height: 180,
+    };
+    let image = |aa| render_logsh_image(&gpu, &frame, aa).expect("render");
+    (image(AntiAliasing::EdgeFilter), image(AntiAliasing::with_samples(1)))
+}
+
+/// The filter smooths the staircases of the surfaces' outlines, not the contrast within
+/// one surface: a texture is already filtered over each pixel's footprint, and blurring
+/// its cells again took the lamp room's checkered floor further from the path tracer
+/// (docs/speed-accuracy.md). A floor filling the view comes through unchanged, though its
+/// checker has contrast at every cell's border; a card standing on it has its outline
+/// filtered (before the filter looked at the surfaces, 16,554 of the floor's 57,600
+/// pixels moved).
+#[test]
+fn contrast_within_one_surface_is_left_alone_and_outlines_are_filtered() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let (floor, camera) = checkered_floor(false);
+    let (filtered, unfiltered) = filtered_and_unfiltered(&floor, &camera);
+    let moved = common::differing_pixels(&filtered, &unfiltered);
+    eprintln!("floor alone: {moved} pixels moved by the filter");
+    assert_eq!(moved, 0, "the filter moved {moved} pixels within the floor");
+
+    let (scene, camera) = checkered_floor(true);
+    let (filtered, unfiltered) = filtered_and_unfiltered(&scene, &camera);
+    // The card's outline: pixels whose 5 × 5 neighbourhood holds both the card's colour
+    // (red dominant) and the floor's in the unfiltered frame (the card's 1 cm thick rim
+    // is a fold of its own a pixel inside its outline).
+    let reddish = |p: &Rgba<u8>| p[0] as i32 > p[1] as i32 + 40;
+    let (w, h) = (unfiltered.width() as i32, unfiltered.height() as i32);
+    let near_outline = |x: i32, y: i32| {
+        let around: Vec<bool> = (-2..=2)
+            .flat_map(|dy| (-2..=2).map(move |dx| (dx, dy)))
+            .map(|(dx, dy)| {
+                reddish(unfiltered.get_pixel((x + dx).clamp(0, w - 1) as u32, (y + dy).clamp(0, h - 1) as u32))
+            })
+            .collect();
+        around.iter().any(|&r| r) && around.iter().any(|&r| !r)
+    };
+    let (mut on_outline, mut elsewhere) = (0usize, 0usize);
+    for y in 0..h {
+        for x in 0..w {
+            let (a, b) = (
+                filtered.get_pixel(x as u32, y as u32),
+                unfiltered.get_pixel(x as u32, y as u32),
+            );
+            if (0..3).any(|c| a[c] != b[c]) {
+                if near_outline(x, y) {
+                    on_outline += 1
+                } else {
+                    elsewhere += 1
+                }
+            }
+        }
+    }
+    eprintln!("with the card: {on_outline} pixels moved along its outline, {elsewhere} elsewhere");
+    assert!(
+        on_outline >= 20,
+        "only {on_outline} pixels of the card's outline were filtered"
+    );
+    assert_eq!(elsewhere, 0, "{elsewhere} pixels away from the card's outline moved");
 }

@@ -444,6 +444,7 @@ pub fn filter_edges(gpu: &GpuContext, image: &image::RgbaImage) -> Result<image:
     let target = RenderTarget::with_anti_aliasing(&gpu.device, image.width(), image.height(), AntiAliasing::EdgeFilter);
     target.write_unfiltered(&gpu.queue, image.as_raw());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    target.clear_depth(&mut encoder);
     target.finish(&mut encoder);
     read_color(gpu, encoder, &target)
 }

@@ -346,6 +346,8 @@ pub(super) fn draw_full_resolution(
         [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
     );
     images.copy_colours(frame.encoder, image);
+    // The edge filter reads where the surfaces break from the frame's depth.
+    target.copy_depth_from(frame.encoder, &low.surface.depth);
     frame.mark("frame colours copied");
     true
 }

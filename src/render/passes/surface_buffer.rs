@@ -60,6 +60,9 @@ pub const MAPPED_FACTORS_BUDGET_BYTES: u64 = 128 << 20;
 /// full-screen passes read them.
 pub(crate) struct SurfaceBuffer {
     views: [wgpu::TextureView; 2],
+    /// The surfaces' depth, which the frame's edge filter reads too (copied into the
+    /// target's depth: `RenderTarget::copy_depth_from`).
+    pub(crate) depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
     pub bind_group: wgpu::BindGroup,
     layouts: [wgpu::BindGroupLayout; 2],
@@ -104,9 +107,10 @@ impl SurfaceBuffer {
         let mapped_factors = mapped_factors_buffer(device, 8);
         let stale_lights = stale_lights_buffer(device, 1);
         let bind_group = surface_bind_group(device, layout, &views, &mapped_factors);
-        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::empty());
+        let depth = depth_texture(device, "surface buffer depth", size, wgpu::TextureUsages::COPY_SRC);
         SurfaceBuffer {
             depth_view: depth.create_view(&Default::default()),
+            depth,
             bind_group,
             layouts: [layout.clone(), writer_layout.clone()],
             samples: u64::from(samples[0]) * u64::from(samples[1]),

@@ -10,7 +10,7 @@
 
 use crate::render::descriptors::{
     COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, bilinear_sampler, create_module, depth_attachment, depth_test,
-    frame_texture, image_and_sampler_layout, slot_entries,
+    frame_texture, layout_entry, slot_entries, texture_entry,
 };
 use crate::shading::wgsl::{self, slots};
 
@@ -27,7 +27,23 @@ pub struct EdgeFilter {
 impl EdgeFilter {
     pub fn new(device: &wgpu::Device) -> EdgeFilter {
         let sampler = bilinear_sampler(device, "edge filter");
-        let layout = image_and_sampler_layout(device, "edge filter");
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("edge filter"),
+            entries: &[
+                texture_entry(
+                    slots::FRAME_IMAGE,
+                    fragment,
+                    wgpu::TextureSampleType::Float { filterable: true },
+                ),
+                layout_entry(
+                    slots::FRAME_SAMPLER,
+                    fragment,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+                texture_entry(slots::FRAME_DEPTH, fragment, wgpu::TextureSampleType::Depth),
+            ],
+        });
         let module = create_module(device, "edge filter", &wgsl::edge_filter_source());
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("edge filter"),
@@ -86,8 +102,14 @@ pub struct EdgeFilterPass {
 }
 
 impl EdgeFilterPass {
-    /// An intermediate image of `size` (width, height) and `filter` reading it.
-    pub fn new(device: &wgpu::Device, size: wgpu::Extent3d, filter: &EdgeFilter) -> EdgeFilterPass {
+    /// An intermediate image of `size` (width, height) and `filter` reading it and the
+    /// frame's depth `frame_depth`.
+    pub fn new(
+        device: &wgpu::Device,
+        size: wgpu::Extent3d,
+        filter: &EdgeFilter,
+        frame_depth: &wgpu::TextureView,
+    ) -> EdgeFilterPass {
         let texture = |label, format, usage, view_formats: &[wgpu::TextureFormat]| {
             frame_texture(device, label, size, format, 1, usage, view_formats)
         };
@@ -111,6 +133,7 @@ impl EdgeFilterPass {
             entries: &slot_entries([
                 (slots::FRAME_IMAGE, wgpu::BindingResource::TextureView(&raw_view)),
                 (slots::FRAME_SAMPLER, wgpu::BindingResource::Sampler(&filter.sampler)),
+                (slots::FRAME_DEPTH, wgpu::BindingResource::TextureView(frame_depth)),
             ]),
         });
         let depth = texture(

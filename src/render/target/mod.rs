@@ -60,6 +60,7 @@ pub struct RenderTarget {
     pub display_view: wgpu::TextureView,
     msaa_view: Option<wgpu::TextureView>,
     edge_filter: Option<EdgeFilterPass>,
+    depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
 }
 
@@ -117,8 +118,14 @@ impl RenderTarget {
         );
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (samples > 1).then(|| view(&texture("colour msaa", COLOR_FORMAT, samples, attachment, &[])));
-        let edge_filter = edge_filter.map(|filter| EdgeFilterPass::new(device, size, filter));
-        let depth = texture("depth", DEPTH_FORMAT, samples, attachment, &[]);
+        // With an edge filter the depth is read too (where the surfaces break: see
+        // edge_filter.wgsl), and copied in when a frame is not rasterised into it.
+        let depth_usage = match edge_filter {
+            Some(_) => attachment | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            None => attachment,
+        };
+        let depth = texture("depth", DEPTH_FORMAT, samples, depth_usage, &[]);
+        let edge_filter = edge_filter.map(|filter| EdgeFilterPass::new(device, size, filter, &view(&depth)));
         RenderTarget {
             width: size.width,
             height: size.height,
@@ -131,6 +138,7 @@ impl RenderTarget {
             msaa_view,
             edge_filter,
             depth_view: view(&depth),
+            depth,
             color,
         }
     }
@@ -165,9 +173,10 @@ impl RenderTarget {
         }
     }
 
-    /// The depth attachment, cleared to the far plane, for one pass.
+    /// The depth attachment, cleared to the far plane, for one pass (kept for the edge
+    /// filter, which reads it).
     pub fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-        depth_attachment(&self.depth_view, Some(1.0), false)
+        depth_attachment(&self.depth_view, Some(1.0), self.edge_filter.is_some())
     }
 
     /// Writes `rgba8` (sRGB-encoded bytes, row by row) as the frame drawn so far, in place
@@ -188,13 +197,40 @@ impl RenderTarget {
         }
     }
 
-    /// Ends a frame drawn into [`Self::color_attachment`]: runs the edge filter into the
-    /// colour texture where there is one.
+    /// Makes `surfaces_depth` (a depth image of the frame's size and format) the frame's
+    /// depth where an edge filter reads it: for frames whose colours are copied in
+    /// rather than rasterised (the deferred full-resolution frame).
+    pub(crate) fn copy_depth_from(&self, encoder: &mut wgpu::CommandEncoder, surfaces_depth: &wgpu::Texture) {
+        if self.edge_filter.is_some() && surfaces_depth.size() == self.depth.size() {
+            encoder.copy_texture_to_texture(
+                surfaces_depth.as_image_copy(),
+                self.depth.as_image_copy(),
+                self.depth.size(),
+            );
+        }
+    }
+
+    /// Clears the depth to the far plane with nothing drawn: an image written with
+    /// [`Self::write_unfiltered`] has no surfaces, and the edge filter then judges it by
+    /// its colours alone.
+    pub(super) fn clear_depth(&self, encoder: &mut wgpu::CommandEncoder) {
+        drop(encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("depth cleared"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(self.depth_attachment()),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        }));
+    }
+
     /// Whether [`RenderTarget::finish`] runs the edge filter.
     pub fn has_edge_filter(&self) -> bool {
         self.edge_filter.is_some()
     }
 
+    /// Ends a frame drawn into [`Self::color_attachment`]: runs the edge filter into the
+    /// colour texture where there is one.
     pub fn finish(&self, encoder: &mut wgpu::CommandEncoder) {
         if let Some(filter) = &self.edge_filter {
             filter.run(encoder, &self.display_view);

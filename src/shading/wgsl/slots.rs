@@ -81,10 +81,11 @@ pub const KEPT_HARMONIC_READ: Slot = slot(PASS_GROUP, 18, "kept_harmonic_read");
 
 pub const FRAME_IMAGE: Slot = slot(IMAGE_GROUP, 0, "frame_image");
 pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
+pub const FRAME_DEPTH: Slot = slot(IMAGE_GROUP, 2, "frame_depth");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 42] = [
+pub const ALL: [Slot; 43] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -126,6 +127,7 @@ pub const ALL: [Slot; 42] = [
     KEPT_HARMONIC_READ,
     FRAME_IMAGE,
     FRAME_SAMPLER,
+    FRAME_DEPTH,
     SHADOW_VIEW,
 ];
 
