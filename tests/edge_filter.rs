@@ -8,7 +8,7 @@ mod common;
 use glam::{Affine3A, Quat, Vec2, Vec3, Vec4};
 use image::{Rgba, RgbaImage};
 use lightpaint::render::{AntiAliasing, ShadowFrame, filter_edges, render_logsh_image};
-use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, TextureImage, shapes};
+use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
 use lightpaint::shading::RenderSettings;
 
 /// A `width` × `height` image lit (white) where `inside(x, y)` holds at the pixel centre.
@@ -120,29 +120,14 @@ fn a_slanted_edge_moves_toward_its_pixel_coverage() {
 /// `card`: a 1.2 m square card standing on it 3 m ahead, turned about the vertical.
 fn checkered_floor(card: bool) -> (Scene, Camera) {
     let mut scene = Scene::default();
-    let side = 64u32;
-    let rgba8 = (0..side * side)
-        .flat_map(|i| {
-            let (x, y) = (i % side / 8, i / side / 8);
-            if (x + y) % 2 == 0 {
-                [210, 200, 180, 255]
-            } else {
-                [60, 50, 40, 255]
-            }
-        })
-        .collect();
-    scene.textures.push(TextureImage {
-        name: "checker".into(),
-        width: side,
-        height: side,
-        rgba8,
-    });
-    scene.materials.push(Material {
-        base_color: Vec4::ONE,
-        metallic: 0.0,
-        base_color_texture: Some(0),
-        ..Material::default()
-    });
+    scene.textures.push(common::scenes::texture("checker", 64, |x, y| {
+        if (x / 8 + y / 8) % 2 == 0 {
+            [210, 200, 180, 255]
+        } else {
+            [60, 50, 40, 255]
+        }
+    }));
+    scene.materials.push(common::scenes::textured_white(0));
     scene.materials.push(Material {
         base_color: Vec4::new(0.9, 0.1, 0.1, 1.0),
         metallic: 0.0,
@@ -166,14 +151,8 @@ fn checkered_floor(card: bool) -> (Scene, Camera) {
         scene.objects.push(object);
     }
     scene.lights.push(Light {
-        name: "sun".into(),
-        kind: LightKind::Directional,
-        color: Vec3::ONE,
-        intensity: 2.0,
-        position: Vec3::ZERO,
         direction: Vec3::new(0.3, -1.0, -0.6).normalize(),
-        range: None,
-        locked: false,
+        ..common::scenes::white_light(LightKind::Directional, Vec3::ZERO, 2.0)
     });
     let camera = Camera::looking_at(Vec3::new(0.0, 1.2, 6.0), Vec3::new(0.0, 0.0, 3.5), 0.8, 0.05);
     (scene, camera)

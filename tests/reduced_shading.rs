@@ -9,7 +9,7 @@ use lightpaint::blockers::{Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, render_logsh_image};
 use lightpaint::scene::gltf_write::LightSpec;
-use lightpaint::scene::{Camera, Scene, TextureImage};
+use lightpaint::scene::{Camera, Scene};
 use lightpaint::shading::{RenderSettings, SUGGESTED_SHADOW_MAP_SIZE, ShadowSettings};
 
 /// Shares of pixels whose channels all lie within 2/255 and within 8/255 of `full`, and
@@ -164,23 +164,15 @@ fn texture_detail_the_size_of_the_shading_blocks_survives() {
     // The plane spans about 120 of the image's 216 pixels, so 24 cells span 5 pixels each.
     let cells = 24;
     // Eight texels a cell, so that linear filtering keeps the cells' edges sharp.
-    let side = cells * 8;
-    let rgba8 = (0..side * side)
-        .flat_map(|i| {
-            let (x, y) = ((i % side) / 8, (i / side) / 8);
-            if (x + y) % 2 == 0 {
+    scene
+        .textures
+        .push(common::scenes::texture("checker", cells * 8, |x, y| {
+            if (x / 8 + y / 8) % 2 == 0 {
                 [40, 60, 90, 255]
             } else {
                 [230, 220, 200, 255]
             }
-        })
-        .collect();
-    scene.textures.push(TextureImage {
-        name: "checker".into(),
-        width: side,
-        height: side,
-        rgba8,
-    });
+        }));
     let object = &mut scene.objects[0];
     object.uvs = object
         .positions

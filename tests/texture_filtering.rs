@@ -6,9 +6,9 @@
 mod common;
 
 use common::thin_casters::{frame_of, linear_luma, path_traced};
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3};
 use lightpaint::render::{AntiAliasing, render_logsh_image};
-use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, TextureImage, shapes};
+use lightpaint::scene::{Camera, Light, LightKind, Scene, shapes};
 use lightpaint::shading::RenderSettings;
 
 const WIDTH: u32 = 200;
@@ -18,28 +18,10 @@ const HEIGHT: u32 = 120;
 /// light, 8 texels each) that run along z, seen from 0.6 m above it looking down −z.
 fn striped_floor() -> (Scene, Camera) {
     let mut scene = Scene::default();
-    let side = 16u32;
-    let rgba8 = (0..side * side)
-        .flat_map(|i| {
-            if i % side < side / 2 {
-                [40, 40, 40, 255]
-            } else {
-                [220, 220, 220, 255]
-            }
-        })
-        .collect();
-    scene.textures.push(TextureImage {
-        name: "stripes".into(),
-        width: side,
-        height: side,
-        rgba8,
-    });
-    scene.materials.push(Material {
-        base_color: Vec4::ONE,
-        metallic: 0.0,
-        base_color_texture: Some(0),
-        ..Material::default()
-    });
+    scene.textures.push(common::scenes::texture("stripes", 16, |x, _| {
+        if x < 8 { [40, 40, 40, 255] } else { [220, 220, 220, 255] }
+    }));
+    scene.materials.push(common::scenes::textured_white(0));
     // One texture repeat every 0.5 m: a dark and a light stripe.
     let floor_m = 60.0;
     let mut floor = shapes::plane(floor_m, 1, 1.0).into_object("floor");

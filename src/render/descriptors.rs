@@ -160,20 +160,26 @@ pub fn bilinear_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
 /// `FRAME_IMAGE` and `FRAME_SAMPLER`), read by a fragment stage: what a pass that draws a
 /// finished frame from an image binds (the edge filter, the editor's viewport image).
 pub fn image_and_sampler_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
-    let fragment = wgpu::ShaderStages::FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
-        entries: &[
-            texture_entry(
-                slots::FRAME_IMAGE,
-                fragment,
-                wgpu::TextureSampleType::Float { filterable: true },
-            ),
-            layout_entry(
-                slots::FRAME_SAMPLER,
-                fragment,
-                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-            ),
-        ],
+        entries: &image_and_sampler_entries(),
     })
+}
+
+/// The entries of [`image_and_sampler_layout`]: the frame's image, filterable, and a
+/// filtering sampler, read by fragment shaders.
+pub fn image_and_sampler_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    [
+        texture_entry(
+            slots::FRAME_IMAGE,
+            fragment,
+            wgpu::TextureSampleType::Float { filterable: true },
+        ),
+        layout_entry(
+            slots::FRAME_SAMPLER,
+            fragment,
+            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        ),
+    ]
 }

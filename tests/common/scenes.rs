@@ -123,3 +123,23 @@ pub fn ring_of_posts_and_cards() -> lightpaint::scene::Scene {
 pub fn ring_camera() -> lightpaint::scene::Camera {
     lightpaint::scene::Camera::looking_at(Vec3::new(0.0, 6.0, 7.5), Vec3::ZERO, 50f32.to_radians(), 0.05)
 }
+
+/// A `side` × `side` base colour texture named `name` whose texel (x, y) is `texel(x, y)`.
+pub fn texture(name: &str, side: u32, texel: impl Fn(u32, u32) -> [u8; 4]) -> lightpaint::scene::TextureImage {
+    lightpaint::scene::TextureImage {
+        name: name.into(),
+        width: side,
+        height: side,
+        rgba8: (0..side * side).flat_map(|i| texel(i % side, i / side)).collect(),
+    }
+}
+
+/// A white dielectric material whose base colour is texture `texture` of the scene.
+pub fn textured_white(texture: usize) -> lightpaint::scene::Material {
+    lightpaint::scene::Material {
+        base_color: glam::Vec4::ONE,
+        metallic: 0.0,
+        base_color_texture: Some(texture),
+        ..lightpaint::scene::Material::default()
+    }
+}

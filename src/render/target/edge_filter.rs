@@ -10,7 +10,7 @@
 
 use crate::render::descriptors::{
     COLOR_FORMAT, DEPTH_FORMAT, DISPLAY_FORMAT, bilinear_sampler, create_module, depth_attachment, depth_test,
-    frame_texture, layout_entry, slot_entries, texture_entry,
+    frame_texture, image_and_sampler_entries, slot_entries, texture_entry,
 };
 use crate::shading::wgsl::{self, slots};
 
@@ -27,22 +27,16 @@ pub struct EdgeFilter {
 impl EdgeFilter {
     pub fn new(device: &wgpu::Device) -> EdgeFilter {
         let sampler = bilinear_sampler(device, "edge filter");
-        let fragment = wgpu::ShaderStages::FRAGMENT;
+        // The frame's image and sampler, and its depth (where the surfaces break).
+        let [image_entry, sampler_entry] = image_and_sampler_entries();
+        let depth_entry = texture_entry(
+            slots::FRAME_DEPTH,
+            wgpu::ShaderStages::FRAGMENT,
+            wgpu::TextureSampleType::Depth,
+        );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("edge filter"),
-            entries: &[
-                texture_entry(
-                    slots::FRAME_IMAGE,
-                    fragment,
-                    wgpu::TextureSampleType::Float { filterable: true },
-                ),
-                layout_entry(
-                    slots::FRAME_SAMPLER,
-                    fragment,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
-                texture_entry(slots::FRAME_DEPTH, fragment, wgpu::TextureSampleType::Depth),
-            ],
+            entries: &[image_entry, sampler_entry, depth_entry],
         });
         let module = create_module(device, "edge filter", &wgsl::edge_filter_source());
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
