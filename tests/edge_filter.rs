@@ -5,7 +5,7 @@
 
 mod common;
 
-use glam::{Affine3A, Quat, Vec2, Vec3, Vec4};
+use glam::{Affine3A, Quat, Vec3, Vec4};
 use image::{Rgba, RgbaImage};
 use lightpaint::render::{AntiAliasing, ShadowFrame, filter_edges, render_logsh_image};
 use lightpaint::scene::{Camera, Light, LightKind, Material, Scene, shapes};
@@ -133,13 +133,10 @@ fn checkered_floor(card: bool) -> (Scene, Camera) {
         metallic: 0.0,
         ..Material::default()
     });
-    let mut floor = shapes::plane(200.0, 1, 1.0).into_object("floor");
-    floor.uvs = floor
-        .positions
-        .iter()
-        .map(|p| Vec2::new(p.x / 4.0, p.z / 4.0))
-        .collect();
-    scene.objects.push(floor);
+    // A texture repeat every 4 m.
+    scene
+        .objects
+        .push(shapes::plane(200.0, 1, 200.0 / 4.0).into_object("floor"));
     if card {
         let mut object = shapes::cuboid(Vec3::new(0.6, 0.6, 0.005))
             .transformed(Affine3A::from_rotation_translation(

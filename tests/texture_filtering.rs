@@ -6,7 +6,7 @@
 mod common;
 
 use common::thin_casters::{frame_of, linear_luma, path_traced};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use lightpaint::render::{AntiAliasing, render_logsh_image};
 use lightpaint::scene::{Camera, Light, LightKind, Scene, shapes};
 use lightpaint::shading::RenderSettings;
@@ -24,22 +24,12 @@ fn striped_floor() -> (Scene, Camera) {
     scene.materials.push(common::scenes::textured_white(0));
     // One texture repeat every 0.5 m: a dark and a light stripe.
     let floor_m = 60.0;
-    let mut floor = shapes::plane(floor_m, 1, 1.0).into_object("floor");
-    floor.uvs = floor
-        .positions
-        .iter()
-        .map(|p| Vec2::new(p.x / 0.5, p.z / 0.5))
-        .collect();
-    scene.objects.push(floor);
+    scene
+        .objects
+        .push(shapes::plane(floor_m, 1, floor_m / 0.5).into_object("floor"));
     scene.lights.push(Light {
         name: "sun".into(),
-        kind: LightKind::Directional,
-        color: Vec3::ONE,
-        intensity: 2.0,
-        position: Vec3::ZERO,
-        direction: -Vec3::Y,
-        range: None,
-        locked: false,
+        ..common::scenes::white_light(LightKind::Directional, Vec3::ZERO, 2.0)
     });
     let camera = Camera::looking_at(Vec3::new(0.1, 1.6, 12.0), Vec3::new(0.1, 0.0, 0.0), 0.7, 0.05);
     (scene, camera)

@@ -166,18 +166,19 @@ pub fn image_and_sampler_layout(device: &wgpu::Device, label: &str) -> wgpu::Bin
     })
 }
 
-/// The entries of [`image_and_sampler_layout`]: the frame's image, filterable, and a
-/// filtering sampler, read by fragment shaders.
+/// The entries of [`image_and_sampler_layout`].
 pub fn image_and_sampler_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
+    filtered_texture_entries(slots::FRAME_IMAGE, slots::FRAME_SAMPLER)
+}
+
+/// A filterable 2D float texture at `texture` and a filtering sampler at `sampler`, read
+/// by fragment shaders.
+pub fn filtered_texture_entries(texture: Slot, sampler: Slot) -> [wgpu::BindGroupLayoutEntry; 2] {
     let fragment = wgpu::ShaderStages::FRAGMENT;
     [
-        texture_entry(
-            slots::FRAME_IMAGE,
-            fragment,
-            wgpu::TextureSampleType::Float { filterable: true },
-        ),
+        texture_entry(texture, fragment, wgpu::TextureSampleType::Float { filterable: true }),
         layout_entry(
-            slots::FRAME_SAMPLER,
+            sampler,
             fragment,
             wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
         ),

@@ -1,7 +1,7 @@
 //! The scene's bind group layouts (group 0: frame, group 1: material), the shared
 //! base-colour sampler and the vertex buffer layout of [`GpuVertex`].
 
-use crate::render::descriptors::{buffer_type, layout_entry, texture_entry};
+use crate::render::descriptors::{buffer_type, filtered_texture_entries, layout_entry};
 use crate::shading::gpu_types::GpuVertex;
 use crate::shading::wgsl::slots;
 
@@ -47,19 +47,10 @@ impl SceneLayouts {
         });
         let material = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("material"),
-            entries: &[
-                layout_entry(slots::MATERIAL, fragment, uniform),
-                texture_entry(
-                    slots::BASE_COLOR_TEXTURE,
-                    fragment,
-                    wgpu::TextureSampleType::Float { filterable: true },
-                ),
-                layout_entry(
-                    slots::BASE_COLOR_SAMPLER,
-                    fragment,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
-            ],
+            entries: &{
+                let [texture, sampler] = filtered_texture_entries(slots::BASE_COLOR_TEXTURE, slots::BASE_COLOR_SAMPLER);
+                [layout_entry(slots::MATERIAL, fragment, uniform), texture, sampler]
+            },
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("base colour"),
