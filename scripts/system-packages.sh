@@ -3,12 +3,13 @@
 # screenshot tool the smoke test uses, fontconfig with a font for the study's plot
 # (plotters draws text through font-kit), and zenity, which the editor's file dialogs
 # fall back to where no desktop portal answers (rfd), driven in the editor's smoke test
-# by xdotool. Sourced by every script here that builds or runs lightpaint.
+# by xdotool; and g++, which builds meshoptimizer (the meshes' levels of detail). Sourced
+# by every script here that builds or runs lightpaint.
 
 lightpaint_packages=(
     mesa-vulkan-drivers libvulkan1 xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1
     libxrandr2 libxi6 libgl1 libegl1 libwayland-client0 imagemagick x11-apps
-    pkg-config libfontconfig-dev fonts-dejavu-core zenity xdotool
+    pkg-config libfontconfig-dev fonts-dejavu-core zenity xdotool g++
 )
 
 lightpaint_install_system_packages() {

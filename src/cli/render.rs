@@ -219,7 +219,9 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
         say!("lights' grid: {grid} (each point walks its box's lights on the SH and shadow-map paths)");
     }
     let (in_view, shown) = renderer.triangles_in_view();
-    say!("triangles drawn from the camera: {in_view} of {shown} (objects outside its view culled)");
+    say!(
+        "triangles drawn from the camera: {in_view} of {shown} (objects outside its view culled, far ones at a coarser level of detail)"
+    );
     let (map_views, map_triangles) = renderer.shadow_map_triangles();
     if map_views > 0 {
         say!(

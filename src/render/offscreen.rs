@@ -73,6 +73,7 @@ impl<'a> RasterRenderer<'a> {
             camera,
             [width, height],
             (settings.exposure_ev, settings.background_linear()),
+            false,
         );
         Ok(RasterRenderer {
             gpu,
@@ -308,7 +309,7 @@ pub fn capture_surfaces(
     let layouts = SceneLayouts::new(&gpu.device);
     let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
-    gpu_scene.write_frame(&gpu.queue, camera, [width, height], (0.0, [0.0; 3]));
+    gpu_scene.write_frame(&gpu.queue, camera, [width, height], (0.0, [0.0; 3]), false);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
     let no_maps = ShadowMaps::new(&gpu.device);

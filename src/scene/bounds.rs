@@ -52,6 +52,15 @@ impl Aabb {
         }
     }
 
+    /// The distance from `p` to the box's nearest point: 0 inside it; infinite for an
+    /// empty box.
+    pub fn distance_to(&self, p: Vec3) -> f32 {
+        if self.is_empty() {
+            return f32::INFINITY;
+        }
+        (p.clamp(self.min, self.max) - p).length()
+    }
+
     /// The eight corners, corner k taking max along x, y, z where bits 0, 1, 2 of k are set.
     pub fn corners(&self) -> [Vec3; 8] {
         std::array::from_fn(|k| {
@@ -68,6 +77,18 @@ impl Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn distance_to_a_box_is_to_its_nearest_point() {
+        let unit = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        assert_eq!(unit.distance_to(Vec3::splat(0.5)), 0.0);
+        assert_eq!(unit.distance_to(Vec3::new(3.0, 0.5, 0.5)), 2.0);
+        assert_eq!(unit.distance_to(Vec3::new(4.0, 5.0, 1.0)), 5.0);
+        assert_eq!(Aabb::EMPTY.distance_to(Vec3::ZERO), f32::INFINITY);
+    }
 
     #[test]
     fn empty_box_is_union_identity() {

@@ -7,6 +7,7 @@
 mod bounds;
 mod camera;
 pub mod color_temperature;
+pub mod detail_levels;
 pub mod environment;
 mod error;
 mod frustum;

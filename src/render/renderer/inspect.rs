@@ -19,6 +19,11 @@ impl SceneRenderer {
         self.gpu_scene.set_view_culling(enabled);
     }
 
+    /// See [`crate::render::GpuScene::set_detail_levels`].
+    pub fn set_detail_levels(&mut self, enabled: bool) {
+        self.gpu_scene.set_detail_levels(enabled);
+    }
+
     /// The lights' grid's boxes and how many lights a box lists on average, when the
     /// frames walk it.
     pub fn light_grid_in_words(&self) -> Option<String> {

@@ -479,8 +479,16 @@ impl SceneRenderer {
         self.refresh_shadow_maps(quality.draft_moved_maps);
         let Some(target) = &self.target else { return resized };
         let background = settings.background_linear();
-        self.gpu_scene
-            .write_frame(&self.queue, camera, size, (settings.exposure_ev, background));
+        // Per-vertex shading and the heat map show values at the vertices: their triangles
+        // as they are.
+        let whole_meshes = quality.per_vertex_preview || self.shadows.settings.per_vertex || self.heat_map.is_set();
+        self.gpu_scene.write_frame(
+            &self.queue,
+            camera,
+            size,
+            (settings.exposure_ev, background),
+            whole_meshes,
+        );
         let mut encoder = self.device.create_command_encoder(&Default::default());
         pass_timer::mark(&mut self.pass_timer, &mut encoder, "frame start");
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {

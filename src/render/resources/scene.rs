@@ -2,10 +2,14 @@
 //! per material (uniform, mipmapped base colour texture, sampler), and the frame uniform,
 //! light storage buffer and baked indirect light shared by every draw.
 
+use std::ops::Range;
+
+use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
 use crate::render::descriptors::slot_entries;
+use crate::scene::detail_levels::DetailLevels;
 use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
@@ -18,8 +22,16 @@ pub struct GpuObject {
     /// [`GpuVertex`]es, also readable as storage (the per-vertex shadow pass reads them).
     pub vertex_buffer: wgpu::Buffer,
     pub vertex_count: u32,
+    /// Every level of detail's triangle list, one after another (`detail_levels`); the
+    /// mesh itself, which the shadow maps draw, first.
     pub index_buffer: wgpu::Buffer,
+    /// The mesh's own indices: `0..index_count` of `index_buffer`.
     pub index_count: u32,
+    /// The levels of detail (`scene::detail_levels`): their ranges of `index_buffer`,
+    /// errors and longest edges.
+    pub detail_levels: DetailLevels,
+    /// The indices the camera's passes draw: the level [`GpuScene::write_frame`] chose.
+    pub drawn_indices: Range<u32>,
     pub material: usize,
     /// Whether its material samples a base colour texture.
     pub textured: bool,
@@ -73,6 +85,10 @@ pub struct GpuScene {
     /// Whether objects outside the camera's frustum are left out of its passes (on unless
     /// a test compares frames without it: [`GpuScene::set_view_culling`]).
     view_culling: bool,
+    /// Whether the camera's passes draw each object's level of detail for its distance
+    /// (on unless a frame is compared with the meshes drawn as they are:
+    /// [`GpuScene::set_detail_levels`]).
+    detail_levels: bool,
     /// Changes whenever what the surfaces pass draws may change (a new upload, objects
     /// hidden or shown, new baked indirect light); unique among every scene uploaded.
     surfaces_generation: u64,
@@ -94,12 +110,20 @@ fn next_surfaces_generation() -> u64 {
 impl GpuScene {
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
         let mut first_vertex = 0u32;
+        // The simplifications of large meshes take a while: one object per thread.
+        let detail_levels: Vec<DetailLevels> = scene
+            .objects
+            .par_iter()
+            .filter(|o| !o.indices.is_empty())
+            .map(|o| DetailLevels::of_mesh(&o.positions, &o.indices))
+            .collect();
         let objects: Vec<GpuObject> = scene
             .objects
             .iter()
             .enumerate()
             .filter(|(_, o)| !o.indices.is_empty())
-            .map(|(source, object)| {
+            .zip(detail_levels)
+            .map(|((source, object), detail_levels)| {
                 let vertices: Vec<GpuVertex> = (0..object.positions.len())
                     .map(|i| GpuVertex {
                         position: object.positions[i].to_array(),
@@ -118,11 +142,13 @@ impl GpuScene {
                     }),
                     index_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(&object.name),
-                        contents: bytemuck::cast_slice(&object.indices),
+                        contents: bytemuck::cast_slice(&detail_levels.indices),
                         usage: wgpu::BufferUsages::INDEX,
                     }),
                     vertex_count: vertices.len() as u32,
                     index_count: object.indices.len() as u32,
+                    drawn_indices: 0..object.indices.len() as u32,
+                    detail_levels,
                     material,
                     textured: scene
                         .materials
@@ -208,6 +234,7 @@ impl GpuScene {
             first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
             view_culling: true,
+            detail_levels: true,
             surfaces_generation: next_surfaces_generation(),
             harmonic_lights: Vec::new(),
             mapped_light_geometry: Vec::new(),
@@ -309,14 +336,17 @@ impl GpuScene {
         }
     }
 
-    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height)
-    /// and marks the objects its frustum may see (the rest are not drawn from it).
+    /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height),
+    /// marks the objects its frustum may see (the rest are not drawn from it) and chooses
+    /// the level of detail each is drawn at from it — the meshes as they are with
+    /// `whole_meshes` (per-vertex shading, whose vertices are its shading's resolution).
     pub fn write_frame(
         &mut self,
         queue: &wgpu::Queue,
         camera: &Camera,
         size_px: [u32; 2],
         (exposure_ev, background_linear): (f32, [f64; 3]),
+        whole_meshes: bool,
     ) {
         let mut frame = GpuFrame::new(
             camera,
@@ -332,9 +362,28 @@ impl GpuScene {
         frame.light_grid_boxes = grid.boxes.extend(grid.box_count() as u32).to_array();
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
+        // Metres a pixel spans per metre of distance, at the image's centre.
+        let pixel_m_per_m = 2.0 * (0.5 * camera.yfov_rad).tan() / size_px[1].max(1) as f32;
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
+            let level = if self.detail_levels && !whole_meshes {
+                object
+                    .detail_levels
+                    .level_for(object.bounds.distance_to(camera.position), pixel_m_per_m)
+            } else {
+                0
+            };
+            object.drawn_indices = object.detail_levels.levels[level].indices.clone();
         }
+    }
+
+    /// Draws each object's level of detail for its distance from the camera (the
+    /// default) or every mesh as it is, from the next [`Self::write_frame`] on.
+    pub fn set_detail_levels(&mut self, enabled: bool) {
+        if enabled != self.detail_levels {
+            self.surfaces_generation = next_surfaces_generation();
+        }
+        self.detail_levels = enabled;
     }
 
     /// The lights' grid of the uploaded lights (`shading::light_grid`).
@@ -359,10 +408,13 @@ impl GpuScene {
     /// object shown (for `render`'s summary).
     pub fn triangles_in_view(&self) -> (u64, u64) {
         let shown = self.objects.iter().filter(|o| !o.hidden);
-        let triangles = |o: &GpuObject| o.index_count as u64 / 3;
         (
-            shown.clone().filter(|o| o.in_view).map(triangles).sum(),
-            shown.map(triangles).sum(),
+            shown
+                .clone()
+                .filter(|o| o.in_view)
+                .map(|o| o.drawn_indices.len() as u64 / 3)
+                .sum(),
+            shown.map(|o| o.index_count as u64 / 3).sum(),
         )
     }
 
@@ -536,5 +588,9 @@ pub fn draw_object(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene, object: &G
     pass.set_bind_group(slots::MATERIAL_GROUP, &scene.material_bind_groups[object.material], &[]);
     pass.set_vertex_buffer(0, object.vertex_buffer.slice(..));
     pass.set_index_buffer(object.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-    pass.draw_indexed(0..object.index_count, 0, object.first_vertex..object.first_vertex + 1);
+    pass.draw_indexed(
+        object.drawn_indices.clone(),
+        0,
+        object.first_vertex..object.first_vertex + 1,
+    );
 }
