@@ -70,9 +70,9 @@ pub struct DetailLevels {
 }
 
 impl DetailLevels {
-    /// The levels of the triangle list `indices` over `positions` (indices already
-    /// checked to lie within `positions`): the mesh alone when it has fewer than
-    /// [`MIN_SIMPLIFIED_TRIANGLES`] triangles or a position that is not finite.
+    /// The levels of the triangle list `indices` over `positions`: the mesh alone when it
+    /// has fewer than [`MIN_SIMPLIFIED_TRIANGLES`] triangles, a position that is not
+    /// finite or an index past `positions` (which the simplifier must never see).
     pub fn of_mesh(positions: &[Vec3], indices: &[u32]) -> DetailLevels {
         let mut levels = DetailLevels {
             indices: indices.to_vec(),
@@ -83,7 +83,10 @@ impl DetailLevels {
             }],
         };
         let triangles = indices.len() / 3;
-        if triangles < MIN_SIMPLIFIED_TRIANGLES || !positions.iter().all(|p| p.is_finite()) {
+        let valid = indices.len().is_multiple_of(3)
+            && indices.iter().all(|&i| (i as usize) < positions.len())
+            && positions.iter().all(|p| p.is_finite());
+        if triangles < MIN_SIMPLIFIED_TRIANGLES || !valid {
             return levels;
         }
         let Ok(vertices) = meshopt::VertexDataAdapter::new(bytemuck::cast_slice(positions), 12, 0) else {
@@ -139,13 +142,15 @@ impl DetailLevels {
     }
 }
 
-/// The longest edge of the triangle list `indices` over `positions`.
+/// The longest edge of the triangle list `indices` over `positions` (triangles with an
+/// index past `positions` left out).
 fn longest_edge_m(positions: &[Vec3], indices: &[u32]) -> f32 {
     indices
         .chunks_exact(3)
-        .flat_map(|t| {
-            let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize]);
-            [a.distance(b), b.distance(c), c.distance(a)]
+        .filter_map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions.get(i as usize).copied());
+            let (a, b, c) = (a?, b?, c?);
+            Some(a.distance(b).max(b.distance(c)).max(c.distance(a)))
         })
         .fold(0.0, f32::max)
 }
@@ -203,7 +208,10 @@ mod tests {
         let (positions, indices) = sphere(16);
         assert!(indices.len() / 3 < MIN_SIMPLIFIED_TRIANGLES);
         assert_eq!(DetailLevels::of_mesh(&positions, &indices).levels.len(), 1);
-        let (mut positions, indices) = sphere(128);
+        let (mut positions, mut indices) = sphere(128);
+        indices[7] = positions.len() as u32;
+        assert_eq!(DetailLevels::of_mesh(&positions, &indices).levels.len(), 1);
+        indices[7] = 0;
         positions[5] = Vec3::NAN;
         assert_eq!(DetailLevels::of_mesh(&positions, &indices).levels.len(), 1);
     }
