@@ -285,13 +285,17 @@ fn group_in_influence(group: BlockerGroup, p: vec3<f32>, n: vec3<f32>) -> bool {
         && dot(to_group, n) + group.center_extent.w > 0.0 && group.count > 0u;
 }
 
+// Where a stand-in starts taking over, as a share of the hand-over distance
+// (blocker_groups::STAND_IN_BLEND_START).
+const STAND_IN_BLEND_START: f32 = 0.75;
+
 // How much of a group's (or a cluster's) shadow at p its stand-in carries
-// (blocker_groups.rs): 0 within half its hand-over distance, 1 beyond it, smoothly
-// between, where its blockers are weighed 1 − share — so no ring shows where one takes
-// over from the other.
+// (blocker_groups.rs): 0 within STAND_IN_BLEND_START of its hand-over distance, 1 beyond
+// it, smoothly between, where its blockers are weighed 1 − share — so no ring shows
+// where one takes over from the other.
 fn stand_in_share(group: BlockerGroup, p: vec3<f32>) -> f32 {
     if group.stand_in_radius_m <= 0.0 {
         return 0.0;
     }
-    return smoothstep(0.5 * group.hand_over_m, group.hand_over_m, distance(group.center_extent.xyz, p));
+    return smoothstep(STAND_IN_BLEND_START * group.hand_over_m, group.hand_over_m, distance(group.center_extent.xyz, p));
 }

@@ -164,6 +164,13 @@ fn uniform_array_capacities_match_wgsl() {
 }
 
 #[test]
+fn the_stand_ins_blend_starts_where_the_twin_says() {
+    use lightpaint::shading::blocker_groups::STAND_IN_BLEND_START;
+    let line = format!("const STAND_IN_BLEND_START: f32 = {STAND_IN_BLEND_START:?};");
+    assert!(wgsl::BLOCKERS.contains(&line), "blockers.wgsl lacks `{line}`");
+}
+
+#[test]
 fn shadow_params_match_wgsl() {
     assert_twin(
         "ShadowParams",

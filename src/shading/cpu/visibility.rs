@@ -11,7 +11,9 @@ use super::windows::LightWindows;
 use crate::blockers::Sphere;
 use crate::sh::{self, ExpMethod};
 use crate::shading::ShadowSettings;
-use crate::shading::blocker_groups::{BlockerCluster, BlockerGroup, GroupedBlockers, group_blockers};
+use crate::shading::blocker_groups::{
+    BlockerCluster, BlockerGroup, GroupedBlockers, STAND_IN_BLEND_START, group_blockers,
+};
 use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT};
 use crate::terrain::TerrainShadow;
 
@@ -207,14 +209,18 @@ impl Bounds {
         }
     }
 
-    /// `stand_in_share` in blockers.wgsl: 0 within half the hand-over distance, 1
-    /// beyond it, smoothstep between.
+    /// `stand_in_share` in blockers.wgsl: 0 within [`STAND_IN_BLEND_START`] of the
+    /// hand-over distance, 1 beyond it, smoothstep between.
     fn stand_in_share(&self, p: DVec3) -> f64 {
         if self.stand_in_radius_m <= 0.0 {
             return 0.0;
         }
         let hand_over = self.hand_over_m as f64;
-        smoothstep(0.5 * hand_over, hand_over, self.center.as_dvec3().distance(p))
+        smoothstep(
+            STAND_IN_BLEND_START as f64 * hand_over,
+            hand_over,
+            self.center.as_dvec3().distance(p),
+        )
     }
 
     /// `group_in_reach`: within the hand-over distance and not wholly below the
