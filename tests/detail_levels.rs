@@ -1,24 +1,26 @@
 //! Levels of detail (`scene::detail_levels`, chosen in `GpuScene::write_frame`) on
 //! lavapipe: a 100k-triangle sphere far from the camera is drawn with a fraction of its
 //! triangles while its silhouette and its normals stay where the true sphere's are (ray
-//! casts against the sphere itself, a closed form); a lit frame of it on a floor stays
-//! the frame drawn from the whole mesh; per-vertex frames draw the meshes as they are.
+//! casts against the sphere itself, a closed form); beside a shadow-mapped lamp its level
+//! stays within the maps' texels, and a lit frame of it on a floor stays the frame drawn
+//! from the whole mesh; per-vertex frames draw the meshes as they are.
 
 mod common;
 
 use glam::{DVec3, Vec3};
 use lightpaint::reference::CameraRays;
-use lightpaint::render::{FrameQuality, GpuContext};
+use lightpaint::render::{Detail, FrameQuality, GpuContext};
 use lightpaint::scene::{Camera, Scene, shapes};
 use lightpaint::shading::RenderSettings;
+use lightpaint::shading::shadow_maps::ShadowViews;
 
 /// Pixels on a side of the square frames.
 const SIDE_PX: u32 = 320;
 const RADIUS_M: f32 = 1.0;
 
-/// A unit sphere of 320 × 160 segments (102,080 triangles) at the origin, and a floor 1 m
-/// below it, lit by a point light above and to the side.
-fn sphere_scene(with_floor: bool) -> Scene {
+/// A unit sphere of 320 × 160 segments (101,760 triangles) at the origin, and a floor 1 m
+/// below it, lit by a point light `light_m` above it and to the side (none: unlit).
+fn sphere_scene(with_floor: bool, light_m: Option<f32>) -> Scene {
     let mut scene = Scene::default();
     scene.materials.push(lightpaint::scene::Material::default());
     scene
@@ -28,11 +30,13 @@ fn sphere_scene(with_floor: bool) -> Scene {
         let floor = shapes::plane(30.0, 30, 1.0).transformed(glam::Affine3A::from_translation(Vec3::NEG_Y * RADIUS_M));
         scene.objects.push(floor.into_object("floor"));
     }
-    scene.lights.push(common::scenes::white_light(
-        lightpaint::scene::LightKind::Point,
-        Vec3::new(4.0, 6.0, 5.0),
-        400.0,
-    ));
+    if let Some(distance_m) = light_m {
+        scene.lights.push(common::scenes::white_light(
+            lightpaint::scene::LightKind::Point,
+            Vec3::new(0.5, 1.0, 0.6).normalize() * distance_m,
+            10.0 * distance_m * distance_m,
+        ));
+    }
     scene
 }
 
@@ -71,7 +75,8 @@ fn true_hit(rays: &CameraRays, index: usize) -> Option<DVec3> {
 #[test]
 fn a_far_fine_sphere_keeps_its_silhouette_and_normals_with_a_fraction_of_its_triangles() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = sphere_scene(false);
+    // No light with shadow maps: the level is bound by the pixels alone.
+    let scene = sphere_scene(false, None);
     let camera = camera_at(18.0);
     let settings = RenderSettings::default();
     let (_, renderer) = common::drawn_with(&gpu, (&scene, &[]), &settings, (&camera, [SIDE_PX; 2]), |_| {});
@@ -80,8 +85,15 @@ fn a_far_fine_sphere_keeps_its_silhouette_and_normals_with_a_fraction_of_its_tri
         4 * drawn <= shown,
         "a level of at most a quarter of the triangles: {drawn} of {shown}"
     );
-    let surfaces =
-        lightpaint::render::capture_surfaces(&gpu, &scene, &camera, None, SIDE_PX, SIDE_PX).expect("surfaces");
+    let surfaces = lightpaint::render::capture_surfaces_at(
+        &gpu,
+        &scene,
+        &camera,
+        None,
+        [SIDE_PX; 2],
+        Detail::Levels(&ShadowViews::default()),
+    )
+    .expect("surfaces");
     let rays = CameraRays::new(&camera, SIDE_PX, SIDE_PX);
     let (mut covered, mut missed, mut extra) = (0usize, 0usize, 0usize);
     let mut worst_normal_deg = 0.0f64;
@@ -111,13 +123,16 @@ fn a_far_fine_sphere_keeps_its_silhouette_and_normals_with_a_fraction_of_its_tri
 }
 
 /// Each object's level is chosen anew with the camera: close up the mesh is drawn as it
-/// is, and a frame of the sphere on a floor under a point light with the defaults stays
-/// the frame drawn from the whole mesh but at a few isolated pixels (the reduced shading's
-/// sample choices along the rim; 2 measured).
+/// is; far away under a point light 2.5 m from the sphere's centre, whose cube maps' texels
+/// on the sphere are narrower than an eighth of a pixel, it keeps more of its triangles
+/// than without the light (14,520 against 8,160 measured), and the frame of the sphere on
+/// a floor with the defaults stays the frame drawn from the whole mesh but at a few
+/// isolated pixels (the reduced shading's sample choices along the rim; none measured) —
+/// no shadow of the mesh on its own level.
 #[test]
 fn a_lit_frame_drawn_from_levels_is_the_frame_drawn_from_the_whole_meshes() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = sphere_scene(true);
+    let scene = sphere_scene(true, Some(2.5));
     let settings = RenderSettings::default();
     let close = camera_at(2.5);
     let (_, renderer) = common::drawn_with(&gpu, (&scene, &[]), &settings, (&close, [SIDE_PX; 2]), |_| {});
@@ -130,7 +145,14 @@ fn a_lit_frame_drawn_from_levels_is_the_frame_drawn_from_the_whole_meshes() {
         })
     };
     let ((with_levels, renderer), (whole, _)) = (frame(true), frame(false));
-    assert!(renderer.triangles_in_view().0 < shown / 2);
+    let (drawn_lit, _) = renderer.triangles_in_view();
+    let unlit = sphere_scene(true, None);
+    let (_, unlit_renderer) = common::drawn_with(&gpu, (&unlit, &[]), &settings, (&far, [SIDE_PX; 2]), |_| {});
+    let (drawn_unlit, _) = unlit_renderer.triangles_in_view();
+    assert!(
+        drawn_unlit < drawn_lit && drawn_lit < shown,
+        "the lamp's texels keep more triangles: {drawn_lit} lit, {drawn_unlit} unlit, of {shown}"
+    );
     let far_apart = with_levels
         .pixels()
         .zip(whole.pixels())
@@ -144,7 +166,7 @@ fn a_lit_frame_drawn_from_levels_is_the_frame_drawn_from_the_whole_meshes() {
 #[test]
 fn per_vertex_frames_draw_the_whole_meshes() {
     let Some(gpu) = common::gpu() else { return };
-    let scene = sphere_scene(true);
+    let scene = sphere_scene(true, Some(2.5));
     let mut settings = RenderSettings::default();
     settings.shadows.per_vertex = true;
     let far = camera_at(18.0);

@@ -20,14 +20,14 @@ pub mod target;
 pub use context::{GpuContext, describe_adapter};
 pub use descriptors::{COLOR_FORMAT, SAMPLE_COUNT};
 pub use offscreen::{
-    RasterRenderer, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces, filter_edges, render_cpu_image,
-    render_image, render_logsh_image, shade_surfaces,
+    RasterRenderer, Redraw, ShadowFrame, ShadowRenderer, capture_surfaces, capture_surfaces_at, filter_edges,
+    render_cpu_image, render_image, render_logsh_image, shade_surfaces,
 };
 pub use passes::ListedPixels;
 pub use passes::raster::ScenePipeline;
 pub use readback::read_target_image;
 pub use renderer::{Compilation, FrameQuality, SceneRenderer};
-pub use resources::GpuScene;
+pub use resources::{Detail, GpuScene};
 pub use target::{AntiAliasing, RenderTarget};
 
 #[derive(Debug, thiserror::Error)]

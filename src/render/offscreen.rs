@@ -11,13 +11,14 @@ use super::passes::logsh::{SURFACE_FORMAT, surface_pipelines};
 use super::passes::raster::ScenePipeline;
 use super::readback::{read_target_image, read_texture};
 use super::renderer::{Compilation, FrameQuality, SceneRenderer};
-use super::resources::{GpuBlockers, GpuScene, SceneLayouts, ShadowMaps, draw_objects, shadow_layout};
+use super::resources::{Detail, GpuBlockers, GpuScene, SceneLayouts, ShadowMaps, draw_objects, shadow_layout};
 use super::target::{AntiAliasing, RenderTarget};
 use super::{GpuContext, RenderError};
 use crate::blockers::Sphere;
 use crate::scene::{Camera, Scene};
 use crate::shading::cpu::{self, ShadingInputs, SurfacePoint};
 use crate::shading::gpu_types::{GpuLight, environment_irradiance};
+use crate::shading::shadow_maps::ShadowViews;
 use crate::shading::{BakedIndirect, RenderSettings, ShadowSettings};
 
 /// Largest image side accepted by the renderers (lavapipe's 2D texture limit).
@@ -73,7 +74,7 @@ impl<'a> RasterRenderer<'a> {
             camera,
             [width, height],
             (settings.exposure_ev, settings.background_linear()),
-            false,
+            Detail::Levels(&ShadowViews::default()),
         );
         Ok(RasterRenderer {
             gpu,
@@ -295,8 +296,9 @@ impl<'a> ShadowRenderer<'a> {
 }
 
 /// The visible surface point of every pixel (row-major; None where no geometry is seen),
-/// rasterised on the GPU with one sample at each pixel centre; `baked_indirect` light, if
-/// any, is part of each point's emission (it is unshadowed).
+/// rasterised on the GPU with one sample at each pixel centre from the meshes as they are
+/// (the reference's rays and the f64 twin's meet them); `baked_indirect` light, if any,
+/// is part of each point's emission (it is unshadowed).
 pub fn capture_surfaces(
     gpu: &GpuContext,
     scene: &Scene,
@@ -305,11 +307,24 @@ pub fn capture_surfaces(
     width: u32,
     height: u32,
 ) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
+    capture_surfaces_at(gpu, scene, camera, baked_indirect, [width, height], Detail::Whole)
+}
+
+/// [`capture_surfaces`] with the objects drawn at the levels of detail `detail` chooses
+/// for `camera` and `size_px`: the surfaces a frame drawn from levels sees.
+pub fn capture_surfaces_at(
+    gpu: &GpuContext,
+    scene: &Scene,
+    camera: &Camera,
+    baked_indirect: Option<&BakedIndirect>,
+    [width, height]: [u32; 2],
+    detail: Detail<'_>,
+) -> Result<Vec<Option<SurfacePoint>>, RenderError> {
     check_size(gpu, width, height)?;
     let layouts = SceneLayouts::new(&gpu.device);
     let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &layouts, scene);
     gpu_scene.set_baked_indirect(&gpu.queue, baked_indirect);
-    gpu_scene.write_frame(&gpu.queue, camera, [width, height], (0.0, [0.0; 3]), false);
+    gpu_scene.write_frame(&gpu.queue, camera, [width, height], (0.0, [0.0; 3]), detail);
     // fs_surface reads no blocker, but its pipelines' layout has the shadow group.
     let shadows = shadow_layout(&gpu.device);
     let no_maps = ShadowMaps::new(&gpu.device);

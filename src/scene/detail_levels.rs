@@ -25,9 +25,7 @@ use glam::Vec3;
 /// The farthest, in pixels, a drawn level's surface may lie from the mesh's: an eighth
 /// of a pixel. At a quarter the large sample's frame at 480 × 270 went from 0.0112 to
 /// 0.0115 RMSE against the path tracer (rims of its small objects), at an eighth 0.0113
-/// (docs/performance.md). Small too against the shadow maps' push of a receiver toward
-/// the light (a quarter of a texel and more), so a level inside the mesh does not
-/// shadow itself.
+/// (docs/performance.md). The shadow maps bound it too ([`MAX_SHADOW_TEXEL_SHARE`]).
 pub const MAX_ERROR_PX: f32 = 0.125;
 
 /// The longest edge, in pixels, a drawn level may have where it is longer than the mesh's
@@ -37,6 +35,16 @@ pub const MAX_ERROR_PX: f32 = 0.125;
 /// whose sides simplify to edges their height long, keep their finer levels at 8, 16 and
 /// 32 pixels (708k, 668k and 585k of its 955k triangles drawn against 484k at 64).
 pub const MAX_EDGE_PX: f32 = 64.0;
+
+/// The share of the finest shadow-map texel on an object its level may lie from the
+/// mesh. The maps are drawn from the meshes as they are, so a level lying inside its
+/// mesh by ε would shadow itself were the receiver not pushed out: shadow_lookup.wgsl
+/// pushes it a quarter of a texel t along its normal and (1 + 2 tan θ) t toward the light
+/// (θ the light's incidence), whose part along the normal is (cos θ + 2 sin θ) t ≥ t:
+/// 1.25 t in all, against which ε ≤ t leaves a quarter of a texel to spare. (Measured
+/// on tests/detail_levels.rs' sphere with no bound at all and a lamp 1.6 m from its
+/// centre: 4 pixels more than 8/255 from the whole mesh's frame.)
+pub const MAX_SHADOW_TEXEL_SHARE: f32 = 1.0;
 
 /// The simplifier's error is an estimate from its quadrics: on a finely tessellated
 /// sphere the faces of its levels lay up to 1.55 times that estimate deeper than the
@@ -125,17 +133,20 @@ impl DetailLevels {
     /// The index of the level to draw for an object whose nearest point lies
     /// `distance_m` from the eye, where one pixel spans `pixel_m_per_m` metres per metre
     /// of distance (2 tan(yfov/2) / height in pixels): the coarsest within
-    /// [`MAX_ERROR_PX`] and the edge rule above; the mesh itself at or behind the eye.
-    pub fn level_for(&self, distance_m: f32, pixel_m_per_m: f32) -> usize {
+    /// [`MAX_ERROR_PX`], within `max_error_m` (what the shadow maps drawn from the meshes
+    /// allow: [`MAX_SHADOW_TEXEL_SHARE`]) and the edge rule above; the mesh itself at or
+    /// behind the eye.
+    pub fn level_for(&self, distance_m: f32, pixel_m_per_m: f32, max_error_m: f32) -> usize {
         let pixel_m = distance_m * pixel_m_per_m;
         if pixel_m.is_nan() || pixel_m <= 0.0 {
             return 0;
         }
         let own_edge_m = self.levels[0].longest_edge_m;
+        let error_m = (MAX_ERROR_PX * pixel_m).min(max_error_m);
         self.levels
             .iter()
             .rposition(|level| {
-                level.error_m <= MAX_ERROR_PX * pixel_m
+                level.error_m <= error_m
                     && (level.longest_edge_m <= own_edge_m || level.longest_edge_m <= MAX_EDGE_PX * pixel_m)
             })
             .unwrap_or(0)
@@ -222,18 +233,25 @@ mod tests {
         let levels = DetailLevels::of_mesh(&positions, &indices);
         // 60° over 540 pixels.
         let pixel_m_per_m = 2.0 * (30f32).to_radians().tan() / 540.0;
-        assert_eq!(levels.level_for(0.0, pixel_m_per_m), 0);
-        assert_eq!(levels.level_for(-1.0, pixel_m_per_m), 0);
+        assert_eq!(levels.level_for(0.0, pixel_m_per_m, f32::INFINITY), 0);
+        assert_eq!(levels.level_for(-1.0, pixel_m_per_m, f32::INFINITY), 0);
         let mut previous = 0;
         for distance_m in [0.5f32, 2.0, 8.0, 32.0, 128.0, 512.0] {
-            let chosen = levels.level_for(distance_m, pixel_m_per_m);
+            let chosen = levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY);
             assert!(chosen >= previous);
             let level = &levels.levels[chosen];
             assert!(level.error_m <= MAX_ERROR_PX * distance_m * pixel_m_per_m);
             previous = chosen;
         }
         assert!(previous > 0, "far away a coarser level is drawn");
-        assert_eq!(levels.level_for(1e-3, pixel_m_per_m), 0, "close up the mesh itself");
+        assert_eq!(
+            levels.level_for(1e-3, pixel_m_per_m, f32::INFINITY),
+            0,
+            "close up the mesh itself"
+        );
+        // However far, no coarser than the shadow maps' texels allow.
+        let limited = levels.level_for(512.0, pixel_m_per_m, 1e-3);
+        assert!(levels.levels[limited].error_m <= 1e-3 && limited < previous);
     }
 
     #[test]
@@ -243,7 +261,7 @@ mod tests {
         let pixel_m_per_m = 2.0 * (30f32).to_radians().tan() / 540.0;
         let own_edge_m = levels.levels[0].longest_edge_m;
         for distance_m in [1.0f32, 5.0, 20.0, 100.0, 1000.0] {
-            let level = &levels.levels[levels.level_for(distance_m, pixel_m_per_m)];
+            let level = &levels.levels[levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY)];
             assert!(
                 level.longest_edge_m <= own_edge_m || level.longest_edge_m <= MAX_EDGE_PX * distance_m * pixel_m_per_m,
                 "at {distance_m} m an edge of {} m",

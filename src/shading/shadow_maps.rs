@@ -119,6 +119,27 @@ pub struct ShadowViews {
 }
 
 impl ShadowViews {
+    /// The narrowest texel, in metres, any of these views lays on a box `bounds`: a
+    /// perspective view's at the box's point nearest its eye, an orthographic view's
+    /// everywhere; infinite without views. A surface drawn inside the true one by less
+    /// than about that does not shadow itself (shadow_lookup.wgsl pushes each receiver
+    /// out by more): it bounds how far the levels of detail may lie from the meshes the
+    /// maps were drawn from (`scene::detail_levels::MAX_SHADOW_TEXEL_SHARE`).
+    pub fn finest_texel_m(&self, bounds: &Aabb) -> f32 {
+        self.views
+            .iter()
+            // A slot no light uses is zeroed.
+            .filter(|view| view.depth_range[2] > 0.0)
+            .map(|view| {
+                if view.texel[2] > 0.5 {
+                    view.texel[0] * bounds.distance_to(Vec3::from_slice(&view.eye[..3]))
+                } else {
+                    view.texel[1]
+                }
+            })
+            .fold(f32::INFINITY, f32::min)
+    }
+
     /// These views, with each single view whose light moved since `drawn` was drawn (its
     /// view differs) as its [`drafted`] form, and each one `drawn` already holds as a
     /// draft kept so: what the editor draws while a light is dragged, since a whole
@@ -333,6 +354,7 @@ pub fn cube_face(offset: Vec3) -> usize {
 
 #[cfg(test)]
 mod tests {
+    use bytemuck::Zeroable;
     use glam::Mat4;
 
     use super::*;
@@ -357,6 +379,38 @@ mod tests {
     fn clip(view: &GpuShadowView, p: Vec3) -> Vec3 {
         let c = Mat4::from_cols_array_2d(&view.view_proj) * p.extend(1.0);
         c.truncate() / c.w
+    }
+
+    #[test]
+    fn the_finest_texel_on_a_box_is_a_cube_faces_at_its_nearest_point_or_a_suns_everywhere() {
+        let bounds = Aabb::from_points(&[Vec3::splat(-8.0), Vec3::splat(8.0)]);
+        let lamp = mapped(crate::scene::LightKind::Point, Vec3::ZERO, Vec3::NEG_Y);
+        let views = shadow_views(&[lamp], &bounds, 512);
+        // A box whose nearest point lies 4 m from the lamp: a 90° face of 512 texels is
+        // 2 tan 45° / 512 wide per metre there (its margin widens it a little).
+        let far_box = Aabb::from_points(&[Vec3::new(4.0, -1.0, -1.0), Vec3::new(5.0, 1.0, 1.0)]);
+        let lamp_texel = views.finest_texel_m(&far_box);
+        let nominal = 2.0 * 4.0 / 512.0;
+        assert!(
+            (nominal..1.1 * nominal).contains(&lamp_texel),
+            "{lamp_texel} against {nominal}"
+        );
+        // A box holding the lamp: no finer texel than at the eye itself.
+        assert_eq!(views.finest_texel_m(&bounds), 0.0);
+        let sun = mapped(
+            crate::scene::LightKind::Directional,
+            Vec3::ZERO,
+            Vec3::new(0.3, -1.0, 0.2).normalize(),
+        );
+        let sun_views = shadow_views(&[sun], &bounds, 1024);
+        let texel = sun_views.finest_texel_m(&far_box);
+        assert_eq!(texel, sun_views.views[0].texel[1]);
+        assert!(texel > 0.0 && texel < 1.0);
+        assert_eq!(ShadowViews::default().finest_texel_m(&far_box), f32::INFINITY);
+        // A zeroed slot stands for no view.
+        let mut with_empty_slot = views.clone();
+        with_empty_slot.views.push(GpuShadowView::zeroed());
+        assert_eq!(with_empty_slot.finest_texel_m(&far_box), lamp_texel);
     }
 
     #[test]

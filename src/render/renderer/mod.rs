@@ -25,7 +25,7 @@ use super::passes::raster::ScenePipeline;
 use super::passes::reduced_shading::{
     FrameInputs, LowResolutionTargets, MappedLightKey, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
 };
-use super::resources::{GpuBlockers, GpuScene, ShadowMaps};
+use super::resources::{Detail, GpuBlockers, GpuScene, ShadowMaps};
 use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
 use crate::blockers::Sphere;
@@ -482,13 +482,13 @@ impl SceneRenderer {
         // Per-vertex shading and the heat map show values at the vertices: their triangles
         // as they are.
         let whole_meshes = quality.per_vertex_preview || self.shadows.settings.per_vertex || self.heat_map.is_set();
-        self.gpu_scene.write_frame(
-            &self.queue,
-            camera,
-            size,
-            (settings.exposure_ev, background),
-            whole_meshes,
-        );
+        let detail = if whole_meshes {
+            Detail::Whole
+        } else {
+            Detail::Levels(&self.map_views)
+        };
+        self.gpu_scene
+            .write_frame(&self.queue, camera, size, (settings.exposure_ev, background), detail);
         let mut encoder = self.device.create_command_encoder(&Default::default());
         pass_timer::mark(&mut self.pass_timer, &mut encoder, "frame start");
         if self.heat_map.draw(&mut encoder, target, &self.gpu_scene, background) {

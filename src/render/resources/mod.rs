@@ -11,5 +11,5 @@ mod terrain;
 
 pub use blockers::{GpuBlockers, shadow_layout};
 pub use layouts::{SceneLayouts, vertex_layout};
-pub use scene::{GpuObject, GpuScene, HarmonicLighting, draw_object, draw_objects};
+pub use scene::{Detail, GpuObject, GpuScene, HarmonicLighting, draw_object, draw_objects};
 pub use shadow_maps::{ShadowMapBinding, ShadowMaps};

@@ -9,13 +9,14 @@ use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
 use crate::render::descriptors::slot_entries;
-use crate::scene::detail_levels::DetailLevels;
+use crate::scene::detail_levels::{DetailLevels, MAX_SHADOW_TEXEL_SHARE};
 use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{
     GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance, srgb8_word,
 };
 use crate::shading::light_grid::{LightGrid, grid_worth_it};
+use crate::shading::shadow_maps::ShadowViews;
 use crate::shading::wgsl::slots;
 
 pub struct GpuObject {
@@ -99,6 +100,19 @@ pub struct GpuScene {
 pub struct HarmonicLighting {
     pub lights: Vec<GpuLight>,
     pub environment_irradiance: [[f32; 4]; 9],
+}
+
+/// How the objects drawn from the camera are chosen among their levels of detail
+/// ([`GpuScene::write_frame`]).
+#[derive(Clone, Copy)]
+pub enum Detail<'a> {
+    /// The meshes as they are: per-vertex shading and the heat map, whose values live at
+    /// the vertices, and the surfaces the reference starts its paths from (its rays meet
+    /// the meshes themselves).
+    Whole,
+    /// Each the coarsest level within an eighth of a pixel and within the finest texel
+    /// these shadow-map views lay on it (`scene::detail_levels`).
+    Levels(&'a ShadowViews),
 }
 
 /// A number no earlier call returned: the generations of every [`GpuScene`] differ.
@@ -338,15 +352,14 @@ impl GpuScene {
 
     /// Writes the per-frame constants for `camera` drawn into `size_px` (width, height),
     /// marks the objects its frustum may see (the rest are not drawn from it) and chooses
-    /// the level of detail each is drawn at from it — the meshes as they are with
-    /// `whole_meshes` (per-vertex shading, whose vertices are its shading's resolution).
+    /// the level of detail each is drawn at from it (`detail`).
     pub fn write_frame(
         &mut self,
         queue: &wgpu::Queue,
         camera: &Camera,
         size_px: [u32; 2],
         (exposure_ev, background_linear): (f32, [f64; 3]),
-        whole_meshes: bool,
+        detail: Detail<'_>,
     ) {
         let mut frame = GpuFrame::new(
             camera,
@@ -366,12 +379,16 @@ impl GpuScene {
         let pixel_m_per_m = 2.0 * (0.5 * camera.yfov_rad).tan() / size_px[1].max(1) as f32;
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
-            let level = if self.detail_levels && !whole_meshes {
-                object
-                    .detail_levels
-                    .level_for(object.bounds.distance_to(camera.position), pixel_m_per_m)
-            } else {
-                0
+            let level = match detail {
+                Detail::Levels(shadow_views) if self.detail_levels => {
+                    let max_error_m = MAX_SHADOW_TEXEL_SHARE * shadow_views.finest_texel_m(&object.bounds);
+                    object.detail_levels.level_for(
+                        object.bounds.distance_to(camera.position),
+                        pixel_m_per_m,
+                        max_error_m,
+                    )
+                }
+                _ => 0,
             };
             object.drawn_indices = object.detail_levels.levels[level].indices.clone();
         }
