@@ -8,6 +8,7 @@ mod layouts;
 mod scene;
 mod shadow_maps;
 mod terrain;
+mod texture;
 
 pub use blockers::{GpuBlockers, shadow_layout};
 pub use layouts::{SceneLayouts, vertex_layout};

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
+use super::texture::upload_texture;
 use crate::render::descriptors::slot_entries;
 use crate::scene::detail_levels::{DetailLevels, MAX_SHADOW_TEXEL_SHARE};
 use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
@@ -547,49 +548,6 @@ fn frame_bind_group(
             (slots::LIGHT_GRID, lights.grid.as_entire_binding()),
         ]),
     })
-}
-
-/// Uploads an sRGB texture with a full mip chain (averaged in linear light on the CPU:
-/// [`crate::scene::texture_mips`]), so distant and grazing texels average instead of
-/// aliasing.
-fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &TextureImage) -> wgpu::TextureView {
-    let levels = crate::scene::texture_mips::mip_chain(texture);
-    let gpu_texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(&texture.name),
-        size: wgpu::Extent3d {
-            width: levels[0].width(),
-            height: levels[0].height(),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: levels.len() as u32,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8UnormSrgb,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    for (level, image) in levels.iter().enumerate() {
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &gpu_texture,
-                mip_level: level as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            image.as_raw(),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * image.width()),
-                rows_per_image: Some(image.height()),
-            },
-            wgpu::Extent3d {
-                width: image.width(),
-                height: image.height(),
-                depth_or_array_layers: 1,
-            },
-        );
-    }
-    gpu_texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 /// Draws every shown object of `scene` into `pass` (pipeline and group 0 set).
