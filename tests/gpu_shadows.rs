@@ -8,7 +8,7 @@ use glam::Vec3;
 use lightpaint::blockers::{BlockerSettings, Sphere, fit_scene};
 use lightpaint::project::Document;
 use lightpaint::render::{
-    AntiAliasing, GpuContext, ShadowFrame, capture_surfaces, render_cpu_image, render_logsh_image,
+    AntiAliasing, GpuContext, ShadowFrame, ShadowRenderer, capture_surfaces, render_cpu_image, render_logsh_image,
 };
 use lightpaint::scene::gltf_write::LightSpec;
 use lightpaint::scene::{Camera, Scene};
@@ -45,8 +45,13 @@ fn open(relative: &str) -> (Scene, Camera, RenderSettings) {
     (document.scene, camera, document.settings)
 }
 
+/// The GPU's frame against the f64 twin's over the same surfaces: the meshes whole on
+/// both (the levels of detail, which move rims by under an eighth of a pixel, are held
+/// to the true surfaces in tests/detail_levels.rs).
 fn assert_parity(gpu: &GpuContext, name: &str, frame: &ShadowFrame) {
-    let gpu_image = render_logsh_image(gpu, frame, AntiAliasing::None).expect("GPU render");
+    let mut renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::None).expect("GPU renderer");
+    renderer.set_detail_levels(false);
+    let gpu_image = renderer.read_image().expect("GPU render");
     let cpu_image = render_cpu_image(gpu, frame).expect("CPU render");
     save_for_review(&format!("{name}-gpu"), &gpu_image);
     save_for_review(&format!("{name}-cpu"), &cpu_image);

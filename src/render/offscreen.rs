@@ -242,6 +242,13 @@ impl<'a> ShadowRenderer<'a> {
             .unwrap_or_else(|| Err(RenderError::Readback("no frame was drawn".into())))
     }
 
+    /// See [`SceneRenderer::set_detail_levels`]: off, the frame's surfaces are those
+    /// [`capture_surfaces`] gives the f64 twin ([`render_cpu_image`]), so the two compare
+    /// the shading alone.
+    pub fn set_detail_levels(&mut self, enabled: bool) {
+        self.renderer.set_detail_levels(enabled);
+    }
+
     /// See [`SceneRenderer::set_light_grid`] (benchmarks time frames both ways).
     pub fn set_light_grid(&mut self, enabled: bool) {
         self.renderer.set_light_grid(enabled);
