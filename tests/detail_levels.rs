@@ -68,10 +68,10 @@ fn true_hit(rays: &CameraRays, index: usize) -> Option<DVec3> {
 /// triangles, and the pixels it covers must be those whose centre ray meets the sphere
 /// but along the silhouette, where a level may lie inside by at most
 /// `detail_levels::MAX_ERROR_PX` (a tenth of the rim's pixels allowed here), with the
-/// shading normals within a few degrees of the sphere's. Measured: 6,360 of 101,760
-/// triangles drawn, no pixel off the rim, normals within 2.7°; with levels chosen at 1
-/// pixel of error instead of an eighth, 3,180 triangles, 7 pixels off and normals 5.1°
-/// off.
+/// shading normals within a few degrees of the sphere's. Measured: 12,720 of 101,760
+/// triangles drawn, no pixel off the rim, normals within 0.9°; with levels chosen at 1
+/// pixel of error instead of an eighth (levels simplified from the whole mesh then),
+/// 3,180 triangles, 7 pixels off and normals 5.1° off.
 #[test]
 fn a_far_fine_sphere_keeps_its_silhouette_and_normals_with_a_fraction_of_its_triangles() {
     let Some(gpu) = common::gpu() else { return };
@@ -125,7 +125,7 @@ fn a_far_fine_sphere_keeps_its_silhouette_and_normals_with_a_fraction_of_its_tri
 /// Each object's level is chosen anew with the camera: close up the mesh is drawn as it
 /// is; far away under a point light 2.5 m from the sphere's centre, whose cube maps' texels
 /// on the sphere are narrower than an eighth of a pixel, it keeps more of its triangles
-/// than without the light (14,520 against 8,160 measured), and the frame of the sphere on
+/// than without the light (27,240 against 14,520 measured), and the frame of the sphere on
 /// a floor with the defaults stays the frame drawn from the whole mesh but at a few
 /// isolated pixels (the reduced shading's sample choices along the rim; none measured) —
 /// no shadow of the mesh on its own level.

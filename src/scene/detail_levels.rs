@@ -3,12 +3,12 @@
 //! visibility) stays valid at every level, and the level drawn for a view is chosen by
 //! how far its surface may lie from the mesh's, in pixels.
 //!
-//! Each level is an edge-collapse simplification of the full mesh (Garland and Heckbert
+//! Each level is an edge-collapse simplification of the level before (Garland and Heckbert
 //! 1997, "Surface simplification using quadric error metrics", with collapses onto an
 //! edge's end so that no vertex moves: meshoptimizer's `meshopt_simplify`), with open
 //! borders locked (a card's outline, a lattice's holes, a uv seam stay where they are).
 //! Its error bounds the largest distance between the level's surface and the mesh's, in
-//! metres: twice the simplifier's estimate (measured below).
+//! metres: the level before's plus twice the simplifier's estimate (measured below).
 //!
 //! Choosing a level ([`DetailLevels::level_for`]): the coarsest whose error, seen from
 //! the camera at the nearest point of the object's bounds, is within
@@ -32,8 +32,9 @@ pub const MAX_ERROR_PX: f32 = 0.125;
 /// own longest edge. A flat floor tessellated for its per-vertex light (the baked indirect
 /// light) simplifies without error to a few long triangles, which would interpolate that
 /// light over metres; here its triangles stay within 64 pixels. The large sample's columns,
-/// whose sides simplify to edges their height long, keep their finer levels at 8, 16 and
-/// 32 pixels (708k, 668k and 585k of its 955k triangles drawn against 484k at 64).
+/// whose sides simplify to edges their height long, kept their finer levels at 8, 16 and
+/// 32 pixels (708k, 668k and 585k of its 955k triangles drawn against 484k at 64, with
+/// levels simplified from the whole mesh).
 pub const MAX_EDGE_PX: f32 = 64.0;
 
 /// The share of the finest shadow-map texel on an object its level may lie from the
@@ -100,17 +101,20 @@ impl DetailLevels {
         let Ok(vertices) = meshopt::VertexDataAdapter::new(bytemuck::cast_slice(positions), 12, 0) else {
             return levels;
         };
-        let mut target = triangles;
+        // Each level simplifies the last one, so the work shrinks by half a level (about
+        // twice the mesh's own in all, however many levels): its error bound is the last
+        // one's plus its own (the triangle inequality).
+        let mut current = indices.to_vec();
+        let mut options = meshopt::SimplifyOptions::LockBorder | meshopt::SimplifyOptions::ErrorAbsolute;
         loop {
-            target /= 2;
-            let previous = levels.levels.last().map_or(triangles, |l| l.indices.len() / 3);
+            let previous = current.len() / 3;
             let mut error_m = 0.0f32;
             let simplified = meshopt::simplify(
-                indices,
+                &current,
                 &vertices,
-                3 * target,
+                3 * (previous / 2),
                 f32::MAX,
-                meshopt::SimplifyOptions::LockBorder | meshopt::SimplifyOptions::ErrorAbsolute,
+                options,
                 Some(&mut error_m),
             );
             let kept = simplified.len() / 3;
@@ -119,13 +123,15 @@ impl DetailLevels {
             }
             let first = levels.indices.len() as u32;
             levels.indices.extend_from_slice(&simplified);
+            let last_error_m = levels.levels.last().map_or(0.0, |l| l.error_m);
             levels.levels.push(DetailLevel {
                 indices: first..levels.indices.len() as u32,
-                // Never below a finer level's: levels are chosen coarsest first.
-                error_m: (ERROR_ESTIMATE_SCALE * error_m).max(levels.levels.last().map_or(0.0, |l| l.error_m)),
+                error_m: last_error_m + ERROR_ESTIMATE_SCALE * error_m,
                 longest_edge_m: longest_edge_m(positions, &simplified),
             });
-            target = kept;
+            current = simplified;
+            // Later levels use a shrinking subset of the vertices.
+            options |= meshopt::SimplifyOptions::Sparse;
         }
         levels
     }
