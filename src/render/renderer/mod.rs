@@ -479,10 +479,10 @@ impl SceneRenderer {
         self.refresh_shadow_maps(quality.draft_moved_maps);
         let Some(target) = &self.target else { return resized };
         let background = settings.background_linear();
+        let wants_per_vertex = quality.per_vertex_preview || self.shadows.settings.per_vertex;
         // Per-vertex shading and the heat map show values at the vertices: their triangles
         // as they are.
-        let whole_meshes = quality.per_vertex_preview || self.shadows.settings.per_vertex || self.heat_map.is_set();
-        let detail = if whole_meshes {
+        let detail = if wants_per_vertex || self.heat_map.is_set() {
             Detail::Whole
         } else {
             Detail::Levels(&self.map_views)
@@ -499,7 +499,6 @@ impl SceneRenderer {
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
         {
             let shadows = &mut self.shadows;
-            let wants_per_vertex = quality.per_vertex_preview || shadows.settings.per_vertex;
             self.vertices_computed = match &mut shadows.visibility {
                 Some(visibility) if wants_per_vertex => visibility.plan(
                     VisibilityInputs::new(
