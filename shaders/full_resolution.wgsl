@@ -7,10 +7,11 @@
 //    fragment would for itself: the same pixel gets the same colour). Pixels the samples
 //    match are written to the frame's colours, and those without a surface the
 //    background; those they do not match, or where they disagree, go on a list.
-// 2. cs_shade_listed_sharp (two-level shading): a listed pixel takes the soft layer
-//    upsampled to it plus the sharp lights shaded at the pixel; where the soft layer does
-//    not match or disagrees, it goes on a second list. With one level every listed pixel
-//    goes straight to the second list.
+// 2. cs_shade_listed_sharp (two-level shading): a listed pixel takes the soft light at
+//    the samples (the soft layer upsampled to them, or shaded there in full: the finest
+//    soft light there is) upsampled to it plus the sharp lights shaded at the pixel;
+//    where that soft light does not match or disagrees, it goes on a second list. With
+//    one level every listed pixel goes straight to the second list.
 // 3. cs_shade_listed_full: the pixels on the second list shaded in full; the light of
 //    the SH path at such a pixel is kept (kept_harmonic_light) and read again by the
 //    next frames while their surfaces and that light's inputs are the same (a stroke on
@@ -215,9 +216,9 @@ fn listed_entry(workgroup: vec3<u32>, lane: u32) -> u32 {
     return (workgroup.y * LISTED_WORKGROUPS_PER_ROW + workgroup.x) * LISTED_WORKGROUP_SIZE + lane;
 }
 
-// A listed pixel from the soft layer upsampled to it (group 3's samples) plus the sharp
-// lights shaded here, or put on the full list where the soft layer does not match it or
-// disagrees.
+// A listed pixel from the soft light at the samples upsampled to it (group 3's samples)
+// plus the sharp lights shaded here, or put on the full list where that soft light does
+// not match it or disagrees.
 @compute @workgroup_size(LISTED_WORKGROUP_SIZE)
 fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let entry = listed_entry(workgroup, lane);

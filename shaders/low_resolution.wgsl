@@ -223,34 +223,39 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
 // shaded then (they depend on the surfaces and the soft layer alone) and their light
 // kept then is this frame's.
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_GENERATION_BINDING) var<uniform> kept_harmonic_generation: vec4<u32>;
-// The SH path's light at the samples fs_shade_low shaded in the last frame:
-// pack_lighting's words of the exposed light. fs_shade_low reads last frame's image and
-// writes the other (a fragment shader writing storage would run before its depth test:
-// every sample, not only those left, would pay).
+// The soft light at the samples in the last frame, a sample texel each (view depth,
+// lighting, normal: reduced_shading.wgsl), of which fs_shade_low reads the SH path's
+// light at those it shades. fs_shade_low reads last frame's image and writes the other
+// (a fragment shader writing storage would run before its depth test: every sample, not
+// only those left, would pay).
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_READ_BINDING) var kept_harmonic_read: texture_2d<u32>;
 
-// A sample shaded in full, and the SH path's light at it, kept for the next frames.
+// A sample shaded in full, and the SH path's light at it as a sample (kept for the next
+// frames; with two levels the listed pixels upsample it with the soft layer's light at
+// the other samples).
 struct ShadedLowSample {
     @location(0) texel: vec4<u32>,
-    @location(1) kept_harmonic: vec4<u32>,
+    @location(1) soft: vec4<u32>,
 };
 
-// A low-resolution sample shaded in full; the SH path's light (the blocker walk) read
-// from the last frame's kept image where that frame had this one's generation. Always
-// through pack_lighting, so that a frame reading it is the frame shading it anew.
+// A low-resolution sample shaded in full; the SH path's light (the blocker walk, exposed,
+// per unit reflectance) read from the last frame's kept image where that frame had this
+// one's generation. Always through pack_lighting, so that a frame reading it is the frame
+// shading it anew.
 @fragment
 fn fs_shade_low(in: FullScreen) -> ShadedLowSample {
     let texel = vec2<i32>(in.clip.xy);
     let s = sample_surface(texel, LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
-    var harmonic = textureLoad(kept_harmonic_read, texel, 0).xy;
+    var harmonic = textureLoad(kept_harmonic_read, texel, 0).yz;
     // The same for every sample (a condition per sample would not spare lavapipe the
     // walk: it runs a branch for a block of samples, those the depth test left out too).
     if kept_harmonic_generation.y == 0u {
-        harmonic = pack_lighting(min(frame.exposure * harmonic_radiance(s), vec3<f32>(MAX_LIGHTING)));
+        harmonic = pack_lighting(min(frame.exposure * harmonic_radiance(s) / reflectance(s), vec3<f32>(MAX_LIGHTING)));
     }
+    let harmonic_lighting = unpack_lighting(harmonic);
     let others = exact_path_radiance(s) + kept_mapped_lights_radiance(s, texel);
-    let lighting = (frame.exposure * others + unpack_lighting(harmonic)) / reflectance(s);
-    return ShadedLowSample(low_sample_texel(s, lighting), vec4<u32>(harmonic, 0u, 0u));
+    let lighting = frame.exposure * others / reflectance(s) + harmonic_lighting;
+    return ShadedLowSample(low_sample_texel(s, lighting), low_sample_texel(s, harmonic_lighting));
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the
@@ -268,16 +273,21 @@ fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
 
 // A low-resolution sample from the soft layer upsampled to it (group 3 then holds the
 // soft layer) plus the lights of sharp shadows, the shadow-map and exact paths, shaded
-// here. Samples the soft layer does not match, or whose soft samples disagree, are
+// here, and that soft light alone as a sample (fs_shade_low's second target: with the
+// samples fs_shade_low shades, the soft light at every sample, which the listed pixels
+// upsample). Samples the soft layer does not match, or whose soft samples disagree, are
 // discarded, and fs_shade_low shades them in full right after: this pass writes depth 1
 // where it shades (its pipeline's depth write), which fs_shade_low's test then skips.
 @fragment
-fn fs_shade_sharp_marking(in: FullScreen) -> @location(0) vec4<u32> {
+fn fs_shade_sharp_marking(in: FullScreen) -> ShadedLowSample {
     let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
     let soft = upsampled_lighting(in.clip.xy, s, false);
     if !soft.matches {
         discard;
     }
     let sharp = kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy)) + exact_path_radiance(s);
-    return low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s));
+    return ShadedLowSample(
+        low_sample_texel(s, soft.lighting + frame.exposure * sharp / reflectance(s)),
+        low_sample_texel(s, soft.lighting),
+    );
 }

@@ -175,8 +175,15 @@ impl FullResolutionCompute {
     }
 
     /// Upsamples the samples into `images`' colours, lists the pixels they leave and
-    /// shades those, with groups 0–2 `groups` (frame, surface buffer, shadow).
-    pub fn draw(&self, frame: &mut TimedEncoder, images: &FullResolutionImages, groups: [&wgpu::BindGroup; 3]) {
+    /// shades those (two levels: from the soft light at the samples in image
+    /// `soft_index`, the one this frame wrote), with groups 0–2 `groups` (frame, surface
+    /// buffer, shadow).
+    pub fn draw(
+        &self,
+        frame: &mut TimedEncoder,
+        (images, soft_index): (&FullResolutionImages, usize),
+        groups: [&wgpu::BindGroup; 3],
+    ) {
         frame.encoder.clear_buffer(&images.counts, 0, None);
         let pass = |frame: &mut TimedEncoder, label: &'static str, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
             let mut pass = frame.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -209,7 +216,8 @@ impl FullResolutionCompute {
             );
             dispatch_args(pass);
         });
-        if let (Some(shade_sharp), Some(sharp_group)) = (&self.shade_sharp, &images.sharp_group) {
+        if let (Some(shade_sharp), Some(sharp_groups)) = (&self.shade_sharp, &images.sharp_groups) {
+            let sharp_group = &sharp_groups[soft_index];
             pass(frame, "listed pixels shaded from the soft layer", &|pass| {
                 pass.set_pipeline(shade_sharp);
                 pass.set_bind_group(slots::PASS_GROUP, sharp_group, &[]);
@@ -242,8 +250,9 @@ pub(crate) struct FullResolutionImages {
     dispatch_args: wgpu::Buffer,
     upsampling_group: wgpu::BindGroup,
     dispatch_args_group: wgpu::BindGroup,
-    /// Present with a soft layer.
-    sharp_group: Option<wgpu::BindGroup>,
+    /// Present with a soft layer: one for each of the images the soft light at the
+    /// samples alternates between (`kept_harmonic::KeptAtSamples`).
+    sharp_groups: Option<[wgpu::BindGroup; 2]>,
     full_group: wgpu::BindGroup,
     /// Every pixel's colour (full_resolution.wgsl's frame_colours).
     colours: wgpu::Texture,
@@ -281,16 +290,20 @@ pub struct ListedPixels {
 /// Samples as a reader finds them: their image and the reader's upsampling parameters.
 pub(crate) type SampleReader<'a> = (&'a wgpu::TextureView, GpuUpsampleParams);
 
+/// The soft light at the samples as the listed pixels find it: the two images frames
+/// write in turn, and the reader's upsampling parameters.
+pub(crate) type SoftReader<'a> = ([&'a wgpu::TextureView; 2], GpuUpsampleParams);
+
 impl FullResolutionImages {
     /// Lists and colours for frames of `size` upsampled from `samples`, spaced
-    /// `downsample` pixels apart; `soft_layer`: with two-level shading, the soft layer the
-    /// listed pixels upsample; `kept_generation`: the generation of the SH path's light
-    /// kept at the pixels shaded in full (`kept_harmonic`).
+    /// `downsample` pixels apart; `soft_light`: with two-level shading, the soft light at
+    /// the samples the listed pixels upsample; `kept_generation`: the generation of the SH
+    /// path's light kept at the pixels shaded in full (`kept_harmonic`).
     pub fn new(
         device: &wgpu::Device,
         layouts: &FullResolutionLayouts,
         (size, downsample): ([u32; 2], u32),
-        (samples, soft_layer): (SampleReader<'_>, Option<SampleReader<'_>>),
+        (samples, soft_light): (SampleReader<'_>, Option<SoftReader<'_>>),
         kept_generation: &wgpu::Buffer,
     ) -> FullResolutionImages {
         let buffer = |label, bytes: u64, usage| {
@@ -359,20 +372,22 @@ impl FullResolutionImages {
             })
         };
         let sample_params = params(samples);
-        let sharp_group = soft_layer.map(|soft| {
-            let soft_params = params(soft);
-            group(
-                "listed pixels shaded from the soft layer",
-                &layouts.sharp,
-                &slot_entries([
-                    (slots::UPSAMPLE, soft_params.as_entire_binding()),
-                    (slots::LOW_SAMPLES, view(soft.0)),
-                    (slots::LIST_COUNTS, counts.as_entire_binding()),
-                    (slots::SHARP_PIXELS, view(&sharp_pixels)),
-                    (slots::FULL_PIXELS_OUT, view(&full_pixels)),
-                    (slots::FRAME_COLOURS, view(&colours_view)),
-                ]),
-            )
+        let sharp_groups = soft_light.map(|(images, soft_params)| {
+            let soft_params = params((images[0], soft_params));
+            images.map(|image| {
+                group(
+                    "listed pixels shaded from the soft layer",
+                    &layouts.sharp,
+                    &slot_entries([
+                        (slots::UPSAMPLE, soft_params.as_entire_binding()),
+                        (slots::LOW_SAMPLES, view(image)),
+                        (slots::LIST_COUNTS, counts.as_entire_binding()),
+                        (slots::SHARP_PIXELS, view(&sharp_pixels)),
+                        (slots::FULL_PIXELS_OUT, view(&full_pixels)),
+                        (slots::FRAME_COLOURS, view(&colours_view)),
+                    ]),
+                )
+            })
         });
         FullResolutionImages {
             blocks: upsampling_blocks(size, downsample),
@@ -396,7 +411,7 @@ impl FullResolutionImages {
                     (slots::DISPATCH_ARGS, dispatch_args.as_entire_binding()),
                 ]),
             ),
-            sharp_group,
+            sharp_groups,
             full_group: group(
                 "listed pixels shaded in full",
                 &layouts.full,

@@ -15,16 +15,20 @@
 //!   left out too, so a stamp per sample kept the walk). (Storage written by a fragment
 //!   shader runs it before its depth test unless it is marked for early tests, a
 //!   capability wgpu has only as a native feature: every sample, not only those left,
-//!   paid for the walk.)
+//!   paid for the walk.) Each texel is a sample of the soft light alone
+//!   (reduced_shading.wgsl's format: view depth, lighting per unit reflectance, normal),
+//!   and with two levels fs_shade_sharp_marking writes the soft layer upsampled at the
+//!   samples it shades, so the image written holds the soft light at every sample: the
+//!   listed pixels upsample it (full_resolution.wgsl's cs_shade_listed_sharp).
 
-use super::surface_buffer::image_extent;
+use super::surface_buffer::{cleared, image_extent};
 use crate::render::descriptors::{buffer_type, frame_texture, layout_entry, slot_entries, texture_entry};
 use crate::shading::wgsl::slots::{self, Slot};
 
 /// The full-resolution images' format: one that every device reads and writes in place.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
-/// The samples' kept light: the two words (z, w unused).
+/// The samples' kept light: a sample of the soft light (reduced_shading.wgsl's texel).
 pub(super) const SAMPLES_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// The layout entries of the kept light, for a pass run in `stage`: its three images
@@ -196,16 +200,19 @@ impl KeptAtSamples {
         &self.groups[self.read]
     }
 
-    /// The colour target fs_shade_low writes this frame, its texels not written kept.
+    /// The colour target fs_shade_low writes this frame, cleared (view depth 0: no
+    /// surface, where neither shading pass writes).
     pub(super) fn written(&self) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-        Some(wgpu::RenderPassColorAttachment {
-            view: &self.images[1 - self.read],
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            },
-        })
+        cleared(&self.images[self.written_index()])
+    }
+
+    /// Which of [`Self::images`] this frame writes.
+    pub(super) fn written_index(&self) -> usize {
+        1 - self.read
+    }
+
+    /// The two images, in the order [`Self::written_index`] counts.
+    pub(super) fn images(&self) -> [&wgpu::TextureView; 2] {
+        [&self.images[0], &self.images[1]]
     }
 }

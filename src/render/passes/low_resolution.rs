@@ -147,13 +147,14 @@ impl ReducedShadingPipelines {
                     None,
                     FullScreenDepth::None,
                 ),
-                // In fs_shade_low's pass, whose second target it leaves alone.
+                // In fs_shade_low's pass, writing the soft light at the samples it shades
+                // into its second target.
                 shade_sharp: full_screen_keeping(
                     "fs_shade_sharp_marking",
                     (low_samples, downsample),
                     Some(&low_resolution_layout),
                     FullScreenDepth::Marking,
-                    Some(wgpu::ColorWrites::empty()),
+                    Some(wgpu::ColorWrites::ALL),
                 ),
             }),
             full_resolution: if shades_unmatched_exactly(variant.samples) {
@@ -342,7 +343,7 @@ pub(super) fn draw_full_resolution(
     };
     full.compute.draw(
         frame,
-        images,
+        (images, low.kept_at_samples.written_index()),
         [&scene.frame_bind_group, &low.surface.bind_group, &blockers.bind_group],
     );
     images.copy_colours(frame.encoder, image);
@@ -422,8 +423,8 @@ struct FullScreenPass<'a> {
     /// The coarser samples it reads (group 3), if any.
     samples: Option<&'a wgpu::BindGroupLayout>,
     depth: FullScreenDepth,
-    /// A second target, the samples' kept light (`kept_harmonic`), written with these
-    /// writes: the passes of fs_shade_low's render pass have it.
+    /// A second target, the soft light at the samples (`kept_harmonic`), written with
+    /// these writes: the passes of fs_shade_low's render pass have it.
     kept: Option<wgpu::ColorWrites>,
 }
 

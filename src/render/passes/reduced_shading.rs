@@ -326,16 +326,21 @@ impl LowResolutionTargets {
             )
         });
         let kept_generation = kept_harmonic::generation_buffer(device);
+        let kept_at_samples = KeptAtSamples::new(device, kept_layout, size, &kept_generation);
         let full_resolution = deferred_frame.then(|| {
             let reader = (&samples.view, full_resolution_reader);
-            // The listed pixels upsample the soft layer read at full resolution.
-            let soft_layer = soft.as_ref().map(|soft| {
+            // The listed pixels upsample the soft light at the samples (the image the
+            // frame's low-resolution shading writes), read at full resolution: the soft
+            // layer where it matched them, their own where it did not, so the rims of
+            // objects a few dozen pixels across, which no soft layer sample lies on, find
+            // their soft light at the samples' spacing rather than being shaded in full.
+            let soft_layer = soft.is_some().then(|| {
                 let params = upsample_params(
                     full_size,
-                    [1, 2 * downsample],
+                    [1, downsample],
                     [SOFT_MAX_LIGHTING_RATIO, SOFT_LIGHTING_FLOOR],
                 );
-                (&soft.view, params)
+                (kept_at_samples.images(), params)
             });
             FullResolutionImages::new(
                 device,
@@ -359,7 +364,7 @@ impl LowResolutionTargets {
             soft_layer_current: false,
             mapped_factors_current: false,
             kept_harmonic_generation: 0,
-            kept_at_samples: KeptAtSamples::new(device, kept_layout, size, &kept_generation),
+            kept_at_samples,
             kept_generation,
             low_depth: low_depth_texture.create_view(&Default::default()),
             low_depth_texture,
