@@ -3,7 +3,8 @@
 //! triangles while its silhouette and its normals stay where the true sphere's are (ray
 //! casts against the sphere itself, a closed form); beside a shadow-mapped lamp its level
 //! stays within the maps' texels, and a lit frame of it on a floor stays the frame drawn
-//! from the whole mesh; per-vertex frames draw the meshes as they are.
+//! from the whole mesh, and a lamp brought near with the camera still redraws the finer
+//! level it asks for; per-vertex frames draw the meshes as they are.
 
 mod common;
 
@@ -159,6 +160,32 @@ fn a_lit_frame_drawn_from_levels_is_the_frame_drawn_from_the_whole_meshes() {
         .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 8))
         .count();
     assert!(far_apart <= 20, "{far_apart} pixels more than 8/255 apart");
+}
+
+/// A lamp brought up to the sphere with the camera still needs a finer level (its maps'
+/// texels shrink): the frame after the move draws it, byte for byte the frame of a
+/// renderer that never saw the lamp far away (the surfaces drawn for the coarser level
+/// are not kept).
+#[test]
+fn a_lamp_moved_near_with_the_camera_still_redraws_the_finer_level() {
+    let Some(gpu) = common::gpu() else { return };
+    let settings = RenderSettings::default();
+    let far = camera_at(18.0);
+    let near_lamp = sphere_scene(true, Some(2.5));
+    let far_lamp = sphere_scene(true, Some(40.0));
+    let (_, mut moved) = common::drawn_with(&gpu, (&far_lamp, &[]), &settings, (&far, [SIDE_PX; 2]), |_| {});
+    let (drawn_far_lamp, _) = moved.triangles_in_view();
+    moved.set_lights(&near_lamp.lights);
+    moved.render(&far, [SIDE_PX; 2], &settings, FrameQuality::default());
+    let after_move = moved.read_image().expect("a frame was drawn").expect("readback");
+    let (drawn_after_move, _) = moved.triangles_in_view();
+    let (fresh, fresh_renderer) = common::drawn_with(&gpu, (&near_lamp, &[]), &settings, (&far, [SIDE_PX; 2]), |_| {});
+    assert!(
+        drawn_far_lamp < drawn_after_move,
+        "the near lamp keeps more triangles: {drawn_after_move} against {drawn_far_lamp}"
+    );
+    assert_eq!(drawn_after_move, fresh_renderer.triangles_in_view().0);
+    assert_eq!(common::differing_pixels(&after_move, &fresh), 0);
 }
 
 /// Per-vertex shading shows values at the vertices: its frames draw the meshes as they

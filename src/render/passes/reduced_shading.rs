@@ -170,7 +170,9 @@ pub struct LowResolutionTargets {
 }
 
 /// What a surface buffer shows: the scene as uploaded at `scene_generation`
-/// ([`crate::render::resources::GpuScene::surfaces_generation`]) seen by `camera`.
+/// ([`crate::render::resources::GpuScene::surfaces_generation`]), its objects at the
+/// levels of detail of `levels_generation` (`GpuScene::levels_generation`), seen by
+/// `camera`.
 /// Two frames with equal keys rasterise the same buffer, so the second keeps the first's:
 /// a frame after an edit of the lights alone (a stroke, an intensity) skips the surfaces
 /// pass. (A new pipeline comes with new targets, which show nothing yet.)
@@ -178,6 +180,7 @@ pub struct LowResolutionTargets {
 pub struct SurfacesKey {
     pub camera: crate::scene::Camera,
     pub scene_generation: u64,
+    pub levels_generation: u64,
 }
 
 /// What the soft layer (two-level shading) shows besides the surfaces: the light of the

@@ -522,6 +522,7 @@ impl SceneRenderer {
                         surfaces: SurfacesKey {
                             camera: camera.clone(),
                             scene_generation: self.gpu_scene.surfaces_generation(),
+                            levels_generation: self.gpu_scene.levels_generation(),
                         },
                         soft_layer: SoftLayerKey {
                             lighting: self.gpu_scene.harmonic_lighting(),

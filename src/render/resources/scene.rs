@@ -94,6 +94,10 @@ pub struct GpuScene {
     /// Changes whenever what the surfaces pass draws may change (a new upload, objects
     /// hidden or shown, new baked indirect light); unique among every scene uploaded.
     surfaces_generation: u64,
+    /// Changes whenever a frame draws some object at another level of detail than the
+    /// frame before (unique likewise): with the camera still, a light brought near an
+    /// object shrinks its maps' texels and asks for a finer level.
+    levels_generation: u64,
 }
 
 /// The lighting of the SH path: see [`GpuScene::harmonic_lighting`].
@@ -251,6 +255,7 @@ impl GpuScene {
             view_culling: true,
             detail_levels: true,
             surfaces_generation: next_surfaces_generation(),
+            levels_generation: next_surfaces_generation(),
             harmonic_lights: Vec::new(),
             mapped_light_geometry: Vec::new(),
             bounds: scene.bounds(),
@@ -378,6 +383,7 @@ impl GpuScene {
         let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
         // Metres a pixel spans per metre of distance, at the image's centre.
         let pixel_m_per_m = 2.0 * (0.5 * camera.yfov_rad).tan() / size_px[1].max(1) as f32;
+        let mut level_changed = false;
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
             let level = match detail {
@@ -391,16 +397,25 @@ impl GpuScene {
                 }
                 _ => 0,
             };
-            object.drawn_indices = object.detail_levels.levels[level].indices.clone();
+            let indices = object.detail_levels.levels[level].indices.clone();
+            level_changed |= indices != object.drawn_indices;
+            object.drawn_indices = indices;
         }
+        if level_changed {
+            self.levels_generation = next_surfaces_generation();
+        }
+    }
+
+    /// Which levels of detail the last [`Self::write_frame`] chose, as a number: equal
+    /// numbers mean every object drawn at the same level as then.
+    pub fn levels_generation(&self) -> u64 {
+        self.levels_generation
     }
 
     /// Draws each object's level of detail for its distance from the camera (the
     /// default) or every mesh as it is, from the next [`Self::write_frame`] on.
     pub fn set_detail_levels(&mut self, enabled: bool) {
-        if enabled != self.detail_levels {
-            self.surfaces_generation = next_surfaces_generation();
-        }
+        // The levels the next frame draws then change its levels' generation.
         self.detail_levels = enabled;
     }
 
