@@ -219,9 +219,16 @@ impl LogShPipeline {
         });
         pass.set_bind_group(slots::FRAME_GROUP, &scene.frame_bind_group, &[]);
         pass.set_bind_group(slots::SHADOW_GROUP, &blockers.bind_group, &[]);
-        // The pre-pass settles depth, so the costly shading runs once per visible pixel.
-        pass.set_pipeline(&self.depth_prepass);
-        draw_objects(&mut pass, scene);
+        // The pre-pass settles depth, so the costly shading runs once per visible pixel;
+        // per vertex without lights on the shadow-map or exact paths a pixel only meets
+        // the interpolated visibility with the SH lights, cheaper than a second pass over
+        // the geometry (the blocker bench's per-vertex frame 62–74 → 50–61 ms, the same
+        // pixels; the studio's, with shadow maps, had gone 105 → 109–112 ms without it:
+        // docs/performance.md).
+        if per_vertex.is_none() || self.paths.maps || self.paths.exact {
+            pass.set_pipeline(&self.depth_prepass);
+            draw_objects(&mut pass, scene);
+        }
         match (per_vertex, reduced) {
             (Some((visibility, (_, shade))), _) => {
                 pass.set_pipeline(shade);

@@ -143,7 +143,9 @@ pub(super) fn scene_pipeline(
     let shaded = color(crate::render::descriptors::COLOR_FORMAT);
     let (entry_point, targets, depth_write, compare) = match stage {
         Stage::DepthOnly => ("fs_depth_only", vec![depth_only], true, wgpu::CompareFunction::Less),
-        Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], false, wgpu::CompareFunction::LessEqual),
+        // Writes depth: drawn without a pre-pass where its pixels are cheap
+        // (`LogShPipeline::draw`).
+        Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], true, wgpu::CompareFunction::LessEqual),
         Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::SurfaceBuffer => (
