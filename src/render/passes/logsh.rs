@@ -94,7 +94,7 @@ impl LogShPipeline {
                     settings.order,
                     &path_constants(paths.with_one_visibility()),
                 ),
-                make(Stage::ShadePerVertex(settings.order)),
+                make(Stage::ShadePerVertex(settings.order, !per_vertex_prepass(paths))),
             )
         });
         let reduced = (settings.shading_downsample > 1).then(|| {
@@ -219,13 +219,9 @@ impl LogShPipeline {
         });
         pass.set_bind_group(slots::FRAME_GROUP, &scene.frame_bind_group, &[]);
         pass.set_bind_group(slots::SHADOW_GROUP, &blockers.bind_group, &[]);
-        // The pre-pass settles depth, so the costly shading runs once per visible pixel;
-        // per vertex without lights on the shadow-map or exact paths a pixel only meets
-        // the interpolated visibility with the SH lights, cheaper than a second pass over
-        // the geometry (the blocker bench's per-vertex frame 62–74 → 50–61 ms, the same
-        // pixels; the studio's, with shadow maps, had gone 105 → 109–112 ms without it:
-        // docs/performance.md).
-        if per_vertex.is_none() || self.paths.maps || self.paths.exact {
+        // The pre-pass settles depth, so the costly shading runs once per visible pixel
+        // (per vertex only where `per_vertex_prepass` says).
+        if per_vertex.is_none() || per_vertex_prepass(self.paths) {
             pass.set_pipeline(&self.depth_prepass);
             draw_objects(&mut pass, scene);
         }
@@ -257,6 +253,16 @@ impl LogShPipeline {
         frame.mark("scene pass (depth, upsampling, shading)");
         finish(frame, target);
     }
+}
+
+/// Whether per-vertex frames with `paths` compiled in draw a depth pre-pass: only with
+/// lights on the shadow-map or exact paths, which cost each pixel a lookup or a walk.
+/// Without them a pixel only meets the interpolated visibility with the SH lights,
+/// cheaper than a second pass over the geometry (the blocker bench's per-vertex frame
+/// 62–74 → 50–61 ms, the same pixels; the studio's, with shadow maps, had gone 105 →
+/// 109–112 ms without it: docs/performance.md).
+fn per_vertex_prepass(paths: CompiledPaths) -> bool {
+    paths.maps || paths.exact
 }
 
 /// Resolves or filters `target`'s frame (see [`RenderTarget::finish`]), timed.

@@ -44,8 +44,9 @@ impl ByTexture {
 pub(super) enum Stage<'a> {
     DepthOnly,
     Shade,
-    /// Shading through per-vertex visibility attributes of this order.
-    ShadePerVertex(usize),
+    /// Shading through per-vertex visibility attributes of this order, writing depth
+    /// (drawn without a pre-pass) or not.
+    ShadePerVertex(usize, bool),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
     /// The surface buffer of deferred reduced shading (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
@@ -116,7 +117,7 @@ pub(super) fn scene_pipeline(
         immediate_size: 0,
     });
     let visibility_attributes = match stage {
-        Stage::ShadePerVertex(order) => PerVertexCompute::attributes(order),
+        Stage::ShadePerVertex(order, _) => PerVertexCompute::attributes(order),
         _ => Vec::new(),
     };
     let visibility_layout = wgpu::VertexBufferLayout {
@@ -125,7 +126,7 @@ pub(super) fn scene_pipeline(
         attributes: &visibility_attributes,
     };
     let (vertex_entry, buffers) = match stage {
-        Stage::ShadePerVertex(_) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
+        Stage::ShadePerVertex(..) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
         _ => ("vs_main", vec![Some(vertex_layout())]),
     };
     let color = |format| {
@@ -143,9 +144,13 @@ pub(super) fn scene_pipeline(
     let shaded = color(crate::render::descriptors::COLOR_FORMAT);
     let (entry_point, targets, depth_write, compare) = match stage {
         Stage::DepthOnly => ("fs_depth_only", vec![depth_only], true, wgpu::CompareFunction::Less),
-        // Writes depth: drawn without a pre-pass where its pixels are cheap
-        // (`LogShPipeline::draw`).
-        Stage::ShadePerVertex(_) => ("fs_per_vertex", vec![shaded], true, wgpu::CompareFunction::LessEqual),
+        // Writes depth where it is drawn without a pre-pass (`LogShPipeline::draw`).
+        Stage::ShadePerVertex(_, writes_depth) => (
+            "fs_per_vertex",
+            vec![shaded],
+            writes_depth,
+            wgpu::CompareFunction::LessEqual,
+        ),
         Stage::Shade => ("fs_logsh", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::SurfaceBuffer => (
