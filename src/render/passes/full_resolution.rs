@@ -364,16 +364,16 @@ impl FullResolutionImages {
                 entries,
             })
         };
-        let params = |(_, params): SampleReader<'_>| {
+        let params = |params: GpuUpsampleParams| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("upsampling parameters"),
                 contents: bytemuck::bytes_of(&params),
                 usage: wgpu::BufferUsages::UNIFORM,
             })
         };
-        let sample_params = params(samples);
+        let sample_params = params(samples.1);
         let sharp_groups = soft_light.map(|(images, soft_params)| {
-            let soft_params = params((images[0], soft_params));
+            let soft_params = params(soft_params);
             images.map(|image| {
                 group(
                     "listed pixels shaded from the soft layer",
