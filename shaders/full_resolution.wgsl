@@ -9,7 +9,9 @@
 //    background; those they do not match, or where they disagree, go on a list.
 // 2. cs_shade_listed_sharp (two-level shading): a listed pixel takes the soft light at
 //    the samples (the soft layer upsampled to them, or shaded there in full: the finest
-//    soft light there is) upsampled to it plus the sharp lights shaded at the pixel;
+//    soft light there is) upsampled to it, as its share of the unshadowed light times
+//    the pixel's own (low_resolution.wgsl's soft_share), plus the sharp lights shaded
+//    at the pixel;
 //    where that soft light does not match or disagrees, it goes on a second list. With
 //    one level every listed pixel goes straight to the second list.
 // 3. cs_shade_listed_full: the pixels on the second list shaded in full; the light of
@@ -227,11 +229,13 @@ fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(l
     if entry < atomicLoad(&list_counts.sharp) {
         pixel = listed_pixel(sharp_pixels, entry);
         let s = buffered_surface(pixel).s;
-        // The pixel's centre, as a fragment's position is.
-        let soft = upsampled_lighting(vec2<f32>(pixel) + vec2<f32>(0.5), s, false);
-        if soft.matches {
+        // The soft light's share of the unshadowed light at the samples (soft_share),
+        // upsampled to the pixel's centre, as a fragment's position is.
+        let share = upsampled_lighting(vec2<f32>(pixel) + vec2<f32>(0.5), s, false);
+        if share.matches {
+            let soft = share.lighting * unshadowed_harmonic_radiance(s);
             let sharp = mapped_lights_radiance(s) + exact_path_radiance(s);
-            let colour = tonemap_aces_fit(frame.exposure * (s.emissive + sharp) + reflectance(s) * soft.lighting);
+            let colour = tonemap_aces_fit(frame.exposure * (s.emissive + soft + sharp));
             store_colour(pixel, colour);
         } else {
             to_full = true;

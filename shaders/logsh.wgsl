@@ -447,6 +447,21 @@ fn harmonic_radiance(s: Surface) -> vec3<f32> {
     return radiance;
 }
 
+// The light harmonic_radiance shades at s as if nothing blocked it: the environment's
+// diffuse light and each SH light's exact unshadowed radiance. Two-level shading
+// interpolates the soft light's share of it (low_resolution.wgsl's soft_share).
+fn unshadowed_harmonic_radiance(s: Surface) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
+    if ENVIRONMENT_LIGHT {
+        radiance = environment_radiance(s);
+    }
+    let run = harmonic_lights_at(s.position);
+    for (var k = run.first; k < run.end; k++) {
+        radiance += direct_radiance(s, incidence(light_at(run_light(k)), s.position));
+    }
+    return radiance;
+}
+
 // The lights from frame.first_exact_light on, eight at a time: their exact visibility
 // (times the share above the terrain's horizon) times their unshadowed radiance.
 fn exact_path_radiance(s: Surface) -> vec3<f32> {

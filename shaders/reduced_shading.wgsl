@@ -4,7 +4,9 @@
 // guided by position and normal, Kopf et al. 2007). Both are deferred on single-sampled
 // targets (low_resolution.wgsl, full_resolution.wgsl). With two-level
 // shading the light of soft shadows is shaded at every other sample only and upsampled
-// to the rest by the same function (upsampled_lighting).
+// to the rest by the same function (upsampled_lighting), as its share of the same light
+// unshadowed (low_resolution.wgsl's soft_share), which each reader multiplies its own
+// unshadowed light by.
 //
 // The samples carry the exposed light of the lights with the material divided out,
 //   lighting = 2^EV · (L − emission) / (k_d + k_s),
@@ -27,7 +29,8 @@
 //      the ray through the sample's pixel centre (Frame.view_ray), exact in f32;
 //   y, z: lighting = 2^EV · (radiance − emission) / reflectance, rgb, each the
 //      top 21 bits of its f32 (pack_lighting: a relative step of 2⁻¹³; half floats
-//      would need a capability not every device has);
+//      would need a capability not every device has) — in the soft light's images
+//      (two-level shading) its share of the unshadowed light instead (soft_share);
 //   w: the unit shading normal, octahedral, two snorm16.
 @group(PASS_GROUP) @binding(UPSAMPLE_BINDING) var<uniform> upsample: UpsampleParams;
 @group(PASS_GROUP) @binding(LOW_SAMPLES_BINDING) var low_samples: texture_2d<u32>;
@@ -148,7 +151,9 @@ fn empty_blend() -> Blend {
 fn sample_geometry(low: LowSample, s: Surface, tolerance_m: f32) -> f32 {
     let off_plane = dot(low.position - s.position, s.normal) / tolerance_m;
     // (n·n')¹⁶: a sample whose normal is 15° off weighs 0.57, 30° off 0.1 (the
-    // lighting of the rim of a curved object changes fast with its normal).
+    // lighting of the rim of a curved object changes fast with its normal; so, if less
+    // fast, does the soft light's share of its unshadowed light, as the part of the sky
+    // and of the blockers a point faces turns with it).
     let facing2 = pow2(max(dot(low.normal, s.normal), 0.0));
     let facing16 = pow2(pow2(pow2(facing2)));
     return select(0.0, exp(-off_plane * off_plane) * facing16, low.shaded);

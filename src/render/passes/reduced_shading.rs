@@ -89,13 +89,14 @@ const MAX_LIGHTING_RATIO: f32 = 1.2;
 /// cost full shading.
 const LIGHTING_FLOOR: f32 = 0.02;
 
-/// [`MAX_LIGHTING_RATIO`] and [`LIGHTING_FLOOR`] of the soft layer (two-level shading):
-/// its light is dim beside the sharp lights' (a sky at a fraction of the key), so the
-/// floor that forgives differences in the dark at the last level forgave every
-/// difference of the soft light, and the floor along the backdrop's foot, where the sky's
-/// visibility halves within a few samples, was interpolated. These held the
+/// [`MAX_LIGHTING_RATIO`] and [`LIGHTING_FLOOR`] of the soft light (two-level shading:
+/// the soft layer read by the samples, the samples' soft light read by the listed
+/// pixels), whose samples carry its share of the same light unshadowed (each reader
+/// multiplies its own back in: low_resolution.wgsl's soft_share), so the floor is a share
+/// of the unshadowed soft light. When they carried the soft light itself, these held the
 /// studio's error to that of shading it in one level (compared with the study's
-/// reference outside the study, so no figures in the docs) for 1 % more frame time.
+/// reference outside the study, so no figures in the docs) for 1 % more frame time; as
+/// shares they were measured against the path tracer (docs/performance.md).
 const SOFT_MAX_LIGHTING_RATIO: f32 = 1.25;
 const SOFT_LIGHTING_FLOOR: f32 = 0.005;
 
