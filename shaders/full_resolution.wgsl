@@ -104,7 +104,7 @@ fn packed_pixel(pixel: vec2<u32>) -> u32 {
 }
 
 fn unpacked_pixel(packed: u32) -> vec2<i32> {
-    return vec2<i32>(i32(packed & 0xffffu), i32(packed >> 16u));
+    return vec2<i32>(i32(packed & 0xffffu), i32((packed >> 16u) & 0x7fffu));
 }
 
 // Where entry `entry` of a list `width` texels wide sits.
@@ -112,10 +112,21 @@ fn entry_texel(entry: u32, width: u32) -> vec2<u32> {
     return vec2<u32>(entry % width, entry / width);
 }
 
-// The pixel entry `entry` of `list` holds.
-fn listed_pixel(list: texture_2d<u32>, entry: u32) -> vec2<i32> {
-    return unpacked_pixel(textureLoad(list, entry_texel(entry, textureDimensions(list).x), 0).x);
+// The word entry `entry` of `list` holds: the pixel (packed_pixel; rows below 32 768) and,
+// on the full list, in bit 31 whether its blocker walk may be shared (SHARES_WALK_BIT).
+fn listed_word(list: texture_2d<u32>, entry: u32) -> u32 {
+    return textureLoad(list, entry_texel(entry, textureDimensions(list).x), 0).x;
 }
+
+fn listed_pixel(list: texture_2d<u32>, entry: u32) -> vec2<i32> {
+    return unpacked_pixel(listed_word(list, entry));
+}
+
+// A pixel on the full list whose samples did not disagree (it was left for too few of
+// them on its surface: a rim, a silhouette, a sliver) may stand its blocker walk in for
+// a neighbour's (shared_walk_logs); one whose samples disagree lies where the light
+// changes within their spacing, and walks at its own point.
+const SHARES_WALK_BIT: u32 = 0x80000000u;
 
 // This workgroup's entries on the list it appends to (one list per pass): how many its
 // invocations take, and where they start. Each invocation adds its count, then one
@@ -149,8 +160,9 @@ fn list_on_sharp(pixel: vec2<u32>, entry: u32) {
     textureStore(sharp_pixels_out, entry_texel(entry, textureDimensions(sharp_pixels_out).x), vec4<u32>(packed_pixel(pixel)));
 }
 
-fn list_on_full(pixel: vec2<u32>, entry: u32) {
-    textureStore(full_pixels_out, entry_texel(entry, textureDimensions(full_pixels_out).x), vec4<u32>(packed_pixel(pixel)));
+fn list_on_full(pixel: vec2<u32>, entry: u32, shares_walk: bool) {
+    let word = packed_pixel(pixel) | select(0u, SHARES_WALK_BIT, shares_walk);
+    textureStore(full_pixels_out, entry_texel(entry, textureDimensions(full_pixels_out).x), vec4<u32>(word));
 }
 
 // Block (i, j) holds the pixels whose nearest samples' corner is (i − 1, j − 1): with the
@@ -166,6 +178,8 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(loc
     // Bit k: pixel k of the block goes on the list (no early return: reserve_entries
     // holds barriers).
     var listed = 0u;
+    // Bit k: pixel k's samples did not disagree (SHARES_WALK_BIT).
+    var sharing = 0u;
     if all(first < size) {
         let quad = sample_quad(corner);
         for (var k = 0u; k < BLOCK_PX * BLOCK_PX; k++) {
@@ -185,6 +199,7 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(loc
                     store_word(pixel, word);
                 } else {
                     listed |= 1u << k;
+                    sharing |= select(0u, 1u << k, up.agrees);
                 }
             }
         }
@@ -197,7 +212,7 @@ fn cs_upsample_blocks(@builtin(global_invocation_id) id: vec3<u32>, @builtin(loc
         if LIST_FOR_SHARP {
             list_on_sharp(pixel, entry);
         } else {
-            list_on_full(pixel, entry);
+            list_on_full(pixel, entry, (sharing & (1u << k)) != 0u);
         }
         entry += 1u;
     }
@@ -225,6 +240,7 @@ fn listed_entry(workgroup: vec3<u32>, lane: u32) -> u32 {
 fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let entry = listed_entry(workgroup, lane);
     var to_full = false;
+    var shares_walk = false;
     var pixel = vec2<i32>(0);
     if entry < atomicLoad(&list_counts.sharp) {
         pixel = listed_pixel(sharp_pixels, entry);
@@ -239,41 +255,196 @@ fn cs_shade_listed_sharp(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(l
             store_colour(pixel, colour);
         } else {
             to_full = true;
+            shares_walk = share.agrees;
         }
     }
     // No early return above: reserve_entries holds barriers.
     let full_entry = reserve_entries(select(0u, 1u, to_full), lane, false);
     if to_full {
-        list_on_full(vec2<u32>(pixel), full_entry);
+        list_on_full(vec2<u32>(pixel), full_entry, shares_walk);
     }
 }
 
-// A listed pixel shaded in full.
+// A listed pixel shaded in full. Its SH path's light is kept from an earlier frame of
+// this generation, or shaded through the blockers' log-visibility at its walk's
+// representative (shared_walk_logs) where the walk is shared, else at the pixel itself
+// (kept_harmonic_light).
 @compute @workgroup_size(LISTED_WORKGROUP_SIZE)
 fn cs_shade_listed_full(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let entry = listed_entry(workgroup, lane);
-    if entry >= atomicLoad(&list_counts.full) {
-        return;
+    let listed = entry < atomicLoad(&list_counts.full);
+    var pixel = vec2<i32>(0);
+    var may_share = false;
+    if listed {
+        let word = listed_word(full_pixels, entry);
+        pixel = unpacked_pixel(word);
+        may_share = (word & SHARES_WALK_BIT) != 0u;
     }
-    let pixel = listed_pixel(full_pixels, entry);
     let s = buffered_surface(pixel).s;
-    let others = s.emissive + exact_path_radiance(s) + mapped_lights_radiance(s);
-    let colour = tonemap_aces_fit(frame.exposure * others + kept_harmonic_light(pixel, s));
-    store_colour(pixel, colour);
+    var harmonic = vec3<f32>(0.0);
+    if shares_walks() {
+        // Every invocation, in uniform control flow (barriers).
+        let kept = listed && kept_harmonic_stamped(pixel);
+        let walked = shared_walk_logs(lane, listed && !kept, may_share, pixel, s);
+        if kept {
+            harmonic = kept_harmonic(pixel);
+        } else if listed {
+            let radiance = harmonic_radiance_through(s, lobes_from_log_visibility(s, walked));
+            harmonic = keep_harmonic(pixel, frame.exposure * radiance);
+        }
+    } else if listed {
+        harmonic = kept_harmonic_light(pixel, s);
+    }
+    if listed {
+        let others = s.emissive + exact_path_radiance(s) + mapped_lights_radiance(s);
+        store_colour(pixel, tonemap_aces_fit(frame.exposure * others + harmonic));
+    }
+}
+
+// Whether the SH path's light kept at `pixel` is this generation's.
+fn kept_harmonic_stamped(pixel: vec2<i32>) -> bool {
+    return textureLoad(kept_harmonic_stamp, pixel).x == kept_harmonic_generation.x;
+}
+
+fn kept_harmonic(pixel: vec2<i32>) -> vec3<f32> {
+    return unpack_lighting(vec2<u32>(textureLoad(kept_harmonic_x, pixel).x, textureLoad(kept_harmonic_y, pixel).x));
+}
+
+// The exposed light of the SH path `exposed` kept at `pixel` with this generation, and
+// returned as a frame reading it back would read it (pack_lighting's 13-bit mantissas,
+// non-negative, clamped where the tone curve is long saturated).
+fn keep_harmonic(pixel: vec2<i32>, exposed: vec3<f32>) -> vec3<f32> {
+    let packed = pack_lighting(min(exposed, vec3<f32>(MAX_LIGHTING)));
+    textureStore(kept_harmonic_x, pixel, vec4<u32>(packed.x));
+    textureStore(kept_harmonic_y, pixel, vec4<u32>(packed.y));
+    textureStore(kept_harmonic_stamp, pixel, vec4<u32>(kept_harmonic_generation.x));
+    return unpack_lighting(packed);
 }
 
 // The exposed light of the SH path at `pixel` (surface s): kept from an earlier frame of
-// this generation, else shaded (harmonic_radiance: the blocker walk) and kept. Always
-// through pack_lighting's 13-bit mantissas (non-negative, clamped where the tone curve
-// is long saturated), so that a frame reading it is the frame shading it anew.
+// this generation, else shaded (harmonic_radiance: the blocker walk) and kept, so that a
+// frame reading it is the frame shading it anew.
 fn kept_harmonic_light(pixel: vec2<i32>, s: Surface) -> vec3<f32> {
-    let generation = kept_harmonic_generation.x;
-    if textureLoad(kept_harmonic_stamp, pixel).x == generation {
-        return unpack_lighting(vec2<u32>(textureLoad(kept_harmonic_x, pixel).x, textureLoad(kept_harmonic_y, pixel).x));
+    if kept_harmonic_stamped(pixel) {
+        return kept_harmonic(pixel);
     }
-    let packed = pack_lighting(min(frame.exposure * harmonic_radiance(s), vec3<f32>(MAX_LIGHTING)));
-    textureStore(kept_harmonic_x, pixel, vec4<u32>(packed.x));
-    textureStore(kept_harmonic_y, pixel, vec4<u32>(packed.y));
-    textureStore(kept_harmonic_stamp, pixel, vec4<u32>(generation));
-    return unpack_lighting(packed);
+    return keep_harmonic(pixel, frame.exposure * harmonic_radiance(s));
+}
+
+// The blocker walk shared between neighbouring listed pixels. The pixels shaded in full
+// lie along rims, silhouettes and contact shadows, in short runs of neighbours, and each
+// walked the blockers itself: most of this pass's time. Where a pixel was listed only
+// because too few samples lay on its surface (a rim, a silhouette: SHARES_WALK_BIT), the
+// visibility — not the light, which turns with the normal — of a pixel of its block on
+// its surface hardly differs from its own, so that pixel's walk stands for its own
+// (walk_representative: the same whichever frame or workgroup asks), the workgroup walks
+// each representative once, and each pixel shades through that log-visibility with its
+// own surface (normal, material, lights). Where its samples disagree (the light changes
+// within their spacing: a contact shadow's edge) a pixel walks at its own point.
+//
+// Only without light windows: the windowed walk's sums are each light's and are opened
+// per point, and are not shared.
+fn shares_walks() -> bool {
+    return SH_VISIBILITY && LIGHT_WINDOWS == 0u;
+}
+
+// Walks per round (workgroup memory for their log-visibility: 8 KB at order 8).
+const SHARED_WALKS_PER_ROUND: u32 = 32u;
+// A lane's representative pixel (packed_pixel), NO_WALK where it walks nothing.
+const NO_WALK: u32 = 0xffffffffu;
+var<workgroup> walk_pixel: array<u32, LISTED_WORKGROUP_SIZE>;
+// A walking lane's slot among the workgroup's walks, and each slot's pixel.
+var<workgroup> walk_slot: array<u32, LISTED_WORKGROUP_SIZE>;
+var<workgroup> slot_pixel: array<u32, LISTED_WORKGROUP_SIZE>;
+var<workgroup> walk_count: atomic<u32>;
+var<workgroup> walked_logs: array<Sh, SHARED_WALKS_PER_ROUND>;
+
+// How far from a pixel's tangent plane, in pixel footprints, and how far turned its
+// normal (cosine: 46°) may be the surface of the pixel whose walk stands for its own.
+// Measured on the large sample at 960 × 540 (docs/performance.md): at 0.5 footprints and
+// 0.97 the pass was no faster than walking every pixel; at these, 74 → 63 ms, with the
+// frame against the path tracer as it was (480 × 270).
+const WALK_PLANE_TOLERANCE_PX: f32 = 2.0;
+const WALK_MIN_FACING: f32 = 0.7;
+
+// The pixel whose blocker walk stands for pixel's (surface s): the first of its d × d
+// block (cs_upsample_blocks' block) whose surface lies on s's tangent plane within
+// WALK_PLANE_TOLERANCE_PX footprints with a normal within WALK_MIN_FACING, which may be
+// the pixel itself. It depends on the surface buffer alone, so every frame of these
+// surfaces, and every workgroup holding a pixel of the block, picks the same.
+fn walk_representative(pixel: vec2<i32>, s: Surface) -> vec2<i32> {
+    let d = i32(BLOCK_PX);
+    let size = vec2<i32>(textureDimensions(surface_buffer_a));
+    // Block corner k holds pixels d·k + ⌊d/2⌋ up to d more (cs_upsample_blocks).
+    let corner = (pixel - vec2<i32>(d / 2) + vec2<i32>(d)) / d - vec2<i32>(1);
+    let first = d * corner + vec2<i32>(d / 2);
+    let tolerance_m = max(WALK_PLANE_TOLERANCE_PX * pixel_footprint(s.position), 1e-6);
+    for (var k = 0; k < d * d; k++) {
+        let candidate = first + vec2<i32>(k % d, k / d);
+        if all(candidate == pixel) {
+            break;
+        }
+        if all(candidate >= vec2<i32>(0)) && all(candidate < size) {
+            let c = buffered_surface(candidate);
+            let off_plane = abs(dot(c.s.position - s.position, s.normal));
+            if c.drawn && off_plane <= tolerance_m && dot(c.s.normal, s.normal) >= WALK_MIN_FACING {
+                return candidate;
+            }
+        }
+    }
+    return pixel;
+}
+
+// The blockers' and the terrain's log-visibility at the representative of this lane's
+// pixel (walk_representative), walked once per representative by the workgroup, the
+// walks packed into the first lanes (lanes past the walks skip the walk's loop as whole
+// vectors, which a lane merely not walking would not). `walks`: this lane needs one.
+// Every invocation calls it, in uniform control flow (it holds barriers).
+fn shared_walk_logs(lane: u32, walks: bool, may_share: bool, pixel: vec2<i32>, s: Surface) -> Sh {
+    var representative = NO_WALK;
+    if walks {
+        var stand_in = pixel;
+        if may_share {
+            stand_in = walk_representative(pixel, s);
+        }
+        representative = packed_pixel(vec2<u32>(stand_in));
+    }
+    walk_pixel[lane] = representative;
+    if lane == 0u {
+        atomicStore(&walk_count, 0u);
+    }
+    workgroupBarrier();
+    // The first lane with this representative walks it.
+    var walker = lane;
+    if walks {
+        for (var j = 0u; j < lane; j++) {
+            if walk_pixel[j] == representative {
+                walker = j;
+                break;
+            }
+        }
+        if walker == lane {
+            let slot = atomicAdd(&walk_count, 1u);
+            walk_slot[lane] = slot;
+            slot_pixel[slot] = representative;
+        }
+    }
+    let count = workgroupUniformLoad(&walk_count);
+    var slot = 0u;
+    if walks {
+        slot = walk_slot[walker];
+    }
+    var logs = sh_zero();
+    for (var first = 0u; first < count; first += SHARED_WALKS_PER_ROUND) {
+        if lane < SHARED_WALKS_PER_ROUND && first + lane < count {
+            let at = buffered_surface(unpacked_pixel(slot_pixel[first + lane])).s;
+            walked_logs[lane] = log_visibility(at.position, at.normal);
+        }
+        workgroupBarrier();
+        if walks && slot >= first && slot < first + SHARED_WALKS_PER_ROUND {
+            logs = walked_logs[slot - first];
+        }
+        workgroupBarrier();
+    }
+    return logs;
 }

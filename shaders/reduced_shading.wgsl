@@ -122,6 +122,9 @@ fn pow2(x: f32) -> f32 {
 struct UpsampledLighting {
     lighting: vec3<f32>,
     matches: bool,
+    // false: the nearest samples on the surface disagree (blend_agrees' ratio: the light
+    // changes within their spacing), whatever else left the pixel unmatched.
+    agrees: bool,
 };
 
 // A full-resolution pixel rebuilt from the samples (the best match nearby where none
@@ -182,7 +185,12 @@ fn blend_sample(b: Blend, low: LowSample, geometry: f32, step: vec2<i32>, t: vec
 // a rim's) that interpolation would blur and misplace, and a lone one on the surface
 // (a limb a few pixels wide) cannot tell: such pixels are shaded in full too.
 fn blend_agrees(b: Blend) -> bool {
-    return b.on_surface >= 2u && b.brightest <= upsample.max_lighting_ratio * b.darkest + upsample.lighting_floor;
+    return b.on_surface >= 2u && lighting_agrees(b);
+}
+
+// The nearest samples on the surface (none or one agree) within upsample.max_lighting_ratio.
+fn lighting_agrees(b: Blend) -> bool {
+    return b.brightest <= upsample.max_lighting_ratio * b.darkest + upsample.lighting_floor;
 }
 
 // Where a pixel centre `pixel` (in its own image's pixels, which upsample.full_to_low maps
@@ -221,7 +229,7 @@ fn quad_lighting(quad: array<LowSample, 4>, t: vec2<f32>, s: Surface) -> Upsampl
         b = blend_sample(b, quad[k], sample_geometry(quad[k], s, tolerance_m), step, t);
     }
     let matches = b.matched >= upsample.min_matched_weight && blend_agrees(b);
-    return UpsampledLighting(b.lighting / b.matched, matches);
+    return UpsampledLighting(b.lighting / b.matched, matches, lighting_agrees(b));
 }
 
 // The 2 × 2 samples around `corner`, in quad_lighting's order.
@@ -263,9 +271,9 @@ fn upsampled_lighting(pixel: vec2<f32>, s: Surface, ring: bool) -> UpsampledLigh
         b = blend_sample(b, low, geometry, step, place.t);
     }
     if b.matched < upsample.min_matched_weight {
-        return UpsampledLighting(best_lighting, true);
+        return UpsampledLighting(best_lighting, true, true);
     }
-    return UpsampledLighting(b.lighting / b.matched, true);
+    return UpsampledLighting(b.lighting / b.matched, true, true);
 }
 
 // Upsampling into a multisampled target.

@@ -159,11 +159,13 @@ impl FullResolutionCompute {
             })
         };
         let shade_sharp = two_level.then(|| pipeline("cs_shade_listed_sharp", &layouts.sharp, &constants));
-        let shade_full = pipeline("cs_shade_listed_full", &layouts.full, &constants);
         let dispatch_args = pipeline("cs_dispatch_args", &layouts.dispatch_args, &[]);
+        // The samples' blocks: the upsampling's, and those within which the pixels shaded
+        // in full share their blocker walks.
+        constants.push(("BLOCK_PX", f64::from(downsample)));
+        let shade_full = pipeline("cs_shade_listed_full", &layouts.full, &constants);
         constants.extend([
             ("LIST_FOR_SHARP", if two_level { 1.0 } else { 0.0 }),
-            ("BLOCK_PX", f64::from(downsample)),
             ("BLOCK_WORKGROUP_SIDE", f64::from(BLOCK_WORKGROUP_SIDE)),
         ]);
         FullResolutionCompute {
