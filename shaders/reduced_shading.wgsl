@@ -117,8 +117,9 @@ fn pow2(x: f32) -> f32 {
     return x * x;
 }
 
-// The lighting (exposed, per unit reflectance) the samples give a pixel, and whether they
-// matched its surface and agreed.
+// The lighting (exposed, per unit reflectance; from the soft light's samples, its share
+// of the unshadowed light) the samples give a pixel, and whether they matched its
+// surface and agreed.
 struct UpsampledLighting {
     lighting: vec3<f32>,
     matches: bool,
@@ -188,7 +189,8 @@ fn blend_agrees(b: Blend) -> bool {
     return b.on_surface >= 2u && lighting_agrees(b);
 }
 
-// The nearest samples on the surface (none or one agree) within upsample.max_lighting_ratio.
+// Whether the nearest samples on the surface lie within upsample.max_lighting_ratio (and
+// lighting_floor) of each other: vacuously so with fewer than two.
 fn lighting_agrees(b: Blend) -> bool {
     return b.brightest <= upsample.max_lighting_ratio * b.darkest + upsample.lighting_floor;
 }
