@@ -223,9 +223,9 @@ fn fs_mark_surface_samples_keeping_visibility(in: FullScreen) -> @builtin(frag_d
 // shaded then (they depend on the surfaces and the soft layer alone) and their light
 // kept then is this frame's.
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_GENERATION_BINDING) var<uniform> kept_harmonic_generation: vec4<u32>;
-// The soft light at the samples in the last frame, a sample texel each (view depth,
-// lighting, normal: reduced_shading.wgsl), of which fs_shade_low reads the SH path's
-// light at those it shades. fs_shade_low reads last frame's image and writes the other
+// The soft light at the samples in the last frame, a sample texel each (view depth, its
+// share of the unshadowed light — soft_share —, normal: reduced_shading.wgsl), of which
+// fs_shade_low reads the SH path's light at those it shades. fs_shade_low reads last frame's image and writes the other
 // (a fragment shader writing storage would run before its depth test: every sample, not
 // only those left, would pay).
 @group(PASS_GROUP) @binding(KEPT_HARMONIC_READ_BINDING) var kept_harmonic_read: texture_2d<u32>;
@@ -265,9 +265,9 @@ fn soft_share_texel(s: Surface, share: SoftShare) -> vec4<u32> {
     return select(vec4<u32>(0u, texel.yzw), texel, share.known);
 }
 
-// A sample shaded in full, and the SH path's light at it as a sample (kept for the next
-// frames; with two levels the listed pixels upsample it with the soft layer's light at
-// the other samples).
+// A sample shaded in full, and the SH path's light at it as a sample of its share
+// (soft_share; kept for the next frames; with two levels the listed pixels upsample it
+// with the soft layer's share at the other samples).
 struct ShadedLowSample {
     @location(0) texel: vec4<u32>,
     @location(1) soft: vec4<u32>,
@@ -295,8 +295,9 @@ fn fs_shade_low(in: FullScreen) -> ShadedLowSample {
 }
 
 // The soft layer's samples (two-level shading): the light of soft shadows alone — the
-// environment's and the SH path's lights through the blockers' visibility — at twice
-// the low-resolution samples' spacing (LEVEL_STRIDE_PX is 2d here).
+// environment's and the SH path's lights through the blockers' visibility — as its share
+// of the same light unshadowed (soft_share), at twice the low-resolution samples'
+// spacing (LEVEL_STRIDE_PX is 2d here).
 @fragment
 fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
     // The soft samples' k_d averaged over the d × d pixels around them, as the
@@ -309,9 +310,9 @@ fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
 
 // A low-resolution sample from the soft layer upsampled to it (group 3 then holds the
 // soft layer) plus the lights of sharp shadows, the shadow-map and exact paths, shaded
-// here, and that soft light alone as a sample (fs_shade_low's second target: with the
-// samples fs_shade_low shades, the soft light at every sample, which the listed pixels
-// upsample). Samples the soft layer does not match, or whose soft samples disagree, are
+// here, and that soft light's share alone as a sample (fs_shade_low's second target:
+// with the samples fs_shade_low shades, the soft light's share at every sample, which
+// the listed pixels upsample). Samples the soft layer does not match, or whose soft samples disagree, are
 // discarded, and fs_shade_low shades them in full right after: this pass writes depth 1
 // where it shades (its pipeline's depth write), which fs_shade_low's test then skips.
 @fragment
