@@ -107,8 +107,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(listed) = renderer.listed_pixels() {
         let listed = listed?;
         println!(
-            "pixels the upsampling left: {} to the soft layer, {} shaded in full",
-            listed.from_soft_layer, listed.in_full
+            "pixels the upsampling left: {} to the soft layer, {} shaded in full; samples the soft layer left: {}",
+            listed.from_soft_layer, listed.in_full, listed.samples_in_full
         );
     }
     if let Some(path) = png {

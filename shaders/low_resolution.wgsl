@@ -273,19 +273,25 @@ struct ShadedLowSample {
     @location(1) soft: vec4<u32>,
 };
 
-// A low-resolution sample shaded in full; the SH path's light (the blocker walk) as its
-// share of the unshadowed light (soft_share), read from the last frame's kept image where
-// that frame had this one's generation. Always through pack_lighting, so that a frame
-// reading it is the frame shading it anew.
+// A low-resolution sample shaded in full (one level: every sample on a surface).
 @fragment
 fn fs_shade_low(in: FullScreen) -> ShadedLowSample {
-    let texel = vec2<i32>(in.clip.xy);
+    return low_sample_in_full(vec2<i32>(in.clip.xy), kept_harmonic_generation.y != 0u);
+}
+
+// Low-resolution sample `texel` shaded in full (fs_shade_low; with two levels the
+// samples the soft layer does not serve, listed_samples.wgsl); the SH path's light (the
+// blocker walk) as its share of the unshadowed light (soft_share), read from the last
+// frame's kept image where `kept_current` (that frame had this one's generation:
+// kept_harmonic_generation.y). Always through pack_lighting, so that a frame reading it
+// is the frame shading it anew.
+fn low_sample_in_full(texel: vec2<i32>, kept_current: bool) -> ShadedLowSample {
     let s = sample_surface(texel, LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
     let unshadowed = unshadowed_harmonic_radiance(s);
     var kept = textureLoad(kept_harmonic_read, texel, 0);
     // The same for every sample (a condition per sample would not spare lavapipe the
     // walk: it runs a branch for a block of samples, those the depth test left out too).
-    if kept_harmonic_generation.y == 0u {
+    if !kept_current {
         kept = soft_share_texel(s, soft_share(harmonic_radiance(s), unshadowed));
     }
     let harmonic_lighting = frame.exposure * unpack_lighting(kept.yz) * unshadowed / reflectance(s);

@@ -232,9 +232,10 @@ fn time_frames(gpu: &GpuContext, frame: &ShadowFrame, count: u32, anti_aliasing:
     if let Some(listed) = renderer.listed_pixels() {
         let listed = listed?;
         say!(
-            "pixels the upsampling left: {} to the soft layer (two levels), {} shaded in full",
+            "pixels the upsampling left: {} to the soft layer (two levels), {} shaded in full; low-resolution samples the soft layer left: {}",
             listed.from_soft_layer,
-            listed.in_full
+            listed.in_full,
+            listed.samples_in_full
         );
     }
     let batches = [

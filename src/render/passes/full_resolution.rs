@@ -275,6 +275,7 @@ impl FullResolutionImages {
         Ok(ListedPixels {
             from_soft_layer: count(0),
             in_full: count(1),
+            samples_in_full: 0,
         })
     }
 }
@@ -287,6 +288,8 @@ pub struct ListedPixels {
     pub from_soft_layer: u32,
     /// Shaded in full: left by the upsampling in one level, by the soft layer in two.
     pub in_full: u32,
+    /// Low-resolution samples the soft layer left, shaded in full (two levels; else 0).
+    pub samples_in_full: u32,
 }
 
 /// Samples as a reader finds them: their image and the reader's upsampling parameters.

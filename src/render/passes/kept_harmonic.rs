@@ -7,8 +7,10 @@
 //! - At the full-resolution pixels cs_shade_listed_full shades (full_resolution.wgsl's
 //!   kept_harmonic_light): three r32uint images read and written in place
 //!   ([`KeptHarmonicImages`]).
-//! - At the low-resolution samples fs_shade_low shades: one image read and another
-//!   written as a second colour target, swapped every frame ([`KeptAtSamples`]). The
+//! - At the low-resolution samples shaded in full (fs_shade_low; with two levels
+//!   cs_shade_listed_samples, listed_samples.wgsl): one image read and another written
+//!   — as a second colour target, or a storage image — swapped every frame
+//!   ([`KeptAtSamples`]). The
 //!   samples it shades depend on the surfaces and the soft layer alone, so a frame of the
 //!   last frame's generation shades the same ones and reads them all: one flag for the
 //!   whole pass (lavapipe runs a branch for a block of fragments, those the depth test
@@ -160,7 +162,9 @@ impl KeptAtSamples {
                 image_extent(size),
                 SAMPLES_FORMAT,
                 1,
-                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::STORAGE_BINDING,
                 &[],
             )
             .create_view(&Default::default())
@@ -204,6 +208,11 @@ impl KeptAtSamples {
     /// surface, where neither shading pass writes).
     pub(super) fn written(&self) -> Option<wgpu::RenderPassColorAttachment<'_>> {
         cleared(&self.images[self.written_index()])
+    }
+
+    /// Which of [`Self::images`] this frame reads.
+    pub(super) fn read_index(&self) -> usize {
+        self.read
     }
 
     /// Which of [`Self::images`] this frame writes.

@@ -157,6 +157,7 @@ impl LogShPipeline {
                         &reduced.kept_samples_layout,
                     ],
                     &reduced.full_resolution_layouts,
+                    reduced.listed_samples(),
                 ),
                 full_size,
                 reduced.downsample,

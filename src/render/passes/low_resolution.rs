@@ -8,6 +8,7 @@
 
 use super::full_resolution::{FullResolutionCompute, FullResolutionLayouts};
 use super::kept_harmonic;
+use super::listed_samples::ListedSamplesPipelines;
 use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, mapped_factors_writer_layout,
     surface_buffer_layout,
@@ -59,10 +60,12 @@ pub(super) enum FullResolution {
 
 /// Two-level reduced shading (see `reduced_shading`): the soft layer's samples
 /// (fs_shade_soft) and the low-resolution samples upsampled from them with the sharp
-/// lights added (fs_shade_sharp_marking; fs_shade_low then shades what it discarded).
+/// lights added (fs_shade_sharp_marking; compute passes then list what it discarded and
+/// shade it in full, `listed_samples`).
 pub(super) struct SoftLayerPipelines {
     shade_soft: wgpu::RenderPipeline,
     shade_sharp: wgpu::RenderPipeline,
+    listed: ListedSamplesPipelines,
 }
 
 /// The full-resolution frame from the surface buffer: the upsampling and the shading of
@@ -147,14 +150,23 @@ impl ReducedShadingPipelines {
                     None,
                     FullScreenDepth::None,
                 ),
-                // In fs_shade_low's pass, writing the soft light at the samples it shades
-                // into its second target.
+                // Writing the soft light at the samples it shades into its second target.
                 shade_sharp: full_screen_keeping(
                     "fs_shade_sharp_marking",
                     (low_samples, downsample),
                     Some(&low_resolution_layout),
                     FullScreenDepth::Marking,
                     Some(wgpu::ColorWrites::ALL),
+                ),
+                listed: ListedSamplesPipelines::new(
+                    device,
+                    module,
+                    [&layouts.frame, &surface_buffer_layout, shadow_layout],
+                    &[
+                        path_constants(paths).as_slice(),
+                        &[("LEVEL_STRIDE_PX", f64::from(downsample))],
+                    ]
+                    .concat(),
                 ),
             }),
             full_resolution: if shades_unmatched_exactly(variant.samples) {
@@ -192,6 +204,12 @@ impl ReducedShadingPipelines {
 }
 
 impl ReducedShadingPipelines {
+    /// Two levels: the pipelines of the samples the soft layer leaves, whose groups the
+    /// targets hold.
+    pub fn listed_samples(&self) -> Option<&ListedSamplesPipelines> {
+        self.soft_layer.as_ref().map(|soft| &soft.listed)
+    }
+
     /// What its targets need besides the samples ([`LowResolutionTargets::new`]): a soft
     /// layer, a full-resolution surface buffer.
     pub fn levels(&self) -> [bool; 2] {
@@ -274,17 +292,22 @@ pub(super) fn shade_low_resolution(
                     &[(&soft_pipelines.shade_soft, None)],
                 );
             }
-            // The sharp pass marks what it shaded (depth 1), so the full shading after it
-            // shades only the samples it discarded.
+            // The sharp pass marks what it shaded (depth 1), so the samples left at
+            // depth 0 are those it discarded, which the compute passes list and shade.
             bound.full_screen(
                 frame,
                 "low-resolution shading",
                 (&samples, Some(low.low_depth_attachment(false))),
-                &[
-                    (&soft_pipelines.shade_sharp, Some(&soft.bind_group)),
-                    (&pipelines.shade_low, kept),
-                ],
+                &[(&soft_pipelines.shade_sharp, Some(&soft.bind_group))],
             );
+            if let Some(listed) = &low.listed_samples {
+                soft_pipelines.listed.draw(
+                    frame,
+                    listed,
+                    low.kept_at_samples.read_index(),
+                    [&scene.frame_bind_group, bound.surface, &blockers.bind_group],
+                );
+            }
         }
         _ => bound.full_screen(
             frame,

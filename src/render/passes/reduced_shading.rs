@@ -39,6 +39,7 @@ use wgpu::util::DeviceExt;
 
 use super::full_resolution::{FullResolutionImages, FullResolutionLayouts};
 use super::kept_harmonic::{self, KeptAtSamples};
+use super::listed_samples::{ListedSamples, ListedSamplesPipelines, ListedSamplesTargets};
 pub(crate) use super::surface_buffer::SurfaceBuffer;
 pub use super::surface_buffer::{
     MAPPED_FACTORS_BUDGET_BYTES, MappedLightKey, MappedVisibilityKey, SURFACE_BUFFER_FORMATS,
@@ -143,6 +144,9 @@ pub struct LowResolutionTargets {
     /// upsampled into them by fs_shade_sharp_marking: present when the pipeline shades
     /// in two levels.
     pub(crate) soft: Option<SampleImage>,
+    /// With the soft layer: the list of the samples it leaves, which compute passes shade
+    /// in full (`listed_samples`).
+    pub(crate) listed_samples: Option<ListedSamples>,
     /// Where the full-resolution frame is deferred: its lists of the pixels the
     /// upsampling leaves and its colours (`full_resolution`).
     pub(crate) full_resolution: Option<FullResolutionImages>,
@@ -281,7 +285,8 @@ impl SampleImage {
             image_extent(size),
             LOW_RESOLUTION_FORMATS[0],
             1,
-            SAMPLED_TARGET,
+            // Written by fs_shade_low's pass, and by cs_shade_listed_samples in two levels.
+            SAMPLED_TARGET | wgpu::TextureUsages::STORAGE_BINDING,
             &[],
         )
         .create_view(&Default::default());
@@ -299,14 +304,17 @@ impl LowResolutionTargets {
     /// Targets for frames of `full_size` shaded once per `downsample` × `downsample`
     /// pixels, the samples read through `layout` ([`low_resolution_layout`]) and the
     /// surfaces through `surface_layout` ([`surface_buffer_layout`]), the full-resolution
-    /// frame's through `full_layouts`; `soft_layer`: with
-    /// the soft layer at twice the spacing (two-level shading); `deferred_frame`: the
+    /// frame's through `full_layouts`, the samples the soft layer leaves through
+    /// `listed_pipelines`' groups; `soft_layer`: with
+    /// the soft layer at twice the spacing (two-level shading; then `listed_pipelines`
+    /// is present); `deferred_frame`: the
     /// full-resolution frame is deferred too (its passes start from the buffer's depth).
-    pub fn new(
+    pub(super) fn new(
         device: &wgpu::Device,
-        ([layout, surface_layout, writer_layout, kept_layout], full_layouts): (
+        ([layout, surface_layout, writer_layout, kept_layout], full_layouts, listed_pipelines): (
             [&wgpu::BindGroupLayout; 4],
             &FullResolutionLayouts,
+            Option<&ListedSamplesPipelines>,
         ),
         full_size: [u32; 2],
         downsample: u32,
@@ -356,6 +364,15 @@ impl LowResolutionTargets {
         });
         let copied = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
         let low_depth_texture = depth_texture(device, "low-resolution depth", size, copied);
+        let low_depth = low_depth_texture.create_view(&Default::default());
+        let listed_samples = listed_pipelines.filter(|_| soft.is_some()).map(|pipelines| {
+            let targets = ListedSamplesTargets {
+                samples: &samples.view,
+                kept: kept_at_samples.images(),
+                generation: &kept_generation,
+            };
+            ListedSamples::new(device, pipelines, size, targets)
+        });
         LowResolutionTargets {
             full_size,
             downsample,
@@ -370,8 +387,9 @@ impl LowResolutionTargets {
             kept_harmonic_generation: 0,
             kept_at_samples,
             kept_generation,
-            low_depth: low_depth_texture.create_view(&Default::default()),
+            low_depth,
             low_depth_texture,
+            listed_samples,
             marked_samples: depth_texture(device, "marked samples", size, copied),
             samples,
             soft,

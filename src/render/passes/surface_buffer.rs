@@ -18,20 +18,16 @@ pub const SURFACE_BUFFER_FORMATS: [wgpu::TextureFormat; 2] = [wgpu::TextureForma
 /// through which the low-resolution shading reads the surface buffer.
 pub fn surface_buffer_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     // Read by the full-screen passes and by the compute passes shading the pixels the
-    // upsampling leaves (full_resolution.wgsl).
-    let texture = |slot| {
-        texture_entry(
-            slot,
-            wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-            wgpu::TextureSampleType::Uint,
-        )
-    };
+    // upsampling leaves (full_resolution.wgsl) and the samples the soft layer leaves
+    // (listed_samples.wgsl, the kept factors too).
+    let stages = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
+    let texture = |slot| texture_entry(slot, stages, wgpu::TextureSampleType::Uint);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("surface buffer"),
         entries: &[
             texture(slots::SURFACE_BUFFER_A),
             texture(slots::SURFACE_BUFFER_B),
-            storage_buffer_entry(slots::KEPT_MAPPED_FACTORS, wgpu::ShaderStages::FRAGMENT, true),
+            storage_buffer_entry(slots::KEPT_MAPPED_FACTORS, stages, true),
         ],
     })
 }

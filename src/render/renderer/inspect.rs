@@ -67,11 +67,22 @@ impl SceneRenderer {
     }
 
     /// How many pixels the last frame's upsampling left to the soft layer and shaded in
-    /// full (None where the frame was not drawn deferred at full resolution).
+    /// full, and how many samples the soft layer left (None where the frame was not drawn
+    /// deferred at full resolution).
     pub fn listed_pixels(&self) -> Option<Result<ListedPixels, RenderError>> {
         let low = self.shadows.low_resolution.as_ref()?;
         let images = low.full_resolution.as_ref()?;
-        Some(images.listed_pixels(&self.device, &self.queue))
+        let listed = |pixels: ListedPixels| -> Result<ListedPixels, RenderError> {
+            let samples_in_full = match &low.listed_samples {
+                Some(samples) => samples.count(&self.device, &self.queue)?,
+                None => 0,
+            };
+            Ok(ListedPixels {
+                samples_in_full,
+                ..pixels
+            })
+        };
+        Some(images.listed_pixels(&self.device, &self.queue).and_then(listed))
     }
 
     /// From now on, times each pass of every frame on the GPU, if the device has

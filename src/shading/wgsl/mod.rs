@@ -31,6 +31,7 @@ pub const TERRAIN: &str = include_str!("../../../shaders/terrain.wgsl");
 pub const REDUCED_SHADING: &str = include_str!("../../../shaders/reduced_shading.wgsl");
 pub const LOW_RESOLUTION: &str = include_str!("../../../shaders/low_resolution.wgsl");
 pub const FULL_RESOLUTION: &str = include_str!("../../../shaders/full_resolution.wgsl");
+pub const LISTED_SAMPLES: &str = include_str!("../../../shaders/listed_samples.wgsl");
 pub const LOGSH_PER_VERTEX: &str = include_str!("../../../shaders/logsh_per_vertex.wgsl");
 pub const HEAT_MAP: &str = include_str!("../../../shaders/heat_map.wgsl");
 pub const SHADOW_MAP: &str = include_str!("../../../shaders/shadow_map.wgsl");
@@ -43,7 +44,7 @@ pub const VIEWPORT_IMAGE: &str = include_str!("../../../shaders/viewport_image.w
 pub const FULL_SCREEN: &str = include_str!("../../../shaders/full_screen.wgsl");
 
 /// Every file under `shaders/`, by the name modules import it by (its file stem).
-pub const FILES: [WgslModule<'static>; 19] = [
+pub const FILES: [WgslModule<'static>; 20] = [
     WgslModule {
         name: "common",
         source: COMMON,
@@ -91,6 +92,10 @@ pub const FILES: [WgslModule<'static>; 19] = [
     WgslModule {
         name: "full_resolution",
         source: FULL_RESOLUTION,
+    },
+    WgslModule {
+        name: "listed_samples",
+        source: LISTED_SAMPLES,
     },
     WgslModule {
         name: "logsh_per_vertex",
@@ -210,9 +215,15 @@ pub fn heat_map_source() -> String {
 pub fn logsh_source(order: usize, method: ExpMethod, brdf: BrdfShading) -> String {
     let generated = GeneratedModules::new(order, method, brdf);
     let roots: &[&str] = if sh::supports_per_vertex(order) {
-        &["logsh", "low_resolution", "full_resolution", "logsh_per_vertex"]
+        &[
+            "logsh",
+            "low_resolution",
+            "full_resolution",
+            "listed_samples",
+            "logsh_per_vertex",
+        ]
     } else {
-        &["logsh", "low_resolution", "full_resolution"]
+        &["logsh", "low_resolution", "full_resolution", "listed_samples"]
     };
     compose(roots, &generated.with_files()).unwrap_or_else(|err| panic!("{err}"))
 }

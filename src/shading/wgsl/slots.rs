@@ -78,6 +78,14 @@ pub const KEPT_HARMONIC_Y: Slot = slot(PASS_GROUP, 15, "kept_harmonic_y");
 pub const KEPT_HARMONIC_STAMP: Slot = slot(PASS_GROUP, 16, "kept_harmonic_stamp");
 pub const KEPT_HARMONIC_GENERATION: Slot = slot(PASS_GROUP, 17, "kept_harmonic_generation");
 pub const KEPT_HARMONIC_READ: Slot = slot(PASS_GROUP, 18, "kept_harmonic_read");
+// The low-resolution samples the soft layer leaves, listed and shaded in compute passes
+// (listed_samples.wgsl).
+pub const LISTED_SAMPLES_OUT: Slot = slot(PASS_GROUP, 20, "listed_samples_out");
+pub const LISTED_SAMPLES: Slot = slot(PASS_GROUP, 21, "listed_samples");
+pub const LISTED_SAMPLES_COUNT: Slot = slot(PASS_GROUP, 22, "listed_samples_count");
+pub const LISTED_SAMPLES_ARGS: Slot = slot(PASS_GROUP, 25, "listed_samples_args");
+pub const LOW_SAMPLES_OUT: Slot = slot(PASS_GROUP, 23, "low_samples_out");
+pub const KEPT_AT_SAMPLES_OUT: Slot = slot(PASS_GROUP, 24, "kept_at_samples_out");
 
 pub const FRAME_IMAGE: Slot = slot(IMAGE_GROUP, 0, "frame_image");
 pub const FRAME_SAMPLER: Slot = slot(IMAGE_GROUP, 1, "frame_sampler");
@@ -85,7 +93,7 @@ pub const FRAME_DEPTH: Slot = slot(IMAGE_GROUP, 2, "frame_depth");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 43] = [
+pub const ALL: [Slot; 49] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -125,6 +133,12 @@ pub const ALL: [Slot; 43] = [
     KEPT_HARMONIC_STAMP,
     KEPT_HARMONIC_GENERATION,
     KEPT_HARMONIC_READ,
+    LISTED_SAMPLES_OUT,
+    LISTED_SAMPLES,
+    LISTED_SAMPLES_COUNT,
+    LISTED_SAMPLES_ARGS,
+    LOW_SAMPLES_OUT,
+    KEPT_AT_SAMPLES_OUT,
     FRAME_IMAGE,
     FRAME_SAMPLER,
     FRAME_DEPTH,
