@@ -285,7 +285,7 @@ fn cs_shade_listed_full(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(lo
     if shares_walks() {
         // Every invocation, in uniform control flow (barriers).
         let kept = listed && kept_harmonic_stamped(pixel);
-        let walked = shared_walk_logs(lane, listed && !kept, may_share, pixel, s);
+        let walked = shared_walk_logs(lane, listed_pixel_walk(listed && !kept, may_share, pixel, s));
         if kept {
             harmonic = kept_harmonic(pixel);
         } else if listed {
@@ -395,12 +395,10 @@ fn walk_representative(pixel: vec2<i32>, s: Surface) -> vec2<i32> {
     return pixel;
 }
 
-// The blockers' and the terrain's log-visibility at the representative of this lane's
-// pixel (walk_representative), walked once per representative by the workgroup, the
-// walks packed into the first lanes (lanes past the walks skip the walk's loop as whole
-// vectors, which a lane merely not walking would not). `walks`: this lane needs one.
-// Every invocation calls it, in uniform control flow (it holds barriers).
-fn shared_walk_logs(lane: u32, walks: bool, may_share: bool, pixel: vec2<i32>, s: Surface) -> Sh {
+// The packed pixel (packed_pixel) whose walk stands for listed pixel `pixel`'s (surface
+// s): its representative where `may_share` (walk_representative), else itself; NO_WALK
+// where it needs no walk (`walks` false).
+fn listed_pixel_walk(walks: bool, may_share: bool, pixel: vec2<i32>, s: Surface) -> u32 {
     var representative = NO_WALK;
     if walks {
         var stand_in = pixel;
@@ -409,6 +407,16 @@ fn shared_walk_logs(lane: u32, walks: bool, may_share: bool, pixel: vec2<i32>, s
         }
         representative = packed_pixel(vec2<u32>(stand_in));
     }
+    return representative;
+}
+
+// The blockers' and the terrain's log-visibility at the surface of full-resolution pixel
+// `representative` (packed_pixel; NO_WALK: this lane needs no walk), walked once per
+// representative by the workgroup, the walks packed into the first lanes (lanes past the
+// walks skip the walk's loop as whole vectors, which a lane merely not walking would
+// not). Every invocation calls it, in uniform control flow (it holds barriers).
+fn shared_walk_logs(lane: u32, representative: u32) -> Sh {
+    let walks = representative != NO_WALK;
     walk_pixel[lane] = representative;
     if lane == 0u {
         atomicStore(&walk_count, 0u);
@@ -448,3 +456,4 @@ fn shared_walk_logs(lane: u32, walks: bool, may_share: bool, pixel: vec2<i32>, s
     }
     return logs;
 }
+

@@ -45,7 +45,8 @@ fn cs_list_unshaded_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let entry = atomicAdd(&listed_samples_count, 1u);
     let kept_current = kept_harmonic_generation.y != 0u;
-    let word = packed_pixel(id.xy) | select(0u, KEPT_CURRENT_BIT, kept_current);
+    let may_share = textureLoad(low_samples, texel, 0).y != 0u;
+    let word = packed_pixel(id.xy) | select(0u, KEPT_CURRENT_BIT, kept_current) | select(0u, SAMPLE_SHARES_WALK_BIT, may_share);
     textureStore(listed_samples_out, entry_texel(entry, textureDimensions(listed_samples_out).x), vec4<u32>(word));
 }
 
@@ -55,6 +56,15 @@ fn cs_list_unshaded_samples(@builtin(global_invocation_id) id: vec3<u32>) {
 // uniform around the blocker walk, compiling cs_shade_listed_samples corrupted
 // lavapipe's heap (Mesa 22.3.6) in about one test run in three (docs/performance.md).
 const KEPT_CURRENT_BIT: u32 = 0x80000000u;
+// Bit 15 (the top of x's half: a column below 32 768): the soft samples on the sample's
+// surface agreed (fs_shade_sharp_marking left it for want of them), so its blocker walk
+// may be shared (sample_walk_representative).
+const SAMPLE_SHARES_WALK_BIT: u32 = 0x8000u;
+
+// The sample of a listed sample's word, without its bits.
+fn listed_sample(word: u32) -> vec2<i32> {
+    return vec2<i32>(i32(word & 0x7fffu), i32((word >> 16u) & 0x7fffu));
+}
 
 // The shading's workgroup counts from the list's length, in rows as cs_dispatch_args'.
 @compute @workgroup_size(1)
@@ -68,16 +78,70 @@ fn cs_listed_samples_dispatch_args() {
 }
 
 // Each listed sample shaded in full (low_sample_in_full, fs_shade_low's), into the
-// samples and the kept soft light.
+// samples and the kept soft light. Without light windows a sample the soft layer left
+// for want of soft samples on its surface (a rim, a small object) shares its blocker walk
+// with the samples of its 2 × 2 block whose representative is the same
+// (sample_walk_representative), as the full-resolution rims do (shared_walk_logs).
 @compute @workgroup_size(LISTED_WORKGROUP_SIZE)
 fn cs_shade_listed_samples(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let entry = listed_entry(workgroup, lane);
-    if entry >= atomicLoad(&listed_samples_count) {
-        return;
+    let listed = entry < atomicLoad(&listed_samples_count);
+    var word = 0u;
+    if listed {
+        word = listed_word(listed_samples, entry);
     }
-    let word = listed_word(listed_samples, entry);
-    let shaded = low_sample_in_full(unpacked_pixel(word), (word & KEPT_CURRENT_BIT) != 0u);
-    let texel = unpacked_pixel(word);
-    textureStore(low_samples_out, texel, shaded.texel);
-    textureStore(kept_at_samples_out, texel, shaded.soft);
+    let texel = listed_sample(word);
+    let walks = listed && (word & KEPT_CURRENT_BIT) == 0u;
+    let s = sample_surface(texel, LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;
+    let unshadowed = unshadowed_harmonic_radiance(s);
+    var kept = textureLoad(kept_harmonic_read, texel, 0);
+    if shares_walks() {
+        var representative = NO_WALK;
+        if walks {
+            var stand_in = texel;
+            if (word & SAMPLE_SHARES_WALK_BIT) != 0u {
+                stand_in = sample_walk_representative(texel, s);
+            }
+            representative = packed_pixel(vec2<u32>(level_pixel(stand_in, LEVEL_STRIDE_PX)));
+        }
+        // Every invocation, in uniform control flow (barriers).
+        let walked = shared_walk_logs(lane, representative);
+        if walks {
+            let harmonic = harmonic_radiance_through(s, lobes_from_log_visibility(s, walked));
+            kept = soft_share_texel(s, soft_share(harmonic, unshadowed));
+        }
+    } else if walks {
+        kept = soft_share_texel(s, soft_share(harmonic_radiance(s), unshadowed));
+    }
+    if listed {
+        let shaded = low_sample_with_soft(texel, s, unshadowed, kept);
+        textureStore(low_samples_out, texel, shaded.texel);
+        textureStore(kept_at_samples_out, texel, shaded.soft);
+    }
 }
+
+// The sample whose blocker walk stands for sample `texel`'s (surface s): the first of its
+// 2 × 2 block of samples (the soft layer's spacing) whose surface lies on s's tangent
+// plane within WALK_PLANE_TOLERANCE_PX footprints with a normal within WALK_MIN_FACING
+// (walk_representative's tests), which may be the sample itself. It depends on the
+// surface buffer alone, so every workgroup holding a sample of the block picks the same.
+fn sample_walk_representative(texel: vec2<i32>, s: Surface) -> vec2<i32> {
+    let size = vec2<i32>(textureDimensions(low_samples_out));
+    let first = 2 * (texel / 2);
+    let tolerance_m = max(WALK_PLANE_TOLERANCE_PX * pixel_footprint(s.position), 1e-6);
+    for (var k = 0; k < 4; k++) {
+        let candidate = first + vec2<i32>(k % 2, k / 2);
+        if all(candidate == texel) {
+            break;
+        }
+        if all(candidate < size) {
+            let c = buffered_surface(level_pixel(candidate, LEVEL_STRIDE_PX));
+            let off_plane = abs(dot(c.s.position - s.position, s.normal));
+            if c.drawn && off_plane <= tolerance_m && dot(c.s.normal, s.normal) >= WALK_MIN_FACING {
+                return candidate;
+            }
+        }
+    }
+    return texel;
+}
+

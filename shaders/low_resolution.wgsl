@@ -294,6 +294,12 @@ fn low_sample_in_full(texel: vec2<i32>, kept_current: bool) -> ShadedLowSample {
     if !kept_current {
         kept = soft_share_texel(s, soft_share(harmonic_radiance(s), unshadowed));
     }
+    return low_sample_with_soft(texel, s, unshadowed, kept);
+}
+
+// Low-resolution sample `texel` (surface s, whose SH path's light unshadowed is
+// `unshadowed`) shaded in full with the SH path's light `kept` (soft_share_texel).
+fn low_sample_with_soft(texel: vec2<i32>, s: Surface, unshadowed: vec3<f32>, kept: vec4<u32>) -> ShadedLowSample {
     let harmonic_lighting = frame.exposure * unpack_lighting(kept.yz) * unshadowed / reflectance(s);
     let others = exact_path_radiance(s) + kept_mapped_lights_radiance(s, texel);
     let lighting = frame.exposure * others / reflectance(s) + harmonic_lighting;
@@ -327,7 +333,10 @@ fn fs_shade_sharp_marking(in: FullScreen) -> ShadedLowSample {
     // The soft light's share (soft_share), upsampled.
     let share = upsampled_lighting(in.clip.xy, s, false);
     if !share.matches {
-        discard;
+        // Left for the listed samples' passes (listed_samples.wgsl) to shade in full: no
+        // surface (view depth 0), and y 1 where the soft samples on its surface agreed
+        // (too few of them lay on it: its blocker walk may be shared).
+        return ShadedLowSample(vec4<u32>(0u, select(0u, 1u, share.agrees), 0u, 0u), vec4<u32>(0u));
     }
     let soft = share.lighting * unshadowed_harmonic_radiance(s);
     let sharp = kept_mapped_lights_radiance(s, vec2<i32>(in.clip.xy)) + exact_path_radiance(s);
