@@ -40,10 +40,8 @@ pub(super) struct ReducedShadingPipelines {
     /// those lights written for the shading passes to read, this frame and later ones
     /// (fs_mark_surface_samples_keeping_visibility).
     mark_keeping_visibility: Option<wgpu::RenderPipeline>,
-    /// The low-resolution samples shaded in full (fs_shade_low), full-screen.
-    shade_low: wgpu::RenderPipeline,
-    /// Two-level shading: the soft layer, and the low-resolution samples shaded from it.
-    pub soft_layer: Option<SoftLayerPipelines>,
+    /// How the low-resolution samples are shaded: in one level or in two.
+    samples: SampleShading,
     /// How the full-resolution frame is drawn from the samples.
     pub full_resolution: FullResolution,
 }
@@ -56,6 +54,17 @@ pub(super) enum FullResolution {
     Deferred(FullResolutionPipelines),
     /// The rasterised upsampling, for objects with a base colour texture and for the others.
     Rasterised(ByTexture),
+}
+
+/// How the low-resolution samples are shaded. Only the one a frame's paths use is
+/// compiled: fs_shade_low inlines the blocker walk, and compiling it for two levels, which
+/// never draw it, took lavapipe about a second of every variant's compile
+/// (docs/performance.md).
+pub(super) enum SampleShading {
+    /// Every sample shaded in full (fs_shade_low), full-screen.
+    OneLevel(wgpu::RenderPipeline),
+    /// The soft layer, and the samples shaded from it.
+    TwoLevels(SoftLayerPipelines),
 }
 
 /// Two-level reduced shading (see `reduced_shading`): the soft layer's samples
@@ -136,39 +145,42 @@ impl ReducedShadingPipelines {
                     FullScreenDepth::MarkSurfaces,
                 )
             }),
-            shade_low: full_screen_keeping(
-                "fs_shade_low",
-                (low_samples, downsample),
-                Some(&kept_samples_layout),
-                FullScreenDepth::Unmarked,
-                Some(wgpu::ColorWrites::ALL),
-            ),
-            soft_layer: two_level(paths).then(|| SoftLayerPipelines {
-                shade_soft: full_screen(
-                    "fs_shade_soft",
-                    (low_samples, 2 * downsample),
-                    None,
-                    FullScreenDepth::None,
-                ),
-                // Writing the soft light at the samples it shades into its second target.
-                shade_sharp: full_screen_keeping(
-                    "fs_shade_sharp_marking",
+            samples: if two_level(paths) {
+                SampleShading::TwoLevels(SoftLayerPipelines {
+                    shade_soft: full_screen(
+                        "fs_shade_soft",
+                        (low_samples, 2 * downsample),
+                        None,
+                        FullScreenDepth::None,
+                    ),
+                    // Writing the soft light at the samples it shades into its second target.
+                    shade_sharp: full_screen_keeping(
+                        "fs_shade_sharp_marking",
+                        (low_samples, downsample),
+                        Some(&low_resolution_layout),
+                        FullScreenDepth::Marking,
+                        Some(wgpu::ColorWrites::ALL),
+                    ),
+                    listed: ListedSamplesPipelines::new(
+                        device,
+                        module,
+                        [&layouts.frame, &surface_buffer_layout, shadow_layout],
+                        &[
+                            path_constants(paths).as_slice(),
+                            &[("LEVEL_STRIDE_PX", f64::from(downsample))],
+                        ]
+                        .concat(),
+                    ),
+                })
+            } else {
+                SampleShading::OneLevel(full_screen_keeping(
+                    "fs_shade_low",
                     (low_samples, downsample),
-                    Some(&low_resolution_layout),
-                    FullScreenDepth::Marking,
+                    Some(&kept_samples_layout),
+                    FullScreenDepth::Unmarked,
                     Some(wgpu::ColorWrites::ALL),
-                ),
-                listed: ListedSamplesPipelines::new(
-                    device,
-                    module,
-                    [&layouts.frame, &surface_buffer_layout, shadow_layout],
-                    &[
-                        path_constants(paths).as_slice(),
-                        &[("LEVEL_STRIDE_PX", f64::from(downsample))],
-                    ]
-                    .concat(),
-                ),
-            }),
+                ))
+            },
             full_resolution: if shades_unmatched_exactly(variant.samples) {
                 FullResolution::Deferred(FullResolutionPipelines {
                     compute: FullResolutionCompute::new(
@@ -207,14 +219,17 @@ impl ReducedShadingPipelines {
     /// Two levels: the pipelines of the samples the soft layer leaves, whose groups the
     /// targets hold.
     pub fn listed_samples(&self) -> Option<&ListedSamplesPipelines> {
-        self.soft_layer.as_ref().map(|soft| &soft.listed)
+        match &self.samples {
+            SampleShading::TwoLevels(soft) => Some(&soft.listed),
+            SampleShading::OneLevel(_) => None,
+        }
     }
 
     /// What its targets need besides the samples ([`LowResolutionTargets::new`]): a soft
     /// layer, a full-resolution surface buffer.
     pub fn levels(&self) -> [bool; 2] {
         [
-            self.soft_layer.is_some(),
+            matches!(self.samples, SampleShading::TwoLevels(_)),
             matches!(self.full_resolution, FullResolution::Deferred(_)),
         ]
     }
@@ -281,8 +296,8 @@ pub(super) fn shade_low_resolution(
     let [sample_target] = low.samples.color_attachments();
     let samples = [sample_target, low.kept_at_samples.written()];
     let kept = Some(low.kept_at_samples.read_group());
-    match (&pipelines.soft_layer, &low.soft) {
-        (Some(soft_pipelines), Some(soft)) => {
+    match (&pipelines.samples, &low.soft) {
+        (SampleShading::TwoLevels(soft_pipelines), Some(soft)) => {
             // A frame after an edit of lights off the SH path sees the last soft layer.
             if !low.soft_layer_current() {
                 bound.full_screen(
@@ -309,12 +324,15 @@ pub(super) fn shade_low_resolution(
                 );
             }
         }
-        _ => bound.full_screen(
+        (SampleShading::OneLevel(shade_low), _) => bound.full_screen(
             frame,
             "low-resolution shading",
             (&samples, Some(low.low_depth_attachment(false))),
-            &[(&pipelines.shade_low, kept)],
+            &[(shade_low, kept)],
         ),
+        // Targets are made for their pipelines' levels (`levels`), so they hold a soft
+        // layer wherever the pipelines shade in two.
+        (SampleShading::TwoLevels(_), None) => log::error!("two-level shading without a soft layer's targets"),
     }
 }
 
