@@ -184,3 +184,75 @@ pub fn filtered_texture_entries(texture: Slot, sampler: Slot) -> [wgpu::BindGrou
         ),
     ]
 }
+
+/// A layout entry at `slot` for a 2D storage texture of `format` that `stages` write.
+pub fn written_texture_entry(
+    slot: Slot,
+    stages: wgpu::ShaderStages,
+    format: wgpu::TextureFormat,
+) -> wgpu::BindGroupLayoutEntry {
+    layout_entry(
+        slot,
+        stages,
+        wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+    )
+}
+
+/// The compute pipeline of `entry_point` in `module` with override `constants`, over bind
+/// groups laid out as `groups` (group k: `groups[k]`).
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    groups: &[&wgpu::BindGroupLayout],
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
+    let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().copied().map(Some).collect();
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(entry_point),
+        bind_group_layouts: &bind_group_layouts,
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&layout),
+        module,
+        entry_point: Some(entry_point),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            ..Default::default()
+        },
+        cache: None,
+    })
+}
+
+/// The buffers of `lists` lists shaded by indirect dispatches: their lengths (4 bytes
+/// each, cleared and read back), and their dispatches' workgroup counts (12 bytes each),
+/// labelled after `what` is listed.
+pub fn list_counts_and_dispatch_args(device: &wgpu::Device, what: &str, lists: u64) -> (wgpu::Buffer, wgpu::Buffer) {
+    let buffer = |label: String, bytes, usage| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&label),
+            size: bytes,
+            usage,
+            mapped_at_creation: false,
+        })
+    };
+    let storage = wgpu::BufferUsages::STORAGE;
+    (
+        buffer(
+            format!("{what}: counts"),
+            4 * lists,
+            storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        ),
+        buffer(
+            format!("{what}: dispatch arguments"),
+            12 * lists,
+            storage | wgpu::BufferUsages::INDIRECT,
+        ),
+    )
+}

@@ -11,9 +11,11 @@
 
 use super::kept_harmonic::{self, KeptHarmonicImages};
 use super::surface_buffer::image_extent;
+use super::{scene_compute_pass, scene_compute_pipeline};
 use crate::render::RenderError;
 use crate::render::descriptors::{
-    buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry, texture_entry,
+    buffer_type, frame_texture, layout_entry, list_counts_and_dispatch_args, slot_entries, storage_buffer_entry,
+    texture_entry, written_texture_entry,
 };
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::readback::{padded_row_bytes, read_buffer};
@@ -58,17 +60,7 @@ impl FullResolutionLayouts {
     pub fn new(device: &wgpu::Device) -> FullResolutionLayouts {
         let compute = wgpu::ShaderStages::COMPUTE;
         let uint_texture = |slot| texture_entry(slot, compute, wgpu::TextureSampleType::Uint);
-        let written = |slot, format| {
-            layout_entry(
-                slot,
-                compute,
-                wgpu::BindingType::StorageTexture {
-                    access: wgpu::StorageTextureAccess::WriteOnly,
-                    format,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                },
-            )
-        };
+        let written = |slot, format| written_texture_entry(slot, compute, format);
         let samples = layout_entry(slots::UPSAMPLE, compute, buffer_type(wgpu::BufferBindingType::Uniform));
         let counts = storage_buffer_entry(slots::LIST_COUNTS, compute, false);
         let colours = written(slots::FRAME_COLOURS, FRAME_COLOURS_FORMAT);
@@ -139,24 +131,7 @@ impl FullResolutionCompute {
     ) -> FullResolutionCompute {
         let mut constants = constants.to_vec();
         let pipeline = |entry_point: &str, group_3: &wgpu::BindGroupLayout, constants: &[(&str, f64)]| {
-            let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-                groups.iter().copied().chain([group_3]).map(Some).collect();
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(entry_point),
-                bind_group_layouts: &bind_group_layouts,
-                immediate_size: 0,
-            });
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry_point),
-                layout: Some(&layout),
-                module,
-                entry_point: Some(entry_point),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants,
-                    ..Default::default()
-                },
-                cache: None,
-            })
+            scene_compute_pipeline(device, module, entry_point, (groups, group_3), constants)
         };
         let shade_sharp = two_level.then(|| pipeline("cs_shade_listed_sharp", &layouts.sharp, &constants));
         let dispatch_args = pipeline("cs_dispatch_args", &layouts.dispatch_args, &[]);
@@ -187,20 +162,8 @@ impl FullResolutionCompute {
         groups: [&wgpu::BindGroup; 3],
     ) {
         frame.encoder.clear_buffer(&images.counts, 0, None);
-        let pass = |frame: &mut TimedEncoder, label: &'static str, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
-            let mut pass = frame.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: None,
-            });
-            for (group, bind_group) in [slots::FRAME_GROUP, slots::MATERIAL_GROUP, slots::SHADOW_GROUP]
-                .into_iter()
-                .zip(groups)
-            {
-                pass.set_bind_group(group, bind_group, &[]);
-            }
-            run(&mut pass);
-            drop(pass);
-            frame.mark(label);
+        let pass = |frame: &mut TimedEncoder, label, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
+            scene_compute_pass(frame, label, groups, run)
         };
         let dispatch_args = |pass: &mut wgpu::ComputePass<'_>| {
             pass.set_pipeline(&self.dispatch_args);
@@ -311,25 +274,8 @@ impl FullResolutionImages {
         (samples, soft_light): (SampleReader<'_>, Option<SoftReader<'_>>),
         kept_generation: &wgpu::Buffer,
     ) -> FullResolutionImages {
-        let buffer = |label, bytes: u64, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        let storage = wgpu::BufferUsages::STORAGE;
-        let counts = buffer(
-            "listed pixels' counts",
-            8,
-            storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-        );
-        let dispatch_args = buffer(
-            "listed pixels' dispatch arguments",
-            24,
-            storage | wgpu::BufferUsages::INDIRECT,
-        );
+        // The sharp list's and the full list's.
+        let (counts, dispatch_args) = list_counts_and_dispatch_args(device, "listed pixels", 2);
         let image = |label, format| {
             frame_texture(
                 device,
@@ -353,11 +299,12 @@ impl FullResolutionImages {
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
             &[],
         );
-        let copy_band = buffer(
-            "frame colours' copy",
-            copy_band_rows(size) as u64 * row_bytes(size[0]),
-            wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-        );
+        let copy_band = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame colours' copy"),
+            size: copy_band_rows(size) as u64 * row_bytes(size[0]),
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let colours_view = colours.create_view(&Default::default());
         let kept = KeptHarmonicImages::new(device, size);
         let [kept_x, kept_y, kept_stamp, kept_generation] = kept.entries(kept_generation);

@@ -6,9 +6,11 @@
 
 use super::kept_harmonic::SAMPLES_FORMAT;
 use super::surface_buffer::image_extent;
+use super::{scene_compute_pass, scene_compute_pipeline};
 use crate::render::RenderError;
 use crate::render::descriptors::{
-    buffer_type, frame_texture, layout_entry, slot_entries, storage_buffer_entry, texture_entry,
+    buffer_type, frame_texture, layout_entry, list_counts_and_dispatch_args, slot_entries, storage_buffer_entry,
+    texture_entry, written_texture_entry,
 };
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::readback::read_buffer;
@@ -44,17 +46,7 @@ impl ListedSamplesPipelines {
         constants: &[(&str, f64)],
     ) -> ListedSamplesPipelines {
         let compute = wgpu::ShaderStages::COMPUTE;
-        let written = |slot, format| {
-            layout_entry(
-                slot,
-                compute,
-                wgpu::BindingType::StorageTexture {
-                    access: wgpu::StorageTextureAccess::WriteOnly,
-                    format,
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                },
-            )
-        };
+        let written = |slot, format| written_texture_entry(slot, compute, format);
         let uint_texture = |slot| texture_entry(slot, compute, wgpu::TextureSampleType::Uint);
         let count = storage_buffer_entry(slots::LISTED_SAMPLES_COUNT, compute, false);
         let layout = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
@@ -88,24 +80,7 @@ impl ListedSamplesPipelines {
             ],
         );
         let pipeline = |entry_point: &str, group_3: &wgpu::BindGroupLayout| {
-            let bind_group_layouts: Vec<Option<&wgpu::BindGroupLayout>> =
-                groups.iter().copied().chain([group_3]).map(Some).collect();
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(entry_point),
-                bind_group_layouts: &bind_group_layouts,
-                immediate_size: 0,
-            });
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry_point),
-                layout: Some(&layout),
-                module,
-                entry_point: Some(entry_point),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants,
-                    ..Default::default()
-                },
-                cache: None,
-            })
+            scene_compute_pipeline(device, module, entry_point, (groups, group_3), constants)
         };
         ListedSamplesPipelines {
             list: pipeline("cs_list_unshaded_samples", &list_layout),
@@ -121,20 +96,8 @@ impl ListedSamplesPipelines {
     /// written to the other; `groups`: groups 0–2 (frame, surface buffer, shadow).
     pub fn draw(&self, frame: &mut TimedEncoder, listed: &ListedSamples, read: usize, groups: [&wgpu::BindGroup; 3]) {
         frame.encoder.clear_buffer(&listed.count, 0, None);
-        let pass = |frame: &mut TimedEncoder, label: &'static str, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
-            let mut pass = frame.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: None,
-            });
-            for (group, bind_group) in [slots::FRAME_GROUP, slots::MATERIAL_GROUP, slots::SHADOW_GROUP]
-                .into_iter()
-                .zip(groups)
-            {
-                pass.set_bind_group(group, bind_group, &[]);
-            }
-            run(&mut pass);
-            drop(pass);
-            frame.mark(label);
+        let pass = |frame: &mut TimedEncoder, label, run: &dyn Fn(&mut wgpu::ComputePass<'_>)| {
+            scene_compute_pass(frame, label, groups, run)
         };
         pass(frame, "low-resolution samples listed", &|pass| {
             pass.set_pipeline(&self.list);
@@ -180,25 +143,7 @@ impl ListedSamples {
         size: [u32; 2],
         targets: ListedSamplesTargets<'_>,
     ) -> ListedSamples {
-        let buffer = |label, bytes, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        let storage = wgpu::BufferUsages::STORAGE;
-        let count = buffer(
-            "listed samples' count",
-            4,
-            storage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-        );
-        let args = buffer(
-            "listed samples' dispatch arguments",
-            12,
-            storage | wgpu::BufferUsages::INDIRECT,
-        );
+        let (count, args) = list_counts_and_dispatch_args(device, "listed samples", 1);
         let list = frame_texture(
             device,
             "low-resolution samples to shade in full",
