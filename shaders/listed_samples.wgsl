@@ -1,7 +1,8 @@
 // Two-level reduced shading's low-resolution samples that the soft layer does not serve
-// (src/render/passes/listed_samples.rs): fs_shade_sharp_marking discards them, leaving
-// them cleared in the samples' image (view depth 0) where the surface buffer has a
-// surface; here they are listed and shaded in full in compute passes, as the
+// (src/render/passes/listed_samples.rs): fs_shade_sharp_marking leaves them without a
+// surface in the samples' image (view depth 0; y: whether their soft samples agreed)
+// where the surface buffer has one; here they are listed and shaded in full in compute
+// passes, as the
 // full-resolution pixels the upsampling leaves are (full_resolution.wgsl).
 //
 // Why: they lie scattered along silhouettes and small objects (about one sample in nine
@@ -30,7 +31,7 @@
 const LISTING_SIDE: u32 = 8u;
 
 // Lists the samples on a surface (fs_mark_surface_samples' test) that the sharp pass
-// left cleared in the samples' image (low_samples: the samples as that pass left them),
+// left without one in the samples' image (low_samples: the samples as that pass left them),
 // each with one atomic on the count (a workgroup's samples, neighbours, mostly lie
 // together on the list: the lanes of a workgroup run together). (Read from the
 // low-resolution depth instead, a depth texture loaded in a compute shader, lavapipe

@@ -322,11 +322,11 @@ fn fs_shade_soft(in: FullScreen) -> @location(0) vec4<u32> {
 
 // A low-resolution sample from the soft layer upsampled to it (group 3 then holds the
 // soft layer) plus the lights of sharp shadows, the shadow-map and exact paths, shaded
-// here, and that soft light's share alone as a sample (fs_shade_low's second target:
-// with the samples fs_shade_low shades, the soft light's share at every sample, which
-// the listed pixels upsample). Samples the soft layer does not match, or whose soft samples disagree, are
-// discarded, and fs_shade_low shades them in full right after: this pass writes depth 1
-// where it shades (its pipeline's depth write), which fs_shade_low's test then skips.
+// here, and that soft light's share alone as a sample (its second target: with the
+// samples the listed samples' passes shade, the soft light's share at every sample, which
+// the listed pixels upsample). Samples the soft layer does not match, or whose soft
+// samples disagree, it leaves without a surface, marked for the listed samples' passes
+// (listed_samples.wgsl), which shade them in full right after.
 @fragment
 fn fs_shade_sharp_marking(in: FullScreen) -> ShadedLowSample {
     let s = sample_surface(vec2<i32>(in.clip.xy), LEVEL_STRIDE_PX, LEVEL_STRIDE_PX).s;

@@ -69,8 +69,8 @@ pub(super) enum SampleShading {
 
 /// Two-level reduced shading (see `reduced_shading`): the soft layer's samples
 /// (fs_shade_soft) and the low-resolution samples upsampled from them with the sharp
-/// lights added (fs_shade_sharp_marking; compute passes then list what it discarded and
-/// shade it in full, `listed_samples`).
+/// lights added (fs_shade_sharp_marking; compute passes then list the samples it left
+/// and shade them in full, `listed_samples`).
 pub(super) struct SoftLayerPipelines {
     shade_soft: wgpu::RenderPipeline,
     shade_sharp: wgpu::RenderPipeline,
@@ -307,8 +307,8 @@ pub(super) fn shade_low_resolution(
                     &[(&soft_pipelines.shade_soft, None)],
                 );
             }
-            // The sharp pass marks what it shaded (depth 1), so the samples left at
-            // depth 0 are those it discarded, which the compute passes list and shade.
+            // The sharp pass leaves the samples it does not serve without a surface in
+            // the samples' image, which the compute passes list and shade.
             bound.full_screen(
                 frame,
                 "low-resolution shading",
