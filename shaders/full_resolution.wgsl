@@ -378,21 +378,30 @@ fn walk_representative(pixel: vec2<i32>, s: Surface) -> vec2<i32> {
     // Block corner k holds pixels d·k + ⌊d/2⌋ up to d more (cs_upsample_blocks).
     let corner = (pixel - vec2<i32>(d / 2) + vec2<i32>(d)) / d - vec2<i32>(1);
     let first = d * corner + vec2<i32>(d / 2);
-    let tolerance_m = max(WALK_PLANE_TOLERANCE_PX * pixel_footprint(s.position), 1e-6);
+    let tolerance_m = walk_plane_tolerance_m(s);
     for (var k = 0; k < d * d; k++) {
         let candidate = first + vec2<i32>(k % d, k / d);
         if all(candidate == pixel) {
             break;
         }
-        if all(candidate >= vec2<i32>(0)) && all(candidate < size) {
-            let c = buffered_surface(candidate);
-            let off_plane = abs(dot(c.s.position - s.position, s.normal));
-            if c.drawn && off_plane <= tolerance_m && dot(c.s.normal, s.normal) >= WALK_MIN_FACING {
-                return candidate;
-            }
+        if all(candidate >= vec2<i32>(0)) && all(candidate < size) && stands_for_walk(candidate, s, tolerance_m) {
+            return candidate;
         }
     }
     return pixel;
+}
+
+// How far from surface s's tangent plane a surface standing for its walk may lie (m).
+fn walk_plane_tolerance_m(s: Surface) -> f32 {
+    return max(WALK_PLANE_TOLERANCE_PX * pixel_footprint(s.position), 1e-6);
+}
+
+// Whether the surface drawn at buffer pixel `pixel` may stand for s's blocker walk: it
+// lies within tolerance_m of s's tangent plane with a normal within WALK_MIN_FACING of s's.
+fn stands_for_walk(pixel: vec2<i32>, s: Surface, tolerance_m: f32) -> bool {
+    let c = buffered_surface(pixel);
+    let off_plane = abs(dot(c.s.position - s.position, s.normal));
+    return c.drawn && off_plane <= tolerance_m && dot(c.s.normal, s.normal) >= WALK_MIN_FACING;
 }
 
 // The packed pixel (packed_pixel) whose walk stands for listed pixel `pixel`'s (surface

@@ -40,13 +40,18 @@ const LISTING_SIDE: u32 = 8u;
 fn cs_list_unshaded_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     let texel = vec2<i32>(id.xy);
     if any(id.xy >= textureDimensions(low_samples))
-        || textureLoad(surface_buffer_a, level_pixel(texel, LEVEL_STRIDE_PX), 0).x == 0u
-        || textureLoad(low_samples, texel, 0).x != 0u {
+        || textureLoad(surface_buffer_a, level_pixel(texel, LEVEL_STRIDE_PX), 0).x == 0u {
+        return;
+    }
+    // fs_shade_sharp_marking's marker: x 0 where it left the sample, y its soft samples'
+    // agreement.
+    let marker = textureLoad(low_samples, texel, 0);
+    if marker.x != 0u {
         return;
     }
     let entry = atomicAdd(&listed_samples_count, 1u);
     let kept_current = kept_harmonic_generation.y != 0u;
-    let may_share = textureLoad(low_samples, texel, 0).y != 0u;
+    let may_share = marker.y != 0u;
     let word = packed_pixel(id.xy) | select(0u, KEPT_CURRENT_BIT, kept_current) | select(0u, SAMPLE_SHARES_WALK_BIT, may_share);
     textureStore(listed_samples_out, entry_texel(entry, textureDimensions(listed_samples_out).x), vec4<u32>(word));
 }
@@ -124,23 +129,20 @@ fn cs_shade_listed_samples(@builtin(workgroup_id) workgroup: vec3<u32>, @builtin
 // The sample whose blocker walk stands for sample `texel`'s (surface s): the first of its
 // 2 × 2 block of samples (the soft layer's spacing) whose surface lies on s's tangent
 // plane within WALK_PLANE_TOLERANCE_PX footprints with a normal within WALK_MIN_FACING
-// (walk_representative's tests), which may be the sample itself. It depends on the
-// surface buffer alone, so every workgroup holding a sample of the block picks the same.
+// (stands_for_walk, walk_representative's test), which may be the sample itself. It
+// depends on the surface buffer alone, so every workgroup holding a sample of the block
+// picks the same.
 fn sample_walk_representative(texel: vec2<i32>, s: Surface) -> vec2<i32> {
     let size = vec2<i32>(textureDimensions(low_samples_out));
     let first = 2 * (texel / 2);
-    let tolerance_m = max(WALK_PLANE_TOLERANCE_PX * pixel_footprint(s.position), 1e-6);
+    let tolerance_m = walk_plane_tolerance_m(s);
     for (var k = 0; k < 4; k++) {
         let candidate = first + vec2<i32>(k % 2, k / 2);
         if all(candidate == texel) {
             break;
         }
-        if all(candidate < size) {
-            let c = buffered_surface(level_pixel(candidate, LEVEL_STRIDE_PX));
-            let off_plane = abs(dot(c.s.position - s.position, s.normal));
-            if c.drawn && off_plane <= tolerance_m && dot(c.s.normal, s.normal) >= WALK_MIN_FACING {
-                return candidate;
-            }
+        if all(candidate < size) && stands_for_walk(level_pixel(candidate, LEVEL_STRIDE_PX), s, tolerance_m) {
+            return candidate;
         }
     }
     return texel;

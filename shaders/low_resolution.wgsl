@@ -167,8 +167,7 @@ fn sample_surface(texel: vec2<i32>, stride_px: u32, span_px: u32) -> BufferedSur
 }
 
 // A triangle covering the target, at depth 1: with the depth test "greater" it reaches
-// only the samples where the surface buffer's pass drew something (depth < 1), and
-// those a marking pass has not yet set to 1.
+// only the samples fs_mark_surface_samples marked (depth 0: a surface was drawn there).
 struct FullScreen {
     @builtin(position) clip: vec4<f32>,
 };

@@ -158,7 +158,7 @@ impl ReducedShadingPipelines {
                         "fs_shade_sharp_marking",
                         (low_samples, downsample),
                         Some(&low_resolution_layout),
-                        FullScreenDepth::Marking,
+                        FullScreenDepth::Unmarked,
                         Some(wgpu::ColorWrites::ALL),
                     ),
                     listed: ListedSamplesPipelines::new(
@@ -448,10 +448,8 @@ enum FullScreenDepth {
     None,
     /// Writes depth 0 wherever it does not discard (fs_mark_surface_samples).
     MarkSurfaces,
-    /// Only where a surface was drawn and no marking pass has shaded: depth < 1.
+    /// Only where the marks say a surface was drawn (depth < 1); it writes no depth.
     Unmarked,
-    /// As `Unmarked`, and it writes depth 1 where it shades.
-    Marking,
 }
 
 /// A full-screen pass of the deferred shading.
@@ -491,7 +489,6 @@ fn full_screen_pipeline(
         FullScreenDepth::None => None,
         FullScreenDepth::MarkSurfaces => Some(depth_test(true, wgpu::CompareFunction::Always)),
         FullScreenDepth::Unmarked => Some(depth_test(false, wgpu::CompareFunction::Greater)),
-        FullScreenDepth::Marking => Some(depth_test(true, wgpu::CompareFunction::Greater)),
     };
     let mut constants = path_constants(paths);
     constants.push(("LEVEL_STRIDE_PX", f64::from(pass.stride_px)));
