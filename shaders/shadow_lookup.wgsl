@@ -9,6 +9,11 @@ override SHADOW_MAPS: bool = true;
 // (shading::compiled_paths).
 override SOFT_SHADOW_MAPS: bool = true;
 
+// false: every light with shadow maps has a cube of six views (shading::compiled_paths):
+// a face's tap is worked out from the light's position (cube_face_tap) instead of read
+// through the view's matrix, which lavapipe gathers lane by lane.
+override SINGLE_VIEW_MAPS: bool = true;
+
 // Taps of the blocker search and of the penumbra filter each (a Vogel spiral:
 // shading::cpu::vogel_point). 48 against 32 took the study's meshes under a 5° light
 // from penumbra RMS 0.044 to 0.031 (docs/speed-accuracy.md) for 7 % more on the
@@ -46,15 +51,16 @@ fn shadow_map_visibility(light: Light, inc: Incidence, s: Surface) -> f32 {
     }
     let view_index = shadow_view_index(light, s.position);
     let view = shadow_views[view_index];
-    let distance = length(s.position - view.eye.xyz);
-    let texel = select(view.texel.y, view.texel.x * distance, view.texel.z > 0.5);
+    let perspective = !SINGLE_VIEW_MAPS || view.texel.z > 0.5;
+    let distance = length(s.position - select(light.position.xyz, view.eye.xyz, SINGLE_VIEW_MAPS));
+    let texel = select(view.texel.y, view.texel.x * distance, perspective);
     let cos_incidence = max(abs(dot(s.normal, inc.to_light)), 0.1);
     let tan_incidence = sqrt(1.0 - cos_incidence * cos_incidence) / cos_incidence;
     let p = s.position + s.normal * (0.25 * texel) + inc.to_light * (texel * (1.0 + 2.0 * tan_incidence));
-    if SOFT_SHADOW_MAPS && inc.cap_ratio > 0.0 && view.texel.z > 0.5 {
+    if SOFT_SHADOW_MAPS && inc.cap_ratio > 0.0 && perspective {
         return soft_shadow_map_visibility(light, p, s.normal, inc.cap_ratio);
     }
-    let tap = view_tap(view_index, p);
+    let tap = light_view_tap(light, view_index, p);
     if tap.off {
         return 1.0;
     }
@@ -96,7 +102,47 @@ struct ShadowTap {
 
 // The tap at world point q of `light`'s maps.
 fn shadow_tap(light: Light, q: vec3<f32>) -> ShadowTap {
-    return view_tap(shadow_view_index(light, q), q);
+    return light_view_tap(light, shadow_view_index(light, q), q);
+}
+
+// The tap at world point q of `light`'s view `index` (shadow_view_index): through the
+// view's matrix, or where every light's maps are a cube, worked out from the light's
+// position (a constant: the other is not compiled).
+fn light_view_tap(light: Light, index: u32, q: vec3<f32>) -> ShadowTap {
+    if SINGLE_VIEW_MAPS {
+        return view_tap(index, q);
+    }
+    return cube_face_tap(index, index - light.first_shadow_view, q - light.position.xyz);
+}
+
+// A receiver at `offset` from a point light in the frame of cube face `face` (the face
+// that sees it is cube_face(offset); a tap near a face's edge may read its neighbour,
+// within the faces' margin): right, up, and the distance along the face's axis
+// (shadow_maps::cube_face_coordinates, the faces' look-to frames).
+fn cube_face_coordinates(offset: vec3<f32>, face: u32) -> vec3<f32> {
+    let o = offset;
+    let negative = (face & 1u) == 1u;
+    let z_face = select(vec3<f32>(o.x, -o.y, o.z), vec3<f32>(-o.x, -o.y, -o.z), negative);
+    let y_face = select(vec3<f32>(o.x, o.z, o.y), vec3<f32>(o.x, -o.z, -o.y), negative);
+    let x_face = select(vec3<f32>(-o.z, -o.y, o.x), vec3<f32>(o.z, -o.y, -o.x), negative);
+    return select(select(z_face, y_face, face / 2u == 1u), x_face, face / 2u == 0u);
+}
+
+// view_tap for view `index`, cube face `face` of the light at `offset` from q: its
+// projection (h·x/d, h·y/d) with h = 1 / tan of the face's widened half-angle (the
+// view's texel width per metre is 2 tan / size), and its reversed depth
+// near·(far − d) / (d·(far − near)), from the receiver's face coordinates — what the
+// face's matrix gives (tests in shading::shadow_maps) with four of the view's values
+// read instead of its matrix.
+fn cube_face_tap(index: u32, face: u32, offset: vec3<f32>) -> ShadowTap {
+    let view = shadow_views[index];
+    let v = cube_face_coordinates(offset, face);
+    let near = view.depth_range.x;
+    let far = view.depth_range.y;
+    let h = 2.0 / (view.texel.x * view.depth_range.z);
+    let d = v.z;
+    let ndc = vec3<f32>(h * v.xy / d, near * (far - d) / (d * (far - near)));
+    return atlas_tap(index, view, ndc, d <= 0.0);
 }
 
 // The tap at world point q of view `index`: its coordinates within the view mapped into
@@ -106,9 +152,14 @@ fn shadow_tap(light: Light, q: vec3<f32>) -> ShadowTap {
 fn view_tap(index: u32, q: vec3<f32>) -> ShadowTap {
     let view = shadow_views[index];
     let clip = view.view_proj * vec4<f32>(q, 1.0);
-    let ndc = clip.xyz / clip.w;
+    return atlas_tap(index, view, clip.xyz / clip.w, clip.w <= 0.0);
+}
+
+// The tap of view `index` (`view`) at normalised device coordinates ndc, off where
+// `behind` the eye or outside the view.
+fn atlas_tap(index: u32, view: ShadowView, ndc: vec3<f32>, behind: bool) -> ShadowTap {
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    let off = clip.w <= 0.0 || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0;
+    let off = behind || any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z < 0.0;
     let half_texel = 0.5 / view.depth_range.z;
     let inside = clamp(uv, vec2<f32>(half_texel), vec2<f32>(1.0 - half_texel));
     return ShadowTap(index, i32(view.atlas.w), view.atlas.xy + inside * view.atlas.z, min(ndc.z, 1.0), off);
@@ -160,7 +211,10 @@ fn soft_shadow_map_visibility(light: Light, p: vec3<f32>, n: vec3<f32>, cap_rati
     let t2 = cross(axis, t1);
     let turn = mat2x2<f32>(cos(GOLDEN_ANGLE), sin(GOLDEN_ANGLE), -sin(GOLDEN_ANGLE), cos(GOLDEN_ANGLE));
     let view = shadow_views[shadow_view_index(light, p)];
-    let receiver_distance = (view.view_proj * vec4<f32>(p, 1.0)).w;
+    var receiver_distance = cube_face_coordinates(p - eye, cube_face(p - eye)).z;
+    if SINGLE_VIEW_MAPS {
+        receiver_distance = (view.view_proj * vec4<f32>(p, 1.0)).w;
+    }
     let nearest_m = max(view.depth_range.w, view.depth_range.x);
     let search_tan = tan_light * min(max(receiver_distance - nearest_m, 0.0) / nearest_m, MAX_SEARCH_RADII);
     let innermost_tan = 0.5 * view.texel.x;

@@ -4,10 +4,11 @@
 use super::gpu_types::{
     GpuLight, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH, UNIFORM_BLOCKER_CAPACITY, UNIFORM_LIGHT_CAPACITY,
 };
+use super::shadow_maps::CUBE_VIEW_COUNT;
 use crate::scene::Scene;
 
 /// Which shading code a log-SH pipeline compiles in (the override constants
-/// EXACT_LIGHT_PATH, EXACT_WIDE, SHADOW_MAPS, SOFT_SHADOW_MAPS, SH_VISIBILITY,
+/// EXACT_LIGHT_PATH, EXACT_WIDE, SHADOW_MAPS, SOFT_SHADOW_MAPS, SINGLE_VIEW_MAPS, SH_VISIBILITY,
 /// ENVIRONMENT_LIGHT, TERRAIN_SHADOWS, RECT_LIGHTS, DISK_LIGHTS, LIGHT_OVERFLOW,
 /// BLOCKER_OVERFLOW, LIGHT_WINDOWS, PER_POINT_WINDOWS and LIGHT_GRID): lavapipe runs the code of both sides of a branch
 /// at every pixel whether taken or not, so code that the frame does not need is left out.
@@ -20,6 +21,13 @@ pub struct CompiledPaths {
     /// Some of those has a size: its maps' penumbra filter is compiled in
     /// (SOFT_SHADOW_MAPS).
     pub soft_maps: bool,
+    /// Some of those has a single view (the sun, a spot, a light aimed at the scene), so
+    /// the lookup reads the views' matrices (SINGLE_VIEW_MAPS); without it every such
+    /// light has a cube of six, whose faces' projections the lookup works out from the
+    /// light's position (shadow_lookup.wgsl's cube_face_tap): on lavapipe each read of a
+    /// view's matrix is a gather per lane, and the large sample's 24 lamps spent about 6 ms
+    /// of its frame on them (docs/performance.md).
+    pub single_view_maps: bool,
     /// More than four lights are: the exact path takes them eight at a time rather than
     /// four (EXACT_WIDE).
     pub exact_wide: bool,
@@ -73,6 +81,7 @@ impl CompiledPaths {
         exact: true,
         maps: true,
         soft_maps: true,
+        single_view_maps: true,
         exact_wide: true,
         harmonics: true,
         environment: true,
@@ -100,11 +109,24 @@ impl CompiledPaths {
         }
     }
 
+    /// Whether a pipeline of these paths shades `light` on the path it was given: a
+    /// pipeline without that path, or compiled for cubes of maps alone
+    /// (`single_view_maps` off: it reads no view's matrix) where the light has one
+    /// view, does not.
+    pub fn shades(&self, light: &GpuLight) -> bool {
+        match light.shadow_path {
+            SHADOW_PATH_EXACT => self.exact,
+            SHADOW_PATH_MAP => self.maps && (self.single_view_maps || light.shadow_view_count == CUBE_VIEW_COUNT),
+            _ => self.harmonics,
+        }
+    }
+
     /// No optional path (a pipeline that shades no light).
     pub const NONE: CompiledPaths = CompiledPaths {
         exact: false,
         maps: false,
         soft_maps: false,
+        single_view_maps: false,
         exact_wide: false,
         harmonics: false,
         environment: false,
@@ -158,6 +180,9 @@ pub fn compiled_paths(shaded: &[GpuLight], lighting: SceneLighting, blocker_coun
         soft_maps: shaded
             .iter()
             .any(|light| light.shadow_path == SHADOW_PATH_MAP && light.source_size > 0.0),
+        single_view_maps: shaded
+            .iter()
+            .any(|light| light.shadow_path == SHADOW_PATH_MAP && light.shadow_view_count != CUBE_VIEW_COUNT),
         exact_wide: exact_count > EXACT_LIGHTS_PER_HALF_BATCH,
         harmonics: lighting.has_environment || shaded.iter().any(|light| light.shadow_path == SHADOW_PATH_SH),
         environment: lighting.has_environment,

@@ -298,6 +298,38 @@ mod tests {
         assert_eq!(area_paths(&[GpuLight::new(&points[0])]), (false, false));
     }
 
+    /// Point lights take cubes of maps, the sun and a spot one view each: only a frame
+    /// with such a single view compiles the views' matrices in, and a pipeline compiled
+    /// for cubes alone does not shade a single view's light on the map path (while a
+    /// pipeline that has them compiles, that light takes another path).
+    #[test]
+    fn the_views_matrices_are_compiled_in_only_for_lights_of_one_view() {
+        use crate::scene::LightKind;
+        let settings = ShadowSettings::default();
+        let lighting = SceneLighting {
+            has_environment: false,
+            has_terrain: false,
+            single_sided: false,
+        };
+        let context = LightPathContext::at(Vec3::ZERO);
+        let point = light(LightKind::Point, 1.0);
+        let sun = light(LightKind::Directional, 1.0);
+        let cubes = shading_lights(std::slice::from_ref(&point), &settings, &context);
+        let mixed = shading_lights(&[point.clone(), sun], &settings, &context);
+        assert!(cubes.iter().all(|l| l.shadow_path == SHADOW_PATH_MAP));
+        assert!(mixed.iter().all(|l| l.shadow_path == SHADOW_PATH_MAP));
+        let cube_paths = compiled_paths(&cubes, lighting, 0);
+        let mixed_paths = compiled_paths(&mixed, lighting, 0);
+        assert!(cube_paths.maps && !cube_paths.single_view_maps);
+        assert!(mixed_paths.maps && mixed_paths.single_view_maps);
+        let (cube_light, sun_light) = (&mixed[0], &mixed[1]);
+        assert_eq!(cube_light.shadow_view_count, 6);
+        assert_eq!(sun_light.shadow_view_count, 1);
+        assert!(cube_paths.shades(cube_light) && !cube_paths.shades(sun_light));
+        assert!(mixed_paths.shades(cube_light) && mixed_paths.shades(sun_light));
+        assert!(!CompiledPaths::NONE.shades(cube_light));
+    }
+
     /// Twelve point lights, the last the dimmest, then a sun: the sun's one view comes
     /// first, then ten cubes (61 views) by brightness; the dimmest two take the SH.
     #[test]

@@ -85,6 +85,7 @@ pub(super) fn path_constants(paths: CompiledPaths) -> Vec<(&'static str, f64)> {
         ("EXACT_WIDE", flag(paths.exact_wide)),
         ("SHADOW_MAPS", flag(paths.maps)),
         ("SOFT_SHADOW_MAPS", flag(paths.soft_maps)),
+        ("SINGLE_VIEW_MAPS", flag(paths.single_view_maps)),
         ("SH_VISIBILITY", flag(paths.harmonics)),
         ("ENVIRONMENT_LIGHT", flag(paths.environment)),
         ("TERRAIN_SHADOWS", flag(paths.terrain)),

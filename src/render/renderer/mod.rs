@@ -241,12 +241,7 @@ impl SceneRenderer {
         let mut lights = self.shaded_lights(&self.lights, &self.shadows.settings);
         let compiled = self.shadows.key.paths;
         for light in &mut lights {
-            let has = |path| match path {
-                SHADOW_PATH_EXACT => compiled.exact,
-                SHADOW_PATH_MAP => compiled.maps,
-                _ => compiled.harmonics,
-            };
-            if !has(light.shadow_path) {
+            if !compiled.shades(light) {
                 // The nearest path the pipeline has: the SH, else the exact one.
                 light.shadow_path = if compiled.harmonics {
                     SHADOW_PATH_SH

@@ -43,6 +43,9 @@ pub const SINGLE_VIEW_SPOT_MIN_COS: f32 = 0.5;
 /// Texels added on each side of a perspective view beyond its nominal field of view.
 pub const FACE_MARGIN_TEXELS: f32 = 4.0;
 
+/// The views of a cube of maps (a point light's, `GpuLight::shadow_view_count`).
+pub const CUBE_VIEW_COUNT: u32 = 6;
+
 /// The cube faces' forward axes and up vectors, in face order.
 const CUBE_FACES: [(Vec3, Vec3); 6] = [
     (Vec3::X, Vec3::NEG_Y),
@@ -203,7 +206,7 @@ pub fn shadow_views(lights: &[GpuLight], bounds: &Aabb, size: u32) -> ShadowView
     let mut wanted: Vec<Option<WantedView>> = vec![None; view_slots];
     for light in &mapped {
         let first = light.first_shadow_view as usize;
-        let cube_face = light.shadow_view_count == 6;
+        let cube_face = light.shadow_view_count == CUBE_VIEW_COUNT;
         let range_share = range_m(light).map(|range| range / radius);
         for slot in &mut wanted[first..first + light.shadow_view_count as usize] {
             *slot = Some(WantedView { cube_face, range_share });
@@ -350,6 +353,25 @@ pub fn cube_face(offset: Vec3) -> usize {
         (2, offset.z)
     };
     2 * axis + usize::from(component < 0.0)
+}
+
+/// A receiver at `offset` from a point light in the frame of cube face `face` (the one
+/// that sees it is [`cube_face`]; a filter's tap near a face's edge may read the next
+/// face, within its margin): its right and up coordinates and its distance along the
+/// face's axis, from the face's forward axis and up vector ([`CUBE_FACES`], `look_to`). A face's
+/// view then projects it to (h·x/d, h·y/d) with h = 1 / tan of its widened half-angle,
+/// and to the depth near·(far − d) / (d·(far − near)) (reversed): shadow_lookup.wgsl's
+/// cube_face_tap works a face's tap out so rather than reading its matrix.
+pub fn cube_face_coordinates(offset: Vec3, face: usize) -> Vec3 {
+    let o = offset;
+    match face {
+        0 => Vec3::new(-o.z, -o.y, o.x),
+        1 => Vec3::new(o.z, -o.y, -o.x),
+        2 => Vec3::new(o.x, o.z, o.y),
+        3 => Vec3::new(o.x, -o.z, -o.y),
+        4 => Vec3::new(o.x, -o.y, o.z),
+        _ => Vec3::new(-o.x, -o.y, -o.z),
+    }
 }
 
 #[cfg(test)]

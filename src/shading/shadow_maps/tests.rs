@@ -252,3 +252,50 @@ fn a_moved_single_view_is_drafted_until_drawn_at_rest_and_faces_never_are() {
     // An unmoved light is drawn in full.
     assert_eq!(at_rest.drafted_where_moved(&at_rest.views), at_rest);
 }
+
+/// A cube face's projection worked out from the receiver's face coordinates
+/// (cube_face_coordinates, as shadow_lookup.wgsl's cube_face_tap does) is the face's
+/// matrix: the same texture coordinates and reversed depth for receivers all around the
+/// lamp, on every face and across their edges.
+#[test]
+fn cube_face_coordinates_project_as_the_faces_matrices() {
+    let bounds = Aabb::from_points(&[Vec3::splat(-8.0), Vec3::splat(8.0)]);
+    let eye = Vec3::new(0.7, 1.3, -0.4);
+    let lamp = mapped(crate::scene::LightKind::Point, eye, Vec3::NEG_Y);
+    let views = shadow_views(&[lamp], &bounds, 512);
+    assert_eq!(views.views.len(), 6);
+    let mut faces_seen = [false; 6];
+    // Directions on a Fibonacci sphere, at several distances.
+    for k in 0..400 {
+        let t = (k as f32 + 0.5) / 400.0;
+        let z = 1.0 - 2.0 * t;
+        let r = (1.0 - z * z).sqrt();
+        let phi = k as f32 * 2.399_963;
+        let direction = Vec3::new(r * phi.cos(), z, r * phi.sin());
+        for distance in [0.5, 3.0, 9.0] {
+            let offset = direction * distance;
+            let own = cube_face(offset);
+            faces_seen[own] = true;
+            // Its own face, and any other it lies ahead of (a tap past an edge).
+            for face in 0..6 {
+                let view = &views.views[face];
+                let v = cube_face_coordinates(offset, face);
+                if face == own {
+                    assert!(v.z > 0.0, "{offset} lies ahead of its face {face}");
+                }
+                if v.z <= 0.1 * distance {
+                    continue;
+                }
+                let from_matrix = clip(view, eye + offset);
+                let [near, far, size, _] = view.depth_range;
+                let h = 2.0 / (view.texel[0] * size);
+                let worked_out = Vec3::new(h * v.x / v.z, h * v.y / v.z, near * (far - v.z) / (v.z * (far - near)));
+                assert!(
+                    (worked_out - from_matrix).abs().max_element() < 1e-4,
+                    "face {face}, offset {offset}: {worked_out} against the matrix's {from_matrix}"
+                );
+            }
+        }
+    }
+    assert_eq!(faces_seen, [true; 6]);
+}
