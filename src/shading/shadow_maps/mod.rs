@@ -356,12 +356,13 @@ pub fn cube_face(offset: Vec3) -> usize {
 }
 
 /// A receiver at `offset` from a point light in the frame of cube face `face` (the one
-/// that sees it is [`cube_face`]; a filter's tap near a face's edge may read the next
-/// face, within its margin): its right and up coordinates and its distance along the
-/// face's axis, from the face's forward axis and up vector ([`CUBE_FACES`], `look_to`). A face's
-/// view then projects it to (h·x/d, h·y/d) with h = 1 / tan of its widened half-angle,
-/// and to the depth near·(far − d) / (d·(far − near)) (reversed): shadow_lookup.wgsl's
-/// cube_face_tap works a face's tap out so rather than reading its matrix.
+/// that sees it is [`cube_face`]; a tap pushed past a face's edge still reads the
+/// receiver's face, within its margin): its right and up coordinates and its distance
+/// along the face's axis, from the face's forward axis and up vector (`CUBE_FACES`,
+/// `look_to`). A face's view then projects it to (h·x/d, h·y/d) with h = 1 / tan of its
+/// widened half-angle, and to the depth near·(far − d) / (d·(far − near)) (reversed):
+/// shadow_lookup.wgsl's cube_face_tap works a face's tap out so rather than reading its
+/// matrix.
 pub fn cube_face_coordinates(offset: Vec3, face: usize) -> Vec3 {
     let o = offset;
     match face {
