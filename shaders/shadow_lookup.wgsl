@@ -116,9 +116,9 @@ fn light_view_tap(light: Light, index: u32, q: vec3<f32>) -> ShadowTap {
 }
 
 // A receiver at `offset` from a point light in the frame of cube face `face` (the face
-// that sees it is cube_face(offset); a tap near a face's edge may read its neighbour,
-// within the faces' margin): right, up, and the distance along the face's axis
-// (shadow_maps::cube_face_coordinates, the faces' look-to frames).
+// that sees it is cube_face(offset); a tap pushed past the edge of its receiver's face
+// still reads that face, within its margin): right, up, and the distance along the
+// face's axis (shadow_maps::cube_face_coordinates, the faces' look-to frames).
 fn cube_face_coordinates(offset: vec3<f32>, face: u32) -> vec3<f32> {
     let o = offset;
     let negative = (face & 1u) == 1u;

@@ -25,8 +25,8 @@ pub struct CompiledPaths {
     /// the lookup reads the views' matrices (SINGLE_VIEW_MAPS); without it every such
     /// light has a cube of six, whose faces' projections the lookup works out from the
     /// light's position (shadow_lookup.wgsl's cube_face_tap): on lavapipe each read of a
-    /// view's matrix is a gather per lane, and the large sample's 24 lamps spent about 6 ms
-    /// of its frame on them (docs/performance.md).
+    /// view's matrix is a gather per lane, and the large sample's 24 lamps spent about
+    /// 10 ms of its passes on them (docs/performance.md).
     pub single_view_maps: bool,
     /// More than four lights are: the exact path takes them eight at a time rather than
     /// four (EXACT_WIDE).

@@ -30,7 +30,7 @@ use super::target::edge_filter::EdgeFilter;
 use super::target::{AntiAliasing, RenderTarget};
 use crate::blockers::Sphere;
 use crate::scene::{Aabb, Camera, Environment, Light, Scene};
-use crate::shading::gpu_types::{GpuLight, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
+use crate::shading::gpu_types::{GpuLight, NO_SHADOW_VIEW, SHADOW_PATH_EXACT, SHADOW_PATH_MAP, SHADOW_PATH_SH};
 use crate::shading::shadow_maps::{ShadowViews, shadow_views};
 use crate::shading::{
     BakedIndirect, CompiledPaths, LightPathContext, RenderSettings, SceneLighting, ShadowSettings, compiled_paths,
@@ -250,6 +250,12 @@ impl SceneRenderer {
                 } else {
                     SHADOW_PATH_MAP
                 };
+                if !compiled.shades(light) {
+                    // A single view where only cubes are compiled in: unshadowed until
+                    // the pipeline reading its matrix is drawn.
+                    light.first_shadow_view = NO_SHADOW_VIEW;
+                    light.shadow_view_count = 0;
+                }
             }
         }
         let views = shadow_views(&lights, &self.bounds, self.shadows.settings.shadow_map_size);
