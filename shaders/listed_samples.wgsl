@@ -2,8 +2,7 @@
 // (src/render/passes/listed_samples.rs): fs_shade_sharp_marking leaves them without a
 // surface in the samples' image (view depth 0; y: whether their soft samples agreed)
 // where the surface buffer has one; here they are listed and shaded in full in compute
-// passes, as the
-// full-resolution pixels the upsampling leaves are (full_resolution.wgsl).
+// passes, as the full-resolution pixels the upsampling leaves are (full_resolution.wgsl).
 //
 // Why: they lie scattered along silhouettes and small objects (about one sample in nine
 // on the large sample), and a full-screen fragment pass behind the depth test made

@@ -1,7 +1,7 @@
 //! Two-level reduced shading's low-resolution samples that the soft layer does not serve,
 //! listed and shaded in full in compute passes (shaders/listed_samples.wgsl says why):
-//! after the sharp pass, which leaves them without a surface in the samples' image, one pass lists
-//! them and turns the list's length into workgroup counts, and one shades
+//! after the sharp pass, which leaves them without a surface in the samples' image, one
+//! pass lists them and turns the list's length into workgroup counts, and one shades
 //! them, 64 at a time, into the samples and the SH path's light kept at them.
 
 use super::kept_harmonic::SAMPLES_FORMAT;

@@ -251,8 +251,9 @@ impl SceneRenderer {
                     SHADOW_PATH_MAP
                 };
                 if !compiled.shades(light) {
-                    // A single view where only cubes are compiled in: unshadowed until
-                    // the pipeline reading its matrix is drawn.
+                    // Its maps unreadable by this pipeline (a single view where only
+                    // cubes are compiled in, or no maps at all): unshadowed, its maps not
+                    // drawn, until a pipeline that reads them is.
                     light.first_shadow_view = NO_SHADOW_VIEW;
                     light.shadow_view_count = 0;
                 }
