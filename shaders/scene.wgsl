@@ -467,5 +467,11 @@ fn environment_radiance(s: Surface) -> vec3<f32> {
 // The depth of p along the camera's forward axis, kept above 0 (the mark of a drawn
 // surface: points in view lie past the near plane).
 fn view_depth_of(p: vec3<f32>) -> f32 {
-    return max(dot(p - frame.camera_position.xyz, frame.view_ray[2].xyz), 1e-30);
+    return max(signed_view_depth(p), 1e-30);
+}
+
+// The depth of p along the camera's forward axis: affine in p, so a vertex stage may
+// pass it for the rasteriser to interpolate as it would p.
+fn signed_view_depth(p: vec3<f32>) -> f32 {
+    return dot(p - frame.camera_position.xyz, frame.view_ray[2].xyz);
 }

@@ -8,7 +8,7 @@ mod common;
 use std::f64::consts::PI;
 
 use glam::{Affine3A, Vec3, Vec4};
-use lightpaint::render::{AntiAliasing, ShadowFrame, render_cpu_image, render_logsh_image};
+use lightpaint::render::{AntiAliasing, GpuContext, ShadowFrame, render_cpu_image, render_logsh_image};
 use lightpaint::scene::{Camera, Material, Scene, shapes};
 use lightpaint::shading::{BakedIndirect, RenderSettings, ShadowSettings};
 
@@ -47,6 +47,14 @@ fn two_squares() -> (Scene, Camera) {
 #[test]
 fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
     let Some(gpu) = common::gpu() else { return };
+    // Every pixel shaded, and the default deferred frame, whose surface buffer draws an
+    // untextured object without baked light by a pipeline of its own.
+    for shadows in [ShadowSettings::default().every_pixel(), ShadowSettings::default()] {
+        baked_irradiance_at_each_vertex(&gpu, &shadows);
+    }
+}
+
+fn baked_irradiance_at_each_vertex(gpu: &GpuContext, shadows: &ShadowSettings) {
     let (scene, camera) = two_squares();
     let vertices = |o: usize| scene.objects[o].positions.len();
     let (red, blue) = ([2.0, 0.0, 0.0], [0.0, 0.0, 0.5]);
@@ -54,19 +62,18 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         objects: vec![vec![], vec![red; vertices(1)], vec![blue; vertices(2)]],
     };
     let settings = RenderSettings::default();
-    let shadows = ShadowSettings::default().every_pixel();
     let frame = ShadowFrame {
         scene: &scene,
         camera: &camera,
         settings: &settings,
-        shadows: &shadows,
+        shadows,
         blockers: &[],
         baked_indirect: Some(&indirect),
         width: 64,
         height: 32,
     };
-    let gpu_image = render_logsh_image(&gpu, &frame, AntiAliasing::None).expect("GPU frame");
-    let cpu_image = render_cpu_image(&gpu, &frame).expect("CPU frame");
+    let gpu_image = render_logsh_image(gpu, &frame, AntiAliasing::None).expect("GPU frame");
+    let cpu_image = render_cpu_image(gpu, &frame).expect("CPU frame");
     // A white Lambertian surface reflects k_d/π·E: 2/π red on the left, 0.5/π blue on the right.
     let expected = |e: f64| common::expected_8bit(e / PI, 0.0);
     for (image, name) in [(&gpu_image, "GPU"), (&cpu_image, "CPU")] {
@@ -80,7 +87,8 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         for (actual, expected, what) in checks {
             assert!(
                 (actual as f64 - expected).abs() <= 1.0,
-                "{name} {what}: pixel {actual}, expected {expected:.2}"
+                "{name} {what}: pixel {actual}, expected {expected:.2} (downsample {})",
+                shadows.shading_downsample
             );
         }
     }
@@ -89,7 +97,7 @@ fn each_vertex_gets_its_own_baked_irradiance_on_the_gpu_and_the_cpu() {
         baked_indirect: None,
         ..frame
     };
-    let dark = render_logsh_image(&gpu, &without, AntiAliasing::None).expect("GPU frame");
+    let dark = render_logsh_image(gpu, &without, AntiAliasing::None).expect("GPU frame");
     assert_eq!(dark.get_pixel(20, 16)[0], 0, "no light, no indirect: black");
 }
 

@@ -13,7 +13,9 @@ use super::reduced_shading::{
     LOW_RESOLUTION_FORMATS, LowResolutionTargets, SurfaceBuffer, low_resolution_layout, mapped_factors_writer_layout,
     surface_buffer_layout,
 };
-use super::scene_pipeline::{ByTexture, Stage, Variant, path_constants, scene_pipeline, shades_unmatched_exactly};
+use super::scene_pipeline::{
+    ByTexture, Stage, SurfaceBufferPipelines, Variant, path_constants, scene_pipeline, shades_unmatched_exactly,
+};
 use crate::render::descriptors::depth_test;
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts};
@@ -32,7 +34,7 @@ pub(super) struct ReducedShadingPipelines {
     pub full_resolution_layouts: FullResolutionLayouts,
     /// The full-resolution surfaces (fs_surface_buffer), rasterised, for textured objects
     /// and the others.
-    surface_buffer: ByTexture,
+    surface_buffer: SurfaceBufferPipelines,
     /// The low-resolution samples on a surface marked in the low depth
     /// (fs_mark_surface_samples).
     mark_surface_samples: wgpu::RenderPipeline,
@@ -124,12 +126,12 @@ impl ReducedShadingPipelines {
         let low_samples = Some(LOW_RESOLUTION_FORMATS[0]);
         ReducedShadingPipelines {
             downsample,
-            surface_buffer: ByTexture::new(|textured| {
+            surface_buffer: SurfaceBufferPipelines::new(|stage, textured| {
                 let variant = Variant {
                     textured,
                     ..surface_variant
                 };
-                scene_pipeline(device, layouts, shadow_layout, module, Stage::SurfaceBuffer, variant)
+                scene_pipeline(device, layouts, shadow_layout, module, stage, variant)
             }),
             mark_surface_samples: full_screen(
                 "fs_mark_surface_samples",
@@ -341,7 +343,7 @@ pub(super) fn shade_low_resolution(
 fn draw_surfaces(
     frame: &mut TimedEncoder,
     surface: &SurfaceBuffer,
-    pipelines: &ByTexture,
+    pipelines: &SurfaceBufferPipelines,
     scene: &GpuScene,
     blockers: &GpuBlockers,
 ) {

@@ -6,7 +6,7 @@
 use super::per_vertex::PerVertexCompute;
 use super::reduced_shading::SURFACE_BUFFER_FORMATS;
 use crate::render::descriptors::{depth_test, scene_triangles};
-use crate::render::resources::{GpuScene, SceneLayouts, draw_object, vertex_layout};
+use crate::render::resources::{GpuObject, GpuScene, SceneLayouts, draw_object, vertex_layout};
 use crate::shading::CompiledPaths;
 
 /// A pipeline for textured objects and its twin for untextured ones, compiled without the
@@ -26,15 +26,53 @@ impl ByTexture {
 
     /// Draws every visible object with the pipeline for its material.
     pub(super) fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+        self.draw_objects_where(pass, scene, |_| true);
+    }
+
+    /// Draws the visible objects `drawn` picks, each with the pipeline for its material.
+    fn draw_objects_where(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        scene: &GpuScene,
+        drawn: impl Fn(&GpuObject) -> bool,
+    ) {
         for textured in [true, false] {
             pass.set_pipeline(if textured { &self.textured } else { &self.untextured });
             for object in scene
                 .objects
                 .iter()
-                .filter(|o| o.drawn_in_view() && o.textured == textured)
+                .filter(|o| o.drawn_in_view() && o.textured == textured && drawn(o))
             {
                 draw_object(pass, scene, object);
             }
+        }
+    }
+}
+
+/// The surface buffer's pipelines: [`ByTexture`]'s pair, and for an untextured object
+/// without baked indirect light one whose vertex stage passes its view depth and normal
+/// alone (vs_plain_surface in low_resolution.wgsl: lavapipe sets up every varying of
+/// each triangle).
+pub(super) struct SurfaceBufferPipelines {
+    by_texture: ByTexture,
+    plain: wgpu::RenderPipeline,
+}
+
+impl SurfaceBufferPipelines {
+    pub(super) fn new(make: impl Fn(Stage<'_>, bool) -> wgpu::RenderPipeline) -> SurfaceBufferPipelines {
+        SurfaceBufferPipelines {
+            by_texture: ByTexture::new(|textured| make(Stage::SurfaceBuffer, textured)),
+            plain: make(Stage::PlainSurfaceBuffer, false),
+        }
+    }
+
+    /// Draws every visible object with the pipeline for its material and baked light.
+    pub(super) fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+        let plain = |o: &GpuObject| !o.textured && !o.baked_light;
+        self.by_texture.draw_objects_where(pass, scene, |o| !plain(o));
+        pass.set_pipeline(&self.plain);
+        for object in scene.objects.iter().filter(|o| o.drawn_in_view() && plain(o)) {
+            draw_object(pass, scene, object);
         }
     }
 }
@@ -51,6 +89,9 @@ pub(super) enum Stage<'a> {
     Surface(u32, &'a str),
     /// The surface buffer of deferred reduced shading (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
     SurfaceBuffer,
+    /// The same for objects without texture or baked light (vs_plain_surface,
+    /// fs_plain_surface_buffer).
+    PlainSurfaceBuffer,
     /// Full-resolution pixels from the reduced-resolution samples (fs_upsample), which
     /// reads them through bind group 3 of this layout.
     Upsample(&'a wgpu::BindGroupLayout),
@@ -128,6 +169,7 @@ pub(super) fn scene_pipeline(
     };
     let (vertex_entry, buffers) = match stage {
         Stage::ShadePerVertex(..) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
+        Stage::PlainSurfaceBuffer => ("vs_plain_surface", vec![Some(vertex_layout())]),
         _ => ("vs_main", vec![Some(vertex_layout())]),
     };
     let color = |format| {
@@ -156,6 +198,12 @@ pub(super) fn scene_pipeline(
         Stage::Upsample(_) => ("fs_upsample", vec![shaded], false, wgpu::CompareFunction::LessEqual),
         Stage::SurfaceBuffer => (
             "fs_surface_buffer",
+            SURFACE_BUFFER_FORMATS.map(color).to_vec(),
+            true,
+            wgpu::CompareFunction::Less,
+        ),
+        Stage::PlainSurfaceBuffer => (
+            "fs_plain_surface_buffer",
             SURFACE_BUFFER_FORMATS.map(color).to_vec(),
             true,
             wgpu::CompareFunction::Less,

@@ -37,6 +37,10 @@ pub struct GpuObject {
     pub material: usize,
     /// Whether its material samples a base colour texture.
     pub textured: bool,
+    /// Whether the baked indirect light gives some vertex of it light (otherwise the
+    /// surface buffer draws it without that varying: `plain_surface` in
+    /// low_resolution.wgsl).
+    pub baked_light: bool,
     /// Where this object's vertices start in the baked indirect light buffer.
     pub first_vertex: u32,
     /// Index of the object in [`Scene::objects`] (objects without triangles are not uploaded).
@@ -175,6 +179,7 @@ impl GpuScene {
                         .and_then(|m| m.base_color_texture)
                         .is_some_and(|t| t < scene.textures.len()),
                     first_vertex: object_first_vertex,
+                    baked_light: false,
                     source,
                     hidden: false,
                     bounds: object.bounds(),
@@ -457,15 +462,16 @@ impl GpuScene {
         self.surfaces_generation = next_surfaces_generation();
         let vertex_count: u32 = self.objects.iter().map(|o| o.vertex_count).sum();
         let mut values = vec![0.0f32; 3 * vertex_count as usize];
-        if let Some(indirect) = indirect {
-            for object in &self.objects {
-                let Some(irradiance) = indirect.objects.get(object.source) else {
-                    continue;
-                };
-                let start = 3 * object.first_vertex as usize;
-                let count = irradiance.len().min(object.vertex_count as usize);
-                values[start..start + 3 * count].copy_from_slice(bytemuck::cast_slice(&irradiance[..count]));
-            }
+        for object in &mut self.objects {
+            object.baked_light = false;
+            let Some(irradiance) = indirect.and_then(|indirect| indirect.objects.get(object.source)) else {
+                continue;
+            };
+            let start = 3 * object.first_vertex as usize;
+            let count = irradiance.len().min(object.vertex_count as usize);
+            values[start..start + 3 * count].copy_from_slice(bytemuck::cast_slice(&irradiance[..count]));
+            // What the shaders add is max(E, 0) (scene.wgsl `surface`).
+            object.baked_light = irradiance[..count].iter().flatten().any(|&e| e > 0.0);
         }
         if !values.is_empty() {
             queue.write_buffer(&self.indirect_buffer, 0, bytemuck::cast_slice(&values));
