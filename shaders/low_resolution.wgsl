@@ -84,7 +84,7 @@ fn fs_surface_buffer(in: VertexOut, @builtin(front_facing) front_facing: bool) -
 // light (GpuObject::baked_light): its view depth and normal are all
 // fs_plain_surface_buffer needs. lavapipe sets up every varying of each triangle, and the
 // large sample's triangles cover a pixel or two each: with these 4 floats instead of
-// VertexOut's 11 its surfaces pass took 43.8 instead of 49.1 ms (docs/performance.md).
+// VertexOut's 11 its surfaces pass took 44.5 instead of 49.9 ms (docs/performance.md).
 struct PlainSurfaceVertex {
     @builtin(position) @invariant clip: vec4<f32>,
     // signed_view_depth of the vertex, in metres.
