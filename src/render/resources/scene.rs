@@ -38,8 +38,8 @@ pub struct GpuObject {
     /// Whether its material samples a base colour texture.
     pub textured: bool,
     /// Whether the baked indirect light gives some vertex of it light (otherwise the
-    /// surface buffer draws it without that varying: `plain_surface` in
-    /// low_resolution.wgsl).
+    /// surface buffer draws it, where it is untextured, without that varying:
+    /// vs_plain_surface in low_resolution.wgsl).
     pub baked_light: bool,
     /// Where this object's vertices start in the baked indirect light buffer.
     pub first_vertex: u32,
