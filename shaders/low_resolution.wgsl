@@ -99,16 +99,13 @@ fn vs_plain_surface(v: VertexIn) -> PlainSurfaceVertex {
 
 @fragment
 fn fs_plain_surface_buffer(in: PlainSurfaceVertex, @builtin(front_facing) front_facing: bool) -> SurfaceTexels {
-    // No texture coordinates or baked light to carry (both 0); the position is not
-    // kept, only its view depth, so the camera's stands in for it.
-    var vertex: VertexOut;
-    vertex.clip = in.clip;
-    vertex.world_position = frame.camera_position.xyz;
-    vertex.normal = in.normal;
-    return surface_texels(surface(vertex, front_facing), max(in.view_depth, 1e-30));
+    // Untextured and without baked light: no texture coordinates or irradiance to read.
+    let s = material_surface(in.normal, vec2<f32>(0.0), vec3<f32>(0.0), front_facing);
+    return surface_texels(s, max(in.view_depth, 1e-30));
 }
 
-// The surface buffer's two texels of s at view depth `view_depth` (view_depth_of).
+// The surface buffer's two texels of s at view depth `view_depth` (view_depth_of; s's
+// position is not read).
 fn surface_texels(s: Surface, view_depth: f32) -> SurfaceTexels {
     let k_d = pack_lighting(s.k_d);
     let emission = pack_lighting(s.emissive);

@@ -409,23 +409,31 @@ fn sample_base_color(uv: vec2<f32>) -> vec4<f32> {
 }
 
 fn surface(in: VertexOut, front_facing: bool) -> Surface {
+    var s = material_surface(in.normal, in.uv, in.indirect_irradiance, front_facing);
+    s.position = in.world_position;
+    s.mirrored_view = reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);
+    return s;
+}
+
+// A Surface but for its position and mirrored view: the material's colours and
+// exponent, the normal (`normal` as interpolated, turned toward the viewer on a back
+// face), and the emission with the baked indirect irradiance at the point.
+fn material_surface(normal: vec3<f32>, uv: vec2<f32>, indirect_irradiance: vec3<f32>, front_facing: bool) -> Surface {
     var base = material.base_color;
     if BASE_COLOR_TEXTURE && material.params.w > 0.5 {
-        base *= sample_base_color(in.uv);
+        base *= sample_base_color(uv);
     }
     let metallic = material.params.x;
     let dielectric_specular = 0.04 * material.params.y;
     var s: Surface;
-    s.position = in.world_position;
-    s.normal = normalize(in.normal);
+    s.normal = normalize(normal);
     if !front_facing {
         s.normal = -s.normal;
     }
     s.k_d = base.rgb * (1.0 - metallic) * (1.0 - dielectric_specular);
     s.k_s = mix(vec3<f32>(dielectric_specular), base.rgb, metallic);
     s.phong_exponent = material.params.z;
-    s.emissive = material.emissive.rgb + s.k_d / PI * max(in.indirect_irradiance, vec3<f32>(0.0));
-    s.mirrored_view = reflect(-normalize(frame.camera_position.xyz - s.position), s.normal);
+    s.emissive = material.emissive.rgb + s.k_d / PI * max(indirect_irradiance, vec3<f32>(0.0));
     return s;
 }
 

@@ -36,16 +36,22 @@ impl ByTexture {
         scene: &GpuScene,
         drawn: impl Fn(&GpuObject) -> bool,
     ) {
-        for textured in [true, false] {
-            pass.set_pipeline(if textured { &self.textured } else { &self.untextured });
-            for object in scene
-                .objects
-                .iter()
-                .filter(|o| o.drawn_in_view() && o.textured == textured && drawn(o))
-            {
-                draw_object(pass, scene, object);
-            }
+        for (pipeline, textured) in [(&self.textured, true), (&self.untextured, false)] {
+            draw_picked(pass, scene, pipeline, |o| o.textured == textured && drawn(o));
         }
+    }
+}
+
+/// Draws the visible objects `picked` picks with `pipeline`.
+fn draw_picked(
+    pass: &mut wgpu::RenderPass<'_>,
+    scene: &GpuScene,
+    pipeline: &wgpu::RenderPipeline,
+    picked: impl Fn(&GpuObject) -> bool,
+) {
+    pass.set_pipeline(pipeline);
+    for object in scene.objects.iter().filter(|o| o.drawn_in_view() && picked(o)) {
+        draw_object(pass, scene, object);
     }
 }
 
@@ -70,10 +76,7 @@ impl SurfaceBufferPipelines {
     pub(super) fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
         let plain = |o: &GpuObject| !o.textured && !o.baked_light;
         self.by_texture.draw_objects_where(pass, scene, |o| !plain(o));
-        pass.set_pipeline(&self.plain);
-        for object in scene.objects.iter().filter(|o| o.drawn_in_view() && plain(o)) {
-            draw_object(pass, scene, object);
-        }
+        draw_picked(pass, scene, &self.plain, plain);
     }
 }
 
