@@ -46,7 +46,7 @@ fn open(relative: &str) -> (Scene, Camera, RenderSettings) {
 }
 
 /// The GPU's frame against the f64 twin's over the same surfaces: the meshes whole on
-/// both (the levels of detail, which move rims by under a quarter of a pixel, are held
+/// both (the levels of detail, which move rims by under a fifth of a pixel, are held
 /// to the true surfaces in tests/detail_levels.rs).
 fn assert_parity(gpu: &GpuContext, name: &str, frame: &ShadowFrame) {
     let mut renderer = ShadowRenderer::new(gpu, frame, AntiAliasing::None).expect("GPU renderer");

@@ -5,10 +5,14 @@
 //!
 //! Each level is an edge-collapse simplification of the level before (Garland and Heckbert
 //! 1997, "Surface simplification using quadric error metrics", with collapses onto an
-//! edge's end so that no vertex moves: meshoptimizer's `meshopt_simplify`), with open
-//! borders locked (a card's outline, a lattice's holes, a uv seam stay where they are).
-//! Its error bounds the largest distance between the level's surface and the mesh's, in
-//! metres: the level before's plus twice the simplifier's estimate (measured below).
+//! edge's end so that no vertex moves: meshoptimizer's `meshopt_simplify`, asked for
+//! evener triangles with `RegularizeLight`), with open borders locked (a card's outline,
+//! a lattice's holes, a uv seam stay where they are). Its error is the largest distance
+//! between the level's surface and the mesh's, in metres, measured at the mesh's
+//! vertices and the level's face centres and edge midpoints ([`super::level_deviation`]).
+//! The simplifier's own estimate is no bound: on a 320 × 160 uv sphere the first level
+//! left a sliver 1.9 mm off the mesh where twice the estimate said 0.49 mm, while deeper
+//! levels lay two to three times nearer than their chained estimates said.
 //!
 //! Choosing a level ([`DetailLevels::level_for`]): the coarsest whose error, seen from
 //! the camera at the nearest point of the object's bounds, is within
@@ -22,16 +26,20 @@ use std::ops::Range;
 
 use glam::Vec3;
 
-/// The farthest, in pixels, a drawn level's surface may lie from the mesh's: a quarter
-/// of a pixel. The large sample at 960 × 540 draws 390,800 triangles at a quarter against
-/// 534,136 at an eighth, its surfaces pass 7–12 ms shorter, and against the path tracer
-/// (`render --reference --spp 64 --bounces 0` at 960 × 540, frames `--no-baked-indirect`)
-/// went from relative L1 0.0467 to 0.0468 (rims of its tori); at half a pixel, 331,240
-/// triangles and 0.0469. The interior, lamp room, studio and sample draw the same
-/// triangles either way (their shadow maps' texels bind first). tests/detail_levels.rs
-/// holds a far sphere's silhouette and normals to ray casts (docs/performance.md). The
-/// shadow maps bound it too ([`MAX_SHADOW_TEXEL_SHARE`]).
-pub const MAX_ERROR_PX: f32 = 0.25;
+use super::level_deviation::{TriangleSet, level_deviation_m};
+
+/// The farthest, in pixels, a drawn level's surface may lie from the mesh's (measured):
+/// a fifth of a pixel. The large sample at 960 × 540 draws 333,956 of its 954,656
+/// triangles (390,800 at a quarter of a pixel of the estimated errors before, 287,632 at a
+/// quarter of the measured ones); against the path tracer (`render --reference --spp 64
+/// --bounces 0` at 960 × 540, frames `--no-baked-indirect`) relative L1 0.0467 against
+/// 0.0468 before. tests/detail_levels.rs holds a far sphere's silhouette and normals to
+/// ray casts: at a fifth its normals lie within 2.5° of the true sphere's, at a quarter
+/// of the measured errors 7.1° (a coarser level meets the rays past the rim elsewhere
+/// than the sphere does). The interior, lamp room, studio and sample draw the same
+/// triangles (their shadow maps' texels bind first). The shadow maps bound it too
+/// ([`MAX_SHADOW_TEXEL_SHARE`]); docs/performance.md.
+pub const MAX_ERROR_PX: f32 = 0.2;
 
 /// The longest edge, in pixels, a drawn level may have where it is longer than the mesh's
 /// own longest edge. A flat floor tessellated for its per-vertex light (the baked indirect
@@ -52,10 +60,14 @@ pub const MAX_EDGE_PX: f32 = 64.0;
 /// centre: 4 pixels more than 8/255 from the whole mesh's frame.)
 pub const MAX_SHADOW_TEXEL_SHARE: f32 = 1.0;
 
-/// The simplifier's error is an estimate from its quadrics: on a finely tessellated
-/// sphere the faces of its levels lay up to 1.55 times that estimate deeper than the
-/// mesh's own (the test below); the error kept is twice it.
+/// The simplifier's error is an estimate from its quadrics, which a level's measured
+/// deviation (level_deviation) replaces: twice it, chained from level to level, seeds
+/// the search for that.
 const ERROR_ESTIMATE_SCALE: f32 = 2.0;
+
+/// The least reach of that search, as a share of the mesh's extent (a level simplified
+/// without error, such as a flat floor's, is measured to within rounding).
+const MIN_REACH_SHARE: f32 = 1e-4;
 
 /// Meshes with fewer triangles are drawn as they are.
 pub const MIN_SIMPLIFIED_TRIANGLES: usize = 512;
@@ -107,10 +119,18 @@ impl DetailLevels {
             return levels;
         };
         // Each level simplifies the last one, so the work shrinks by half a level (about
-        // twice the mesh's own in all, however many levels): its error bound is the last
-        // one's plus its own (the triangle inequality).
+        // twice the mesh's own in all, however many levels). Its deviation from the mesh
+        // is measured (level_deviation), each point's search seeded with the
+        // simplifier's estimate chained from level to level (the last one's plus its own).
+        let mesh = TriangleSet::new(positions, indices);
+        let mesh_vertices = vertices_in_use(positions, indices);
+        let mesh_extent_m = extent_m(&mesh_vertices);
+        let least_reach_m = MIN_REACH_SHARE * mesh_extent_m;
+        let mut chained_error_m = 0.0f32;
         let mut current = indices.to_vec();
-        let mut options = meshopt::SimplifyOptions::LockBorder | meshopt::SimplifyOptions::ErrorAbsolute;
+        let mut options = meshopt::SimplifyOptions::LockBorder
+            | meshopt::SimplifyOptions::ErrorAbsolute
+            | meshopt::SimplifyOptions::RegularizeLight;
         loop {
             let previous = current.len() / 3;
             let mut error_m = 0.0f32;
@@ -126,12 +146,18 @@ impl DetailLevels {
             if kept < MIN_LEVEL_TRIANGLES || kept as f32 > MIN_REDUCTION * previous as f32 || !error_m.is_finite() {
                 break;
             }
+            chained_error_m += ERROR_ESTIMATE_SCALE * error_m;
+            // Unmeasured within the mesh's extent: never drawn.
+            let reach_m = [chained_error_m.max(least_reach_m), mesh_extent_m.max(least_reach_m)];
+            let measured_m =
+                level_deviation_m(&mesh, &mesh_vertices, positions, &simplified, reach_m).unwrap_or(f32::INFINITY);
             let first = levels.indices.len() as u32;
             levels.indices.extend_from_slice(&simplified);
             let last_error_m = levels.levels.last().map_or(0.0, |l| l.error_m);
             levels.levels.push(DetailLevel {
                 indices: first..levels.indices.len() as u32,
-                error_m: last_error_m + ERROR_ESTIMATE_SCALE * error_m,
+                // Kept non-decreasing: a coarser level never counts as nearer the mesh.
+                error_m: measured_m.max(last_error_m),
                 longest_edge_m: longest_edge_m(positions, &simplified),
             });
             current = simplified;
@@ -162,6 +188,29 @@ impl DetailLevels {
             })
             .unwrap_or(0)
     }
+}
+
+/// The vertices the triangle list `indices` uses, once each.
+fn vertices_in_use(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
+    let mut used = vec![false; positions.len()];
+    for &i in indices {
+        used[i as usize] = true;
+    }
+    positions
+        .iter()
+        .zip(used)
+        .filter(|(_, used)| *used)
+        .map(|(p, _)| *p)
+        .collect()
+}
+
+/// The diagonal of the bounding box of `points`, in metres (0 for none).
+fn extent_m(points: &[Vec3]) -> f32 {
+    let Some(first) = points.first() else { return 0.0 };
+    let (low, high) = points
+        .iter()
+        .fold((*first, *first), |(low, high), p| (low.min(*p), high.max(*p)));
+    low.distance(high)
 }
 
 /// The longest edge of the triangle list `indices` over `positions` (triangles with an
@@ -239,7 +288,7 @@ mod tests {
     }
 
     #[test]
-    fn the_level_drawn_gets_coarser_with_distance_and_stays_within_a_quarter_pixel() {
+    fn the_level_drawn_gets_coarser_with_distance_and_stays_within_its_pixel_bound() {
         let (positions, indices) = sphere(128);
         let levels = DetailLevels::of_mesh(&positions, &indices);
         // 60° over 540 pixels.

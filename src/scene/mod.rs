@@ -13,6 +13,7 @@ mod error;
 mod frustum;
 mod gltf_import;
 pub mod gltf_write;
+mod level_deviation;
 mod light;
 mod light_edit;
 mod material;

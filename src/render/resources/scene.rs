@@ -119,7 +119,7 @@ pub enum Detail<'a> {
     /// the vertices, and the surfaces the reference starts its paths from (its rays meet
     /// the meshes themselves).
     Whole,
-    /// Each the coarsest level within a quarter of a pixel and within the finest texel
+    /// Each the coarsest level within a fifth of a pixel and within the finest texel
     /// these shadow-map views lay on it (`scene::detail_levels`).
     Levels(&'a ShadowViews),
 }
