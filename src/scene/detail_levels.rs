@@ -9,7 +9,7 @@
 //! evener triangles with `RegularizeLight`), with open borders locked (a card's outline,
 //! a lattice's holes, a uv seam stay where they are). Its error is the largest distance
 //! between the level's surface and the mesh's, in metres, measured at the mesh's
-//! vertices and the level's face centres and edge midpoints ([`super::level_deviation`]).
+//! vertices and the level's face centres and edge midpoints (`level_deviation.rs`).
 //! The simplifier's own estimate is no bound: on a 320 × 160 uv sphere the first level
 //! left a sliver 1.9 mm off the mesh where twice the estimate said 0.49 mm, while deeper
 //! levels lay two to three times nearer than their chained estimates said.
@@ -123,8 +123,7 @@ impl DetailLevels {
         // is measured (level_deviation), each point's search seeded with the
         // simplifier's estimate chained from level to level (the last one's plus its own).
         let mesh = TriangleSet::new(positions, indices);
-        let mesh_vertices = vertices_in_use(positions, indices);
-        let mesh_extent_m = extent_m(&mesh_vertices);
+        let mesh_extent_m = extent_m(positions, indices);
         let least_reach_m = MIN_REACH_SHARE * mesh_extent_m;
         let mut chained_error_m = 0.0f32;
         let mut current = indices.to_vec();
@@ -150,7 +149,7 @@ impl DetailLevels {
             // Unmeasured within the mesh's extent: never drawn.
             let reach_m = [chained_error_m.max(least_reach_m), mesh_extent_m.max(least_reach_m)];
             let measured_m =
-                level_deviation_m(&mesh, &mesh_vertices, positions, &simplified, reach_m).unwrap_or(f32::INFINITY);
+                level_deviation_m(&mesh, positions, [indices, &simplified], reach_m).unwrap_or(f32::INFINITY);
             let first = levels.indices.len() as u32;
             levels.indices.extend_from_slice(&simplified);
             let last_error_m = levels.levels.last().map_or(0.0, |l| l.error_m);
@@ -190,26 +189,15 @@ impl DetailLevels {
     }
 }
 
-/// The vertices the triangle list `indices` uses, once each.
-fn vertices_in_use(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
-    let mut used = vec![false; positions.len()];
-    for &i in indices {
-        used[i as usize] = true;
-    }
-    positions
-        .iter()
-        .zip(used)
-        .filter(|(_, used)| *used)
-        .map(|(p, _)| *p)
-        .collect()
-}
-
-/// The diagonal of the bounding box of `points`, in metres (0 for none).
-fn extent_m(points: &[Vec3]) -> f32 {
-    let Some(first) = points.first() else { return 0.0 };
-    let (low, high) = points
-        .iter()
-        .fold((*first, *first), |(low, high), p| (low.min(*p), high.max(*p)));
+/// The diagonal of the bounding box of the vertices the triangle list `indices` over
+/// `positions` uses, in metres (0 for none).
+fn extent_m(positions: &[Vec3], indices: &[u32]) -> f32 {
+    let Some(&first) = indices.first() else { return 0.0 };
+    let start = positions[first as usize];
+    let (low, high) = indices.iter().fold((start, start), |(low, high), &i| {
+        let p = positions[i as usize];
+        (low.min(p), high.max(p))
+    });
     low.distance(high)
 }
 

@@ -118,25 +118,39 @@ impl TriangleSet {
     }
 }
 
-/// The sampled two-sided distance (module comment) between `mesh` — whose vertices in use
-/// are `mesh_vertices` — and the level `level_indices` over `positions`, each point's
-/// search starting at `first_reach` (metres; about the distance expected); None where a
-/// point has no triangle of the other surface within `max_reach`.
+/// The sampled two-sided distance (module comment) between `mesh` — the triangle list
+/// `mesh_indices` over `positions` — and the level `level_indices` over the same
+/// positions, each point's search starting at `first_reach` (metres; about the distance
+/// expected); None where a point has no triangle of the other surface within
+/// `max_reach`. Of the mesh's vertices only those the level dropped are looked up: the
+/// ones it keeps lie on it.
 pub(crate) fn level_deviation_m(
     mesh: &TriangleSet,
-    mesh_vertices: &[Vec3],
     positions: &[Vec3],
-    level_indices: &[u32],
+    [mesh_indices, level_indices]: [&[u32]; 2],
     [first_reach, max_reach]: [f32; 2],
 ) -> Option<f32> {
     let level = TriangleSet::new(positions, level_indices);
-    let outward = level.farthest_of(mesh_vertices.iter().copied(), first_reach, max_reach)?;
+    let dropped = dropped_vertices(positions.len(), mesh_indices, level_indices);
+    let outward = level.farthest_of(dropped.iter().map(|&i| positions[i]), first_reach, max_reach)?;
     let face_points = level
         .triangles
         .iter()
         .flat_map(|[a, b, c]| [(*a + *b + *c) / 3.0, 0.5 * (*a + *b), 0.5 * (*b + *c), 0.5 * (*c + *a)]);
     let inward = mesh.farthest_of(face_points, first_reach, max_reach)?;
     Some(outward.max(inward))
+}
+
+/// The vertices (of `vertex_count`) that `mesh_indices` uses and `level_indices` does not.
+fn dropped_vertices(vertex_count: usize, mesh_indices: &[u32], level_indices: &[u32]) -> Vec<usize> {
+    let mut in_mesh = vec![false; vertex_count];
+    for &i in mesh_indices {
+        in_mesh[i as usize] = true;
+    }
+    for &i in level_indices {
+        in_mesh[i as usize] = false;
+    }
+    (0..vertex_count).filter(|&i| in_mesh[i]).collect()
 }
 
 /// The distance from p to the triangle (a, b, c): to its nearest point, found by the
@@ -272,14 +286,14 @@ mod tests {
             let levels = DetailLevels::of_mesh(&mesh.positions, &mesh.indices);
             assert!(levels.levels.len() >= 4);
             let set = TriangleSet::new(&mesh.positions, &mesh.indices);
-            let vertices = mesh.positions.clone();
             for level in &levels.levels[1..4] {
                 let list = &levels.indices[level.indices.start as usize..level.indices.end as usize];
                 let measured =
-                    level_deviation_m(&set, &vertices, &mesh.positions, list, [1e-4, 1.0]).expect("measured");
+                    level_deviation_m(&set, &mesh.positions, [&mesh.indices, list], [1e-4, 1.0]).expect("measured");
                 let level_set = TriangleSet::new(&mesh.positions, list);
+                // Every vertex of the mesh, kept by the level or not.
                 let outward = level_set
-                    .farthest_of(vertices.iter().copied(), 1e-4, 1.0)
+                    .farthest_of(mesh.positions.iter().copied(), 1e-4, 1.0)
                     .expect("outward");
                 let dense_points = list.chunks_exact(3).flat_map(|t| {
                     let [a, b, c] = [t[0], t[1], t[2]].map(|i| mesh.positions[i as usize]);
