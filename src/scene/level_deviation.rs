@@ -311,25 +311,4 @@ mod tests {
             }
         }
     }
-
-    /// A sphere's levels against the true sphere: the centre of a level's face lies
-    /// 1 − |centroid| inside it, so the deviation kept for the level covers the deepest
-    /// face centre less the mesh's own.
-    #[test]
-    fn a_spheres_levels_cover_their_deepest_faces() {
-        let mesh = shapes::uv_sphere(1.0, 128, 64);
-        let levels = DetailLevels::of_mesh(&mesh.positions, &mesh.indices);
-        assert!(levels.levels.len() >= 4);
-        let deepest = |list: &[u32]| {
-            list.chunks_exact(3)
-                .map(|t| 1.0 - ((t.iter().map(|&i| mesh.positions[i as usize]).sum::<Vec3>()) / 3.0).length())
-                .fold(0.0f32, f32::max)
-        };
-        let own = deepest(&mesh.indices);
-        for level in &levels.levels[1..] {
-            let list = &levels.indices[level.indices.start as usize..level.indices.end as usize];
-            assert!(level.error_m.is_finite());
-            assert!(deepest(list) - own <= level.error_m, "{} triangles", list.len() / 3);
-        }
-    }
 }
