@@ -261,22 +261,30 @@ pub(super) fn shade_low_resolution(
         draw_surfaces(frame, &low.surface, &pipelines.surface_buffer, scene, blockers);
     }
 
+    // A frame of new surfaces shades the mapped lights at its samples itself: it binds
+    // a surface group without their factors (too short to hold them, so the shading
+    // passes read the maps: low_resolution.wgsl's holds_mapped_lights).
+    let surface_group = match low.keeps_mapped_factors() {
+        true => &low.surface.bind_group,
+        false => &low.surface.bind_group_without_factors,
+    };
     let bound = Bound {
         scene,
         blockers,
-        surface: &low.surface.bind_group,
+        surface: surface_group,
     };
     // The samples' visibility of the mapped lights the last frames wrote holds while the
-    // surfaces, those lights' geometry and their maps do; else the marking pass writes it.
+    // surfaces, those lights' geometry and their maps do; else the marking pass writes it
+    // (in frames that keep it).
     let (mark, writing) = match &pipelines.mark_keeping_visibility {
-        Some(keeping) if !low.mapped_factors_current() => (
+        Some(keeping) if low.keeps_mapped_factors() && !low.mapped_factors_current() => (
             Some((keeping, Some(&low.surface.mapped_factors_writer))),
             // The buffer is written in this pass, so the surface group reads none.
             &low.surface.bind_group_without_factors,
         ),
         // With the surfaces the last marks were made on, the marks are copied back.
-        _ if low.surfaces_current() => (None, &low.surface.bind_group),
-        _ => (Some((&pipelines.mark_surface_samples, None)), &low.surface.bind_group),
+        _ if low.surfaces_current() => (None, surface_group),
+        _ => (Some((&pipelines.mark_surface_samples, None)), surface_group),
     };
     match mark {
         Some(mark) => {

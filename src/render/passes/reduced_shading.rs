@@ -161,6 +161,14 @@ pub struct LowResolutionTargets {
     soft_layer_current: bool,
     /// The kept visibility of the mapped lights is the next frame's.
     mapped_factors_current: bool,
+    /// The next frame keeps the samples' factors of the mapped lights: its surfaces are
+    /// the last frame's. A frame of new surfaces (a new view) shades those lights at its
+    /// samples directly, as keeping them would cost it a pass writing every light's
+    /// factors at every sample (the studio's anew frame about 6 ms); the first frame
+    /// after it on the same surfaces (a stroke's, an edit's) writes them.
+    keeps_mapped_factors: bool,
+    /// The factors held were written for the surfaces the buffer shows.
+    mapped_factors_written: bool,
     /// The generation of the SH path's light where it was shaded in full (never 0): a
     /// new one whenever the soft layer is not current, so that light, kept at the pixels
     /// and samples shaded in full (`kept_harmonic`), is read again only while the surfaces
@@ -384,6 +392,8 @@ impl LowResolutionTargets {
             surfaces_current: false,
             soft_layer_current: false,
             mapped_factors_current: false,
+            keeps_mapped_factors: false,
+            mapped_factors_written: false,
             kept_harmonic_generation: 0,
             kept_at_samples,
             kept_generation,
@@ -429,12 +439,19 @@ impl LowResolutionTargets {
             self.kept_harmonic_generation,
             samples_current,
         );
+        self.keeps_mapped_factors = self.surfaces_current;
+        if !self.keeps_mapped_factors {
+            self.mapped_factors_current = false;
+            self.mapped_factors_written = false;
+            self.drawn_from = inputs;
+            return;
+        }
         let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
-        // Every light anew where the buffer or the surfaces are new; else those whose
-        // geometry or maps changed.
+        // Every light anew where the buffer is new or holds no factors of these surfaces;
+        // else those whose geometry or maps changed.
         let kept_from = last
             .as_ref()
-            .filter(|_| self.surfaces_current && !reallocated)
+            .filter(|_| self.mapped_factors_written && !reallocated)
             .map(|l| &l.mapped_visibility);
         let stale = match &inputs {
             Some(i) => i.mapped_visibility.stale_lights(kept_from),
@@ -444,13 +461,20 @@ impl LowResolutionTargets {
         if !self.mapped_factors_current {
             self.surface.write_stale_lights(device, queue, &stale);
         }
+        self.mapped_factors_written = true;
         self.drawn_from = inputs;
     }
 
     /// Whether the kept visibility of the mapped lights holds this frame's (else the
-    /// pass marking the samples on a surface writes it).
+    /// pass marking the samples on a surface writes it, where the frame keeps it).
     pub(crate) fn mapped_factors_current(&self) -> bool {
         self.mapped_factors_current
+    }
+
+    /// Whether this frame keeps the samples' factors of the mapped lights (else its
+    /// samples' shading evaluates those lights itself).
+    pub(crate) fn keeps_mapped_factors(&self) -> bool {
+        self.keeps_mapped_factors
     }
 
     /// Whether the surface buffer already shows the next frame's surfaces.
