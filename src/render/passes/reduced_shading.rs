@@ -164,7 +164,8 @@ pub struct LowResolutionTargets {
     /// The next frame keeps the samples' factors of the mapped lights: its surfaces are
     /// the last frame's. A frame of new surfaces (a new view) shades those lights at its
     /// samples directly, as keeping them would cost it a pass writing every light's
-    /// factors at every sample (the studio's anew frame about 6 ms); the first frame
+    /// factors at every sample (the studio's frame drawn anew 3–4 ms, the large sample's
+    /// 6; docs/performance.md); the first frame
     /// after it on the same surfaces (a stroke's, an edit's) writes them.
     keeps_mapped_factors: bool,
     /// The factors held were written for the surfaces the buffer shows.
