@@ -12,13 +12,13 @@
 //!   mesh's triangles.
 //!
 //! The simplifier's own estimate (meshoptimizer's quadric error, chained from level to
-//! level) is no bound: on a 128 × 64 uv sphere and a 96 × 48 torus its deeper levels lay two to
-//! three times nearer than it said, so far objects were drawn a level finer than their
-//! pixels needed, and a 320 × 160 sphere's first level four times farther (a sliver).
-//! Nearest triangles are found in a bounding volume hierarchy of each
-//! surface (obvhs) with a box around the point that grows until it holds a triangle
-//! nearer than the box's half-width; a point that a triangle within the running largest
-//! distance already serves ends its search at the first such triangle.
+//! level) is no bound: on a 128 × 64 uv sphere and a 96 × 48 torus its deeper levels
+//! lay two to three times nearer than it said, so far objects were drawn a level finer
+//! than their pixels needed, and a 320 × 160 sphere's first level four times farther (a
+//! sliver). Nearest triangles are found in a bounding volume hierarchy of each surface
+//! (obvhs) with a box around the point that grows until it holds a triangle nearer than
+//! the box's half-width; a point that a triangle within the running largest distance
+//! already serves ends its search at the first such triangle.
 
 use glam::{Vec3, Vec3A};
 use obvhs::aabb::Aabb;
