@@ -26,6 +26,7 @@ use std::ops::Range;
 
 use glam::Vec3;
 
+use super::Aabb;
 use super::level_deviation::{TriangleSet, level_deviation_m};
 
 /// The farthest, in pixels, a drawn level's surface may lie from the mesh's (measured):
@@ -192,13 +193,10 @@ impl DetailLevels {
 /// The diagonal of the bounding box of the vertices the triangle list `indices` over
 /// `positions` uses, in metres (0 for none).
 fn extent_m(positions: &[Vec3], indices: &[u32]) -> f32 {
-    let Some(&first) = indices.first() else { return 0.0 };
-    let start = positions[first as usize];
-    let (low, high) = indices.iter().fold((start, start), |(low, high), &i| {
-        let p = positions[i as usize];
-        (low.min(p), high.max(p))
-    });
-    low.distance(high)
+    let bounds = indices
+        .iter()
+        .fold(Aabb::EMPTY, |bounds, &i| bounds.including(positions[i as usize]));
+    2.0 * bounds.radius()
 }
 
 /// The longest edge of the triangle list `indices` over `positions` (triangles with an

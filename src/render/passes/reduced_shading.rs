@@ -168,8 +168,6 @@ pub struct LowResolutionTargets {
     /// 6; docs/performance.md); the first frame
     /// after it on the same surfaces (a stroke's, an edit's) writes them.
     keeps_mapped_factors: bool,
-    /// The factors held were written for the surfaces the buffer shows.
-    mapped_factors_written: bool,
     /// The generation of the SH path's light where it was shaded in full (never 0): a
     /// new one whenever the soft layer is not current, so that light, kept at the pixels
     /// and samples shaded in full (`kept_harmonic`), is read again only while the surfaces
@@ -394,7 +392,6 @@ impl LowResolutionTargets {
             soft_layer_current: false,
             mapped_factors_current: false,
             keeps_mapped_factors: false,
-            mapped_factors_written: false,
             kept_harmonic_generation: 0,
             kept_at_samples,
             kept_generation,
@@ -440,29 +437,28 @@ impl LowResolutionTargets {
             self.kept_harmonic_generation,
             samples_current,
         );
+        // The last frame kept the factors (wrote or held them) for the surfaces the buffer
+        // shows.
+        let factors_held = self.keeps_mapped_factors;
         self.keeps_mapped_factors = self.surfaces_current;
-        if !self.keeps_mapped_factors {
-            self.mapped_factors_current = false;
-            self.mapped_factors_written = false;
-            self.drawn_from = inputs;
-            return;
+        self.mapped_factors_current = false;
+        if self.keeps_mapped_factors {
+            let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
+            // Every light anew where the buffer is new or holds no factors of these
+            // surfaces; else those whose geometry or maps changed.
+            let kept_from = last
+                .as_ref()
+                .filter(|_| factors_held && !reallocated)
+                .map(|l| &l.mapped_visibility);
+            let stale = match &inputs {
+                Some(i) => i.mapped_visibility.stale_lights(kept_from),
+                None => vec![1; mapped_lights],
+            };
+            self.mapped_factors_current = stale.iter().all(|&flag| flag == 0);
+            if !self.mapped_factors_current {
+                self.surface.write_stale_lights(device, queue, &stale);
+            }
         }
-        let reallocated = self.surface.reserve_mapped_factors(device, mapped_lights);
-        // Every light anew where the buffer is new or holds no factors of these surfaces;
-        // else those whose geometry or maps changed.
-        let kept_from = last
-            .as_ref()
-            .filter(|_| self.mapped_factors_written && !reallocated)
-            .map(|l| &l.mapped_visibility);
-        let stale = match &inputs {
-            Some(i) => i.mapped_visibility.stale_lights(kept_from),
-            None => vec![1; mapped_lights],
-        };
-        self.mapped_factors_current = stale.iter().all(|&flag| flag == 0);
-        if !self.mapped_factors_current {
-            self.surface.write_stale_lights(device, queue, &stale);
-        }
-        self.mapped_factors_written = true;
         self.drawn_from = inputs;
     }
 
