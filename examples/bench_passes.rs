@@ -100,8 +100,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     if per_vertex {
         println!(
-            "vertices whose visibility the last frame computed: {}",
-            renderer.vertices_computed()
+            "vertices whose visibility the last frame computed: {}; objects lit at their vertices: {}",
+            renderer.vertices_computed(),
+            renderer.objects_lit_at_vertices()
         );
     }
     if let Some(listed) = renderer.listed_pixels() {

@@ -1,15 +1,31 @@
 // Per-vertex log-SH shadows: a compute pass exponentiates every vertex's log-visibility
-// (log_visibility of logsh.wgsl at the vertex position and normal) into a buffer that the
-// shading pass reads as vertex attributes; the rasteriser interpolates the visibility SH
-// and each fragment shades its lights through it exactly as fs_logsh does. Shading cost
-// follows the vertex count instead of the pixel count. Composed with logsh.wgsl for the
-// orders whose visibility fits the varyings (wgsl_sh::supports_per_vertex).
+// (log_visibility of logsh.wgsl at the vertex position and normal) into a buffer. Meshes
+// fine enough for it (shading::vertex_lighting) then have the SH path's light itself
+// computed at their vertices by a second compute pass (cs_vertex_light), which the
+// rasteriser interpolates: a fragment only multiplies it by its material and adds the
+// lights of the other paths. Coarser meshes read the visibility as vertex attributes;
+// the rasteriser interpolates the visibility SH and each fragment shades its lights
+// through it exactly as fs_logsh does. Shading cost follows the vertex count instead of
+// the pixel count. Composed with logsh.wgsl for the orders whose visibility fits the
+// varyings (wgsl_sh::supports_per_vertex).
 // #import logsh slots
 
 // GpuVertex as plain floats (position xyz, normal xyz, uv): 8 per vertex.
 @group(PASS_GROUP) @binding(VERTEX_DATA_BINDING) var<storage, read> vertex_data: array<f32>;
 // The visibility SH of every vertex, as consecutive Sh.
 @group(PASS_GROUP) @binding(VERTEX_VISIBILITY_BINDING) var<storage, read_write> vertex_visibility: array<Sh>;
+// The SH path's light at every vertex as the separate BRDF splits it (VertexLight).
+@group(PASS_GROUP) @binding(VERTEX_LIGHT_BINDING) var<storage, read_write> vertex_light: array<VertexLight>;
+
+// The light of the SH path (the environment and the lights before frame.first_mapped_light,
+// through the vertex's visibility) at a vertex, split by what a fragment multiplies it by
+// (BRDF_SEPARATE: light_through and environment_through): radiance = k_d · diffuse +
+// k_s · glossy. rgb used, w 0 (vec4 for the storage and vertex layouts alike). Rust twin:
+// render::passes::vertex_light::GpuVertexLight; f64 twin shading::cpu::vertex_light.
+struct VertexLight {
+    diffuse: vec4<f32>,
+    glossy: vec4<f32>,
+};
 
 @compute @workgroup_size(64)
 fn cs_vertex_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -21,6 +37,70 @@ fn cs_vertex_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = vec3<f32>(vertex_data[b], vertex_data[b + 1u], vertex_data[b + 2u]);
     let n = normalize(vec3<f32>(vertex_data[b + 3u], vertex_data[b + 4u], vertex_data[b + 5u]));
     vertex_visibility[i] = sh_exp(log_visibility(p, n));
+}
+
+// The SH path's light at every vertex of one object, from the visibility cs_vertex_visibility
+// wrote there, for the frame's camera (the glossy lobe's axis) and the object's material
+// (its exponent). The normal is turned toward the camera, as a fragment turns it on a
+// back face.
+@compute @workgroup_size(64)
+fn cs_vertex_light(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&vertex_data) / 8u {
+        return;
+    }
+    let b = 8u * i;
+    var s: Surface;
+    s.position = vec3<f32>(vertex_data[b], vertex_data[b + 1u], vertex_data[b + 2u]);
+    s.normal = normalize(vec3<f32>(vertex_data[b + 3u], vertex_data[b + 4u], vertex_data[b + 5u]));
+    let to_eye = normalize(frame.camera_position.xyz - s.position);
+    if dot(s.normal, to_eye) < 0.0 {
+        s.normal = -s.normal;
+    }
+    s.mirrored_view = reflect(-to_eye, s.normal);
+    s.phong_exponent = material.params.z;
+    let g = vertex_visibility[i];
+    var diffuse = vec3<f32>(0.0);
+    if ENVIRONMENT_LIGHT {
+        let unshadowed = environment_irradiance_at(s) / PI;
+        diffuse = clamp(sh_environment_through_cosine(g, s.normal), vec3<f32>(0.0), unshadowed);
+    }
+    var glossy = vec3<f32>(0.0);
+    let run = harmonic_lights_at(s.position);
+    for (var k = run.first; k < run.end; k++) {
+        let inc = incidence(light_at(run_light(k)), s.position);
+        let direct = direct_lobes(s, inc);
+        let seen = inc.irradiance * clamp(sh_visibility_toward(g, inc.to_light, inc.cap_ratio), 0.0, 1.0);
+        diffuse += seen * direct.x;
+        glossy += seen * direct.y;
+    }
+    vertex_light[i] = VertexLight(vec4<f32>(diffuse, 0.0), vec4<f32>(glossy, 0.0));
+}
+
+// The vertex output of a mesh lit at its vertices: scene.wgsl's VertexOut but for the
+// baked indirect light, which joins the diffuse light (k_d/π · E_indirect, as
+// material_surface adds it to the emission), and with the vertex's light.
+struct VertexOutLit {
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(4) diffuse: vec3<f32>,
+    @location(5) glossy: vec3<f32>,
+};
+
+@vertex
+fn vs_vertex_lit(v: VertexIn, @location(4) diffuse: vec4<f32>, @location(5) glossy: vec4<f32>) -> VertexOutLit {
+    let o = transform_vertex(v);
+    return VertexOutLit(o.clip, o.world_position, o.normal, o.uv, diffuse.rgb + max(o.indirect_irradiance, vec3<f32>(0.0)) / PI, glossy.rgb);
+}
+
+@fragment
+fn fs_vertex_lit(in: VertexOutLit, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let s = surface(VertexOut(in.clip, in.world_position, in.normal, in.uv, vec3<f32>(0.0)), front_facing);
+    let radiance = s.emissive + s.k_d * in.diffuse + s.k_s * in.glossy + exact_path_radiance(s)
+        + mapped_lights_radiance(s);
+    return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }
 
 @vertex

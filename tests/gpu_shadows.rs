@@ -348,7 +348,7 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
     let visibility = pipeline
         .vertex_visibility(&gpu.device, &gpu_scene)
         .expect("order 4 runs per vertex");
-    let (compute, _) = pipeline.per_vertex.as_ref().expect("per-vertex pipelines");
+    let compute = &pipeline.per_vertex.as_ref().expect("per-vertex pipelines").compute;
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     compute.run(
         &mut encoder,
@@ -391,6 +391,114 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
     }
     eprintln!("worst per-vertex visibility error {worst:e} (relative to the DC)");
     assert!(worst < 2e-3, "{worst}");
+}
+
+/// The light pass writes, at every vertex of the meshes it lights there, the light the
+/// f64 twin computes from the visibility the GPU kept there (`cpu::vertex_light`): the blocker bench's
+/// set (`samples::blocker_bench`: its 96 × 96 floor and its smooth ring are fine enough
+/// under its panel, the studio's meshes are not), 200 spheres on its casters.
+#[test]
+fn vertex_light_matches_the_cpu_at_every_vertex() {
+    use lightpaint::render::passes::logsh::LogShPipeline;
+    use lightpaint::render::resources::{Detail, GpuBlockers};
+    use lightpaint::render::{GpuScene, ScenePipeline};
+    use lightpaint::samples::blocker_bench;
+    use lightpaint::shading::cpu;
+    let Some(gpu) = common::gpu() else { return };
+    let scene = blocker_bench::thin_casters_scene();
+    let camera = blocker_bench::thin_casters_camera();
+    let blockers = blocker_bench::spheres_on_casters(&scene, 200);
+    let shadows = ShadowSettings {
+        per_vertex: true,
+        ..ShadowSettings::default().every_pixel()
+    };
+    let raster = ScenePipeline::new(&gpu.device);
+    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, CompiledPaths::ALL);
+    let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
+    gpu_scene.set_view_culling(false);
+    gpu_scene.write_frame(&gpu.queue, &camera, [240, 135], (0.0, [0.0; 3]), Detail::Whole);
+    let gpu_blockers = GpuBlockers::upload(
+        &gpu.device,
+        &gpu.queue,
+        &pipeline.shadow_layout,
+        &blockers,
+        None,
+        &shadows,
+        lightpaint::render::resources::ShadowMaps::new(&gpu.device).binding(),
+    );
+    let mut visibility = pipeline
+        .vertex_visibility(&gpu.device, &gpu_scene)
+        .expect("order 4 runs per vertex");
+    let lighting = gpu_scene.harmonic_lighting();
+    let lit = visibility
+        .light
+        .plan(&gpu_scene, &lighting.lights, camera.position, true);
+    let lit_objects: Vec<usize> = (0..gpu_scene.objects.len())
+        .filter(|k| visibility.light.buffer(*k).is_some())
+        .collect();
+    assert_eq!(lit, lit_objects.len());
+    assert!(lit >= 1, "the floor is lit at its vertices");
+    let compute = &pipeline.per_vertex.as_ref().expect("per-vertex pipelines").compute;
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let groups = [&gpu_scene.frame_bind_group, &gpu_blockers.bind_group];
+    compute.run(&mut encoder, groups, &gpu_scene, &visibility);
+    compute.light.run(&mut encoder, groups, &gpu_scene, &visibility.light);
+    let mut copy = |buffer: &wgpu::Buffer| {
+        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: buffer.size(),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_buffer_to_buffer(buffer, 0, &readback, 0, buffer.size());
+        readback
+    };
+    // Each lit object's light, and the visibility it was computed from (whose own
+    // parity per_vertex_visibility_matches_the_cpu_at_every_vertex checks).
+    let readbacks: Vec<(usize, wgpu::Buffer, wgpu::Buffer)> = lit_objects
+        .iter()
+        .map(|&k| {
+            let light = copy(visibility.light.buffer(k).expect("planned"));
+            (k, light, copy(&visibility.buffers[k]))
+        })
+        .collect();
+    gpu.queue.submit([encoder.finish()]);
+    let read = |readback: &wgpu::Buffer| -> Vec<f32> {
+        readback.map_async(wgpu::MapMode::Read, .., |_| {});
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+        let bytes = readback.get_mapped_range(..).expect("mapped").to_vec();
+        bytemuck::pod_collect_to_vec(&bytes)
+    };
+    let (mut worst, mut vertices) = (0.0f64, 0usize);
+    for (k, light_readback, visibility_readback) in &readbacks {
+        let object = &scene.objects[gpu_scene.objects[*k].source];
+        let exponent = f64::from(gpu_scene.objects[*k].phong_exponent);
+        let values = read(light_readback);
+        let visibilities = read(visibility_readback);
+        for (v, (p, n)) in object.positions.iter().zip(&object.normals).enumerate() {
+            let g: Vec<f64> = visibilities[16 * v..16 * v + 16]
+                .iter()
+                .map(|x| f64::from(*x))
+                .collect();
+            let want = cpu::vertex_light(
+                (p.as_dvec3(), n.as_dvec3()),
+                &g,
+                exponent,
+                (&lighting.lights, &lighting.environment_irradiance),
+                camera.position.as_dvec3(),
+            );
+            let got = &values[8 * v..8 * v + 8];
+            // Relative to the vertex's light, or to a floor for vertices in deep shadow.
+            let scale = want.diffuse.max_element().max(want.glossy.max_element()).max(0.05);
+            for c in 0..3 {
+                worst = worst.max((f64::from(got[c]) - want.diffuse[c]).abs() / scale);
+                worst = worst.max((f64::from(got[4 + c]) - want.glossy[c]).abs() / scale);
+            }
+            vertices += 1;
+        }
+    }
+    eprintln!("{lit} objects, {vertices} vertices lit at their vertices: worst error {worst:e} (relative)");
+    assert!(worst < 5e-3, "{worst}");
 }
 
 /// Per-vertex shading interpolates what per-pixel shading computes: on the studio, with

@@ -34,7 +34,12 @@ fn wgsl_layout(source: &str, name: &str) -> (u32, Vec<(String, u32)>) {
 }
 
 fn assert_twin(name: &str, rust_size: usize, rust_offsets: &[(&str, usize)]) {
-    let (size, members) = wgsl_layout(&wgsl::raster_source(), name);
+    assert_twin_in(&wgsl::raster_source(), name, rust_size, rust_offsets);
+}
+
+/// [`assert_twin`] for a struct of `source`.
+fn assert_twin_in(source: &str, name: &str, rust_size: usize, rust_offsets: &[(&str, usize)]) {
+    let (size, members) = wgsl_layout(source, name);
     assert_eq!(size as usize, rust_size, "size of {name}");
     let wgsl_public: Vec<(String, u32)> = members.into_iter().filter(|(n, _)| !n.starts_with('_')).collect();
     assert_eq!(wgsl_public.len(), rust_offsets.len(), "{name}: fields {wgsl_public:?}");
@@ -185,6 +190,22 @@ fn shadow_params_match_wgsl() {
             ("cluster_count", offset_of!(GpuShadowParams, cluster_count)),
             ("cap_mass_scale", offset_of!(GpuShadowParams, cap_mass_scale)),
             ("discs", offset_of!(GpuShadowParams, discs)),
+        ],
+    );
+}
+
+#[test]
+fn vertex_light_matches_wgsl() {
+    use lightpaint::render::passes::vertex_light::GpuVertexLight;
+    use lightpaint::sh::ExpMethod;
+    use lightpaint::shading::BrdfShading;
+    assert_twin_in(
+        &wgsl::logsh_source(4, ExpMethod::Hyb, BrdfShading::Separate),
+        "VertexLight",
+        size_of::<GpuVertexLight>(),
+        &[
+            ("diffuse", offset_of!(GpuVertexLight, diffuse)),
+            ("glossy", offset_of!(GpuVertexLight, glossy)),
         ],
     );
 }

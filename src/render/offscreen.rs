@@ -296,6 +296,11 @@ impl<'a> ShadowRenderer<'a> {
         self.renderer.vertices_computed()
     }
 
+    /// See [`SceneRenderer::objects_lit_at_vertices`].
+    pub fn objects_lit_at_vertices(&self) -> usize {
+        self.renderer.objects_lit_at_vertices()
+    }
+
     /// See [`SceneRenderer::shadow_map_triangles`].
     pub fn shadow_map_triangles(&self) -> (u64, u64) {
         self.renderer.shadow_map_triangles()

@@ -26,6 +26,7 @@ mod shadow_path;
 pub mod sphere_casters;
 pub mod stand_in;
 pub mod terrain;
+pub mod vertex_lighting;
 pub mod wgsl;
 
 pub use baked_indirect::BakedIndirect;

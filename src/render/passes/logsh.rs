@@ -31,9 +31,19 @@ pub struct LogShPipeline {
     depth_prepass: wgpu::RenderPipeline,
     shade: wgpu::RenderPipeline,
     /// Per-vertex shading, where the order allows it.
-    pub per_vertex: Option<(PerVertexCompute, wgpu::RenderPipeline)>,
+    pub per_vertex: Option<PerVertexPipelines>,
     /// Reduced-resolution shading, when the settings ask for it.
     reduced: Option<ReducedShadingPipelines>,
+}
+
+/// The passes of per-vertex shading: the compute passes of the vertices' visibility and
+/// light, and the scene pass's pipelines through each.
+pub struct PerVertexPipelines {
+    pub compute: PerVertexCompute,
+    /// Shading each pixel through the interpolated visibility (fs_per_vertex).
+    pub shade: wgpu::RenderPipeline,
+    /// The interpolated light of meshes lit at their vertices (fs_vertex_lit).
+    pub lit: wgpu::RenderPipeline,
 }
 
 /// How a frame's pixels are shaded, with the buffers that way needs.
@@ -85,17 +95,16 @@ impl LogShPipeline {
             textured: true,
         };
         let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
-        let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| {
-            (
-                PerVertexCompute::new(
-                    device,
-                    &module,
-                    [&layouts.frame, &shadow_layout],
-                    settings.order,
-                    &path_constants(paths.with_one_visibility()),
-                ),
-                make(Stage::ShadePerVertex(settings.order, !per_vertex_prepass(paths))),
-            )
+        let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| PerVertexPipelines {
+            compute: PerVertexCompute::new(
+                device,
+                &module,
+                [&layouts.frame, &layouts.material, &shadow_layout],
+                settings.order,
+                &path_constants(paths.with_one_visibility()),
+            ),
+            shade: make(Stage::ShadePerVertex(settings.order, !per_vertex_prepass(paths))),
+            lit: make(Stage::VertexLit(!per_vertex_prepass(paths))),
         });
         let reduced = (settings.shading_downsample > 1).then(|| {
             ReducedShadingPipelines::new(
@@ -170,7 +179,7 @@ impl LogShPipeline {
     pub fn vertex_visibility(&self, device: &wgpu::Device, scene: &GpuScene) -> Option<VertexVisibility> {
         self.per_vertex
             .as_ref()
-            .map(|(compute, _)| VertexVisibility::new(device, compute, scene))
+            .map(|pipelines| VertexVisibility::new(device, &pipelines.compute, scene))
     }
 
     /// Clears `target` to `background` (linear RGB) and draws every object with shadows,
@@ -194,14 +203,15 @@ impl LogShPipeline {
                 .filter(|(low, _)| low.full_size == [target.width, target.height]),
             _ => None,
         };
-        if let Some((visibility, (compute, _))) = per_vertex {
-            compute.run(
-                frame.encoder,
-                [&scene.frame_bind_group, &blockers.bind_group],
-                scene,
-                visibility,
-            );
+        if let Some((visibility, pipelines)) = per_vertex {
+            let groups = [&scene.frame_bind_group, &blockers.bind_group];
+            pipelines.compute.run(frame.encoder, groups, scene, visibility);
             frame.mark("per-vertex visibility");
+            pipelines
+                .compute
+                .light
+                .run(frame.encoder, groups, scene, &visibility.light);
+            frame.mark("vertex light");
         }
         if let Some((low, pipelines)) = reduced {
             shade_low_resolution(frame, pipelines, low, (scene, blockers));
@@ -227,14 +237,19 @@ impl LogShPipeline {
             draw_objects(&mut pass, scene);
         }
         match (per_vertex, reduced) {
-            (Some((visibility, (_, shade))), _) => {
-                pass.set_pipeline(shade);
-                for (object, buffer) in scene.objects.iter().zip(&visibility.buffers) {
-                    if !object.drawn_in_view() {
-                        continue;
+            (Some((visibility, pipelines)), _) => {
+                // The meshes lit at their vertices, then those shaded through their
+                // vertices' visibility: one change of pipeline.
+                for lit in [true, false] {
+                    pass.set_pipeline(if lit { &pipelines.lit } else { &pipelines.shade });
+                    for (k, (object, buffer)) in scene.objects.iter().zip(&visibility.buffers).enumerate() {
+                        let light = visibility.light.buffer(k);
+                        if !object.drawn_in_view() || light.is_some() != lit {
+                            continue;
+                        }
+                        pass.set_vertex_buffer(1, light.unwrap_or(buffer).slice(..));
+                        draw_object(&mut pass, scene, object);
                     }
-                    pass.set_vertex_buffer(1, buffer.slice(..));
-                    draw_object(&mut pass, scene, object);
                 }
             }
             (None, Some((low, pipelines))) => {

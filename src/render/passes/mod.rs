@@ -14,6 +14,7 @@ pub mod per_vertex;
 pub mod raster;
 pub mod reduced_shading;
 mod scene_pipeline;
+pub mod vertex_light;
 
 pub use full_resolution::ListedPixels;
 mod surface_buffer;

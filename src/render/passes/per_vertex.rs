@@ -5,6 +5,7 @@
 //! until what it is computed from changes ([`VisibilityInputs`]), so frames of a moving
 //! camera walk no blockers for objects they saw before.
 
+use super::vertex_light::{VertexLight, VertexLightCompute};
 use crate::render::descriptors::{slot_entries, storage_buffer_entry};
 use crate::render::resources::GpuScene;
 use crate::shading::wgsl::sh as wgsl_sh;
@@ -12,20 +13,22 @@ use crate::shading::wgsl::slots;
 
 /// The compute pipeline and the bind group layout of its per-object buffers (group 3).
 /// It reads the frame's group (0) too: the SH lights' windows on the blockers
-/// (`shading::light_windows`) depend on the lights and the environment.
+/// (`shading::light_windows`) depend on the lights and the environment. With it, the pass
+/// that lights the vertices of fine meshes from that visibility (`vertex_light`).
 pub struct PerVertexCompute {
     pub pipeline: wgpu::ComputePipeline,
     object_layout: wgpu::BindGroupLayout,
     empty_group: wgpu::BindGroup,
     /// Bytes of one vertex's visibility SH.
     pub stride: u64,
+    pub light: VertexLightCompute,
 }
 
 impl PerVertexCompute {
     pub fn new(
         device: &wgpu::Device,
         module: &wgpu::ShaderModule,
-        [frame_layout, shadow_layout]: [&wgpu::BindGroupLayout; 2],
+        [frame_layout, material_layout, shadow_layout]: [&wgpu::BindGroupLayout; 3],
         order: usize,
         constants: &[(&str, f64)],
     ) -> PerVertexCompute {
@@ -63,6 +66,12 @@ impl PerVertexCompute {
             .copied()
             .chain([("PER_LIGHT_VISIBILITY", 0.0)])
             .collect();
+        let light = VertexLightCompute::new(
+            device,
+            module,
+            [frame_layout, material_layout, shadow_layout],
+            &constants,
+        );
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("per-vertex visibility"),
             layout: Some(&layout),
@@ -79,6 +88,7 @@ impl PerVertexCompute {
             object_layout,
             empty_group,
             stride: 16 * wgsl_sh::vec4_count(order) as u64,
+            light,
         }
     }
 
@@ -167,6 +177,8 @@ pub struct VertexVisibility {
     computed: Vec<bool>,
     /// The objects the next [`PerVertexCompute::run`] computes.
     to_compute: Vec<bool>,
+    /// The light of the vertices of the meshes fine enough to be lit there.
+    pub light: VertexLight,
 }
 
 impl VertexVisibility {
@@ -193,7 +205,9 @@ impl VertexVisibility {
             vertex_counts.push(object.vertex_count);
         }
         let objects = vertex_counts.len();
+        let light = VertexLight::new(device, &compute.light, scene, &buffers);
         VertexVisibility {
+            light,
             buffers,
             bind_groups,
             vertex_counts,

@@ -5,6 +5,7 @@
 
 use super::per_vertex::PerVertexCompute;
 use super::reduced_shading::SURFACE_BUFFER_FORMATS;
+use super::vertex_light::VertexLightCompute;
 use crate::render::descriptors::{depth_test, scene_triangles};
 use crate::render::resources::{GpuObject, GpuScene, SceneLayouts, draw_object, vertex_layout};
 use crate::shading::CompiledPaths;
@@ -88,6 +89,9 @@ pub(super) enum Stage<'a> {
     /// Shading through per-vertex visibility attributes of this order, writing depth
     /// (drawn without a pre-pass) or not.
     ShadePerVertex(usize, bool),
+    /// Shading through the SH path's light computed at the vertices (fs_vertex_lit),
+    /// writing depth or not as [`Stage::ShadePerVertex`].
+    VertexLit(bool),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
     /// The surface buffer of deferred reduced shading (fs_surface_buffer) into [`SURFACE_BUFFER_FORMATS`].
@@ -163,6 +167,7 @@ pub(super) fn scene_pipeline(
     });
     let visibility_attributes = match stage {
         Stage::ShadePerVertex(order, _) => PerVertexCompute::attributes(order),
+        Stage::VertexLit(_) => VertexLightCompute::attributes().to_vec(),
         _ => Vec::new(),
     };
     let visibility_layout = wgpu::VertexBufferLayout {
@@ -172,6 +177,7 @@ pub(super) fn scene_pipeline(
     };
     let (vertex_entry, buffers) = match stage {
         Stage::ShadePerVertex(..) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
+        Stage::VertexLit(_) => ("vs_vertex_lit", vec![Some(vertex_layout()), Some(visibility_layout)]),
         Stage::PlainSurfaceBuffer => ("vs_plain_surface", vec![Some(vertex_layout())]),
         _ => ("vs_main", vec![Some(vertex_layout())]),
     };
@@ -193,6 +199,12 @@ pub(super) fn scene_pipeline(
         // Writes depth where it is drawn without a pre-pass (`LogShPipeline::draw`).
         Stage::ShadePerVertex(_, writes_depth) => (
             "fs_per_vertex",
+            vec![shaded],
+            writes_depth,
+            wgpu::CompareFunction::LessEqual,
+        ),
+        Stage::VertexLit(writes_depth) => (
+            "fs_vertex_lit",
             vec![shaded],
             writes_depth,
             wgpu::CompareFunction::LessEqual,

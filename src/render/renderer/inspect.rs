@@ -66,6 +66,12 @@ impl SceneRenderer {
         self.vertices_computed
     }
 
+    /// The objects the last frame lit at their vertices (`shading::vertex_lighting`; 0
+    /// when it was not shaded per vertex).
+    pub fn objects_lit_at_vertices(&self) -> usize {
+        self.objects_lit_at_vertices
+    }
+
     /// How many pixels the last frame's upsampling left to the soft layer and shaded in
     /// full, and how many samples the soft layer left (None where the frame was not drawn
     /// deferred at full resolution).

@@ -114,6 +114,8 @@ pub struct SceneRenderer {
     surfaces_forgotten: bool,
     /// Vertices whose visibility the last frame computed (per vertex; 0 otherwise).
     vertices_computed: u64,
+    /// Objects the last frame lit at their vertices (per vertex; 0 otherwise).
+    objects_lit_at_vertices: usize,
     /// Changes with every [`Self::set_blockers`] (what the soft layer shows depends on it).
     blockers_generation: u64,
     /// Whether frames worth it walk the lights' grid (on unless a test compares frames
@@ -195,6 +197,7 @@ impl SceneRenderer {
             pass_timer: None,
             surfaces_forgotten: false,
             vertices_computed: 0,
+            objects_lit_at_vertices: 0,
             blockers_generation: 0,
             light_grid: true,
         };
@@ -501,16 +504,27 @@ impl SceneRenderer {
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
         {
             let shadows = &mut self.shadows;
+            self.objects_lit_at_vertices = 0;
             self.vertices_computed = match &mut shadows.visibility {
-                Some(visibility) if wants_per_vertex => visibility.plan(
-                    VisibilityInputs::new(
-                        self.gpu_scene.harmonic_lighting(),
-                        shadows.settings,
-                        self.blockers_generation,
-                        self.gpu_scene.surfaces_generation(),
-                    ),
-                    &self.gpu_scene,
-                ),
+                Some(visibility) if wants_per_vertex => {
+                    let lighting = self.gpu_scene.harmonic_lighting();
+                    // The light splits into what k_d and k_s multiply with the separate
+                    // BRDF only.
+                    let separate = shadows.settings.brdf == crate::shading::BrdfShading::Separate;
+                    self.objects_lit_at_vertices =
+                        visibility
+                            .light
+                            .plan(&self.gpu_scene, &lighting.lights, camera.position, separate);
+                    visibility.plan(
+                        VisibilityInputs::new(
+                            lighting,
+                            shadows.settings,
+                            self.blockers_generation,
+                            self.gpu_scene.surfaces_generation(),
+                        ),
+                        &self.gpu_scene,
+                    )
+                }
                 _ => 0,
             };
             let per_vertex = shadows.visibility.as_ref().filter(|_| wants_per_vertex);

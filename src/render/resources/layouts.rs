@@ -34,7 +34,6 @@ impl SceneLayouts {
         // The shading reads the lights in fragment shaders and in the compute passes that
         // shade the pixels the upsampling leaves (full_resolution.wgsl).
         let shading = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
-        let fragment = wgpu::ShaderStages::FRAGMENT;
         let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[
@@ -49,7 +48,8 @@ impl SceneLayouts {
             label: Some("material"),
             entries: &{
                 let [texture, sampler] = filtered_texture_entries(slots::BASE_COLOR_TEXTURE, slots::BASE_COLOR_SAMPLER);
-                [layout_entry(slots::MATERIAL, fragment, uniform), texture, sampler]
+                // The vertex lighting pass reads the exponent (logsh_per_vertex.wgsl).
+                [layout_entry(slots::MATERIAL, shading, uniform), texture, sampler]
             },
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {

@@ -18,6 +18,7 @@ use crate::shading::gpu_types::{
 };
 use crate::shading::light_grid::{LightGrid, grid_worth_it};
 use crate::shading::shadow_maps::ShadowViews;
+use crate::shading::vertex_lighting::MeshFineness;
 use crate::shading::wgsl::slots;
 
 pub struct GpuObject {
@@ -52,6 +53,10 @@ pub struct GpuObject {
     /// Whether the last camera written ([`GpuScene::write_frame`]) may see it: the
     /// camera's passes draw only such objects (the shadow maps draw every one shown).
     pub in_view: bool,
+    /// How finely the mesh is tessellated, and its material's glossy exponent: whether
+    /// per-vertex shading may light it at its vertices (`shading::vertex_lighting`).
+    pub fineness: MeshFineness,
+    pub phong_exponent: f32,
 }
 
 impl GpuObject {
@@ -134,11 +139,16 @@ impl GpuScene {
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
         let mut first_vertex = 0u32;
         // The simplifications of large meshes take a while: one object per thread.
-        let detail_levels: Vec<DetailLevels> = scene
+        let detail_levels: Vec<(DetailLevels, MeshFineness)> = scene
             .objects
             .par_iter()
             .filter(|o| !o.indices.is_empty())
-            .map(|o| DetailLevels::of_mesh(&o.positions, &o.indices))
+            .map(|o| {
+                (
+                    DetailLevels::of_mesh(&o.positions, &o.indices),
+                    MeshFineness::of(&o.positions, &o.normals, &o.indices),
+                )
+            })
             .collect();
         let objects: Vec<GpuObject> = scene
             .objects
@@ -146,7 +156,7 @@ impl GpuScene {
             .enumerate()
             .filter(|(_, o)| !o.indices.is_empty())
             .zip(detail_levels)
-            .map(|((source, object), detail_levels)| {
+            .map(|((source, object), (detail_levels, fineness))| {
                 let vertices: Vec<GpuVertex> = (0..object.positions.len())
                     .map(|i| GpuVertex {
                         position: object.positions[i].to_array(),
@@ -184,6 +194,8 @@ impl GpuScene {
                     hidden: false,
                     bounds: object.bounds(),
                     in_view: true,
+                    fineness,
+                    phong_exponent: scene.materials.get(material).map_or(0.0, |m| m.phong_exponent()),
                 }
             })
             .collect();

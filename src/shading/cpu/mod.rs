@@ -32,6 +32,7 @@ mod harmonic_visibility;
 pub mod lobes;
 mod mapped;
 mod surface;
+mod vertex_light;
 mod visibility;
 mod windows;
 
@@ -43,6 +44,7 @@ pub use surface::{
     Incidence, SurfacePoint, direct_lobes, direct_radiance, environment_irradiance_at, environment_radiance, incidence,
     mirrored_view,
 };
+pub use vertex_light::{VertexLight, vertex_light};
 pub use visibility::{
     BlockersInReach, blockers_in_reach, exact_visibility, log_visibility, log_visibility_within, scene_log_visibility,
     visibility_cosine, visibility_toward,

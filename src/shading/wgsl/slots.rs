@@ -60,6 +60,7 @@ pub const SHADOW_VIEWS: Slot = slot(SHADOW_GROUP, 9, "shadow_views");
 
 pub const VERTEX_DATA: Slot = slot(PASS_GROUP, 0, "vertex_data");
 pub const VERTEX_VISIBILITY: Slot = slot(PASS_GROUP, 1, "vertex_visibility");
+pub const VERTEX_LIGHT: Slot = slot(PASS_GROUP, 2, "vertex_light");
 pub const UPSAMPLE: Slot = slot(PASS_GROUP, 0, "upsample");
 pub const LOW_SAMPLES: Slot = slot(PASS_GROUP, 1, "low_samples");
 pub const MAPPED_FACTORS_OUT: Slot = slot(PASS_GROUP, 4, "mapped_factors_out");
@@ -93,7 +94,7 @@ pub const FRAME_DEPTH: Slot = slot(IMAGE_GROUP, 2, "frame_depth");
 pub const SHADOW_VIEW: Slot = slot(IMAGE_GROUP, 0, "shadow_view");
 
 /// Every slot.
-pub const ALL: [Slot; 49] = [
+pub const ALL: [Slot; 50] = [
     FRAME,
     LIGHTS,
     BAKED_INDIRECT,
@@ -117,6 +118,7 @@ pub const ALL: [Slot; 49] = [
     SHADOW_VIEWS,
     VERTEX_DATA,
     VERTEX_VISIBILITY,
+    VERTEX_LIGHT,
     UPSAMPLE,
     LOW_SAMPLES,
     MAPPED_FACTORS_OUT,
