@@ -318,29 +318,33 @@ fn a_ball_over_a_plane_shadows_the_point_below_and_not_the_corners() {
     assert!((a - b).abs() <= 0.03 * b + 1.0, "corner: {a} vs unshadowed {b}");
 }
 
-/// The per-vertex pass writes, at every vertex, the visibility SH the CPU reference
-/// computes there (f32 against f64).
-#[test]
-fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
+/// The per-vertex passes of order-4 shadows set up for `scene` and `blockers` as a
+/// frame's renderer sets them up (every path compiled in), before any frame: the
+/// settings, the pipelines, the uploaded scene and blockers, and the vertices' buffers.
+struct PerVertexSetup {
+    shadows: ShadowSettings,
+    pipeline: lightpaint::render::passes::logsh::LogShPipeline,
+    gpu_scene: lightpaint::render::GpuScene,
+    gpu_blockers: lightpaint::render::resources::GpuBlockers,
+    visibility: lightpaint::render::passes::per_vertex::VertexVisibility,
+}
+
+fn per_vertex_setup(gpu: &GpuContext, scene: &Scene, blockers: &[Sphere]) -> PerVertexSetup {
     use lightpaint::render::passes::logsh::LogShPipeline;
     use lightpaint::render::resources::GpuBlockers;
     use lightpaint::render::{GpuScene, ScenePipeline};
-    use lightpaint::shading::cpu;
-    let Some(gpu) = common::gpu() else { return };
-    let (scene, _, _) = open("projects/studio/studio.lightpaint");
-    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
     let shadows = ShadowSettings {
         per_vertex: true,
         ..ShadowSettings::default().every_pixel()
     };
     let raster = ScenePipeline::new(&gpu.device);
     let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, CompiledPaths::ALL);
-    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
+    let gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, scene);
     let gpu_blockers = GpuBlockers::upload(
         &gpu.device,
         &gpu.queue,
         &pipeline.shadow_layout,
-        &blockers,
+        blockers,
         None,
         &shadows,
         lightpaint::render::resources::ShadowMaps::new(&gpu.device).binding(),
@@ -348,6 +352,30 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
     let visibility = pipeline
         .vertex_visibility(&gpu.device, &gpu_scene)
         .expect("order 4 runs per vertex");
+    PerVertexSetup {
+        shadows,
+        pipeline,
+        gpu_scene,
+        gpu_blockers,
+        visibility,
+    }
+}
+
+/// The per-vertex pass writes, at every vertex, the visibility SH the CPU reference
+/// computes there (f32 against f64).
+#[test]
+fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
+    use lightpaint::shading::cpu;
+    let Some(gpu) = common::gpu() else { return };
+    let (scene, _, _) = open("projects/studio/studio.lightpaint");
+    let blockers = fit_scene(&scene, &BlockerSettings::default()).spheres();
+    let PerVertexSetup {
+        shadows,
+        pipeline,
+        gpu_scene,
+        gpu_blockers,
+        visibility,
+    } = per_vertex_setup(&gpu, &scene, &blockers);
     let compute = &pipeline.per_vertex.as_ref().expect("per-vertex pipelines").compute;
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     compute.run(
@@ -399,36 +427,22 @@ fn per_vertex_visibility_matches_the_cpu_at_every_vertex() {
 /// under its panel, the studio's meshes are not), 200 spheres on its casters.
 #[test]
 fn vertex_light_matches_the_cpu_at_every_vertex() {
-    use lightpaint::render::passes::logsh::LogShPipeline;
-    use lightpaint::render::resources::{Detail, GpuBlockers};
-    use lightpaint::render::{GpuScene, ScenePipeline};
+    use lightpaint::render::resources::Detail;
     use lightpaint::samples::blocker_bench;
     use lightpaint::shading::cpu;
     let Some(gpu) = common::gpu() else { return };
     let scene = blocker_bench::thin_casters_scene();
     let camera = blocker_bench::thin_casters_camera();
     let blockers = blocker_bench::spheres_on_casters(&scene, 200);
-    let shadows = ShadowSettings {
-        per_vertex: true,
-        ..ShadowSettings::default().every_pixel()
-    };
-    let raster = ScenePipeline::new(&gpu.device);
-    let pipeline = LogShPipeline::new(&gpu.device, &raster.layouts, &shadows, 1, CompiledPaths::ALL);
-    let mut gpu_scene = GpuScene::upload(&gpu.device, &gpu.queue, &raster.layouts, &scene);
+    let PerVertexSetup {
+        pipeline,
+        mut gpu_scene,
+        gpu_blockers,
+        mut visibility,
+        ..
+    } = per_vertex_setup(&gpu, &scene, &blockers);
     gpu_scene.set_view_culling(false);
     gpu_scene.write_frame(&gpu.queue, &camera, [240, 135], (0.0, [0.0; 3]), Detail::Whole);
-    let gpu_blockers = GpuBlockers::upload(
-        &gpu.device,
-        &gpu.queue,
-        &pipeline.shadow_layout,
-        &blockers,
-        None,
-        &shadows,
-        lightpaint::render::resources::ShadowMaps::new(&gpu.device).binding(),
-    );
-    let mut visibility = pipeline
-        .vertex_visibility(&gpu.device, &gpu_scene)
-        .expect("order 4 runs per vertex");
     let lighting = gpu_scene.harmonic_lighting();
     let lit = visibility
         .light

@@ -217,6 +217,25 @@ impl VertexVisibility {
         }
     }
 
+    /// Plans a frame of `scene` seen from `eye` with shadow `settings` and the blockers of
+    /// `blockers_generation`: the vertices whose visibility it computes ([`Self::plan`])
+    /// and the objects it lights at their vertices ([`VertexLight::plan`]; with the
+    /// separate BRDF only, the one whose light splits into what k_d and k_s multiply).
+    /// Returns how many of each.
+    pub fn plan_frame(
+        &mut self,
+        scene: &GpuScene,
+        settings: crate::shading::ShadowSettings,
+        blockers_generation: u64,
+        eye: glam::Vec3,
+    ) -> (u64, usize) {
+        let lighting = scene.harmonic_lighting();
+        let separate = settings.brdf == crate::shading::BrdfShading::Separate;
+        let lit = self.light.plan(scene, &lighting.lights, eye, separate);
+        let inputs = VisibilityInputs::new(lighting, settings, blockers_generation, scene.surfaces_generation());
+        (self.plan(inputs, scene), lit)
+    }
+
     /// Plans the next run for a frame whose visibility is computed from `inputs`: the
     /// objects drawn from its camera whose buffers do not hold it yet (every one of them
     /// when the inputs changed). Returns how many vertices it will compute.

@@ -20,7 +20,7 @@ pub use pipeline_cache::{Compilation, PipelineKey};
 use super::pass_timer::{self, PassTimer, TimedEncoder};
 use super::passes::heat_map::HeatMapPipeline;
 use super::passes::logsh::{LogShPipeline, Shading};
-use super::passes::per_vertex::{VertexVisibility, VisibilityInputs};
+use super::passes::per_vertex::VertexVisibility;
 use super::passes::raster::ScenePipeline;
 use super::passes::reduced_shading::{
     FrameInputs, LowResolutionTargets, MappedLightKey, MappedVisibilityKey, SoftLayerKey, SurfacesKey,
@@ -504,28 +504,14 @@ impl SceneRenderer {
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
         {
             let shadows = &mut self.shadows;
-            self.objects_lit_at_vertices = 0;
-            self.vertices_computed = match &mut shadows.visibility {
-                Some(visibility) if wants_per_vertex => {
-                    let lighting = self.gpu_scene.harmonic_lighting();
-                    // The light splits into what k_d and k_s multiply with the separate
-                    // BRDF only.
-                    let separate = shadows.settings.brdf == crate::shading::BrdfShading::Separate;
-                    self.objects_lit_at_vertices =
-                        visibility
-                            .light
-                            .plan(&self.gpu_scene, &lighting.lights, camera.position, separate);
-                    visibility.plan(
-                        VisibilityInputs::new(
-                            lighting,
-                            shadows.settings,
-                            self.blockers_generation,
-                            self.gpu_scene.surfaces_generation(),
-                        ),
-                        &self.gpu_scene,
-                    )
-                }
-                _ => 0,
+            (self.vertices_computed, self.objects_lit_at_vertices) = match &mut shadows.visibility {
+                Some(visibility) if wants_per_vertex => visibility.plan_frame(
+                    &self.gpu_scene,
+                    shadows.settings,
+                    self.blockers_generation,
+                    camera.position,
+                ),
+                _ => (0, 0),
             };
             let per_vertex = shadows.visibility.as_ref().filter(|_| wants_per_vertex);
             if per_vertex.is_none() {

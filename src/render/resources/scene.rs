@@ -139,16 +139,11 @@ impl GpuScene {
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, scene: &Scene) -> GpuScene {
         let mut first_vertex = 0u32;
         // The simplifications of large meshes take a while: one object per thread.
-        let detail_levels: Vec<(DetailLevels, MeshFineness)> = scene
+        let detail_levels: Vec<DetailLevels> = scene
             .objects
             .par_iter()
             .filter(|o| !o.indices.is_empty())
-            .map(|o| {
-                (
-                    DetailLevels::of_mesh(&o.positions, &o.indices),
-                    MeshFineness::of(&o.positions, &o.normals, &o.indices),
-                )
-            })
+            .map(|o| DetailLevels::of_mesh(&o.positions, &o.indices))
             .collect();
         let objects: Vec<GpuObject> = scene
             .objects
@@ -156,7 +151,7 @@ impl GpuScene {
             .enumerate()
             .filter(|(_, o)| !o.indices.is_empty())
             .zip(detail_levels)
-            .map(|((source, object), (detail_levels, fineness))| {
+            .map(|((source, object), detail_levels)| {
                 let vertices: Vec<GpuVertex> = (0..object.positions.len())
                     .map(|i| GpuVertex {
                         position: object.positions[i].to_array(),
@@ -194,7 +189,7 @@ impl GpuScene {
                     hidden: false,
                     bounds: object.bounds(),
                     in_view: true,
-                    fineness,
+                    fineness: MeshFineness::of(&object.positions, &object.normals, &object.indices),
                     phong_exponent: scene.materials.get(material).map_or(0.0, |m| m.phong_exponent()),
                 }
             })

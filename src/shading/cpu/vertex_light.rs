@@ -76,16 +76,21 @@ mod tests {
         })
     }
 
+    /// The visibility SH of `share` everywhere: `share`·√(4π) in the DC band (order 4).
+    fn visibility_of(share: f64) -> Vec<f64> {
+        let mut g = vec![0.0; 16];
+        g[0] = share * (4.0 * std::f64::consts::PI).sqrt();
+        g
+    }
+
     /// Unshadowed (G = the SH of 1: √(4π) in the DC band), a Lambertian vertex 2 m below a
     /// 20 cd lamp takes E/π = 20/4/π in its diffuse part, and a glossy lobe of exponent 0
     /// (r + 1)/(2π) · E.
     #[test]
     fn an_unshadowed_vertex_under_a_lamp_takes_its_closed_form() {
-        let mut g = vec![0.0; 16];
-        g[0] = (4.0 * std::f64::consts::PI).sqrt();
         let light = vertex_light(
             (DVec3::ZERO, DVec3::Y),
-            &g,
+            &visibility_of(1.0),
             0.0,
             (&[lamp(glam::Vec3::new(0.0, 2.0, 0.0))], &[[0.0; 4]; 9]),
             DVec3::new(1.0, 1.0, 0.0),
@@ -107,11 +112,9 @@ mod tests {
     /// Seen from below, the vertex's normal turns down: the lamp above is behind it.
     #[test]
     fn a_vertex_seen_from_behind_turns_away_from_a_lamp_on_the_other_side() {
-        let mut g = vec![0.0; 16];
-        g[0] = (4.0 * std::f64::consts::PI).sqrt();
         let light = vertex_light(
             (DVec3::ZERO, DVec3::Y),
-            &g,
+            &visibility_of(1.0),
             0.0,
             (&[lamp(glam::Vec3::new(0.0, 2.0, 0.0))], &[[0.0; 4]; 9]),
             DVec3::new(0.0, -3.0, 1.0),
@@ -125,12 +128,10 @@ mod tests {
     #[test]
     fn the_light_scales_with_the_visibility() {
         let lights = [lamp(glam::Vec3::new(0.5, 2.0, 0.0))];
-        let at = |scale: f64| {
-            let mut g = vec![0.0; 16];
-            g[0] = scale * (4.0 * std::f64::consts::PI).sqrt();
+        let at = |share: f64| {
             vertex_light(
                 (DVec3::ZERO, DVec3::Y),
-                &g,
+                &visibility_of(share),
                 8.0,
                 (&lights, &[[0.0; 4]; 9]),
                 DVec3::new(-1.0, 1.0, 0.0),
