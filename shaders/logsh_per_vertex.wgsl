@@ -20,11 +20,17 @@
 // The light of the SH path (the environment and the lights before frame.first_mapped_light,
 // through the vertex's visibility) at a vertex, split by what a fragment multiplies it by
 // (BRDF_SEPARATE: light_through and environment_through): radiance = k_d · diffuse +
-// k_s · glossy. rgb used, w 0 (vec4 for the storage and vertex layouts alike). Rust twin:
-// render::passes::vertex_light::GpuVertexLight; f64 twin shading::cpu::vertex_light.
+// k_s · glossy, for the side the normal faces (front) and the other (back): a fragment
+// of a back face turns its normal, so it takes the back's, as fs_per_vertex would (the
+// side cannot be told at a vertex: on a closed mesh's rim a front face's vertex normal may
+// face away from the eye). rgb used, w 0 (vec4 for the storage and vertex layouts
+// alike). Rust twin: render::passes::vertex_light::GpuVertexLight; f64 twin
+// shading::cpu::vertex_light.
 struct VertexLight {
-    diffuse: vec4<f32>,
-    glossy: vec4<f32>,
+    front_diffuse: vec4<f32>,
+    front_glossy: vec4<f32>,
+    back_diffuse: vec4<f32>,
+    back_glossy: vec4<f32>,
 };
 
 @compute @workgroup_size(64)
@@ -39,27 +45,10 @@ fn cs_vertex_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
     vertex_visibility[i] = sh_exp(log_visibility(p, n));
 }
 
-// The SH path's light at every vertex of one object, from the visibility cs_vertex_visibility
-// wrote there, for the frame's camera (the glossy lobe's axis) and the object's material
-// (its exponent). The normal is turned toward the camera, as a fragment turns it on a
-// back face.
-@compute @workgroup_size(64)
-fn cs_vertex_light(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
-    if i >= arrayLength(&vertex_data) / 8u {
-        return;
-    }
-    let b = 8u * i;
-    var s: Surface;
-    s.position = vec3<f32>(vertex_data[b], vertex_data[b + 1u], vertex_data[b + 2u]);
-    s.normal = normalize(vec3<f32>(vertex_data[b + 3u], vertex_data[b + 4u], vertex_data[b + 5u]));
-    let to_eye = normalize(frame.camera_position.xyz - s.position);
-    if dot(s.normal, to_eye) < 0.0 {
-        s.normal = -s.normal;
-    }
-    s.mirrored_view = reflect(-to_eye, s.normal);
-    s.phong_exponent = material.params.z;
-    let g = vertex_visibility[i];
+// The SH path's light at a vertex of surface s (its position, its normal for the side lit,
+// its mirrored view and its exponent) through its visibility g: diffuse and glossy parts
+// (VertexLight).
+fn side_light(s: Surface, g: Sh) -> array<vec3<f32>, 2> {
     var diffuse = vec3<f32>(0.0);
     if ENVIRONMENT_LIGHT {
         let unshadowed = environment_irradiance_at(s) / PI;
@@ -74,32 +63,82 @@ fn cs_vertex_light(@builtin(global_invocation_id) id: vec3<u32>) {
         diffuse += seen * direct.x;
         glossy += seen * direct.y;
     }
-    vertex_light[i] = VertexLight(vec4<f32>(diffuse, 0.0), vec4<f32>(glossy, 0.0));
+    return array<vec3<f32>, 2>(diffuse, glossy);
+}
+
+// The SH path's light at every vertex of one object, both sides, from the visibility
+// cs_vertex_visibility wrote there, for the frame's camera (the glossy lobe's axis) and
+// the object's material (its exponent).
+@compute @workgroup_size(64)
+fn cs_vertex_light(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&vertex_data) / 8u {
+        return;
+    }
+    let b = 8u * i;
+    var s: Surface;
+    s.position = vec3<f32>(vertex_data[b], vertex_data[b + 1u], vertex_data[b + 2u]);
+    s.phong_exponent = material.params.z;
+    let to_eye = normalize(frame.camera_position.xyz - s.position);
+    let g = vertex_visibility[i];
+    let normal = normalize(vec3<f32>(vertex_data[b + 3u], vertex_data[b + 4u], vertex_data[b + 5u]));
+    s.normal = normal;
+    s.mirrored_view = reflect(-to_eye, s.normal);
+    let front = side_light(s, g);
+    s.normal = -normal;
+    s.mirrored_view = reflect(-to_eye, s.normal);
+    let back = side_light(s, g);
+    vertex_light[i] = VertexLight(
+        vec4<f32>(front[0], 0.0),
+        vec4<f32>(front[1], 0.0),
+        vec4<f32>(back[0], 0.0),
+        vec4<f32>(back[1], 0.0),
+    );
 }
 
 // The vertex output of a mesh lit at its vertices: scene.wgsl's VertexOut but for the
-// baked indirect light, which joins the diffuse light (k_d/π · E_indirect, as
-// material_surface adds it to the emission), and with the vertex's light.
+// baked indirect light, which joins the diffuse light of both sides (k_d/π · E_indirect,
+// as material_surface adds it to the emission), and with the vertex's light.
 struct VertexOutLit {
     @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world_position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
-    @location(4) diffuse: vec3<f32>,
-    @location(5) glossy: vec3<f32>,
+    @location(4) front_diffuse: vec3<f32>,
+    @location(5) front_glossy: vec3<f32>,
+    @location(6) back_diffuse: vec3<f32>,
+    @location(7) back_glossy: vec3<f32>,
 };
 
 @vertex
-fn vs_vertex_lit(v: VertexIn, @location(4) diffuse: vec4<f32>, @location(5) glossy: vec4<f32>) -> VertexOutLit {
+fn vs_vertex_lit(v: VertexIn, light: VertexLightIn) -> VertexOutLit {
     let o = transform_vertex(v);
-    return VertexOutLit(o.clip, o.world_position, o.normal, o.uv, diffuse.rgb + max(o.indirect_irradiance, vec3<f32>(0.0)) / PI, glossy.rgb);
+    let indirect = max(o.indirect_irradiance, vec3<f32>(0.0)) / PI;
+    return VertexOutLit(
+        o.clip, o.world_position, o.normal, o.uv,
+        light.front_diffuse.rgb + indirect, light.front_glossy.rgb,
+        light.back_diffuse.rgb + indirect, light.back_glossy.rgb,
+    );
 }
 
+// VertexLight as vertex attributes.
+struct VertexLightIn {
+    @location(4) front_diffuse: vec4<f32>,
+    @location(5) front_glossy: vec4<f32>,
+    @location(6) back_diffuse: vec4<f32>,
+    @location(7) back_glossy: vec4<f32>,
+};
+
+// A fragment of a mesh lit at its vertices: the interpolated light of the SH path (and the
+// baked light) of the side it shows times the fragment's material, its texture included,
+// plus what soft_radiance_through and radiance_through add per pixel (emission, the exact
+// path's and the shadow maps' lights).
 @fragment
 fn fs_vertex_lit(in: VertexOutLit, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let s = surface(VertexOut(in.clip, in.world_position, in.normal, in.uv, vec3<f32>(0.0)), front_facing);
-    let radiance = s.emissive + s.k_d * in.diffuse + s.k_s * in.glossy + exact_path_radiance(s)
-        + mapped_lights_radiance(s);
+    let diffuse = select(in.back_diffuse, in.front_diffuse, front_facing);
+    let glossy = select(in.back_glossy, in.front_glossy, front_facing);
+    let radiance = s.emissive + s.k_d * diffuse + s.k_s * glossy + exact_path_radiance(s) + mapped_lights_radiance(s);
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }
 

@@ -204,8 +204,10 @@ fn vertex_light_matches_wgsl() {
         "VertexLight",
         size_of::<GpuVertexLight>(),
         &[
-            ("diffuse", offset_of!(GpuVertexLight, diffuse)),
-            ("glossy", offset_of!(GpuVertexLight, glossy)),
+            ("front_diffuse", offset_of!(GpuVertexLight, front_diffuse)),
+            ("front_glossy", offset_of!(GpuVertexLight, front_glossy)),
+            ("back_diffuse", offset_of!(GpuVertexLight, back_diffuse)),
+            ("back_glossy", offset_of!(GpuVertexLight, back_glossy)),
         ],
     );
 }

@@ -14,13 +14,16 @@ use crate::shading::gpu_types::GpuLight;
 use crate::shading::vertex_lighting::{MAX_NORMAL_TURN_RAD, lit_at_vertices};
 use crate::shading::wgsl::slots;
 
-/// One vertex's light of the SH path: radiance = k_d · diffuse + k_s · glossy (rgb; w 0).
-/// WGSL twin: `VertexLight` in logsh_per_vertex.wgsl.
+/// One vertex's light of the SH path: radiance = k_d · diffuse + k_s · glossy (rgb; w 0),
+/// on the side its normal faces and on the other. WGSL twin: `VertexLight` in
+/// logsh_per_vertex.wgsl.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuVertexLight {
-    pub diffuse: [f32; 4],
-    pub glossy: [f32; 4],
+    pub front_diffuse: [f32; 4],
+    pub front_glossy: [f32; 4],
+    pub back_diffuse: [f32; 4],
+    pub back_glossy: [f32; 4],
 }
 
 /// The compute pipeline and the layout of its per-object group (group 3: the vertices,
@@ -103,9 +106,9 @@ impl VertexLightCompute {
         }
     }
 
-    /// The vertex buffer layout's attributes (locations 4 and 5 of vs_vertex_lit).
-    pub fn attributes() -> [wgpu::VertexAttribute; 2] {
-        wgpu::vertex_attr_array![4 => Float32x4, 5 => Float32x4]
+    /// The vertex buffer layout's attributes (locations 4 to 7 of vs_vertex_lit).
+    pub fn attributes() -> [wgpu::VertexAttribute; 4] {
+        wgpu::vertex_attr_array![4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4]
     }
 }
 
@@ -200,18 +203,19 @@ mod tests {
     use super::*;
 
     /// The vertex buffer's attributes read the storage array's elements (whose layout
-    /// tests/wgsl_layout.rs checks against WGSL): diffuse at 4, glossy at 5.
+    /// tests/wgsl_layout.rs checks against WGSL), in order from location 4.
     #[test]
     fn the_attributes_read_the_fields() {
-        let attributes = VertexLightCompute::attributes();
-        assert_eq!(
-            attributes[0].offset as usize,
-            std::mem::offset_of!(GpuVertexLight, diffuse)
-        );
-        assert_eq!(
-            attributes[1].offset as usize,
-            std::mem::offset_of!(GpuVertexLight, glossy)
-        );
-        assert_eq!([attributes[0].shader_location, attributes[1].shader_location], [4, 5]);
+        use std::mem::offset_of;
+        let offsets = [
+            offset_of!(GpuVertexLight, front_diffuse),
+            offset_of!(GpuVertexLight, front_glossy),
+            offset_of!(GpuVertexLight, back_diffuse),
+            offset_of!(GpuVertexLight, back_glossy),
+        ];
+        for (k, (attribute, offset)) in VertexLightCompute::attributes().iter().zip(offsets).enumerate() {
+            assert_eq!(attribute.offset as usize, offset);
+            assert_eq!(attribute.shader_location, 4 + k as u32);
+        }
     }
 }

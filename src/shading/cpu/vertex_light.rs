@@ -20,10 +20,11 @@ pub struct VertexLight {
     pub glossy: DVec3,
 }
 
-/// The light at a vertex at `position` with stored normal `normal` (turned toward `eye`,
-/// as a fragment turns it on a back face), visibility SH `g`, of a material of glossy
-/// exponent `phong_exponent`, from `lights` (those on the SH path: the others are shaded
-/// per pixel) and the environment's irradiance SH (`Frame::environment_irradiance`).
+/// The light at a vertex at `position` on the side `normal` faces (the stored normal for
+/// the front, its opposite for the back, which a fragment of a back face takes), with
+/// visibility SH `g`, of a material of glossy exponent `phong_exponent`, seen from `eye`,
+/// from `lights` (those on the SH path: the others are shaded per pixel) and the
+/// environment's irradiance SH (`Frame::environment_irradiance`).
 pub fn vertex_light(
     (position, normal): (DVec3, DVec3),
     g: &[f64],
@@ -31,13 +32,9 @@ pub fn vertex_light(
     (lights, environment_irradiance): (&[GpuLight], &[[f32; 4]; 9]),
     eye: DVec3,
 ) -> VertexLight {
-    let mut normal = normal.normalize_or_zero();
-    if normal.dot(eye - position) < 0.0 {
-        normal = -normal;
-    }
     let s = SurfacePoint {
         position,
-        normal,
+        normal: normal.normalize_or_zero(),
         k_d: DVec3::ONE,
         k_s: DVec3::ONE,
         phong_exponent,
@@ -109,15 +106,15 @@ mod tests {
         );
     }
 
-    /// Seen from below, the vertex's normal turns down: the lamp above is behind it.
+    /// The back of a vertex whose front faces a lamp takes nothing from it.
     #[test]
-    fn a_vertex_seen_from_behind_turns_away_from_a_lamp_on_the_other_side() {
+    fn the_back_of_a_vertex_takes_nothing_from_a_lamp_before_its_front() {
         let light = vertex_light(
-            (DVec3::ZERO, DVec3::Y),
+            (DVec3::ZERO, DVec3::NEG_Y),
             &visibility_of(1.0),
             0.0,
             (&[lamp(glam::Vec3::new(0.0, 2.0, 0.0))], &[[0.0; 4]; 9]),
-            DVec3::new(0.0, -3.0, 1.0),
+            DVec3::new(0.0, 3.0, 1.0),
         );
         assert_eq!(light.diffuse, DVec3::ZERO);
         assert_eq!(light.glossy, DVec3::ZERO);
