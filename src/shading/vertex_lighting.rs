@@ -52,22 +52,20 @@ impl MeshFineness {
             widest_normal_turn_rad: 0.0,
         };
         for triangle in indices.chunks_exact(3) {
-            let corner = |k: usize| triangle[k] as usize;
-            let (Some(p), Some(n)) = (
-                [0, 1, 2]
-                    .map(|k| positions.get(corner(k)).copied())
-                    .into_iter()
-                    .collect::<Option<Vec<_>>>(),
-                [0, 1, 2]
-                    .map(|k| normals.get(corner(k)).copied())
-                    .into_iter()
-                    .collect::<Option<Vec<_>>>(),
+            let [a, b, c] = [triangle[0], triangle[1], triangle[2]].map(|i| i as usize);
+            let (Some(&pa), Some(&pb), Some(&pc), Some(&na), Some(&nb), Some(&nc)) = (
+                positions.get(a),
+                positions.get(b),
+                positions.get(c),
+                normals.get(a),
+                normals.get(b),
+                normals.get(c),
             ) else {
                 continue;
             };
-            for (a, b) in [(0, 1), (1, 2), (2, 0)] {
-                fineness.longest_edge_m = fineness.longest_edge_m.max(p[a].distance(p[b]));
-                let turn = match (n[a].try_normalize(), n[b].try_normalize()) {
+            for ((p, n), (q, m)) in [((pa, na), (pb, nb)), ((pb, nb), (pc, nc)), ((pc, nc), (pa, na))] {
+                fineness.longest_edge_m = fineness.longest_edge_m.max(p.distance(q));
+                let turn = match (n.try_normalize(), m.try_normalize()) {
                     (Some(u), Some(v)) => u.dot(v).clamp(-1.0, 1.0).acos(),
                     _ => std::f32::consts::PI,
                 };
@@ -140,6 +138,17 @@ mod tests {
         let (fineness, _) = fineness_and_bounds(&quad);
         assert!((fineness.longest_edge_m - 8f32.sqrt()).abs() < 1e-5, "{fineness:?}");
         assert_eq!(fineness.widest_normal_turn_rad, 0.0);
+    }
+
+    #[test]
+    fn indices_past_the_mesh_are_skipped_and_a_zero_normal_turns_by_pi() {
+        let positions = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let normals = [Vec3::Z, Vec3::Z, Vec3::ZERO];
+        let skipped = MeshFineness::of(&positions, &normals, &[0, 1, 7]);
+        assert_eq!((skipped.longest_edge_m, skipped.widest_normal_turn_rad), (0.0, 0.0));
+        let degenerate = MeshFineness::of(&positions, &normals, &[0, 1, 2]);
+        assert_eq!(degenerate.widest_normal_turn_rad, std::f32::consts::PI);
+        assert!((degenerate.longest_edge_m - 2f32.sqrt()).abs() < 1e-6);
     }
 
     #[test]
