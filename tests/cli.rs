@@ -168,7 +168,7 @@ fn render_writes_a_png_of_the_requested_size_and_times_its_passes() {
 /// `--shadow-map-size 0` (the lights of no size on the SH path instead of the real
 /// triangles' shadow maps) each give another image than the project's defaults, and
 /// `--blockers 0` fits no sphere; the summary says how many blockers a surface point
-/// sees on average.
+/// sees on average, and per vertex how many meshes were lit at their vertices.
 #[test]
 fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
     if common::no_gpu_wanted() {
@@ -197,7 +197,6 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
             String::from_utf8_lossy(&out.stdout).into_owned(),
         )
     };
-    let render = |name: &str, extra: &[&str]| render_with_summary(name, extra).0;
     let differing =
         |a: &image::RgbImage, b: &image::RgbImage| a.pixels().zip(b.pixels()).filter(|(x, y)| x != y).count();
     let (defaults, summary) = render_with_summary("defaults.png", &[]);
@@ -218,8 +217,18 @@ fn render_honours_per_vertex_shadow_maps_and_no_blockers() {
         ("per-vertex.png", &["--per-vertex"][..]),
         ("no-maps.png", &["--shadow-map-size", "0"][..]),
     ] {
-        let changed = differing(&render(name, flags), &defaults);
+        let (image, summary) = render_with_summary(name, flags);
+        let changed = differing(&image, &defaults);
         assert!(changed > pixels / 100, "{flags:?} changed only {changed} pixels");
+        // Per vertex the summary says how many of the sample's seven meshes were lit at
+        // their vertices (`shading::vertex_lighting`; tests/vertex_lighting.rs checks
+        // which), and only per vertex.
+        let lit: Option<usize> = summary
+            .split("; per vertex, ")
+            .nth(1)
+            .and_then(|rest| rest.split_once(" of 7 meshes lit at their vertices"))
+            .and_then(|(count, _)| count.parse().ok());
+        assert_eq!(lit.is_some_and(|n| n <= 7), flags == ["--per-vertex"], "{summary}");
     }
     let (no_blockers, summary) = render_with_summary("no-blockers.png", &["--blockers", "0"]);
     assert!(summary.contains(", 0 blockers"), "{summary}");

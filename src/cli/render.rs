@@ -5,7 +5,7 @@ use std::path::Path;
 
 use lightpaint::project::{Document, sphere_cache};
 use lightpaint::render::{
-    AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, render_cpu_image, render_image, render_logsh_image,
+    AntiAliasing, GpuContext, Redraw, ShadowFrame, ShadowRenderer, render_cpu_image, render_image,
 };
 use lightpaint::shading::BakedIndirect;
 use lightpaint::shading::blocker_reach::mean_blockers_in_reach;
@@ -128,10 +128,21 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
             ),
         )
     } else {
+        let mut shadow_renderer = ShadowRenderer::new(&gpu, &frame, args.aa)?;
+        let image = shadow_renderer.read_image()?;
+        // Per vertex, which meshes the frame lit at their vertices
+        // (`shading::vertex_lighting`); the others shade each pixel.
+        let lit = if shadows.per_vertex {
+            let meshes = scene.objects.iter().filter(|o| !o.indices.is_empty()).count();
+            let lit = shadow_renderer.objects_lit_at_vertices();
+            format!("; per vertex, {lit} of {meshes} meshes lit at their vertices")
+        } else {
+            String::new()
+        };
         (
-            render_logsh_image(&gpu, &frame, args.aa)?,
+            image,
             format!(
-                "log-SH, {}{}",
+                "log-SH, {}{lit}{}",
                 describe(&frame, &document.hidden_objects),
                 describe_indirect(&indirect)
             ),
