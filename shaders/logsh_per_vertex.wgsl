@@ -49,11 +49,10 @@ fn cs_vertex_visibility(@builtin(global_invocation_id) id: vec3<u32>) {
 // its mirrored view and its exponent) through its visibility g: diffuse and glossy parts
 // (VertexLight).
 fn side_light(s: Surface, g: Sh) -> array<vec3<f32>, 2> {
-    var diffuse = vec3<f32>(0.0);
-    if ENVIRONMENT_LIGHT {
-        let unshadowed = environment_irradiance_at(s) / PI;
-        diffuse = clamp(sh_environment_through_cosine(g, s.normal), vec3<f32>(0.0), unshadowed);
-    }
+    // The environment's light per unit diffuse albedo: environment_through with k_d = 1.
+    var unit_albedo = s;
+    unit_albedo.k_d = vec3<f32>(1.0);
+    var diffuse = environment_through(unit_albedo, LobeVisibility(g, g, false));
     var glossy = vec3<f32>(0.0);
     let run = harmonic_lights_at(s.position);
     for (var k = run.first; k < run.end; k++) {
