@@ -45,7 +45,9 @@ struct Shadows {
     /// What `pipeline` was compiled for.
     key: PipelineKey,
     blockers: GpuBlockers,
-    /// Per-vertex visibility buffers of the scene for the pipeline's order.
+    /// Per-vertex visibility and light buffers of the scene for the pipeline's order, made
+    /// by the first frame shaded per vertex since the pipeline was installed (frames
+    /// shaded otherwise need none of them).
     visibility: Option<VertexVisibility>,
     /// The reduced-resolution images for the last frame size, if the pipeline shades at a
     /// reduced resolution.
@@ -164,7 +166,6 @@ impl SceneRenderer {
             &settings,
             shadow_maps.binding(),
         );
-        let visibility = pipeline.vertex_visibility(device, &gpu_scene);
         let heat_map = HeatMapPipeline::new(device, &raster.layouts, samples);
         let mut renderer = SceneRenderer {
             device: device.clone(),
@@ -179,7 +180,7 @@ impl SceneRenderer {
                 pipeline,
                 key,
                 blockers: gpu_blockers,
-                visibility,
+                visibility: None,
                 low_resolution: None,
             },
             pipelines,
@@ -447,7 +448,7 @@ impl SceneRenderer {
             self.shadows.key = key;
             // Bound through the old pipeline's layouts.
             self.shadows.low_resolution = None;
-            self.shadows.visibility = self.shadows.pipeline.vertex_visibility(&self.device, &self.gpu_scene);
+            self.shadows.visibility = None;
         }
         self.shadows
             .blockers
@@ -504,6 +505,9 @@ impl SceneRenderer {
             && (same_but_terrain(&self.shadows.settings, &settings.shadows) || self.pending.is_some())
         {
             let shadows = &mut self.shadows;
+            if wants_per_vertex && shadows.visibility.is_none() {
+                shadows.visibility = shadows.pipeline.vertex_visibility(&self.device, &self.gpu_scene);
+            }
             (self.vertices_computed, self.objects_lit_at_vertices) = match &mut shadows.visibility {
                 Some(visibility) if wants_per_vertex => visibility.plan_frame(
                     &self.gpu_scene,
