@@ -103,11 +103,17 @@ const DEPTH_BEND_FLOOR: f32 = 4.0e-7;
 // the frame came closer to the path tracer without the filter than with it
 // (docs/speed-accuracy.md).
 fn surfaces_break(pixel: vec2<i32>) -> bool {
-    let c = depth_at(pixel);
-    let n = depth_at(pixel + vec2<i32>(0, -1));
-    let s = depth_at(pixel + vec2<i32>(0, 1));
-    let e = depth_at(pixel + vec2<i32>(1, 0));
-    let w = depth_at(pixel + vec2<i32>(-1, 0));
+    // Two gathers of 2 × 2 texels, (w, c, n, nw) about the pixel's top-left corner and
+    // (s, se, e, c) about its bottom-right one (WGSL orders a gather i0j1, i1j1, i1j0,
+    // i0j0), clamped at the border as the sampler addresses.
+    let size = vec2<f32>(textureDimensions(frame_depth));
+    let top_left = textureGather(frame_depth, frame_sampler, vec2<f32>(pixel) / size);
+    let bottom_right = textureGather(frame_depth, frame_sampler, (vec2<f32>(pixel) + 1.0) / size);
+    let c = top_left.y;
+    let n = top_left.z;
+    let w = top_left.x;
+    let e = bottom_right.z;
+    let s = bottom_right.x;
     let nothing_drawn = min(c, min(min(n, s), min(e, w))) >= 1.0;
     // At the image's border the neighbour beyond is the pixel itself (clamped), which
     // would read as a fold: no bend is measured across that side.
