@@ -58,6 +58,13 @@ impl Camera {
     pub fn view_projection(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view()
     }
+
+    /// The distance from the eye to the near plane's corners (`aspect` width over height),
+    /// metres: the near plane clips nothing farther from the eye than this.
+    pub fn near_plane_reach_m(&self, aspect: f32) -> f32 {
+        let half_height = (0.5 * self.yfov_rad).tan();
+        self.znear * (1.0 + half_height * half_height * (1.0 + aspect * aspect)).sqrt()
+    }
 }
 
 /// The editor's orbit camera: a point of interest and spherical coordinates around it
@@ -159,6 +166,22 @@ impl OrbitCamera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_near_plane_reach_is_the_distance_to_its_unprojected_corners() {
+        let camera = Camera::looking_at(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO, 0.9, 0.05);
+        let aspect = 16.0 / 9.0;
+        let to_world = camera.view_projection(aspect).inverse();
+        for corner in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
+            // Depth 0: the near plane (wgpu's clip space).
+            let p = to_world.project_point3(Vec3::new(corner.0, corner.1, 0.0));
+            let distance = p.distance(camera.position);
+            assert!(
+                (distance - camera.near_plane_reach_m(aspect)).abs() < 1e-5 * distance,
+                "{distance}"
+            );
+        }
+    }
 
     #[test]
     fn framing_camera_sees_the_box_centre_in_the_middle() {

@@ -8,6 +8,7 @@ mod bounds;
 mod camera;
 pub mod color_temperature;
 pub mod detail_levels;
+mod enclosure;
 pub mod environment;
 mod error;
 mod frustum;
@@ -25,6 +26,7 @@ pub mod texture_mips;
 
 pub use bounds::Aabb;
 pub use camera::{Camera, OrbitCamera};
+pub use enclosure::encloses_outward;
 pub use environment::{Environment, equirect_direction, project_equirect};
 pub use error::SceneError;
 pub use frustum::Frustum;

@@ -9,7 +9,7 @@ use super::low_resolution::{FullResolution, ReducedShadingPipelines, draw_full_r
 use super::per_vertex::{PerVertexCompute, VertexVisibility};
 use super::reduced_shading::LowResolutionTargets;
 pub use super::scene_pipeline::SURFACE_FORMAT;
-use super::scene_pipeline::{Stage, Variant, path_constants, scene_pipeline};
+use super::scene_pipeline::{BySides, Stage, Variant, path_constants, scene_pipeline};
 use crate::render::descriptors::create_module;
 use crate::render::pass_timer::TimedEncoder;
 use crate::render::resources::{GpuBlockers, GpuScene, SceneLayouts, draw_object, draw_objects, shadow_layout};
@@ -41,9 +41,9 @@ pub struct LogShPipeline {
 pub struct PerVertexPipelines {
     pub compute: PerVertexCompute,
     /// Shading each pixel through the interpolated visibility (fs_per_vertex).
-    pub shade: wgpu::RenderPipeline,
+    pub shade: BySides,
     /// The interpolated light of meshes lit at their vertices (fs_vertex_lit).
-    pub lit: wgpu::RenderPipeline,
+    pub lit: BySides,
 }
 
 /// How a frame's pixels are shaded, with the buffers that way needs.
@@ -94,7 +94,8 @@ impl LogShPipeline {
             paths,
             textured: true,
         };
-        let make = |stage| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
+        let make_variant = |stage, variant| scene_pipeline(device, layouts, &shadow_layout, &module, stage, variant);
+        let make = |stage| make_variant(stage, variant);
         let per_vertex = wgsl_sh::supports_per_vertex(settings.order).then(|| PerVertexPipelines {
             compute: PerVertexCompute::new(
                 device,
@@ -103,8 +104,15 @@ impl LogShPipeline {
                 settings.order,
                 &path_constants(paths.with_one_visibility()),
             ),
-            shade: make(Stage::ShadePerVertex(settings.order, !per_vertex_prepass(paths))),
-            lit: make(Stage::VertexLit(!per_vertex_prepass(paths))),
+            shade: BySides::new(variant, |variant| {
+                make_variant(
+                    Stage::ShadePerVertex(settings.order, !per_vertex_prepass(paths)),
+                    variant,
+                )
+            }),
+            lit: BySides::new(variant, |variant| {
+                make_variant(Stage::VertexLit(!per_vertex_prepass(paths)), variant)
+            }),
         });
         let reduced = (settings.shading_downsample > 1).then(|| {
             ReducedShadingPipelines::new(
@@ -239,12 +247,17 @@ impl LogShPipeline {
         match (per_vertex, reduced) {
             (Some((visibility, pipelines)), _) => {
                 // The meshes lit at their vertices, then those shaded through their
-                // vertices' visibility: one change of pipeline.
-                for lit in [true, false] {
-                    pass.set_pipeline(if lit { &pipelines.lit } else { &pipelines.shade });
+                // vertices' visibility, each with their back faces culled where the
+                // camera cannot see them.
+                for (lit, back_faces_hidden) in [(true, false), (true, true), (false, false), (false, true)] {
+                    let sides = if lit { &pipelines.lit } else { &pipelines.shade };
+                    pass.set_pipeline(sides.for_back_faces_hidden(back_faces_hidden));
                     for (k, (object, buffer)) in scene.objects.iter().zip(&visibility.buffers).enumerate() {
                         let light = visibility.light.buffer(k);
-                        if !object.drawn_in_view() || light.is_some() != lit {
+                        if !object.drawn_in_view()
+                            || light.is_some() != lit
+                            || object.back_faces_hidden != back_faces_hidden
+                        {
                             continue;
                         }
                         pass.set_vertex_buffer(1, light.unwrap_or(buffer).slice(..));

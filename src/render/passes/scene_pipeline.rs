@@ -43,6 +43,39 @@ impl ByTexture {
     }
 }
 
+/// A pipeline that draws both faces of each triangle and its twin that culls back faces,
+/// for the objects whose back faces the camera cannot see
+/// ([`GpuObject::back_faces_hidden`]): lavapipe rasterises back faces, and without a depth
+/// pre-pass shades those drawn before the front faces that hide them.
+pub struct BySides {
+    both: wgpu::RenderPipeline,
+    front: wgpu::RenderPipeline,
+}
+
+impl BySides {
+    /// `make(variant)`, and `make` of it with back faces culled (the same pipeline where
+    /// `variant` culls them already).
+    pub(super) fn new(variant: Variant, make: impl Fn(Variant) -> wgpu::RenderPipeline) -> BySides {
+        let both = make(variant);
+        let front = match variant.paths.cull_back_faces {
+            true => both.clone(),
+            false => make(Variant {
+                paths: CompiledPaths {
+                    cull_back_faces: true,
+                    ..variant.paths
+                },
+                ..variant
+            }),
+        };
+        BySides { both, front }
+    }
+
+    /// The pipeline for objects whose back faces are hidden (`true`) or may show.
+    pub fn for_back_faces_hidden(&self, hidden: bool) -> &wgpu::RenderPipeline {
+        if hidden { &self.front } else { &self.both }
+    }
+}
+
 /// Draws the visible objects `picked` picks with `pipeline`.
 fn draw_picked(
     pass: &mut wgpu::RenderPass<'_>,

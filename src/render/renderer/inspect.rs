@@ -19,6 +19,17 @@ impl SceneRenderer {
         self.gpu_scene.set_view_culling(enabled);
     }
 
+    /// See [`crate::render::GpuScene::set_back_face_culling`].
+    pub fn set_back_face_culling(&mut self, enabled: bool) {
+        self.gpu_scene.set_back_face_culling(enabled);
+    }
+
+    /// See [`crate::render::GpuScene::objects_seen_from_outside`]: those whose back faces
+    /// per-vertex frames cull.
+    pub fn objects_seen_from_outside(&self) -> usize {
+        self.gpu_scene.objects_seen_from_outside()
+    }
+
     /// See [`crate::render::GpuScene::set_detail_levels`].
     pub fn set_detail_levels(&mut self, enabled: bool) {
         self.gpu_scene.set_detail_levels(enabled);

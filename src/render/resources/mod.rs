@@ -5,6 +5,7 @@
 
 mod blockers;
 mod layouts;
+mod light_buffers;
 mod scene;
 mod shadow_maps;
 mod terrain;

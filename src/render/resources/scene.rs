@@ -8,14 +8,13 @@ use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::layouts::SceneLayouts;
+use super::light_buffers::LightBuffers;
 use super::texture::upload_texture;
 use crate::render::descriptors::slot_entries;
 use crate::scene::detail_levels::{DetailLevels, MAX_SHADOW_TEXEL_SHARE};
-use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage};
+use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage, encloses_outward};
 use crate::shading::BakedIndirect;
-use crate::shading::gpu_types::{
-    GpuFrame, GpuLight, GpuMaterial, GpuVertex, UNIFORM_LIGHT_CAPACITY, environment_irradiance, srgb8_word,
-};
+use crate::shading::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance, srgb8_word};
 use crate::shading::light_grid::{LightGrid, grid_worth_it};
 use crate::shading::shadow_maps::ShadowViews;
 use crate::shading::vertex_lighting::MeshFineness;
@@ -57,6 +56,12 @@ pub struct GpuObject {
     /// per-vertex shading may light it at its vertices (`shading::vertex_lighting`).
     pub fineness: MeshFineness,
     pub phong_exponent: f32,
+    /// Whether its mesh encloses volume with its faces turned outward
+    /// ([`crate::scene::encloses_outward`]), and so whether the last camera written
+    /// (outside its bounds and their reach of the near plane) cannot see a back face of
+    /// it: the passes seen from the camera may cull them.
+    pub encloses_outward: bool,
+    pub back_faces_hidden: bool,
 }
 
 impl GpuObject {
@@ -96,6 +101,9 @@ pub struct GpuScene {
     /// Whether objects outside the camera's frustum are left out of its passes (on unless
     /// a test compares frames without it: [`GpuScene::set_view_culling`]).
     view_culling: bool,
+    /// Whether the camera's passes may cull the back faces of closed meshes (on unless a
+    /// test compares frames without it: [`GpuScene::set_back_face_culling`]).
+    back_face_culling: bool,
     /// Whether the camera's passes draw each object's level of detail for its distance
     /// (on unless a frame is compared with the meshes drawn as they are:
     /// [`GpuScene::set_detail_levels`]).
@@ -191,6 +199,8 @@ impl GpuScene {
                     in_view: true,
                     fineness: MeshFineness::of(&object.positions, &object.normals, &object.indices),
                     phong_exponent: scene.materials.get(material).map_or(0.0, |m| m.phong_exponent()),
+                    encloses_outward: encloses_outward(&object.positions, &object.indices),
+                    back_faces_hidden: false,
                 }
             })
             .collect();
@@ -265,6 +275,7 @@ impl GpuScene {
             first_light_on: [0, 0],
             environment_irradiance: environment_irradiance(scene.environment.as_ref()),
             view_culling: true,
+            back_face_culling: true,
             detail_levels: true,
             surfaces_generation: next_surfaces_generation(),
             levels_generation: next_surfaces_generation(),
@@ -392,12 +403,18 @@ impl GpuScene {
         frame.light_grid_origin = grid.origin.extend(1.0 / grid.box_side_m).to_array();
         frame.light_grid_boxes = grid.boxes.extend(grid.box_count() as u32).to_array();
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
-        let frustum = Frustum::of_camera(camera, size_px[0].max(1) as f32 / size_px[1].max(1) as f32);
+        let aspect = size_px[0].max(1) as f32 / size_px[1].max(1) as f32;
+        let frustum = Frustum::of_camera(camera, aspect);
+        let near_reach_m = camera.near_plane_reach_m(aspect);
         // Metres a pixel spans per metre of distance, at the image's centre.
         let pixel_m_per_m = 2.0 * (0.5 * camera.yfov_rad).tan() / size_px[1].max(1) as f32;
         let mut level_changed = false;
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
+            // The levels of detail are edge collapses that keep a closed mesh closed.
+            object.back_faces_hidden = self.back_face_culling
+                && object.encloses_outward
+                && object.bounds.distance_to(camera.position) > near_reach_m;
             let level = match detail {
                 Detail::Levels(shadow_views) if self.detail_levels => {
                     let max_error_m = MAX_SHADOW_TEXEL_SHARE * shadow_views.finest_texel_m(&object.bounds);
@@ -441,6 +458,21 @@ impl GpuScene {
     /// the same either way (tests/view_culling.rs).
     pub fn set_view_culling(&mut self, enabled: bool) {
         self.view_culling = enabled;
+    }
+
+    /// Culls the back faces of closed meshes the camera sees from outside (the default)
+    /// or draws them, from the next [`Self::write_frame`] on: the frames must be the same
+    /// either way but for ties at silhouettes (tests/back_faces.rs).
+    pub fn set_back_face_culling(&mut self, enabled: bool) {
+        self.back_face_culling = enabled;
+    }
+
+    /// How many objects the last camera written draws whose back faces it cannot see.
+    pub fn objects_seen_from_outside(&self) -> usize {
+        self.objects
+            .iter()
+            .filter(|o| o.drawn_in_view() && o.back_faces_hidden)
+            .count()
     }
 
     /// Whether views leave out the objects outside their frustum: the camera's from the
@@ -489,73 +521,6 @@ impl GpuScene {
     pub fn set_environment(&mut self, environment: Option<&Environment>) {
         self.environment_irradiance = environment_irradiance(environment);
     }
-}
-
-/// The lights as scene.wgsl reads them: the first [`UNIFORM_LIGHT_CAPACITY`] in a uniform
-/// buffer of that many, and every light in a storage buffer (read past the capacity).
-struct LightBuffers {
-    uniform: wgpu::Buffer,
-    every: wgpu::Buffer,
-    /// Lights `every` holds.
-    every_capacity: usize,
-    /// The lights' grid's words (`shading::light_grid`), and how many it holds.
-    grid: wgpu::Buffer,
-    grid_capacity: usize,
-}
-
-impl LightBuffers {
-    fn new(device: &wgpu::Device, every_capacity: usize) -> LightBuffers {
-        let every_capacity = every_capacity.max(1);
-        let buffer = |label, count: usize, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: (count * std::mem::size_of::<GpuLight>()) as u64,
-                usage: usage | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        LightBuffers {
-            uniform: buffer("lights", UNIFORM_LIGHT_CAPACITY, wgpu::BufferUsages::UNIFORM),
-            every: buffer("every light", every_capacity, wgpu::BufferUsages::STORAGE),
-            every_capacity,
-            grid: grid_buffer(device, GRID_WORDS_AT_FIRST),
-            grid_capacity: GRID_WORDS_AT_FIRST,
-        }
-    }
-
-    /// Writes the grid's `words`, in a larger buffer when they do not fit (true: the
-    /// frame's bind group must be made again).
-    fn write_grid(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, words: &[u32]) -> bool {
-        let grown = words.len() > self.grid_capacity;
-        if grown {
-            self.grid_capacity = words.len().next_power_of_two();
-            self.grid = grid_buffer(device, self.grid_capacity);
-        }
-        queue.write_buffer(&self.grid, 0, bytemuck::cast_slice(words));
-        grown
-    }
-
-    /// Writes `lights` (at most the capacity `every` was made with).
-    fn write(&self, queue: &wgpu::Queue, lights: &[GpuLight]) {
-        if lights.is_empty() {
-            return;
-        }
-        let first = &lights[..lights.len().min(UNIFORM_LIGHT_CAPACITY)];
-        queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(first));
-        queue.write_buffer(&self.every, 0, bytemuck::cast_slice(lights));
-    }
-}
-
-/// Words of the lights' grid buffer made with the scene (grown when a grid needs more).
-const GRID_WORDS_AT_FIRST: usize = 1024;
-
-fn grid_buffer(device: &wgpu::Device, words: usize) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("lights' grid"),
-        size: (words.max(1) * std::mem::size_of::<u32>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }
 
 fn frame_bind_group(
