@@ -1,6 +1,9 @@
-//! glTF's `doubleSided`: when every material of a scene is single-sided the renderer culls
-//! back faces (glTF 2.0, "Double Sided"), so a single-sided floor seen from below shows
-//! the background; a double-sided one shows its lit underside.
+//! Back faces on lavapipe. glTF's `doubleSided`: when every material of a scene is
+//! single-sided the renderer culls back faces (glTF 2.0, "Double Sided"), so a
+//! single-sided floor seen from below shows the background; a double-sided one shows its
+//! lit underside. Closed meshes: per-vertex frames cull the back faces of those the
+//! camera sees from outside, which changes nothing but ties at silhouettes, and keep them
+//! where the camera is inside or the near plane cuts in.
 
 mod common;
 

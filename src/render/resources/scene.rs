@@ -411,7 +411,7 @@ impl GpuScene {
         let mut level_changed = false;
         for object in &mut self.objects {
             object.in_view = !self.view_culling || frustum.may_see(&object.bounds);
-            // The levels of detail are edge collapses that keep a closed mesh closed.
+            // Per-vertex frames, which cull them, draw the meshes as they are (level 0).
             object.back_faces_hidden = self.back_face_culling
                 && object.encloses_outward
                 && object.bounds.distance_to(camera.position) > near_reach_m;
