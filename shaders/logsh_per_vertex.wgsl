@@ -111,6 +111,10 @@ struct VertexOutLit {
 
 @vertex
 fn vs_vertex_lit(v: VertexIn, light: VertexLightIn) -> VertexOutLit {
+    return vertex_lit(v, light);
+}
+
+fn vertex_lit(v: VertexIn, light: VertexLightIn) -> VertexOutLit {
     let o = transform_vertex(v);
     let indirect = max(o.indirect_irradiance, vec3<f32>(0.0)) / PI;
     return VertexOutLit(
@@ -138,6 +142,35 @@ fn fs_vertex_lit(in: VertexOutLit, @builtin(front_facing) front_facing: bool) ->
     let diffuse = select(in.back_diffuse, in.front_diffuse, front_facing);
     let glossy = select(in.back_glossy, in.front_glossy, front_facing);
     let radiance = s.emissive + s.k_d * diffuse + s.k_s * glossy + exact_path_radiance(s) + mapped_lights_radiance(s);
+    return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
+}
+
+// A mesh lit at its vertices in a frame without lights on the shadow-map or exact paths:
+// nothing but the material is shaded per pixel, so the fragment needs neither position
+// nor normal (lavapipe sets up every varying of each triangle).
+struct VertexOutLitAlone {
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(4) front_diffuse: vec3<f32>,
+    @location(5) front_glossy: vec3<f32>,
+    @location(6) back_diffuse: vec3<f32>,
+    @location(7) back_glossy: vec3<f32>,
+};
+
+@vertex
+fn vs_vertex_lit_alone(v: VertexIn, light: VertexLightIn) -> VertexOutLitAlone {
+    let o = vertex_lit(v, light);
+    return VertexOutLitAlone(o.clip, o.uv, o.front_diffuse, o.front_glossy, o.back_diffuse, o.back_glossy);
+}
+
+// fs_vertex_lit where exact_path_radiance and mapped_lights_radiance add nothing.
+@fragment
+fn fs_vertex_lit_alone(in: VertexOutLitAlone, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    // The normal only turns the surface toward the viewer, which the material ignores.
+    let s = material_surface(vec3<f32>(0.0, 0.0, 1.0), in.uv, vec3<f32>(0.0), front_facing);
+    let diffuse = select(in.back_diffuse, in.front_diffuse, front_facing);
+    let glossy = select(in.back_glossy, in.front_glossy, front_facing);
+    let radiance = s.emissive + s.k_d * diffuse + s.k_s * glossy;
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }
 

@@ -3,7 +3,8 @@
 //! blockers (every vertex's visibility 1) a fine floor under a lamp lit at its vertices
 //! looks as it does shaded per pixel, while a single-quad floor under the same lamp keeps
 //! per-pixel shading (interpolated from its four corners its hot spot would vanish), and
-//! a glossy floor too.
+//! a glossy floor too; a floor lit at its vertices by a sky takes a shadow-mapped lamp
+//! per pixel.
 
 mod common;
 
@@ -42,13 +43,18 @@ fn floor_under_a_lamp(segments: u32, roughness: f32) -> Scene {
 /// The frame per vertex and per pixel (every pixel shaded, the lamp on the SH path,
 /// no blockers), and how many objects the per-vertex frame lit at their vertices.
 fn frames(scene: &Scene) -> Option<(image::RgbaImage, image::RgbaImage, usize)> {
+    frames_with(scene, LightPaths::Harmonics)
+}
+
+/// [`frames`] with the lights on `light_paths`.
+fn frames_with(scene: &Scene, light_paths: LightPaths) -> Option<(image::RgbaImage, image::RgbaImage, usize)> {
     let gpu = common::gpu()?;
     let camera = Camera::looking_at(Vec3::new(0.0, 3.5, 5.0), Vec3::ZERO, 50f32.to_radians(), 0.05);
     let settings = RenderSettings::default();
     let render = |per_vertex| {
         let shadows = ShadowSettings {
             per_vertex,
-            light_paths: LightPaths::Harmonics,
+            light_paths,
             ..ShadowSettings::default().every_pixel()
         };
         let frame = ShadowFrame {
@@ -121,4 +127,28 @@ fn a_glossy_floor_is_shaded_per_pixel() {
     assert_eq!(lit, 0);
     let (worst, _) = compare(&per_pixel, &per_vertex, 0);
     assert!(worst <= 1, "{worst}");
+}
+
+#[test]
+fn a_floor_lit_at_its_vertices_by_the_sky_takes_a_shadow_mapped_lamp_per_pixel() {
+    // Under Auto the lamp takes a shadow map, shaded per pixel; the sky is on the SH path,
+    // whose light the floor takes at its vertices (fs_vertex_lit with the varyings the
+    // lamp's shading reads, where frames without such lights draw fs_vertex_lit_alone).
+    let mut scene = floor_under_a_lamp(96, 1.0);
+    scene.environment = Some(lightpaint::scene::Environment::uniform([0.2, 0.25, 0.3]));
+    let Some((per_pixel, per_vertex, lit)) = frames_with(&scene, LightPaths::Auto) else {
+        return;
+    };
+    assert_eq!(lit, 1, "the floor is lit at its vertices by the sky");
+    let (worst, share) = compare(&per_pixel, &per_vertex, 1);
+    eprintln!(
+        "sky and mapped lamp: worst {worst}/255, {:.2} % within 1/255",
+        100.0 * share
+    );
+    assert!(worst <= 2, "{worst}");
+    assert!(share > 0.99, "{share}");
+    // The lamp's hot spot is there: the floor under it far brighter than at its corners.
+    let centre = per_vertex.get_pixel(WIDTH / 2, HEIGHT / 2)[0];
+    let corner = per_vertex.get_pixel(2, HEIGHT - 3)[0];
+    assert!(centre > corner + 30, "{centre} against {corner}");
 }

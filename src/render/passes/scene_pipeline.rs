@@ -122,8 +122,10 @@ pub(super) enum Stage<'a> {
     /// Shading through per-vertex visibility attributes of this order, writing depth
     /// (drawn without a pre-pass) or not.
     ShadePerVertex(usize, bool),
-    /// Shading through the SH path's light computed at the vertices (fs_vertex_lit),
-    /// writing depth or not as [`Stage::ShadePerVertex`].
+    /// Shading through the SH path's light computed at the vertices, writing depth or
+    /// not as [`Stage::ShadePerVertex`]: drawn without a pre-pass, no light is shaded per
+    /// pixel (`logsh::per_vertex_prepass`), and fs_vertex_lit_alone needs fewer varyings
+    /// than fs_vertex_lit.
     VertexLit(bool),
     /// One surface channel (fs_surface) as raw f32.
     Surface(u32, &'a str),
@@ -210,7 +212,13 @@ pub(super) fn scene_pipeline(
     };
     let (vertex_entry, buffers) = match stage {
         Stage::ShadePerVertex(..) => ("vs_per_vertex", vec![Some(vertex_layout()), Some(visibility_layout)]),
-        Stage::VertexLit(_) => ("vs_vertex_lit", vec![Some(vertex_layout()), Some(visibility_layout)]),
+        // Alone (writing its depth: no pre-pass, no lights shaded per pixel): without the
+        // varyings only those lights read.
+        Stage::VertexLit(true) => (
+            "vs_vertex_lit_alone",
+            vec![Some(vertex_layout()), Some(visibility_layout)],
+        ),
+        Stage::VertexLit(false) => ("vs_vertex_lit", vec![Some(vertex_layout()), Some(visibility_layout)]),
         Stage::PlainSurfaceBuffer => ("vs_plain_surface", vec![Some(vertex_layout())]),
         _ => ("vs_main", vec![Some(vertex_layout())]),
     };
@@ -237,7 +245,11 @@ pub(super) fn scene_pipeline(
             wgpu::CompareFunction::LessEqual,
         ),
         Stage::VertexLit(writes_depth) => (
-            "fs_vertex_lit",
+            if writes_depth {
+                "fs_vertex_lit_alone"
+            } else {
+                "fs_vertex_lit"
+            },
             vec![shaded],
             writes_depth,
             wgpu::CompareFunction::LessEqual,
