@@ -139,10 +139,17 @@ struct VertexLightIn {
 @fragment
 fn fs_vertex_lit(in: VertexOutLit, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let s = surface(VertexOut(in.clip, in.world_position, in.normal, in.uv, vec3<f32>(0.0)), front_facing);
-    let diffuse = select(in.back_diffuse, in.front_diffuse, front_facing);
-    let glossy = select(in.back_glossy, in.front_glossy, front_facing);
-    let radiance = s.emissive + s.k_d * diffuse + s.k_s * glossy + exact_path_radiance(s) + mapped_lights_radiance(s);
+    let light = array<vec3<f32>, 4>(in.front_diffuse, in.front_glossy, in.back_diffuse, in.back_glossy);
+    let radiance = vertex_lit_radiance(s, light, front_facing) + exact_path_radiance(s) + mapped_lights_radiance(s);
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
+}
+
+// The emission and the interpolated light of the side a fragment shows (`light`: front
+// diffuse, front glossy, back diffuse, back glossy) times surface s's material.
+fn vertex_lit_radiance(s: Surface, light: array<vec3<f32>, 4>, front_facing: bool) -> vec3<f32> {
+    let diffuse = select(light[2], light[0], front_facing);
+    let glossy = select(light[3], light[1], front_facing);
+    return s.emissive + s.k_d * diffuse + s.k_s * glossy;
 }
 
 // A mesh lit at its vertices in a frame without lights on the shadow-map or exact paths:
@@ -168,9 +175,8 @@ fn vs_vertex_lit_alone(v: VertexIn, light: VertexLightIn) -> VertexOutLitAlone {
 fn fs_vertex_lit_alone(in: VertexOutLitAlone, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     // The normal only turns the surface toward the viewer, which the material ignores.
     let s = material_surface(vec3<f32>(0.0, 0.0, 1.0), in.uv, vec3<f32>(0.0), front_facing);
-    let diffuse = select(in.back_diffuse, in.front_diffuse, front_facing);
-    let glossy = select(in.back_glossy, in.front_glossy, front_facing);
-    let radiance = s.emissive + s.k_d * diffuse + s.k_s * glossy;
+    let light = array<vec3<f32>, 4>(in.front_diffuse, in.front_glossy, in.back_diffuse, in.back_glossy);
+    let radiance = vertex_lit_radiance(s, light, front_facing);
     return vec4<f32>(tonemap_aces_fit(frame.exposure * radiance), 1.0);
 }
 

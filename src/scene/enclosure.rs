@@ -169,8 +169,7 @@ fn every_part_has_positive_volume(positions: &[Vec3], indices: &[u32], welded: &
         let [p, q, r] = [a, b, c].map(|k| positions[welded[k as usize] as usize].as_dvec3() - origin);
         volumes[parts.root(a) as usize] += p.dot(q.cross(r)) / 6.0;
     }
-    let roots: Vec<u32> = triangles.iter().map(|&[a, _, _]| parts.root(a)).collect();
-    roots.iter().all(|&root| volumes[root as usize] > 0.0)
+    triangles.iter().all(|&[a, _, _]| volumes[parts.root(a) as usize] > 0.0)
 }
 
 /// Union–find over vertex ids: which vertices the triangles connect.
