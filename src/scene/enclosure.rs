@@ -53,7 +53,7 @@ pub fn encloses_outward(positions: &[Vec3], indices: &[u32]) -> bool {
             edges.binary_search(&reversed).is_ok()
         })
     };
-    each_once && each_reversed() && every_part_has_positive_volume(positions, indices, &welded, &triangles)
+    each_once && each_reversed() && every_part_has_positive_volume(positions, &triangles)
 }
 
 /// How near two vertices weld, as a share of the mesh's largest extent: procedural seams
@@ -155,18 +155,19 @@ impl std::hash::Hasher for CellHash {
     }
 }
 
-/// Whether every connected part of `triangles` (welded corners) has a positive signed
-/// volume, measured about the mesh's first vertex for precision.
-fn every_part_has_positive_volume(positions: &[Vec3], indices: &[u32], welded: &[u32], triangles: &[[u32; 3]]) -> bool {
+/// Whether every connected part of `triangles` (welded corners: each the index of the
+/// vertex its weld keeps, `welded_ids`) has a positive signed volume, measured about the
+/// first triangle's first corner for precision.
+fn every_part_has_positive_volume(positions: &[Vec3], triangles: &[[u32; 3]]) -> bool {
     let mut parts = Parts::new(positions.len());
     for &[a, b, c] in triangles {
         parts.join(a, b);
         parts.join(b, c);
     }
-    let origin = positions[indices[0] as usize].as_dvec3();
+    let origin = positions[triangles[0][0] as usize].as_dvec3();
     let mut volumes = vec![0.0f64; positions.len()];
     for &[a, b, c] in triangles {
-        let [p, q, r] = [a, b, c].map(|k| positions[welded[k as usize] as usize].as_dvec3() - origin);
+        let [p, q, r] = [a, b, c].map(|k| positions[k as usize].as_dvec3() - origin);
         volumes[parts.root(a) as usize] += p.dot(q.cross(r)) / 6.0;
     }
     triangles.iter().all(|&[a, _, _]| volumes[parts.root(a) as usize] > 0.0)
