@@ -12,12 +12,15 @@ use glam::{DVec3, Vec3};
 use lightpaint::reference::CameraRays;
 use lightpaint::render::{Detail, FrameQuality, GpuContext};
 use lightpaint::scene::{Camera, Scene, shapes};
+use lightpaint::shading::BakedIndirect;
 use lightpaint::shading::RenderSettings;
 use lightpaint::shading::shadow_maps::ShadowViews;
 
 /// Pixels on a side of the square frames.
 const SIDE_PX: u32 = 320;
 const RADIUS_M: f32 = 1.0;
+/// The triangles of the sphere of [`sphere_scene`] (320 × 160 segments).
+const SPHERE_TRIANGLES: u64 = 101_760;
 
 /// A unit sphere of 320 × 160 segments (101,760 triangles) at the origin, and a floor 1 m
 /// below it, lit by a point light `light_m` above it and to the side (none: unlit).
@@ -144,7 +147,14 @@ fn a_lit_frame_drawn_from_levels_is_the_frame_drawn_from_the_whole_meshes() {
     let close = camera_at(1.5);
     let (_, renderer) = common::drawn_with(&gpu, (&scene, &[]), &settings, (&close, [SIDE_PX; 2]), |_| {});
     let (drawn, shown) = renderer.triangles_in_view();
-    assert_eq!(drawn, shown, "close up every triangle is drawn");
+    // Close up every triangle of the sphere is drawn: a level of it keeps at most 80 %
+    // of them, which with the whole floor (1,800) would fall short of the sphere's own.
+    // (The flat, untextured floor may be drawn from long triangles: nothing varies at
+    // its vertices.)
+    assert!(
+        drawn >= SPHERE_TRIANGLES,
+        "close up the whole sphere: {drawn} triangles drawn"
+    );
     let far = camera_at(18.0);
     let frame = |levels: bool| {
         common::drawn_with(&gpu, (&scene, &[]), &settings, (&far, [SIDE_PX; 2]), |r| {
@@ -195,6 +205,65 @@ fn a_lamp_moved_near_with_the_camera_still_redraws_the_finer_level() {
     );
     assert_eq!(drawn_after_move, fresh_renderer.triangles_in_view().0);
     assert_eq!(common::differing_pixels(&after_move, &fresh), 0);
+}
+
+/// A flat, untextured floor of 96 × 96 quads under a spot (a hot spot and a cone's edge
+/// shaded per pixel), seen from 3 m: nothing varies at its vertices, so the frame draws
+/// it from a level of long edges, a sixteenth of its triangles or fewer, and the frame
+/// is the frame drawn from the whole floor (its surface is the same plane, its normal
+/// the same: at most a few pixels differ, by rounding at the new triangles' edges).
+/// Baked light at its vertices brings back the edge rule (`MAX_EDGE_PX`): the light
+/// interpolated between them would change with their spacing.
+#[test]
+fn a_flat_floor_with_nothing_varying_at_its_vertices_is_drawn_from_long_triangles() {
+    let Some(gpu) = common::gpu() else { return };
+    let mut scene = Scene::default();
+    scene.materials.push(lightpaint::scene::Material::default());
+    scene.objects.push(shapes::plane(8.0, 96, 1.0).into_object("floor"));
+    let mut spot = common::scenes::white_light(
+        lightpaint::scene::LightKind::Spot {
+            inner_cone_rad: 0.3,
+            outer_cone_rad: 0.5,
+        },
+        Vec3::new(0.3, 1.5, -0.2),
+        6.0,
+    );
+    spot.direction = Vec3::new(0.2, -1.0, 0.1).normalize();
+    scene.lights.push(spot);
+    let settings = RenderSettings::default();
+    let camera = Camera::looking_at(Vec3::new(0.0, 1.6, 2.6), Vec3::ZERO, 50f32.to_radians(), 0.05);
+    let frame = |levels: bool, baked: bool| {
+        let mut renderer = common::renderer_for(&gpu, &scene, &[], &settings);
+        renderer.set_detail_levels(levels);
+        if baked {
+            let vertices = scene.objects[0].positions.len();
+            renderer.set_baked_indirect(Some(&BakedIndirect {
+                objects: vec![vec![[0.3, 0.2, 0.1]; vertices]],
+            }));
+        }
+        renderer.render(&camera, [SIDE_PX; 2], &settings, FrameQuality::default());
+        let image = renderer.read_image().expect("a frame was drawn").expect("readback");
+        (image, renderer.triangles_in_view())
+    };
+    let (from_levels, (drawn, shown)) = frame(true, false);
+    let (whole, _) = frame(false, false);
+    eprintln!("flat floor from 3 m: {drawn} of {shown} triangles drawn");
+    assert!(16 * drawn <= shown, "{drawn} of {shown} triangles drawn");
+    let lit = whole.pixels().filter(|p| p.0[0] > 40).count();
+    assert!(lit > 1000, "the spot lights the floor ({lit} pixels)");
+    let far_apart = from_levels
+        .pixels()
+        .zip(whole.pixels())
+        .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 2))
+        .count();
+    let differing = common::differing_pixels(&from_levels, &whole);
+    eprintln!("flat floor from 3 m: {differing} pixels differ, {far_apart} by more than 2/255");
+    assert!(far_apart <= 8, "{far_apart} pixels more than 2/255 apart");
+    let (_, (drawn_baked, _)) = frame(true, true);
+    assert!(
+        drawn_baked > 4 * drawn,
+        "baked light keeps short edges: {drawn_baked} triangles against {drawn}"
+    );
 }
 
 /// Per-vertex shading shows values at the vertices: its frames draw the meshes as they

@@ -19,8 +19,12 @@
 //! [`MAX_ERROR_PX`], and whose longest edge is no longer than the mesh's own or within
 //! [`MAX_EDGE_PX`] — so a finely tessellated floor, flat and simplified to a few long
 //! triangles without error, keeps vertices for its per-vertex light to be interpolated
-//! between. The shadow maps draw the meshes as they are; so do per-vertex shading and
-//! the heat map, whose values live at the vertices.
+//! between. Where the frame interpolates nothing across the mesh's triangles that varies
+//! from vertex to vertex ([`VertexValues::Uniform`]: one normal over each connected
+//! piece, no texture, no baked light), a level within the error bound draws the same
+//! surface whatever its edges' length, and the edge rule is left out. The shadow maps
+//! draw the meshes as they are; so do per-vertex shading and the heat map, whose values
+//! live at the vertices.
 
 use std::ops::Range;
 
@@ -48,8 +52,45 @@ pub const MAX_ERROR_PX: f32 = 0.2;
 /// light over metres; here its triangles stay within 64 pixels. The large sample's columns,
 /// whose sides simplify to edges their height long, kept their finer levels at 8, 16 and
 /// 32 pixels (708k, 668k and 585k of its 955k triangles drawn against 484k at 64, with
-/// levels simplified from the whole mesh).
+/// levels simplified from the whole mesh). Not applied where nothing varies at the
+/// mesh's vertices ([`VertexValues::Uniform`]).
 pub const MAX_EDGE_PX: f32 = 64.0;
+
+/// The widest turn, in radians, between two vertex normals of one triangle of a mesh
+/// whose normals count as one ([`VertexValues::of`]): 1 mrad (0.06°), a normal
+/// written to a file in single precision and read back turns by far less.
+pub const MAX_UNIFORM_NORMAL_TURN_RAD: f32 = 1e-3;
+
+/// What a level's triangles interpolate across the mesh besides its positions: what
+/// decides whether [`MAX_EDGE_PX`] bounds the level drawn ([`DetailLevels::level_for`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VertexValues {
+    /// Values that change from vertex to vertex: baked light, uvs a texture reads,
+    /// normals that turn. A long edge would interpolate them over metres.
+    Varying,
+    /// Nothing that changes within a connected piece of the mesh: its vertices' normals
+    /// are one (a vertex shared by two triangles has one normal, so a triangle whose
+    /// corners' normals agree passes it on to its neighbours), no texture is read, no
+    /// baked light. Any triangle over the mesh's vertices within the error bound
+    /// interpolates what the mesh's own triangles do.
+    Uniform,
+}
+
+impl VertexValues {
+    /// For a mesh whose triangles' corner normals turn by at most
+    /// `widest_normal_turn_rad` (`shading::vertex_lighting::MeshFineness`), `textured`
+    /// (its material reads a base colour texture through its uvs), with `baked_light`
+    /// (the frame reads baked indirect light at its vertices).
+    pub fn of(widest_normal_turn_rad: f32, textured: bool, baked_light: bool) -> VertexValues {
+        // NaN turns (a normal of no length) count as varying.
+        let one_normal = widest_normal_turn_rad <= MAX_UNIFORM_NORMAL_TURN_RAD;
+        if one_normal && !textured && !baked_light {
+            VertexValues::Uniform
+        } else {
+            VertexValues::Varying
+        }
+    }
+}
 
 /// The share of the finest shadow-map texel on an object its level may lie from the
 /// mesh. The maps are drawn from the meshes as they are, so a level lying inside its
@@ -171,9 +212,9 @@ impl DetailLevels {
     /// `distance_m` from the eye, where one pixel spans `pixel_m_per_m` metres per metre
     /// of distance (2 tan(yfov/2) / height in pixels): the coarsest within
     /// [`MAX_ERROR_PX`], within `max_error_m` (what the shadow maps drawn from the meshes
-    /// allow: [`MAX_SHADOW_TEXEL_SHARE`]) and the edge rule above; the mesh itself at or
-    /// behind the eye.
-    pub fn level_for(&self, distance_m: f32, pixel_m_per_m: f32, max_error_m: f32) -> usize {
+    /// allow: [`MAX_SHADOW_TEXEL_SHARE`]) and, where the mesh's `values` vary, the edge
+    /// rule above; the mesh itself at or behind the eye.
+    pub fn level_for(&self, distance_m: f32, pixel_m_per_m: f32, max_error_m: f32, values: VertexValues) -> usize {
         let pixel_m = distance_m * pixel_m_per_m;
         if pixel_m.is_nan() || pixel_m <= 0.0 {
             return 0;
@@ -184,7 +225,9 @@ impl DetailLevels {
             .iter()
             .rposition(|level| {
                 level.error_m <= error_m
-                    && (level.longest_edge_m <= own_edge_m || level.longest_edge_m <= MAX_EDGE_PX * pixel_m)
+                    && (values == VertexValues::Uniform
+                        || level.longest_edge_m <= own_edge_m
+                        || level.longest_edge_m <= MAX_EDGE_PX * pixel_m)
             })
             .unwrap_or(0)
     }
@@ -279,11 +322,17 @@ mod tests {
         let levels = DetailLevels::of_mesh(&positions, &indices);
         // 60° over 540 pixels.
         let pixel_m_per_m = 2.0 * (30f32).to_radians().tan() / 540.0;
-        assert_eq!(levels.level_for(0.0, pixel_m_per_m, f32::INFINITY), 0);
-        assert_eq!(levels.level_for(-1.0, pixel_m_per_m, f32::INFINITY), 0);
+        assert_eq!(
+            levels.level_for(0.0, pixel_m_per_m, f32::INFINITY, VertexValues::Varying),
+            0
+        );
+        assert_eq!(
+            levels.level_for(-1.0, pixel_m_per_m, f32::INFINITY, VertexValues::Varying),
+            0
+        );
         let mut previous = 0;
         for distance_m in [0.5f32, 2.0, 8.0, 32.0, 128.0, 512.0] {
-            let chosen = levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY);
+            let chosen = levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY, VertexValues::Varying);
             assert!(chosen >= previous);
             let level = &levels.levels[chosen];
             assert!(level.error_m <= MAX_ERROR_PX * distance_m * pixel_m_per_m);
@@ -291,12 +340,12 @@ mod tests {
         }
         assert!(previous > 0, "far away a coarser level is drawn");
         assert_eq!(
-            levels.level_for(1e-3, pixel_m_per_m, f32::INFINITY),
+            levels.level_for(1e-3, pixel_m_per_m, f32::INFINITY, VertexValues::Varying),
             0,
             "close up the mesh itself"
         );
         // However far, no coarser than the shadow maps' texels allow.
-        let limited = levels.level_for(512.0, pixel_m_per_m, 1e-3);
+        let limited = levels.level_for(512.0, pixel_m_per_m, 1e-3, VertexValues::Varying);
         assert!(levels.levels[limited].error_m <= 1e-3 && limited < previous);
     }
 
@@ -307,7 +356,8 @@ mod tests {
         let pixel_m_per_m = 2.0 * (30f32).to_radians().tan() / 540.0;
         let own_edge_m = levels.levels[0].longest_edge_m;
         for distance_m in [1.0f32, 5.0, 20.0, 100.0, 1000.0] {
-            let level = &levels.levels[levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY)];
+            let level =
+                &levels.levels[levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY, VertexValues::Varying)];
             assert!(
                 level.longest_edge_m <= own_edge_m || level.longest_edge_m <= MAX_EDGE_PX * distance_m * pixel_m_per_m,
                 "at {distance_m} m an edge of {} m",
@@ -324,5 +374,61 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_fine_flat_floor_with_nothing_varying_at_its_vertices_is_drawn_from_long_edges() {
+        let floor = shapes::plane(10.0, 64, 1.0);
+        let levels = DetailLevels::of_mesh(&floor.positions, &floor.indices);
+        let pixel_m_per_m = 2.0 * (30f32).to_radians().tan() / 540.0;
+        let fineness =
+            crate::shading::vertex_lighting::MeshFineness::of(&floor.positions, &floor.normals, &floor.indices);
+        assert_eq!(fineness.widest_normal_turn_rad, 0.0);
+        let values = VertexValues::of(fineness.widest_normal_turn_rad, false, false);
+        assert_eq!(values, VertexValues::Uniform);
+        // The flat floor simplifies without error (measured: within rounding), so even a
+        // metre away, where a fifth of a pixel spans 0.4 mm, a level of long edges lies
+        // within it: a sixteenth of the floor's triangles or fewer.
+        let triangles = |level: usize| levels.levels[level].indices.len() / 3;
+        for distance_m in [1.0f32, 5.0, 100.0] {
+            let chosen = levels.level_for(distance_m, pixel_m_per_m, f32::INFINITY, values);
+            assert!(
+                16 * triangles(chosen) <= triangles(0),
+                "at {distance_m} m {} of {} triangles",
+                triangles(chosen),
+                triangles(0)
+            );
+            assert!(levels.levels[chosen].error_m <= MAX_ERROR_PX * distance_m * pixel_m_per_m);
+        }
+        // A metre away the edge rule would keep the floor's own edges (22 cm, past 64
+        // pixels' 14 cm): it is what is left out.
+        let varying = levels.level_for(1.0, pixel_m_per_m, f32::INFINITY, VertexValues::Varying);
+        let uniform = levels.level_for(1.0, pixel_m_per_m, f32::INFINITY, values);
+        assert_eq!(varying, 0);
+        assert!(levels.levels[uniform].longest_edge_m > MAX_EDGE_PX * pixel_m_per_m);
+        // Still no level past the shadow maps' bound.
+        let bounded = levels.level_for(1.0, pixel_m_per_m, -1.0, values);
+        assert_eq!(bounded, 0);
+    }
+
+    #[test]
+    fn a_texture_baked_light_or_turning_normals_make_a_meshs_values_vary() {
+        assert_eq!(VertexValues::of(0.0, false, false), VertexValues::Uniform);
+        assert_eq!(
+            VertexValues::of(MAX_UNIFORM_NORMAL_TURN_RAD, false, false),
+            VertexValues::Uniform
+        );
+        assert_eq!(VertexValues::of(0.0, true, false), VertexValues::Varying);
+        assert_eq!(VertexValues::of(0.0, false, true), VertexValues::Varying);
+        assert_eq!(VertexValues::of(0.01, false, false), VertexValues::Varying);
+        assert_eq!(VertexValues::of(f32::NAN, false, false), VertexValues::Varying);
+        // A curved mesh's normals turn: a sphere keeps the edge rule.
+        let (positions, indices) = sphere(64);
+        let normals: Vec<Vec3> = positions.iter().map(|p| p.normalize()).collect();
+        let fineness = crate::shading::vertex_lighting::MeshFineness::of(&positions, &normals, &indices);
+        assert_eq!(
+            VertexValues::of(fineness.widest_normal_turn_rad, false, false),
+            VertexValues::Varying
+        );
     }
 }

@@ -11,7 +11,7 @@ use super::layouts::SceneLayouts;
 use super::light_buffers::LightBuffers;
 use super::texture::upload_texture;
 use crate::render::descriptors::slot_entries;
-use crate::scene::detail_levels::{DetailLevels, MAX_SHADOW_TEXEL_SHARE};
+use crate::scene::detail_levels::{DetailLevels, MAX_SHADOW_TEXEL_SHARE, VertexValues};
 use crate::scene::{Aabb, Camera, Environment, Frustum, Scene, TextureImage, encloses_outward};
 use crate::shading::BakedIndirect;
 use crate::shading::gpu_types::{GpuFrame, GpuLight, GpuMaterial, GpuVertex, environment_irradiance, srgb8_word};
@@ -418,10 +418,16 @@ impl GpuScene {
             let level = match detail {
                 Detail::Levels(shadow_views) if self.detail_levels => {
                     let max_error_m = MAX_SHADOW_TEXEL_SHARE * shadow_views.finest_texel_m(&object.bounds);
+                    let values = VertexValues::of(
+                        object.fineness.widest_normal_turn_rad,
+                        object.textured,
+                        object.baked_light,
+                    );
                     object.detail_levels.level_for(
                         object.bounds.distance_to(camera.position),
                         pixel_m_per_m,
                         max_error_m,
+                        values,
                     )
                 }
                 _ => 0,
