@@ -238,11 +238,14 @@ impl ReducedShadingPipelines {
 }
 
 /// Whether reduced-resolution shading goes in two levels with `paths` compiled in: when
-/// there is light of soft shadows (the SH path's) beside light of sharp ones (shadow maps,
-/// the exact path), the first is shaded at twice the samples' spacing (see
-/// `reduced_shading`).
+/// there is light of soft shadows (the SH path's), beside light of sharp ones (shadow
+/// maps, the exact path) or alone, the first is shaded at twice the samples' spacing (see
+/// `reduced_shading`). Alone too since 2026-12-07: on the blocker bench (its one light on
+/// the SH path) the samples' passes took about 19 ms where shading every sample in full
+/// took 24, the frame within RMSE 0.002 of the one-level frame and as far from exact
+/// visibility (docs/performance.md).
 fn two_level(paths: CompiledPaths) -> bool {
-    paths.harmonics && (paths.maps || paths.exact)
+    paths.harmonics
 }
 
 /// The reduced-resolution samples: the surface buffer rasterised at full resolution
