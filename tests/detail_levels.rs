@@ -4,7 +4,9 @@
 //! casts against the sphere itself, a closed form); beside a shadow-mapped lamp its level
 //! stays within the maps' texels, and a lit frame of it on a floor stays the frame drawn
 //! from the whole mesh, and a lamp brought near with the camera still redraws the finer
-//! level it asks for; per-vertex frames draw the meshes as they are.
+//! level it asks for; a flat, untextured floor under a spot is drawn from a sixteenth of
+//! its triangles as from all of them, and from short edges again under baked light;
+//! per-vertex frames draw the meshes as they are.
 
 mod common;
 
